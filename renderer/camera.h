@@ -1,0 +1,33 @@
+// Pinhole camera rays and per-pixel sample positions (SPEC §2).
+#pragma once
+
+#include <cstdint>
+
+#include "renderer/geometry.h"
+#include "renderer/math.h"
+#include "renderer/scene.h"
+
+namespace phonglab {
+
+// The camera's frame for one image size, computed once per pass.
+struct CameraFrame {
+  Vec3 origin;
+  Vec3 forward;   // F
+  Vec3 right;     // R, scaled by h * W / H
+  Vec3 up;        // U, scaled by h
+  int width = 1;  // W, pixels
+  int height = 1; // H, pixels
+};
+
+// F = normalize(look_at - position), R = normalize(F x up), U = R x F, h = tan(fov_y / 2).
+CameraFrame make_camera_frame(const Camera& camera, int width, int height);
+
+// The primary ray through image point (x + u, y + v); pixel (0, 0) is the top-left.
+Ray camera_ray(const CameraFrame& frame, int x, int y, double u, double v);
+
+// Offset (u, v) in [0, 1)^2 of sample `index` of pixel (x, y). Sample 0 is the centre
+// (0.5, 0.5); later samples follow the R2 low-discrepancy sequence, rotated per pixel by a
+// hash of (x, y) so neighbouring pixels do not share a pattern. Depends on nothing else.
+void sample_offset(int x, int y, std::uint32_t index, double& u, double& v);
+
+}  // namespace phonglab

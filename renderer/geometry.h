@@ -1,0 +1,63 @@
+// Ray-primitive intersection: robust sphere, plane and watertight triangle tests, the
+// nearest-hit query and the any-hit (shadow) query. Pure functions of the scene and a ray.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+#include "renderer/math.h"
+#include "renderer/scene.h"
+
+namespace phonglab {
+
+// A ray with unit direction, plus the per-ray constants of the watertight triangle test.
+struct Ray {
+  Vec3 origin;
+  Vec3 dir;  // unit length
+  // Watertight triangle test (Woop et al. 2013): axis permutation and shear.
+  int kx = 0, ky = 1, kz = 2;
+  double sx = 0, sy = 0, sz = 1;
+};
+
+// Makes a ray; `dir` must be unit length and finite.
+Ray make_ray(const Vec3& origin, const Vec3& dir);
+
+// Nearest intersection found by a query.
+struct Hit {
+  double t = 0;      // distance along the ray
+  Vec3 p;            // hit point (re-projected onto spheres and planes)
+  Vec3 ng;           // unit geometric normal on the outward side (not yet facing the ray)
+  Vec3 ns;           // unit shading normal (interpolated vertex normals, else ng)
+  int material = 0;  // index into Scene::materials
+  ObjectRef object;  // which primitive was hit
+};
+
+// Per-primitive tests: distance t > t_min of the nearest hit, or nothing. Never NaN.
+std::optional<double> intersect_sphere(const Sphere& s, const Ray& ray, double t_min = 0);
+std::optional<double> intersect_plane(const Plane& pl, const Ray& ray, double t_min = 0);
+// Also gives the barycentric weights of v1 and v2.
+std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, double* b1 = nullptr,
+                                         double* b2 = nullptr, double t_min = 0);
+
+// Nearest hit with t in (0, t_max).
+std::optional<Hit> intersect(const Scene& scene, const Ray& ray,
+                             double t_max = std::numeric_limits<double>::infinity());
+
+// Whether anything lies on the ray with t in (0, t_max). Stops at the first hit found.
+bool occluded(const Scene& scene, const Ray& ray, double t_max);
+
+// Fills a Hit for the primitive `obj` hit at distance t (used after the nearest-hit loop).
+Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double b1, double b2);
+
+// How far to move a secondary ray's origin off a surface at p, reached after distance t.
+// Rounding puts p within a few ulps of (|p| + t) of the true surface; the offset is 1e7
+// times that, yet at most 1e-9 of the scene's coordinates, so contact shadows keep their size.
+inline double surface_offset(const Vec3& p, double t) { return 1e-9 * (max_abs(p) + t); }
+
+// Origin for a ray leaving the surface with geometric normal ng at p, towards dir.
+inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir, double offset) {
+  return glm::dot(dir, ng) >= 0 ? p + offset * ng : p - offset * ng;
+}
+
+}  // namespace phonglab

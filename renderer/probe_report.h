@@ -1,0 +1,19 @@
+// The probe's report: a pixel's equation term by term, light by light, as text or JSON.
+#pragma once
+
+#include <string>
+
+#include "renderer/render.h"
+
+namespace phonglab {
+
+// JSON (SPEC §4 probe --json): pixel, hit, total, terms, lights, and the children.
+std::string probe_to_json(const Scene& scene, const PixelProbe& probe);
+
+// Plain text for people: the lecture's equation with the numbers filled in.
+std::string probe_to_text(const Scene& scene, const PixelProbe& probe);
+
+// "objects[3]" style name of the scene-file object behind a primitive ("" for none).
+std::string object_name(const Scene& scene, ObjectRef ref);
+
+}  // namespace phonglab

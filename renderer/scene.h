@@ -1,0 +1,94 @@
+// The scene as plain data: what a scene file says, with SPEC §3's defaults.
+// Objects refer to materials by index. Copying a Scene is a cheap snapshot.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/math.h"
+
+namespace phonglab {
+
+// Pinhole camera (SPEC §2).
+struct Camera {
+  Vec3 position{0, 1.5, 6};  // eye, world units
+  Vec3 look_at{0, 0.8, 0};   // point the view centre passes through
+  Vec3 up{0, 1, 0};          // roughly up; must not be parallel to the view direction
+  double fov_y_deg = 40;     // full vertical field of view, degrees, in (0, 180)
+};
+
+enum class LightType : std::uint8_t { kPoint, kDirectional };
+
+// A light without distance fall-off: its intensity arrives undiminished.
+struct Light {
+  LightType type = LightType::kPoint;
+  Vec3 position{0, 0, 0};    // point lights: world position
+  Vec3 direction{0, -1, 0};  // directional lights: unit direction the light travels in
+  Color intensity{1, 1, 1};  // I_l, linear RGB
+  bool enabled = true;       // previewer "mute"; a disabled light adds nothing and casts no rays
+};
+
+// The lecture's coefficients. All colours are linear RGB, per channel.
+struct Material {
+  std::string name;        // key in the scene file's "materials" object
+  Color ka{0, 0, 0};       // ambient reflectance
+  Color kd{0, 0, 0};       // diffuse reflectance
+  Color ks{0, 0, 0};       // specular reflectance
+  double n = 32;           // Phong shininess exponent, >= 0
+  Color kr{0, 0, 0};       // mirror reflection weight
+  Color kt{0, 0, 0};       // transmission weight
+  double ior = 1.5;        // index of refraction inside the object (outside is 1)
+  bool fresnel = false;    // weight kr/kt by the exact unpolarised Fresnel reflectance
+};
+
+enum class SpecularModel : std::uint8_t { kPhong, kBlinn };
+
+struct Sphere {
+  Vec3 center{0, 0, 0};
+  double radius = 1;  // > 0
+  int material = 0;   // index into Scene::materials
+};
+
+// Infinite, two-sided plane; its outward side is the one `normal` points to.
+struct Plane {
+  Vec3 point{0, 0, 0};
+  Vec3 normal{0, 1, 0};  // unit
+  int material = 0;
+};
+
+// Two-sided triangle; Ng = normalize((v1-v0)x(v2-v0)).
+struct Triangle {
+  Vec3 v0{0}, v1{0}, v2{0};
+  int material = 0;
+  // Optional per-vertex shading normals (meshes with vertex normals).
+  bool has_vertex_normals = false;
+  Vec3 n0{0}, n1{0}, n2{0};
+};
+
+// Which scene object a primitive came from (for picking and error messages).
+struct ObjectRef {
+  enum class Kind : std::uint8_t { kSphere, kPlane, kTriangle, kNone };
+  Kind kind = Kind::kNone;
+  int index = -1;  // index into the matching Scene vector
+};
+
+struct Scene {
+  Camera camera;
+  int width = 960;                    // image width, pixels
+  int height = 540;                   // image height, pixels
+  Color ambient{1, 1, 1};             // Ia
+  Color background{0, 0, 0};          // radiance of rays that hit nothing
+  int max_depth = 5;                  // recursion depth limit; 0 = local shading only
+  double min_weight = 0.001;          // prune child rays whose path weight is below this
+  SpecularModel specular_model = SpecularModel::kPhong;
+  std::vector<Light> lights;
+  std::vector<Material> materials;
+  std::vector<Sphere> spheres;
+  std::vector<Plane> planes;
+  std::vector<Triangle> triangles;
+  // Index of the scene-file object each sphere/plane/triangle came from ("objects[i]").
+  std::vector<int> sphere_object, plane_object, triangle_object;
+};
+
+}  // namespace phonglab

@@ -1,0 +1,223 @@
+#include "renderer/shading.h"
+
+namespace phonglab {
+
+void prepare_scene(Scene& scene) {
+  for (Plane& pl : scene.planes) pl.normal = glm::normalize(pl.normal);
+  for (Light& l : scene.lights) {
+    if (l.type == LightType::kDirectional) l.direction = glm::normalize(l.direction);
+  }
+}
+
+double fresnel_exact(double cos_i, double eta) {
+  cos_i = clamp_unit(cos_i);
+  const double sin2_t = eta * eta * (1 - cos_i * cos_i);
+  if (sin2_t >= 1) return 1;  // total internal reflection
+  const double cos_t = std::sqrt(1 - sin2_t);
+  // Amplitude ratios for s and p polarisation, divided through by n_transmitted.
+  const double rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+  const double rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+  const double f = 0.5 * (rs * rs + rp * rp);
+  return f > 1 ? 1 : (f < 0 ? 0 : f);
+}
+
+namespace {
+
+// The nearest object strictly between the ends of a shadow ray (for the probe only).
+ObjectRef find_occluder(const Scene& scene, const Ray& ray, double t_max) {
+  if (auto hit = intersect(scene, ray, t_max)) return hit->object;
+  return {};
+}
+
+// Shadow ray for one light from a surface point. Returns vis_l.
+bool light_visible(const Scene& scene, const Light& light, const Hit& hit, const Vec3& ng_facing,
+                   const Vec3& l, double offset, RayCounts& counts, ObjectRef* occluder) {
+  ++counts.shadow;
+  const Vec3 origin = offset_origin(hit.p, ng_facing, l, offset);
+  if (light.type == LightType::kDirectional) {
+    const Ray ray = make_ray(origin, l);
+    const double t_max = std::numeric_limits<double>::infinity();
+    if (occluder) *occluder = find_occluder(scene, ray, t_max);
+    return !occluded(scene, ray, t_max);
+  }
+  // The open segment to the light, pulled in at the light's end by the same relative amount
+  // as the origin is pushed off the surface: a light lying on a surface does not shadow itself.
+  const Vec3 to_light = light.position - origin;
+  const double dist = glm::length(to_light);
+  const double t_max = dist - surface_offset(light.position, 0);
+  if (!(t_max > 0)) return true;  // the light is within rounding distance of the surface
+  const Ray ray = make_ray(origin, to_light / dist);
+  if (occluder) *occluder = find_occluder(scene, ray, t_max);
+  return !occluded(scene, ray, t_max);
+}
+
+}  // namespace
+
+Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
+            double weight, RayCounts& counts, ProbeNode* probe) {
+  const Material& m = scene.materials[hit.material];
+  const Vec3& d = ray.dir;
+  const bool entering = glm::dot(hit.ng, d) < 0;
+  const Vec3 ng_facing = entering ? hit.ng : -hit.ng;
+  const Vec3 n = glm::dot(hit.ns, d) < 0 ? hit.ns : -hit.ns;  // N faces the incoming ray
+  const Vec3 v = -d;
+  const double offset = surface_offset(hit.p, hit.t);
+
+  Terms terms;
+  terms.ambient = m.ka * scene.ambient;
+  if (probe) {
+    probe->hit = true;
+    probe->t = hit.t;
+    probe->p = hit.p;
+    probe->ng = hit.ng;
+    probe->n = n;
+    probe->v = v;
+    probe->entering = entering;
+    probe->material = hit.material;
+    probe->object = hit.object;
+  }
+
+  // Local term: lights are skipped where no term can come back (kd = ks = 0, N.L <= 0).
+  const bool has_diffuse = !is_zero(m.kd);
+  const bool has_specular = !is_zero(m.ks);
+  if (has_diffuse || has_specular || probe) {
+    for (std::size_t li = 0; li < scene.lights.size(); ++li) {
+      const Light& light = scene.lights[li];
+      if (!light.enabled) continue;
+      Vec3 l;
+      double dist = std::numeric_limits<double>::infinity();
+      if (light.type == LightType::kPoint) {
+        const Vec3 to_light = light.position - hit.p;
+        dist = glm::length(to_light);
+        if (!(dist > 0)) continue;  // light exactly at the point: no direction, no light
+        l = to_light / dist;
+      } else {
+        l = -light.direction;
+      }
+      const double n_dot_l = glm::dot(n, l);
+      ProbeLight* pl = nullptr;
+      if (probe) {
+        pl = &probe->lights.emplace_back();
+        pl->index = static_cast<int>(li);
+        pl->l = l;
+        pl->n_dot_l = n_dot_l;
+        pl->distance = dist;
+      }
+      if (!(n_dot_l > 0)) continue;  // light behind the surface: neither diffuse nor specular
+      if (!has_diffuse && !has_specular && !probe) continue;
+
+      double spec = 0;
+      if (has_specular || probe) {
+        double cos_spec;
+        Vec3 r;
+        if (scene.specular_model == SpecularModel::kPhong) {
+          r = 2.0 * n_dot_l * n - l;
+          cos_spec = glm::dot(r, v);
+        } else {
+          const Vec3 h = l + v;
+          const double len = glm::length(h);
+          r = len > 0 ? h / len : n;  // L = -V only at grazing: any H then gives N.H <= 0
+          cos_spec = len > 0 ? glm::dot(n, r) : 0;
+        }
+        // The base is clamped before pow, so a fractional n never sees a negative base.
+        spec = std::pow(clamp_positive(clamp_unit(cos_spec)), m.n);
+        if (pl) {
+          pl->r = r;
+          pl->r_dot_v = cos_spec;
+          pl->spec_factor = spec;
+        }
+      }
+      ObjectRef occluder;
+      const bool visible =
+          light_visible(scene, light, hit, ng_facing, l, offset, counts, probe ? &occluder : nullptr);
+      if (pl) {
+        pl->lit_side = true;
+        pl->visible = visible;
+        pl->occluder = occluder;
+      }
+      if (!visible) continue;
+      const Color diffuse = light.intensity * m.kd * n_dot_l;
+      const Color specular = light.intensity * m.ks * spec;
+      terms.diffuse += diffuse;
+      terms.specular += specular;
+      if (pl) {
+        pl->diffuse = diffuse;
+        pl->specular = specular;
+      }
+    }
+  }
+
+  // Recursion for mirrors and glass.
+  if (depth < limits.max_depth && (!is_zero(m.kr) || !is_zero(m.kt))) {
+    Color kr = m.kr;
+    Color kt = m.kt;
+    const double cos_i = clamp_unit(-glm::dot(d, n));
+    const double eta = entering ? 1.0 / m.ior : m.ior;
+    const double k = 1 - eta * eta * (1 - cos_i * cos_i);
+    const bool tir = k < 0;
+    double fresnel = 0;
+    if (m.fresnel && !is_zero(kt)) {
+      fresnel = tir ? 1.0 : fresnel_exact(cos_i, eta);
+      kr = m.kr + m.kt * fresnel;
+      kt = m.kt * (1 - fresnel);
+    }
+    if (probe) {
+      probe->kr_eff = kr;
+      probe->kt_eff = kt;
+      probe->fresnel = fresnel;
+      probe->tir = tir;
+      probe->eta = eta;
+    }
+    const Vec3 mirror = reflect_dir(d, n);
+    if (!is_zero(kr)) {
+      const double w = weight * max_channel(kr);
+      if (w >= limits.min_weight) {
+        ++counts.reflection;
+        const Ray child = make_ray(offset_origin(hit.p, ng_facing, mirror, offset), mirror);
+        ProbeNode* node = nullptr;
+        if (probe) {
+          probe->reflection = std::make_unique<ProbeNode>();
+          node = probe->reflection.get();
+        }
+        terms.reflection = kr * trace(scene, limits, child, depth + 1, w, counts, node);
+      }
+    }
+    if (!is_zero(kt)) {
+      const double w = weight * max_channel(kt);
+      if (w >= limits.min_weight) {
+        ++counts.refraction;
+        const Vec3 dir = tir ? mirror : glm::normalize(eta * d + (eta * cos_i - std::sqrt(k)) * n);
+        const Ray child = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
+        ProbeNode* node = nullptr;
+        if (probe) {
+          probe->refraction = std::make_unique<ProbeNode>();
+          node = probe->refraction.get();
+        }
+        terms.refraction = kt * trace(scene, limits, child, depth + 1, w, counts, node);
+      }
+    }
+  }
+  if (probe) {
+    probe->terms = terms;
+    probe->total = terms.sum();
+  }
+  return terms;
+}
+
+Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
+            RayCounts& counts, ProbeNode* probe) {
+  if (probe) {
+    probe->depth = depth;
+    probe->weight = weight;
+    probe->origin = ray.origin;
+    probe->dir = ray.dir;
+  }
+  const std::optional<Hit> hit = intersect(scene, ray);
+  if (!hit) {
+    if (probe) probe->total = scene.background;
+    return scene.background;
+  }
+  return shade(scene, limits, ray, *hit, depth, weight, counts, probe).sum();
+}
+
+}  // namespace phonglab

@@ -1,0 +1,101 @@
+// The lecture's illumination equation (SPEC §1): local Phong/Blinn-Phong shading with hard
+// shadows, and Whitted recursion for mirrors and glass, pruned by path weight.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "renderer/geometry.h"
+#include "renderer/math.h"
+#include "renderer/scene.h"
+
+namespace phonglab {
+
+// The five terms of the equation at one hit; their sum is the radiance.
+struct Terms {
+  Color ambient{0};     // ka * Ia
+  Color diffuse{0};     // sum over lights of vis * I * kd * max(0, N.L)
+  Color specular{0};    // sum over lights of vis * I * ks * spec
+  Color reflection{0};  // kr' * trace(reflected ray)
+  Color refraction{0};  // kt' * trace(refracted or totally reflected ray)
+  Color sum() const { return ambient + diffuse + specular + reflection + refraction; }
+};
+
+// Rays cast, by kind.
+struct RayCounts {
+  std::uint64_t primary = 0;
+  std::uint64_t shadow = 0;
+  std::uint64_t reflection = 0;
+  std::uint64_t refraction = 0;  // includes rays sent along the mirror direction under TIR
+  std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+  RayCounts& operator+=(const RayCounts& o) {
+    primary += o.primary;
+    shadow += o.shadow;
+    reflection += o.reflection;
+    refraction += o.refraction;
+    return *this;
+  }
+};
+
+// Normalises the scene's direction vectors (plane normals, directional lights) in place.
+// Every function below expects a prepared scene.
+void prepare_scene(Scene& scene);
+
+// Exact unpolarised Fresnel reflectance for a ray arriving with cos_i = -D.N >= 0, where
+// eta = n_incident / n_transmitted. 1 under total internal reflection.
+double fresnel_exact(double cos_i, double eta);
+
+// One light's part in a probed hit.
+struct ProbeLight {
+  int index = 0;          // into Scene::lights
+  Vec3 l{0};              // unit vector towards the light
+  Vec3 r{0};              // Phong: mirror of L about N; Blinn: half vector H
+  double n_dot_l = 0;
+  double r_dot_v = 0;     // Phong: R.V; Blinn: N.H
+  double spec_factor = 0; // max(0, R.V)^n (or N.H), 0 when N.L <= 0
+  double distance = 0;    // to a point light; infinity for directional lights
+  bool lit_side = false;  // N.L > 0, so a shadow ray was cast
+  bool visible = false;   // vis_l
+  ObjectRef occluder;     // nearest blocker when not visible
+  Color diffuse{0};       // vis * I * kd * max(0, N.L)
+  Color specular{0};      // vis * I * ks * spec
+};
+
+// Everything about one ray of a probed pixel's ray tree.
+struct ProbeNode {
+  int depth = 0;
+  double weight = 1;        // product of max-channel weights from the camera
+  Vec3 origin{0}, dir{0};
+  bool hit = false;         // false: the ray returned the background
+  double t = 0;
+  Vec3 p{0}, ng{0}, n{0}, v{0};  // hit point, outward geometric normal, shading N (facing), V
+  bool entering = false;
+  int material = -1;
+  ObjectRef object;
+  std::vector<ProbeLight> lights;
+  Terms terms;
+  Color total{0};           // what this ray returns
+  Color kr_eff{0}, kt_eff{0};  // kr', kt'
+  double fresnel = 0;       // F when the material uses Fresnel
+  bool tir = false;         // total internal reflection at this hit
+  double eta = 1;           // n_incident / n_transmitted
+  std::unique_ptr<ProbeNode> reflection, refraction;  // children actually traced
+};
+
+// Limits of the recursion.
+struct TraceLimits {
+  int max_depth = 5;
+  double min_weight = 0.001;
+};
+
+// Radiance along a ray (SPEC §1 trace). `probe`, when given, receives the whole ray tree.
+Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
+            RayCounts& counts, ProbeNode* probe = nullptr);
+
+// Shading of a known hit, term by term.
+Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
+            double weight, RayCounts& counts, ProbeNode* probe = nullptr);
+
+}  // namespace phonglab
