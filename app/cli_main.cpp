@@ -136,6 +136,8 @@ int cmd_render(Args& args) {
   const auto stats_path = args.take_value("--stats");
   const std::string scene_arg = args.take_positional().value_or(default_scene_name());
   if (!out) throw UsageError{"render needs -o OUT (.pfm or .png)"};
+  const std::string ext = out->size() >= 4 ? out->substr(out->size() - 4) : "";
+  if (ext != ".pfm" && ext != ".png") throw UsageError{"-o " + *out + ": the extension must be .pfm or .png"};
   RenderOptions options;
   if (term_arg) {
     const auto term = term_from_name(*term_arg);

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine:
+#   tools/dev.sh run [SCENE]   install what is missing, build, start the previewer
+#   tools/dev.sh test          install what is missing, build, run the whole test suite
+#   tools/dev.sh deps|build    the first steps alone
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  libglm-dev nlohmann-json3-dev libstb-dev libtinyobjloader-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri
+  xvfb xauth xdotool imagemagick
+  clang libclang-rt-14-dev
+)
+
+as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
+
+deps() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "== installing: ${missing[*]}"
+    as_root apt-get update -qq
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  fi
+}
+
+# build DIR [cmake args...]
+build() {
+  local dir=$1; shift
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+  cmake --build "$dir" --parallel "$(nproc)"
+}
+
+run() {
+  deps
+  build build
+  exec build/bin/phonglab "$@"
+}
+
+test_all() {
+  deps
+  local start=$SECONDS
+  echo "== release build and tests"
+  build build
+  (cd build && ctest --output-on-failure --parallel "$(nproc)")
+
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+  build build-asan -DPHONGLAB_SANITIZE='address;undefined' -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  (cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure --parallel "$(nproc)")
+
+  echo "== ThreadSanitizer: the renderer's threading tests"
+  build build-tsan -DPHONGLAB_SANITIZE=thread -DPHONGLAB_GUI=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  (cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R 'Threads|Progressive')
+
+  if [ -x tests/gui/run_gui_tests.sh ]; then
+    echo "== previewer under Xvfb"
+    tests/gui/run_gui_tests.sh build
+  fi
+  echo "== all tests passed in $((SECONDS - start)) s"
+}
+
+case "${1:-}" in
+  run) shift; run "$@" ;;
+  test) test_all ;;
+  deps) deps ;;
+  build) deps; build build ;;
+  *) echo "usage: tools/dev.sh run [SCENE] | test | deps | build" >&2; exit 2 ;;
+esac
