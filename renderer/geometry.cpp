@@ -4,41 +4,53 @@
 
 namespace phonglab {
 
-Ray make_ray(const Vec3& origin, const Vec3& dir) {
-  Ray ray;
-  ray.origin = origin;
-  ray.dir = dir;
+TriangleShear make_shear(const Vec3& dir) {
+  TriangleShear sh;
   // The axis where the direction is largest becomes z; x and y follow cyclically, swapped
   // when d_z < 0 so the triangle's winding is preserved (Woop et al. 2013, section 3).
-  const Vec3 a = glm::abs(dir);
-  ray.kz = (a.x >= a.y) ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
-  ray.kx = (ray.kz + 1) % 3;
-  ray.ky = (ray.kx + 1) % 3;
-  if (dir[ray.kz] < 0) std::swap(ray.kx, ray.ky);
-  ray.sx = dir[ray.kx] / dir[ray.kz];
-  ray.sy = dir[ray.ky] / dir[ray.kz];
-  ray.sz = 1.0 / dir[ray.kz];
-  return ray;
+  const double ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
+  sh.kz = (ax >= ay) ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+  sh.kx = (sh.kz + 1) % 3;
+  sh.ky = (sh.kx + 1) % 3;
+  if (dir[sh.kz] < 0) std::swap(sh.kx, sh.ky);
+  sh.sz = 1.0 / dir[sh.kz];
+  sh.sx = dir[sh.kx] * sh.sz;
+  sh.sy = dir[sh.ky] * sh.sz;
+  return sh;
 }
 
-std::optional<double> intersect_sphere(const Sphere& s, const Ray& ray, double t_min) {
-  // Haines et al., Ray Tracing Gems ch. 7: the discriminant from the perpendicular distance
-  // r^2 - |f - (f.d)d|^2 avoids the cancellation of b^2 - c, and the roots come from
-  // q = -(b + sign(b) sqrt(disc)) so neither is a difference of near-equal numbers.
-  const Vec3 f = ray.origin - s.center;
-  const double b = glm::dot(f, ray.dir);
-  const Vec3 perp = f - b * ray.dir;
+namespace {
+
+// Nearest root of the ray-sphere quadratic in (t_min, t_max), or 0 for none.
+// Haines et al., Ray Tracing Gems ch. 7: the discriminant from the perpendicular distance
+// r^2 - |f - (f.d)d|^2 avoids the cancellation of b^2 - c, and the roots come from
+// q = -(b + sign(b) sqrt(disc)) so neither is a difference of near-equal numbers.
+inline double sphere_root(const Sphere& s, const Vec3& o, const Vec3& d, double t_min, double t_max) {
+  const Vec3 f = o - s.center;
+  const double b = glm::dot(f, d);
   const double r2 = s.radius * s.radius;
-  const double disc = r2 - glm::dot(perp, perp);
-  if (!(disc >= 0)) return std::nullopt;  // also rejects NaN
   const double c = glm::dot(f, f) - r2;
+  // Outside and moving away (the usual case for a ray leaving the sphere's surface), or the
+  // nearest possible root -b - r already beyond t_max: no sqrt or division needed.
+  if (c > 0 && (b > 0 || -b - s.radius > t_max)) return 0;
+  const Vec3 perp = f - b * d;
+  const double disc = r2 - glm::dot(perp, perp);
+  if (!(disc >= 0)) return 0;  // also rejects NaN
   const double q = -(b + std::copysign(std::sqrt(disc), b));
-  if (q == 0) return std::nullopt;  // tangent at the origin itself: no hit ahead
+  if (q == 0) return 0;  // tangent at the origin itself: nothing ahead
   double t0 = c / q;
   double t1 = q;
   if (t0 > t1) std::swap(t0, t1);
-  if (t0 > t_min) return t0;
-  if (t1 > t_min) return t1;
+  if (t0 > t_min) return t0 < t_max ? t0 : 0;
+  if (t1 > t_min) return t1 < t_max ? t1 : 0;
+  return 0;
+}
+
+}  // namespace
+
+std::optional<double> intersect_sphere(const Sphere& s, const Ray& ray, double t_min) {
+  const double t = sphere_root(s, ray.origin, ray.dir, t_min, std::numeric_limits<double>::infinity());
+  if (t > 0) return t;
   return std::nullopt;
 }
 
@@ -52,27 +64,35 @@ std::optional<double> intersect_plane(const Plane& pl, const Ray& ray, double t_
 
 std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, double* b1, double* b2,
                                          double t_min) {
+  return intersect_triangle(tri, ray, make_shear(ray.dir), b1, b2, t_min);
+}
+
+std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, const TriangleShear& sh,
+                                         double* b1, double* b2, double t_min) {
   // Watertight test (Woop, Benthin, Wald, JCGT 2013): vertices are moved into a space where
   // the ray is the +z axis; the 2D edge functions of a shared edge are then computed from the
   // same numbers by both triangles, so a ray through an edge or vertex cannot slip between.
   const Vec3 a = tri.v0 - ray.origin;
   const Vec3 b = tri.v1 - ray.origin;
   const Vec3 c = tri.v2 - ray.origin;
-  const double ax = a[ray.kx] - ray.sx * a[ray.kz];
-  const double ay = a[ray.ky] - ray.sy * a[ray.kz];
-  const double bx = b[ray.kx] - ray.sx * b[ray.kz];
-  const double by = b[ray.ky] - ray.sy * b[ray.kz];
-  const double cx = c[ray.kx] - ray.sx * c[ray.kz];
-  const double cy = c[ray.ky] - ray.sy * c[ray.kz];
+  const double ax = a[sh.kx] - sh.sx * a[sh.kz];
+  const double ay = a[sh.ky] - sh.sy * a[sh.kz];
+  const double bx = b[sh.kx] - sh.sx * b[sh.kz];
+  const double by = b[sh.ky] - sh.sy * b[sh.kz];
+  const double cx = c[sh.kx] - sh.sx * c[sh.kz];
+  const double cy = c[sh.ky] - sh.sy * c[sh.kz];
   const double u = cx * by - cy * bx;
   const double v = ax * cy - ay * cx;
   const double w = bx * ay - by * ax;
   if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return std::nullopt;
   const double det = u + v + w;
   if (det == 0) return std::nullopt;  // degenerate or edge-on: no area seen from the ray
-  const double t_scaled = u * (ray.sz * a[ray.kz]) + v * (ray.sz * b[ray.kz]) + w * (ray.sz * c[ray.kz]);
+  const double t_scaled = u * (sh.sz * a[sh.kz]) + v * (sh.sz * b[sh.kz]) + w * (sh.sz * c[sh.kz]);
   const double t = t_scaled / det;
   if (!(t > t_min) || !(t < std::numeric_limits<double>::infinity())) return std::nullopt;
+  // A zero-area triangle has no normal: never hit it (rounding can leave det != 0 for one).
+  const Vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+  if (!(glm::dot(cross, cross) > 0)) return std::nullopt;
   if (b1) *b1 = v / det;
   if (b2) *b2 = w / det;
   return t;
@@ -83,8 +103,8 @@ std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
   ObjectRef obj;
   double best_b1 = 0, best_b2 = 0;
   for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
-    if (auto t = intersect_sphere(scene.spheres[i], ray); t && *t < best) {
-      best = *t;
+    if (const double t = sphere_root(scene.spheres[i], ray.origin, ray.dir, 0, best); t > 0) {
+      best = t;
       obj = {ObjectRef::Kind::kSphere, static_cast<int>(i)};
     }
   }
@@ -94,9 +114,10 @@ std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
       obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
     }
   }
+  const TriangleShear shear = scene.triangles.empty() ? TriangleShear{} : make_shear(ray.dir);
   for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
     double b1 = 0, b2 = 0;
-    if (auto t = intersect_triangle(scene.triangles[i], ray, &b1, &b2); t && *t < best) {
+    if (auto t = intersect_triangle(scene.triangles[i], ray, shear, &b1, &b2); t && *t < best) {
       best = *t;
       best_b1 = b1;
       best_b2 = b2;
@@ -109,13 +130,15 @@ std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
 
 bool occluded(const Scene& scene, const Ray& ray, double t_max) {
   for (const Sphere& s : scene.spheres) {
-    if (auto t = intersect_sphere(s, ray); t && *t < t_max) return true;
+    if (sphere_root(s, ray.origin, ray.dir, 0, t_max) > 0) return true;
   }
   for (const Plane& pl : scene.planes) {
     if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
   }
+  if (scene.triangles.empty()) return false;
+  const TriangleShear shear = make_shear(ray.dir);
   for (const Triangle& tri : scene.triangles) {
-    if (auto t = intersect_triangle(tri, ray); t && *t < t_max) return true;
+    if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < t_max) return true;
   }
   return false;
 }

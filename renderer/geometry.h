@@ -11,17 +11,22 @@
 
 namespace phonglab {
 
-// A ray with unit direction, plus the per-ray constants of the watertight triangle test.
+// A ray with unit direction.
 struct Ray {
   Vec3 origin;
   Vec3 dir;  // unit length
-  // Watertight triangle test (Woop et al. 2013): axis permutation and shear.
-  int kx = 0, ky = 1, kz = 2;
-  double sx = 0, sy = 0, sz = 1;
 };
 
 // Makes a ray; `dir` must be unit length and finite.
-Ray make_ray(const Vec3& origin, const Vec3& dir);
+inline Ray make_ray(const Vec3& origin, const Vec3& dir) { return Ray{origin, dir}; }
+
+// Per-ray constants of the watertight triangle test (Woop et al. 2013): the axis permutation
+// that makes the ray's largest direction component z, and the shear onto the z axis.
+struct TriangleShear {
+  int kx = 0, ky = 1, kz = 2;
+  double sx = 0, sy = 0, sz = 1;
+};
+TriangleShear make_shear(const Vec3& dir);
 
 // Nearest intersection found by a query.
 struct Hit {
@@ -39,6 +44,9 @@ std::optional<double> intersect_plane(const Plane& pl, const Ray& ray, double t_
 // Also gives the barycentric weights of v1 and v2.
 std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, double* b1 = nullptr,
                                          double* b2 = nullptr, double t_min = 0);
+// The same with the ray's shear computed once for many triangles.
+std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, const TriangleShear& shear,
+                                         double* b1, double* b2, double t_min = 0);
 
 // Nearest hit with t in (0, t_max).
 std::optional<Hit> intersect(const Scene& scene, const Ray& ray,

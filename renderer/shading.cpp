@@ -119,8 +119,10 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
           r = len > 0 ? h / len : n;  // L = -V only at grazing: any H then gives N.H <= 0
           cos_spec = len > 0 ? glm::dot(n, r) : 0;
         }
-        // The base is clamped before pow, so a fractional n never sees a negative base.
-        spec = std::pow(clamp_positive(clamp_unit(cos_spec)), m.n);
+        // The base is clamped before pow, so a fractional n never sees a negative base;
+        // pow(0, n) is exactly 0 for n > 0, which spares the call for most lit points.
+        const double base = clamp_positive(clamp_unit(cos_spec));
+        spec = (base == 0 && m.n > 0) ? 0.0 : std::pow(base, m.n);
         if (pl) {
           pl->r = r;
           pl->r_dot_v = cos_spec;
