@@ -170,33 +170,23 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
       probe->tir = tir;
       probe->eta = eta;
     }
+    // One child ray with weight k along dir; nothing when k = 0 or the path weight is too low.
+    auto child = [&](const Color& kw, const Vec3& dir, std::uint64_t& count,
+                     std::unique_ptr<ProbeNode>& probe_child) -> Color {
+      if (is_zero(kw)) return Color(0);
+      const double w = weight * max_channel(kw);
+      if (w < limits.min_weight) return Color(0);
+      ++count;
+      if (probe) probe_child = std::make_unique<ProbeNode>();
+      const Ray ray_out = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
+      return kw * trace(scene, limits, ray_out, depth + 1, w, counts, probe_child.get());
+    };
+    std::unique_ptr<ProbeNode> no_probe;
     const Vec3 mirror = reflect_dir(d, n);
-    if (!is_zero(kr)) {
-      const double w = weight * max_channel(kr);
-      if (w >= limits.min_weight) {
-        ++counts.reflection;
-        const Ray child = make_ray(offset_origin(hit.p, ng_facing, mirror, offset), mirror);
-        ProbeNode* node = nullptr;
-        if (probe) {
-          probe->reflection = std::make_unique<ProbeNode>();
-          node = probe->reflection.get();
-        }
-        terms.reflection = kr * trace(scene, limits, child, depth + 1, w, counts, node);
-      }
-    }
+    terms.reflection = child(kr, mirror, counts.reflection, probe ? probe->reflection : no_probe);
     if (!is_zero(kt)) {
-      const double w = weight * max_channel(kt);
-      if (w >= limits.min_weight) {
-        ++counts.refraction;
-        const Vec3 dir = tir ? mirror : glm::normalize(eta * d + (eta * cos_i - std::sqrt(k)) * n);
-        const Ray child = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
-        ProbeNode* node = nullptr;
-        if (probe) {
-          probe->refraction = std::make_unique<ProbeNode>();
-          node = probe->refraction.get();
-        }
-        terms.refraction = kt * trace(scene, limits, child, depth + 1, w, counts, node);
-      }
+      const Vec3 dir = tir ? mirror : glm::normalize(eta * d + (eta * cos_i - std::sqrt(k)) * n);
+      terms.refraction = child(kt, dir, counts.refraction, probe ? probe->refraction : no_probe);
     }
   }
   if (probe) {

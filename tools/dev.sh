@@ -55,7 +55,7 @@ test_all() {
 
   echo "== ThreadSanitizer: the renderer's threading tests"
   build build-tsan -DPHONGLAB_SANITIZE=thread -DPHONGLAB_GUI=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  (cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R 'Threads|Progressive')
+  (cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure)
 
   if [ -x tests/gui/run_gui_tests.sh ]; then
     echo "== previewer under Xvfb"
