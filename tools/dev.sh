@@ -57,6 +57,16 @@ test_all() {
   build build-tsan -DPHONGLAB_SANITIZE=thread -DPHONGLAB_GUI=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
   (cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure)
 
+  echo "== fuzzing the scene loader for 60 s (libFuzzer, ASan, UBSan)"
+  CC=clang CXX=clang++ build build-fuzz -DPHONGLAB_FUZZ=ON -DPHONGLAB_GUI=OFF -DPHONGLAB_TESTS=OFF \
+    -DPHONGLAB_SANITIZE='address;undefined' -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  local corpus
+  corpus=$(mktemp -d)
+  cp assets/scenes/*.json "$corpus"/
+  build-fuzz/bin/phonglab_fuzz_scene -max_total_time=60 -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
+    -print_final_stats=1 "$corpus" 2>&1 | tail -n 3
+  rm -rf "$corpus"
+
   if [ -x tests/gui/run_gui_tests.sh ]; then
     echo "== previewer under Xvfb"
     tests/gui/run_gui_tests.sh build
