@@ -1,0 +1,807 @@
+#include "app/viewer_app.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <backends/imgui_impl_opengl3.h>
+
+#include "renderer/camera.h"
+#include "renderer/geometry.h"
+#include "renderer/image_io.h"
+#include "renderer/shading.h"
+#include "ui/camera_control.h"
+
+namespace phonglab {
+
+namespace {
+
+constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
+constexpr double kEarlyFrameGap = 0.004;    // a new edit's first image may go up this soon after a frame
+constexpr double kActivityWindow = 1.0;     // keep drawing this long after an input event, seconds
+constexpr double kIdleWait = 0.5;           // idle wake-up period, seconds: also the file poll rate
+constexpr double kFilePollPeriod = 0.5;     // "poll mtime about twice a second"
+constexpr float kSidebarWidth = 400;        // panel width at UI scale 1, ImGui units
+constexpr float kDragThreshold = 3;         // pixels a press may move and still be a click
+constexpr double kOrbitRadPerPixel = 0.008; // about 1.4 turns across a 1280-pixel drag
+constexpr double kDollyPerPixel = 0.01;     // distance factor e^0.01 per pixel dragged
+constexpr double kDollyPerWheelClick = 0.85;
+constexpr float kMarkerGrabFactor = 1.8f;   // a marker can be grabbed a little outside its disc
+constexpr int kInteractiveDivisor = 4;      // while dragging, refine no further than 1/4 resolution
+constexpr double kMaxDeferral = 1.0;        // a drag's edit waits at most this long for the renderer, s
+
+// Inverse of the sRGB transfer curve, so that writing through image_io's sRGB encoder gives
+// back the 8-bit value shown on screen.
+double srgb_to_linear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+ProgressiveSettings progressive_settings(const ui::RenderSettings& s) {
+  ProgressiveSettings p;
+  p.target_spp = s.target_spp;
+  p.threads = s.threads;
+  p.term = s.term;
+  p.interactive_divisor = kInteractiveDivisor;
+  p.lower_thread_priority = true;  // the UI thread stays ahead of the workers on few cores
+  return p;
+}
+
+const char* object_kind_name(ObjectRef::Kind kind) {
+  switch (kind) {
+    case ObjectRef::Kind::kSphere: return "sphere";
+    case ObjectRef::Kind::kPlane: return "plane";
+    case ObjectRef::Kind::kTriangle: return "triangle";
+    case ObjectRef::Kind::kNone: break;
+  }
+  return "object";
+}
+
+double mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (const double x : v) sum += x;
+  return v.empty() ? 0 : sum / static_cast<double>(v.size());
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1)));
+  return v[std::min(i, v.size() - 1)];
+}
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+  std::string error;
+  PlatformOptions platform_options;
+  platform_options.width = options.width;
+  platform_options.height = options.height;
+  std::unique_ptr<Platform> platform = Platform::create(platform_options, error);
+  if (!platform) {
+    std::cerr << "phonglab: " << error << "\n"
+              << "phonglab needs a display with OpenGL 3.3. Without one, render with phonglab-cli, e.g.\n"
+              << "  phonglab-cli render " << options.scene_arg << " -o image.png\n";
+    return 1;
+  }
+  Viewer viewer(*platform, options);
+  error = viewer.init();
+  if (!error.empty()) {
+    std::cerr << "phonglab: " << error << "\n";
+    return 1;
+  }
+  return viewer.run();
+}
+
+Viewer::Viewer(Platform& platform, const ViewerOptions& options)
+    : platform_(platform),
+      options_(options),
+      // The render thread only wakes the event loop; the UI takes the image itself.
+      renderer_(progressive_settings(ui::RenderSettings{}), [] { glfwPostEmptyEvent(); }) {}
+
+Viewer::~Viewer() = default;
+
+std::string Viewer::init() {
+  std::string error = image_view_.init();
+  if (!error.empty()) return error;
+  if (!doc_.open(options_.scene_arg)) {
+    // The UI starts anyway, on the default scene, with the file's diagnostics on show.
+    const std::string load_error = doc_.error_text();
+    std::cerr << "phonglab: " << load_error << "\n";
+    doc_.open("lecture");
+    file_state_.error_text = load_error;
+    file_state_.path_field = options_.scene_arg;
+  } else {
+    file_state_.status = doc_.status();
+    file_state_.path_field = doc_.file_path();
+  }
+  scene_replaced_ = true;
+  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
+  if (!options_.script_path.empty()) {
+    std::ifstream in(options_.script_path);
+    if (!in) return "cannot read script " + options_.script_path;
+    std::ostringstream text;
+    text << in.rdbuf();
+    script_ = parse_script(text.str());
+  }
+  if (!options_.stats_log_path.empty()) {
+    stats_log_.open(options_.stats_log_path);
+    if (!stats_log_) return "cannot write " + options_.stats_log_path;
+  }
+  update_title();
+  return {};
+}
+
+int Viewer::run() {
+  GLFWwindow* window = platform_.window();
+  last_frame_start_ = glfwGetTime();
+  while (!quit_) {
+    wait_for_next_frame();
+    const double frame_start = glfwGetTime();
+    const double frame_seconds = frame_start - last_frame_start_;
+    last_frame_start_ = frame_start;
+    // Frames after an idle sleep say nothing about drawing speed.
+    if (!slept_idle_) frame_times_.emplace_back(frame_start, frame_seconds);
+    while (!frame_times_.empty() && frame_times_.front().first < frame_start - 1.0) frame_times_.pop_front();
+    // Frames paced while the renderer works are the ones the 60 Hz target is about.
+    if (was_rendering_ && stats_log_) {
+      busy_frame_ms_.push_back(frame_seconds * 1e3);
+      stats_log_ << "frame " << frame_start * 1e3 << " " << frame_seconds * 1e3 << "\n";
+    }
+    was_rendering_ = !renderer_.status().idle;
+
+    platform_.update_scale();
+    if (glfwWindowShouldClose(window)) {
+      // Closing goes through the unsaved-changes guard like any other way of quitting.
+      glfwSetWindowShouldClose(window, GLFW_FALSE);
+      request(PendingAction{PendingAction::Kind::kQuit, {}});
+    }
+    poll_scene_file(frame_start);
+
+    int fb_width = 0, fb_height = 0;
+    glfwGetFramebufferSize(window, &fb_width, &fb_height);
+    if (fb_width <= 0 || fb_height <= 0) continue;  // minimised: nothing to draw, keep running
+
+    platform_.begin_backend_frame();
+    step_script(frame_start);
+    ImGui::NewFrame();
+    layout();
+    handle_viewport_input();
+    draw_sidebar();
+    draw_overlays();
+    handle_guard_modal();
+    apply_edits(frame_start);
+    ImGui::Render();
+    draw_gl(fb_width, fb_height);
+    glfwSwapBuffers(window);
+    after_swap();
+  }
+  write_stats_summary("session");
+  return script_failed_ ? 3 : 0;
+}
+
+bool Viewer::poll_render_frame() {
+  if (!renderer_.take_frame(shown_)) return false;
+  upload_pending_ = true;
+  return true;
+}
+
+void Viewer::wait_for_next_frame() {
+  const ProgressiveStatus status = renderer_.status();
+  const double now = glfwGetTime();
+  const bool script_running = script_index_ < script_.size() || !input_steps_.empty();
+  const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
+                    script_running || guard_visible_ || drag_.mode != DragMode::kNone;
+  slept_idle_ = !busy;
+  if (!busy) {
+    // Nothing moves: sleep until an event, a new image (the render thread posts an empty
+    // event) or the next file poll.
+    glfwWaitEventsTimeout(kIdleWait);
+    poll_render_frame();
+    return;
+  }
+  const double deadline = last_frame_start_ + kFramePeriod;
+  for (;;) {
+    poll_render_frame();
+    // The first image after an edit goes up at once: that is the latency users feel.
+    const bool first_image = upload_pending_ && shown_.generation != drawn_generation_;
+    const double t = glfwGetTime();
+    const double early = last_frame_start_ + kEarlyFrameGap;
+    if (first_image && t >= early) break;
+    if (t >= deadline) break;
+    glfwWaitEventsTimeout(first_image ? early - t : deadline - t);
+  }
+  glfwPollEvents();
+}
+
+void Viewer::poll_scene_file(double now) {
+  if (now < next_file_poll_) return;
+  next_file_poll_ = now + kFilePollPeriod;
+  if (doc_.file_path().empty() || !file_state_.auto_reload || !doc_.changed_on_disk()) {
+    file_state_.changed_on_disk = false;
+    return;
+  }
+  if (doc_.dirty()) {
+    file_state_.changed_on_disk = true;  // never throw away edits silently
+    return;
+  }
+  reload_scene(true);
+}
+
+void Viewer::layout() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float sidebar = sidebar_visible_ ? std::min(kSidebarWidth * platform_.ui_scale(), io.DisplaySize.x * 0.5f) : 0;
+  viewport_ = ViewportRect{0, 0, std::max(io.DisplaySize.x - sidebar, 0.0f), io.DisplaySize.y};
+}
+
+void Viewer::handle_viewport_input() {
+  ImGuiIO& io = ImGui::GetIO();
+  Scene& scene = doc_.scene();
+  Camera& camera = scene.camera;
+  const ImVec2 mouse = io.MousePos;
+  const bool over_viewport = ImGui::IsMousePosValid(&mouse) && mouse.x >= viewport_.x &&
+                             mouse.x < viewport_.x + viewport_.width && mouse.y >= viewport_.y &&
+                             mouse.y < viewport_.y + viewport_.height;
+  const bool mouse_is_ours = over_viewport && !io.WantCaptureMouse;
+  const int view_w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
+  const int view_h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
+
+  // The point light under the mouse, if any.
+  hovered_light_ = -1;
+  if (drag_.mode == DragMode::kNone && mouse_is_ours) {
+    const float grab = ui::light_marker_radius(platform_.ui_scale()) * kMarkerGrabFactor;
+    float best = grab * grab;
+    for (int i = 0; i < static_cast<int>(scene.lights.size()); ++i) {
+      const Light& light = scene.lights[static_cast<std::size_t>(i)];
+      if (light.type != LightType::kPoint) continue;
+      const auto p = ui::project(camera, light.position, view_w, view_h);
+      if (!p) continue;
+      const float dx = static_cast<float>(p->x) + viewport_.x - mouse.x;
+      const float dy = static_cast<float>(p->y) + viewport_.y - mouse.y;
+      if (dx * dx + dy * dy <= best) {
+        best = dx * dx + dy * dy;
+        hovered_light_ = i;
+      }
+    }
+  }
+
+  if (drag_.mode == DragMode::kNone) {
+    if (mouse_is_ours) {
+      for (int button = 0; button < 3; ++button) {
+        if (!ImGui::IsMouseClicked(button)) continue;
+        drag_ = Drag{};
+        drag_.button = button;
+        drag_.start = mouse;
+        if (button == ImGuiMouseButton_Left && hovered_light_ >= 0) {
+          drag_.mode = DragMode::kLight;
+          drag_.light = hovered_light_;
+          drag_.light_depth = ui::view_depth(camera, scene.lights[static_cast<std::size_t>(hovered_light_)].position);
+          selected_light_ = hovered_light_;
+        } else if (button == ImGuiMouseButton_Left) {
+          drag_.mode = io.KeyShift ? DragMode::kPan : DragMode::kOrbit;
+        } else {
+          drag_.mode = button == ImGuiMouseButton_Right ? DragMode::kDolly : DragMode::kPan;
+        }
+        break;
+      }
+      if (io.MouseWheel != 0) {
+        ui::dolly(camera, std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel)));
+        camera_changed_ = true;
+      }
+    }
+  } else if (ImGui::IsMouseDown(drag_.button)) {
+    if (!drag_.moved && ImGui::IsMouseDragging(drag_.button, kDragThreshold)) drag_.moved = true;
+    const ImVec2 d = io.MouseDelta;
+    if (drag_.moved && (d.x != 0 || d.y != 0)) {
+      const double per_px = kOrbitRadPerPixel / platform_.ui_scale();
+      switch (drag_.mode) {
+        case DragMode::kOrbit:
+          // Drag right: the scene turns right; drag down: look more from above.
+          ui::orbit(camera, -d.x * per_px, d.y * per_px);
+          camera_changed_ = true;
+          break;
+        case DragMode::kPan:
+          ui::pan(camera, d.x, d.y, viewport_.height);
+          camera_changed_ = true;
+          break;
+        case DragMode::kDolly:
+          ui::dolly(camera, std::exp(d.y * kDollyPerPixel / platform_.ui_scale()));
+          camera_changed_ = true;
+          break;
+        case DragMode::kLight:
+          if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size())) {
+            const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
+            scene.lights[static_cast<std::size_t>(drag_.light)].position =
+                ui::unproject(camera, at, drag_.light_depth, view_w, view_h);
+            scene_edited_ = true;
+          }
+          break;
+        case DragMode::kNone:
+          break;
+      }
+    }
+  } else {
+    if (drag_.mode == DragMode::kOrbit && !drag_.moved) pick(drag_.start);
+    drag_ = Drag{};
+  }
+  interacting_ = drag_.mode != DragMode::kNone && drag_.moved;
+
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) frame_requested_ = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) reset_requested_ = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) sidebar_visible_ = !sidebar_visible_;
+  }
+}
+
+void Viewer::pick(ImVec2 mouse) {
+  if (!snapshot_) return;
+  const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
+  const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
+  const double x = mouse.x - viewport_.x;
+  const double y = mouse.y - viewport_.y;
+  const int px = std::clamp(static_cast<int>(std::floor(x)), 0, w - 1);
+  const int py = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
+  // The same camera formula as the renderer, through the clicked point of the pixel.
+  const CameraFrame frame = make_camera_frame(doc_.scene().camera, w, h);
+  const Ray ray = camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0));
+  const std::optional<Hit> hit = intersect(*snapshot_, ray);
+  if (!hit) {
+    picked_text_ = "the background";
+    return;
+  }
+  const Scene& scene = *snapshot_;
+  selected_material_ = hit->material;
+  open_materials_ = true;
+  const std::vector<int>* to_object = nullptr;
+  switch (hit->object.kind) {
+    case ObjectRef::Kind::kSphere: to_object = &scene.sphere_object; break;
+    case ObjectRef::Kind::kPlane: to_object = &scene.plane_object; break;
+    case ObjectRef::Kind::kTriangle: to_object = &scene.triangle_object; break;
+    case ObjectRef::Kind::kNone: break;
+  }
+  std::ostringstream text;
+  text << object_kind_name(hit->object.kind);
+  if (to_object && hit->object.index >= 0 && hit->object.index < static_cast<int>(to_object->size())) {
+    text << " objects[" << (*to_object)[static_cast<std::size_t>(hit->object.index)] << "]";
+  }
+  if (hit->material >= 0 && hit->material < static_cast<int>(scene.materials.size())) {
+    text << ", material '" << scene.materials[static_cast<std::size_t>(hit->material)].name << "'";
+  }
+  picked_text_ = text.str();
+}
+
+void Viewer::draw_sidebar() {
+  if (!sidebar_visible_) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  const float width = io.DisplaySize.x - viewport_.width;
+  if (width < 1 || io.DisplaySize.y < 1) return;
+  ImGui::SetNextWindowPos(ImVec2(viewport_.width, 0));
+  ImGui::SetNextWindowSize(ImVec2(width, io.DisplaySize.y));
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoFocusOnAppearing;
+  if (ImGui::Begin("##sidebar", nullptr, flags)) {
+    ImGui::Text("phonglab %s", PHONGLAB_VERSION);
+    ImGui::SameLine();
+    ImGui::TextDisabled(" H hides the panels");
+    // Labels sit right of the widgets; leave them room.
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 6.5f);
+    Scene& scene = doc_.scene();
+
+    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+      file_state_.source = doc_.source();
+      file_state_.file_path = doc_.file_path();
+      file_state_.dirty = doc_.dirty();
+      ui::SceneFileActions actions;
+      ui::scene_file_panel(file_state_, actions);
+      if (actions.open) request(PendingAction{PendingAction::Kind::kOpen, file_state_.path_field});
+      if (!actions.open_embedded.empty()) request(PendingAction{PendingAction::Kind::kOpen, actions.open_embedded});
+      if (actions.save) save_scene(false);
+      if (actions.save_as) save_scene(true);
+      if (actions.reload) request(PendingAction{PendingAction::Kind::kReload, {}});
+    }
+    if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+      ui::CameraActions actions;
+      if (ui::camera_panel(scene.camera, actions)) camera_changed_ = true;
+      frame_requested_ |= actions.frame_scene;
+      reset_requested_ |= actions.reset;
+    }
+    if (open_materials_) {
+      ImGui::SetNextItemOpen(true);
+      open_materials_ = false;
+    }
+    if (ImGui::CollapsingHeader("Materials", ImGuiTreeNodeFlags_DefaultOpen)) {
+      if (picked_text_.empty()) ImGui::TextDisabled("Click an object in the view to select its material.");
+      else ImGui::TextDisabled("Clicked: %s", picked_text_.c_str());
+      if (ui::materials_panel(scene.materials, selected_material_, scene.specular_model)) scene_edited_ = true;
+    }
+    if (ImGui::CollapsingHeader("Lights")) {
+      if (ui::lights_panel(scene.lights, selected_light_)) scene_edited_ = true;
+    }
+    if (ImGui::CollapsingHeader("Render")) {
+      if (ui::shading_settings_panel(scene)) scene_edited_ = true;
+      ImGui::Separator();
+      const int hardware = resolve_thread_count(0);
+      if (ui::render_settings_panel(render_settings_, hardware)) settings_changed_ = true;
+    }
+    if (ImGui::CollapsingHeader("Display") && ui::display_panel(display_)) platform_.set_user_scale(display_.ui_size);
+    if (ImGui::CollapsingHeader("Screenshot")) {
+      ui::ScreenshotActions actions;
+      ui::screenshot_panel(screenshot_state_, actions);
+      if (actions.save_png) save_png(screenshot_state_.png_path);
+      if (actions.save_pfm) save_pfm(screenshot_state_.pfm_path);
+    }
+    ImGui::PopItemWidth();
+  }
+  ImGui::End();
+  // While a slider is held, each tick is an edit: keep the renderer at coarse levels.
+  if (!ImGui::IsAnyItemActive()) edited_while_active_ = false;
+  else if (scene_edited_ || camera_changed_) edited_while_active_ = true;
+}
+
+void Viewer::draw_overlays() {
+  if (viewport_.width < 1 || viewport_.height < 1) return;
+  const Scene& scene = doc_.scene();
+  const float scale = platform_.ui_scale();
+  const int view_w = static_cast<int>(std::lround(viewport_.width));
+  const int view_h = static_cast<int>(std::lround(viewport_.height));
+
+  std::vector<ui::LightMarker> markers;
+  for (int i = 0; i < static_cast<int>(scene.lights.size()); ++i) {
+    const Light& light = scene.lights[static_cast<std::size_t>(i)];
+    if (light.type != LightType::kPoint) continue;
+    const auto p = ui::project(scene.camera, light.position, view_w, view_h);
+    if (!p) continue;  // behind the camera
+    ui::LightMarker marker;
+    const ImVec2 at(static_cast<float>(p->x), static_cast<float>(p->y));
+    const float inset = 2.5f * ui::light_marker_radius(scale);
+    const ImVec2 clamped(std::clamp(at.x, inset, std::max(inset, viewport_.width - inset)),
+                         std::clamp(at.y, inset, std::max(inset, viewport_.height - inset)));
+    if (clamped.x != at.x || clamped.y != at.y) {
+      const float dx = at.x - clamped.x, dy = at.y - clamped.y;
+      const float length = std::sqrt(dx * dx + dy * dy);
+      marker.offscreen = true;
+      marker.toward = ImVec2(dx / length, dy / length);
+    }
+    marker.pos = ImVec2(viewport_.x + clamped.x, viewport_.y + clamped.y);
+    const double m = std::max(max_channel(light.intensity), 1e-9);
+    marker.color = ImVec4(static_cast<float>(light.intensity.x / m), static_cast<float>(light.intensity.y / m),
+                          static_cast<float>(light.intensity.z / m), 1.0f);
+    marker.enabled = light.enabled;
+    marker.selected = i == selected_light_;
+    marker.hovered = i == hovered_light_ || (drag_.mode == DragMode::kLight && drag_.light == i);
+    marker.index = i;
+    markers.push_back(marker);
+  }
+  ui::draw_light_markers(markers, ui::light_marker_radius(scale));
+  if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+
+  if (display_.show_stats) {
+    const ProgressiveStatus status = renderer_.status();
+    ui::StatsView stats;
+    double sum = 0, slowest = 0;
+    for (const auto& [start, seconds] : frame_times_) {
+      sum += seconds;
+      slowest = std::max(slowest, seconds);
+    }
+    stats.ui_frame_ms = frame_times_.empty() ? 0 : sum / static_cast<double>(frame_times_.size()) * 1e3;
+    stats.ui_frame_max_ms = slowest * 1e3;
+    stats.edit_to_image_ms = last_latency_ms_;
+    stats.have_frame = !shown_.pixels.empty();
+    stats.level_divisor = shown_.divisor;
+    stats.image_width = shown_.width;
+    stats.image_height = shown_.height;
+    stats.spp = shown_.spp;
+    stats.target_spp = render_settings_.target_spp;
+    stats.frame = shown_.stats;
+    stats.idle = status.idle;
+    stats.interacting = interacting_ || edited_while_active_;
+    stats.scene_error = file_state_.error_text;
+    ui::stats_overlay(stats, ImVec2(viewport_.x + 8 * scale, viewport_.y + 8 * scale));
+  }
+  if (shown_.pixels.empty()) {
+    const char* text = "rendering...";
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    ImGui::GetBackgroundDrawList()->AddText(
+        ImVec2(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + (viewport_.height - size.y) / 2),
+        IM_COL32(200, 200, 200, 255), text);
+  }
+}
+
+void Viewer::request(PendingAction action) {
+  if (!doc_.dirty()) {
+    perform(action);
+    return;
+  }
+  pending_ = std::move(action);
+  open_guard_ = true;
+}
+
+void Viewer::perform(const PendingAction& action) {
+  switch (action.kind) {
+    case PendingAction::Kind::kQuit: quit_ = true; break;
+    case PendingAction::Kind::kOpen: open_scene(action.arg); break;
+    case PendingAction::Kind::kReload: reload_scene(false); break;
+    case PendingAction::Kind::kNone: break;
+  }
+}
+
+void Viewer::handle_guard_modal() {
+  std::string action = "quit";
+  if (pending_.kind == PendingAction::Kind::kOpen) action = "open " + pending_.arg;
+  if (pending_.kind == PendingAction::Kind::kReload) action = "reload the file";
+  const ui::GuardChoice choice =
+      ui::unsaved_changes_modal(open_guard_, action, !doc_.file_path().empty(), scripted_choice_);
+  if (open_guard_) guard_visible_ = true;
+  open_guard_ = false;
+  scripted_choice_ = ui::GuardChoice::kNone;
+  if (choice == ui::GuardChoice::kNone) return;
+  guard_visible_ = false;
+  const PendingAction pending = std::move(pending_);
+  pending_ = PendingAction{};
+  if (choice == ui::GuardChoice::kSave) {
+    save_scene(false);
+    if (!doc_.dirty()) perform(pending);
+  } else if (choice == ui::GuardChoice::kDiscard) {
+    perform(pending);
+  }
+}
+
+void Viewer::open_scene(const std::string& scene_arg) {
+  if (scene_arg.empty()) {
+    file_state_.error_text = "Open: type a scene file path or an embedded scene name into the path field";
+    return;
+  }
+  if (!doc_.open(scene_arg)) {
+    file_state_.error_text = doc_.error_text();  // the old scene stays
+    return;
+  }
+  file_state_.error_text.clear();
+  file_state_.status = doc_.status();
+  file_state_.changed_on_disk = false;
+  file_state_.path_field = doc_.file_path().empty() ? scene_arg : doc_.file_path();
+  selected_material_ = 0;
+  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
+  picked_text_.clear();
+  drag_ = Drag{};
+  scene_replaced_ = true;
+}
+
+void Viewer::reload_scene(bool keep_view) {
+  if (!doc_.reload(keep_view)) {
+    file_state_.error_text = doc_.error_text();
+    return;
+  }
+  file_state_.error_text.clear();
+  file_state_.status = doc_.status();
+  file_state_.changed_on_disk = false;
+  const int materials = static_cast<int>(doc_.scene().materials.size());
+  selected_material_ = std::clamp(selected_material_, 0, std::max(materials - 1, 0));
+  if (selected_light_ >= static_cast<int>(doc_.scene().lights.size())) selected_light_ = -1;
+  drag_ = Drag{};
+  scene_replaced_ = true;
+}
+
+void Viewer::save_scene(bool as) {
+  const bool ok = as ? doc_.save_as(file_state_.path_field) : doc_.save();
+  if (ok) {
+    file_state_.error_text.clear();
+    file_state_.status = doc_.status();
+    file_state_.changed_on_disk = false;
+  } else {
+    file_state_.error_text = doc_.error_text();
+  }
+}
+
+void Viewer::save_png(const std::string& path) {
+  if (shown_.pixels.empty()) {
+    screenshot_state_.status = "no image yet";
+    return;
+  }
+  Image image;
+  image.width = shown_.width;
+  image.height = shown_.height;
+  image.pixels.reserve(shown_.pixels.size());
+  const float exposure = std::exp2(display_.exposure_ev);
+  for (const glm::vec3& p : shown_.pixels) {
+    glm::vec3 v = glm::clamp(p * exposure, 0.0f, 1.0f);
+    // Linear display shows the values themselves as 8-bit codes: pre-decode them so the
+    // sRGB encoder of write_image gives those codes back.
+    if (!display_.srgb) {
+      for (int c = 0; c < 3; ++c) v[c] = static_cast<float>(srgb_to_linear(v[c]));
+    }
+    image.pixels.push_back(v);
+  }
+  const std::string error = write_image(path, image);
+  std::ostringstream status;
+  if (error.empty()) {
+    status << "saved " << path << " (" << image.width << "x" << image.height << ", " << shown_.spp << " spp)";
+  } else {
+    status << error;
+  }
+  screenshot_state_.status = status.str();
+}
+
+void Viewer::save_pfm(const std::string& path) {
+  if (shown_.pixels.empty()) {
+    screenshot_state_.status = "no image yet";
+    return;
+  }
+  Image image;
+  image.width = shown_.width;
+  image.height = shown_.height;
+  image.pixels = shown_.pixels;
+  const std::string error = write_image(path, image);
+  std::ostringstream status;
+  if (error.empty()) {
+    status << "saved " << path << " (linear, " << image.width << "x" << image.height << ", " << shown_.spp << " spp)";
+  } else {
+    status << error;
+  }
+  screenshot_state_.status = status.str();
+}
+
+void Viewer::save_window_screenshot(const std::string& path, int fb_width, int fb_height) {
+  const std::vector<unsigned char> rgb = read_framebuffer_rgb8(fb_width, fb_height);
+  Image image;
+  image.width = fb_width;
+  image.height = fb_height;
+  image.pixels.resize(static_cast<std::size_t>(fb_width) * static_cast<std::size_t>(fb_height));
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      image.pixels[i][c] = static_cast<float>(srgb_to_linear(rgb[i * 3 + static_cast<std::size_t>(c)] / 255.0));
+    }
+  }
+  const std::string error = write_image(path, image);
+  if (!error.empty()) {
+    std::cerr << "phonglab: screenshot: " << error << "\n";
+    script_failed_ = true;
+    quit_ = true;
+  }
+}
+
+void Viewer::note_restart(std::uint64_t generation, double edit_time) {
+  restart_times_.emplace_back(generation, edit_time);
+  constexpr std::size_t kKeep = 256;  // a few seconds of drag frames; older ones never show
+  while (restart_times_.size() > kKeep) restart_times_.pop_front();
+  if (bench_expect_restart_) {
+    bench_generation_ = generation;
+    bench_expect_restart_ = false;
+  }
+}
+
+void Viewer::apply_edits(double frame_start) {
+  Scene& scene = doc_.scene();
+  const ImGuiIO& io = ImGui::GetIO();
+  if (frame_requested_ && viewport_.height > 0) {
+    if (ui::frame_scene(scene.camera, scene, viewport_.width / viewport_.height)) camera_changed_ = true;
+  }
+  if (reset_requested_) {
+    scene.camera = doc_.loaded_camera();
+    camera_changed_ = true;
+  }
+  frame_requested_ = reset_requested_ = false;
+  if (scene_edited_) doc_.mark_dirty();
+
+  if (settings_changed_) {
+    const std::uint64_t before = renderer_.status().generation;
+    const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_));
+    if (generation != before) {
+      sent_generation_ = generation;
+      note_restart(generation, frame_start);
+    }
+  }
+
+  const float resolution = render_settings_.resolution_scale;
+  int width = static_cast<int>(std::lround(viewport_.width * io.DisplayFramebufferScale.x * resolution));
+  int height = static_cast<int>(std::lround(viewport_.height * io.DisplayFramebufferScale.y * resolution));
+  if (viewport_.width >= 1 && viewport_.height >= 1) {
+    width = std::max(width, 1);
+    height = std::max(height, 1);
+  } else {
+    width = height = 0;  // nothing visible: the renderer idles
+  }
+  const bool resized = width != render_width_ || height != render_height_;
+  const bool edited = scene_edited_ || camera_changed_ || scene_replaced_ || !snapshot_;
+  if (edited && !change_deferred_) deferred_since_ = frame_start;
+  const bool scene_changed = edited || change_deferred_;
+  // During a drag, a new snapshot waits until the renderer has shown the previous one:
+  // restarting every UI frame would cancel each coarse pass before it finishes whenever a
+  // pass takes longer than a frame, and the view would freeze until the drag ends.
+  const bool dragging = interacting_ || edited_while_active_;
+  const bool first_image_pending = renderer_.status().published_generation < sent_generation_;
+  const bool defer = scene_changed && dragging && !resized && !scene_replaced_ && first_image_pending &&
+                     frame_start - deferred_since_ < kMaxDeferral;
+  change_deferred_ = defer;
+  if ((scene_changed && !defer) || resized) {
+    if (scene_changed) {
+      auto snapshot = std::make_shared<Scene>(scene);
+      prepare_scene(*snapshot);
+      snapshot_ = std::move(snapshot);
+    }
+    render_width_ = width;
+    render_height_ = height;
+    // One restart per UI frame, however many edits it gathered.
+    const std::uint64_t generation = renderer_.set_scene(snapshot_, width, height);
+    sent_generation_ = generation;
+    // Latency counts from the oldest edit this snapshot carries.
+    if (scene_changed) note_restart(generation, deferred_since_);
+  }
+  renderer_.set_interacting(interacting_ || edited_while_active_);
+  scene_edited_ = camera_changed_ = scene_replaced_ = settings_changed_ = false;
+  update_title();
+}
+
+void Viewer::draw_gl(int fb_width, int fb_height) {
+  glViewport(0, 0, fb_width, fb_height);
+  glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  if (upload_pending_) {
+    image_view_.upload(shown_.width, shown_.height, shown_.pixels);
+    upload_pending_ = false;
+    if (shown_.generation != drawn_generation_) first_image_generation_ = shown_.generation;
+    drawn_generation_ = shown_.generation;
+    drawn_serial_ = shown_.stats.serial;
+  }
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  const int view_w = static_cast<int>(std::lround(viewport_.width * scale.x));
+  const int view_h = static_cast<int>(std::lround(viewport_.height * scale.y));
+  const int view_x = static_cast<int>(std::lround(viewport_.x * scale.x));
+  const int view_y = fb_height - view_h - static_cast<int>(std::lround(viewport_.y * scale.y));  // GL counts from the bottom
+  // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
+  const bool nearest = shown_.divisor > 1 || shown_.width == view_w;
+  image_view_.draw(view_x, view_y, view_w, view_h, display_.exposure_ev, display_.srgb, nearest);
+  glViewport(0, 0, fb_width, fb_height);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (!screenshot_request_.empty()) {
+    save_window_screenshot(screenshot_request_, fb_width, fb_height);
+    screenshot_request_.clear();
+  }
+}
+
+void Viewer::after_swap() {
+  if (first_image_generation_ == 0) return;
+  const double now = glfwGetTime();
+  for (const auto& [generation, edit_time] : restart_times_) {
+    if (generation != first_image_generation_) continue;
+    last_latency_ms_ = (now - edit_time) * 1e3;
+    // The renderer's share: restart to publication of this image.
+    if (stats_log_) {
+      latencies_ms_.push_back(last_latency_ms_);
+      stats_log_ << "latency " << generation << " " << last_latency_ms_ << " 1/" << shown_.divisor << " render_ms "
+                 << shown_.stats.ms_since_restart << " pass_ms " << shown_.stats.pass_ms << "\n";
+    }
+    break;
+  }
+  // Edits up to this one are on screen or were overtaken by it.
+  while (!restart_times_.empty() && restart_times_.front().first <= first_image_generation_) restart_times_.pop_front();
+  first_image_generation_ = 0;
+}
+
+void Viewer::update_title() {
+  std::string title = "phonglab - " + doc_.source() + (doc_.dirty() ? " *" : "");
+  if (title == title_) return;
+  title_ = std::move(title);
+  glfwSetWindowTitle(platform_.window(), title_.c_str());
+}
+
+bool Viewer::image_is_final() const {
+  const ProgressiveStatus status = renderer_.status();
+  return status.idle && status.serial > 0 && drawn_serial_ == status.serial &&
+         drawn_generation_ == status.generation && !upload_pending_;
+}
+
+void Viewer::write_stats_summary(const std::string& label) {
+  if (!stats_log_) return;
+  stats_log_ << "summary " << label << " ui_frames " << busy_frame_ms_.size() << " mean_ms " << mean(busy_frame_ms_)
+             << " p50_ms " << percentile(busy_frame_ms_, 0.5) << " p95_ms " << percentile(busy_frame_ms_, 0.95)
+             << " p99_ms " << percentile(busy_frame_ms_, 0.99) << " max_ms " << percentile(busy_frame_ms_, 1.0) << "\n";
+  stats_log_ << "summary " << label << " edit_to_image n " << latencies_ms_.size() << " mean_ms " << mean(latencies_ms_)
+             << " p50_ms " << percentile(latencies_ms_, 0.5) << " p95_ms " << percentile(latencies_ms_, 0.95)
+             << " max_ms " << percentile(latencies_ms_, 1.0) << "\n";
+  stats_log_.flush();
+}
+
+}  // namespace phonglab

@@ -1,0 +1,212 @@
+// The previewer's main loop: owns the editable scene (through SceneDocument), hands the
+// progressive renderer a snapshot at most once per UI frame, shows its latest image, draws the
+// panels, turns mouse drags into camera and light moves, and runs test scripts.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+
+#include "app/viewer_document.h"
+#include "app/viewer_gl.h"
+#include "app/viewer_platform.h"
+#include "renderer/progressive.h"
+#include "ui/panels.h"
+
+namespace phonglab {
+
+struct ViewerOptions {
+  std::string scene_arg = "lecture";  // embedded scene name or scene file
+  int width = 1280;                   // window size, screen coordinates
+  int height = 720;
+  std::string script_path;            // test hook: commands run from the main loop
+  std::string stats_log_path;         // test hook: frame times and edit latencies
+};
+
+// Opens the window and runs until the user quits. Returns the process exit code: 0, 1 when
+// there is no display (the message points at phonglab-cli), 3 when a test script failed.
+int run_viewer(const ViewerOptions& options);
+
+// One scripted frame of input, injected into ImGui as if it came from the window system.
+struct InputStep {
+  ImVec2 pos;                  // mouse position, window coordinates
+  bool buttons[3] = {};        // left, right, middle held
+  bool shift = false;          // shift held
+  int key = -1;                // GLFW key code to press or release in this frame, -1 for none
+  bool key_down = false;       // press (true) or release (false) `key`
+  float wheel = 0;             // wheel clicks, positive away from the user
+};
+
+// One line of a test script: the words, and where it came from.
+struct ScriptCommand {
+  int line = 0;
+  std::vector<std::string> words;
+};
+
+// Splits a script into commands (one per line, '#' starts a comment). Commands are
+// checked when they run; see docs/previewer.md for the list.
+std::vector<ScriptCommand> parse_script(const std::string& text);
+
+class Viewer {
+ public:
+  Viewer(Platform& platform, const ViewerOptions& options);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  // Initialises GL resources; an empty string or the error.
+  std::string init();
+  // The main loop. Returns the exit code.
+  int run();
+
+ private:
+  // What a mouse drag in the viewport does.
+  enum class DragMode : std::uint8_t { kNone, kOrbit, kPan, kDolly, kLight };
+  struct Drag {
+    DragMode mode = DragMode::kNone;
+    int button = 0;          // ImGui mouse button that started it
+    bool moved = false;      // passed the drag threshold (else a release is a click)
+    ImVec2 start;            // where the button went down
+    int light = -1;          // kLight: index of the light being moved
+    double light_depth = 0;  // kLight: its distance along the view direction
+  };
+  // An action that would lose unsaved edits, waiting for the modal's answer.
+  struct PendingAction {
+    enum class Kind : std::uint8_t { kNone, kQuit, kOpen, kReload };
+    Kind kind = Kind::kNone;
+    std::string arg;  // kOpen: what to open
+  };
+  // The viewport: the window area left of the panels, in ImGui (window) coordinates.
+  struct ViewportRect {
+    float x = 0;
+    float y = 0;
+    float width = 0;
+    float height = 0;
+  };
+  // What the script is waiting for before its next command.
+  enum class ScriptWait : std::uint8_t { kNone, kFrames, kIdle, kImage, kFile, kInput, kBench };
+
+  // Frame phases, in order.
+  void wait_for_next_frame();              // 60 Hz pacing, early for a new edit's first image, sleep when idle
+  bool poll_render_frame();                // takes the renderer's newest image into shown_, if any
+  void poll_scene_file(double now);        // twice a second: reload a changed file (or flag it)
+  void layout();                           // the viewport rectangle beside the panels
+  void handle_viewport_input();            // drags, wheel, clicks and keys over the image
+  void draw_sidebar();                     // the panels; edits set the flags below
+  void draw_overlays();                    // light markers and the stats overlay
+  void handle_guard_modal();               // the unsaved-changes dialog and its answer
+  void apply_edits(double frame_start);    // at most one restart for everything this frame changed
+  void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
+  void after_swap();                       // edit-to-image latency of a first image just shown
+
+  // Actions.
+  void pick(ImVec2 mouse);                       // selects the material under a click
+  void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
+  void perform(const PendingAction& action);     // runs it
+  void open_scene(const std::string& scene_arg);
+  void reload_scene(bool keep_view);
+  void save_scene(bool as);                      // Save (false) or Save as the path field (true)
+  void save_png(const std::string& path);        // what is shown, exposure and curve applied
+  void save_pfm(const std::string& path);        // the linear image
+  void save_window_screenshot(const std::string& path, int fb_width, int fb_height);  // the whole window
+  void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
+  void update_title();                           // "phonglab - source *"
+  bool image_is_final() const;                   // the renderer idles and its last image is on screen
+
+  // Scripts (viewer_script.cpp).
+  void step_script(double now);                  // injects this frame's input, runs commands until one waits
+  bool script_wait_done(double now);             // whether the current wait is over (fails on timeout)
+  bool run_script_command(const ScriptCommand& command, double now);  // false: the script failed
+  bool script_set(const std::vector<std::string>& words);             // the `set` command
+  void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
+  void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
+  void write_state(const std::string& path) const;                    // `dump_state`
+  void write_stats_summary(const std::string& label);                 // percentiles into the stats log
+
+  Platform& platform_;
+  ViewerOptions options_;
+  SceneDocument doc_;
+  ProgressiveRenderer renderer_;
+  ImageView image_view_;
+
+  // The image on screen: the newest frame taken from the renderer.
+  ProgressiveFrame shown_;
+  bool upload_pending_ = false;          // shown_ is newer than the texture
+  std::uint64_t drawn_generation_ = 0;   // generation of the image last put on screen
+  std::uint64_t drawn_serial_ = 0;       // its FrameStats::serial
+  std::shared_ptr<const Scene> snapshot_;  // the prepared scene the renderer has (for picking)
+
+  // Edits gathered during a UI frame, applied once at its end.
+  bool scene_edited_ = false;      // materials, lights, shading: restart and mark unsaved
+  bool camera_changed_ = false;    // navigation: restart, not an unsaved change
+  bool scene_replaced_ = false;    // opened or reloaded
+  bool settings_changed_ = false;  // render settings panel
+  bool frame_requested_ = false;   // F / "Frame"
+  bool reset_requested_ = false;   // R / "Reset"
+  bool edited_while_active_ = false;  // a slider drag is editing: render coarse while it lasts
+  bool change_deferred_ = false;   // a drag's edit waits for the renderer's current first image
+  double deferred_since_ = 0;      // glfwGetTime() of the oldest deferred edit
+  std::uint64_t sent_generation_ = 0;  // generation of the last snapshot handed over
+  int render_width_ = 0;           // full-resolution size last given to the renderer
+  int render_height_ = 0;
+
+  // UI state.
+  ui::SceneFileState file_state_;
+  ui::ScreenshotState screenshot_state_;
+  ui::RenderSettings render_settings_;
+  ui::DisplaySettings display_;
+  int selected_material_ = 0;
+  int selected_light_ = -1;
+  int hovered_light_ = -1;
+  std::string picked_text_;          // what the last viewport click hit
+  bool open_materials_ = false;      // a click picked a material: unfold its panel
+  bool sidebar_visible_ = true;
+  ViewportRect viewport_;
+  Drag drag_;
+  bool interacting_ = false;
+  PendingAction pending_;
+  bool open_guard_ = false;          // open the modal this frame
+  bool guard_visible_ = false;       // the modal is up
+  ui::GuardChoice scripted_choice_ = ui::GuardChoice::kNone;
+  bool quit_ = false;
+  double next_file_poll_ = 0;        // glfwGetTime() of the next mtime check
+  std::string title_;
+
+  // Timing.
+  double last_frame_start_ = 0;
+  std::deque<std::pair<double, double>> frame_times_;  // (start, duration) over the last second
+  bool was_rendering_ = false;       // the renderer was busy when this frame started
+  bool slept_idle_ = false;          // this frame followed an idle sleep, not the 60 Hz pacing
+  // Edits whose first image is not yet on screen: (generation, glfwGetTime() of the edit).
+  std::deque<std::pair<std::uint64_t, double>> restart_times_;
+  std::uint64_t first_image_generation_ = 0;  // its first image went up this frame; 0: none
+  double last_latency_ms_ = -1;               // edit to first image on screen, last measured
+  std::vector<double> latencies_ms_;      // for the stats log's summary (kept only with a log)
+  std::vector<double> busy_frame_ms_;     // UI frame times while the renderer was working (same)
+  std::ofstream stats_log_;
+
+  // Scripts.
+  std::vector<ScriptCommand> script_;
+  std::size_t script_index_ = 0;
+  ScriptWait script_wait_ = ScriptWait::kNone;
+  int wait_frames_left_ = 0;
+  double wait_deadline_ = 0;
+  std::string wait_file_;
+  std::deque<InputStep> input_steps_;
+  bool script_failed_ = false;
+  std::string screenshot_request_;   // window screenshot to take after drawing this frame
+  int bench_left_ = 0;               // bench_edits: edits still to make
+  int bench_gap_frames_ = 0;         // frames to wait after an image before the next edit
+  std::string bench_kind_;           // "material" or "camera"
+  bool bench_waiting_image_ = false; // an edit was made; its first image is not up yet
+  bool bench_expect_restart_ = false;  // the next restart is the bench's edit
+  std::uint64_t bench_generation_ = 0;
+  int bench_sign_ = 1;               // edits alternate direction so the scene stays put
+};
+
+}  // namespace phonglab

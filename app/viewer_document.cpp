@@ -1,0 +1,114 @@
+#include "app/viewer_document.h"
+
+#include <system_error>
+
+#include "renderer/embedded_scenes.h"
+#include "renderer/scene_io.h"
+
+namespace phonglab {
+
+namespace {
+
+bool same_camera(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.look_at == b.look_at && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
+}
+
+}  // namespace
+
+std::optional<std::filesystem::file_time_type> SceneDocument::current_mtime() const {
+  if (file_path_.empty()) return std::nullopt;
+  std::error_code ec;
+  const auto t = std::filesystem::last_write_time(file_path_, ec);
+  if (ec) return std::nullopt;
+  return t;
+}
+
+bool SceneDocument::open(const std::string& scene_arg) {
+  LoadResult result = load_scene_arg(scene_arg);
+  if (!result.ok()) {
+    error_text_ = result.error_text();
+    return false;
+  }
+  scene_ = std::move(*result.scene);
+  loaded_camera_ = scene_.camera;
+  if (find_embedded_scene(scene_arg) != nullptr) {
+    file_path_.clear();
+    source_ = "embedded scene '" + scene_arg + "'";
+  } else {
+    file_path_ = scene_arg;
+    source_ = scene_arg;
+  }
+  mtime_ = current_mtime();
+  dirty_ = false;
+  loaded_ = true;
+  error_text_.clear();
+  status_ = "opened " + source_;
+  return true;
+}
+
+bool SceneDocument::reload(bool keep_view) {
+  if (file_path_.empty()) {
+    error_text_ = "an embedded scene has no file to reload";
+    return false;
+  }
+  // Remember the modification time even on failure, so a broken file is reported once
+  // rather than re-read twice a second.
+  mtime_ = current_mtime();
+  LoadResult result = load_scene_file(file_path_);
+  if (!result.ok()) {
+    error_text_ = result.error_text();
+    return false;
+  }
+  const Camera view = scene_.camera;
+  const bool file_kept_its_camera = same_camera(result.scene->camera, loaded_camera_);
+  scene_ = std::move(*result.scene);
+  loaded_camera_ = scene_.camera;
+  if (keep_view && file_kept_its_camera) scene_.camera = view;
+  dirty_ = false;
+  error_text_.clear();
+  status_ = "reloaded " + file_path_;
+  return true;
+}
+
+bool SceneDocument::write(const std::string& path) {
+  const std::string error = write_file_atomically(path, scene_to_json(scene_));
+  if (!error.empty()) {
+    error_text_ = error;
+    return false;
+  }
+  error_text_.clear();
+  dirty_ = false;
+  status_ = "saved " + path;
+  return true;
+}
+
+bool SceneDocument::save() {
+  if (file_path_.empty()) {
+    error_text_ = "an embedded scene has no file: use Save as";
+    return false;
+  }
+  if (!write(file_path_)) return false;
+  loaded_camera_ = scene_.camera;
+  mtime_ = current_mtime();  // our own write is not a change on disk
+  return true;
+}
+
+bool SceneDocument::save_as(const std::string& path) {
+  if (path.empty()) {
+    error_text_ = "Save as: type a file name into the path field first";
+    return false;
+  }
+  if (!write(path)) return false;
+  file_path_ = path;
+  source_ = path;
+  loaded_camera_ = scene_.camera;
+  mtime_ = current_mtime();
+  return true;
+}
+
+bool SceneDocument::changed_on_disk() const {
+  if (file_path_.empty()) return false;
+  return current_mtime() != mtime_;
+}
+
+}  // namespace phonglab

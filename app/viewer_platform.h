@@ -1,0 +1,57 @@
+// The window system: GLFW window with a GL 3.3 core context (glad), Dear ImGui with its GLFW
+// and OpenGL 3 backends, fonts sized for the monitor's content scale.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+
+namespace phonglab {
+
+struct PlatformOptions {
+  int width = 1280;          // window size in screen coordinates
+  int height = 720;
+  std::string title = "phonglab";
+};
+
+class Platform {
+ public:
+  // Opens the window and sets up ImGui. Nothing (and `error` explains) when there is no
+  // display or no GL 3.3 core context.
+  static std::unique_ptr<Platform> create(const PlatformOptions& options, std::string& error);
+  // Shuts ImGui down, destroys the window, terminates GLFW.
+  ~Platform();
+  Platform(const Platform&) = delete;
+  Platform& operator=(const Platform&) = delete;
+
+  GLFWwindow* window() const { return window_; }
+  // UI scale: the monitor's (1 on a standard display, 2 on a HiDPI one) times the user's.
+  float ui_scale() const { return ui_scale_; }
+  // Rebuilds fonts and style when the window moved to a monitor of another scale or the
+  // user size changed. Call between frames.
+  void update_scale();
+  // The user's size factor on top of the monitor's content scale; takes effect at update_scale.
+  void set_user_scale(float factor) { user_scale_ = factor; }
+  // Starts an ImGui frame (backends first). Call ImGui::NewFrame() after injecting any input.
+  void begin_backend_frame();
+  // glfwGetTime() of the last input or window event: the main loop idles when it is old.
+  double last_event_time() const { return last_event_time_; }
+  // Records an event now (GLFW callbacks, and script input that bypasses GLFW).
+  void note_event();
+
+ private:
+  Platform() = default;
+  void apply_scale(float scale);
+
+  GLFWwindow* window_ = nullptr;
+  bool glfw_ready_ = false;
+  bool imgui_ready_ = false;
+  float ui_scale_ = 0;
+  float user_scale_ = 1;
+  bool fonts_built_ = false;  // apply_scale ran before: the font texture exists
+  double last_event_time_ = 0;
+};
+
+}  // namespace phonglab

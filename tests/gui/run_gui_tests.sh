@@ -1,0 +1,328 @@
+#!/usr/bin/env bash
+# GUI tests of the previewer (issue 3), under Xvfb with Mesa's llvmpipe.
+#
+#   tests/gui/run_gui_tests.sh BUILD_DIR [OUT_DIR]
+#
+# Starts BUILD_DIR/bin/phonglab with a test script (commands run inside its main loop; see
+# docs/previewer.md) and real X input from xdotool, then checks the screenshots and state dumps
+# it wrote: the scene is visible, dragging changes the view, a material edit changes the image,
+# the light marker can be dragged, exposure does not restart rendering, a 1x1 window survives,
+# the unsaved-changes guard stops a quit, scene files reload when they change and bad ones show
+# their diagnostics while the last good scene stays. Exit status 0 when every check passes.
+# Needs: xvfb-run, xdotool, ImageMagick (convert, compare).
+set -u
+
+if [[ "${1:-}" == "--inside-x" ]]; then
+  INSIDE_X=1
+  shift
+else
+  INSIDE_X=0
+fi
+BUILD_DIR=$(cd "${1:?usage: run_gui_tests.sh BUILD_DIR [OUT_DIR]}" && pwd)
+OUT=${2:-$BUILD_DIR/gui-tests}
+BIN=$BUILD_DIR/bin/phonglab
+SELF=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/$(basename "${BASH_SOURCE[0]}")
+# Sanitizer builds: GL drivers and X libraries keep allocations alive until exit on purpose.
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-150}  # per session, seconds (sanitizer builds are slow)
+
+failures=0
+pass() { echo "  ok    $*"; }
+fail() { echo "  FAIL  $*"; failures=$((failures + 1)); }
+check() {  # check "description" command...
+  local what=$1
+  shift
+  if "$@"; then pass "$what"; else fail "$what"; fi
+}
+state() {  # state FILE KEY: the value of KEY= in a dump_state file
+  sed -n "s/^$2=//p" "$1" 2>/dev/null | head -n 1
+}
+# Standard deviation of the grey levels in a region (0 = uniform).
+stddev() {
+  convert "$1" -crop "$2" +repage -colorspace Gray -format '%[fx:standard_deviation]' info: 2>/dev/null
+}
+# Normalised RMS difference of two images in a region.
+rmse() {
+  local a b
+  a=$(mktemp --suffix=.png) b=$(mktemp --suffix=.png)
+  convert "$1" -crop "$3" +repage "$a" && convert "$2" -crop "$3" +repage "$b"
+  compare -metric RMSE "$a" "$b" null: 2>&1 | sed -n 's/.*(\(.*\)).*/\1/p'
+  rm -f "$a" "$b"
+}
+greater() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 > b + 0) }'; }
+less() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 < b + 0) }'; }
+wait_for_file() {  # wait_for_file FILE SECONDS PID
+  local deadline=$((SECONDS + $2))
+  while [[ ! -e "$1" ]]; do
+    if ((SECONDS > deadline)) || ! kill -0 "$3" 2>/dev/null; then return 1; fi
+    sleep 0.1
+  done
+}
+
+# The viewport of a 1280x720 window is the 880x720 on the left (the panels take 400); below
+# the stats overlay, this region shows only the scene.
+SCENE_REGION=880x440+0+280
+
+# --- Session 1: drag, pick, edit, exposure, light marker, resize, quit guard ----------------
+session_view() {
+  local dir=$OUT/view
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+screenshot $dir/01_start.png
+save_png $dir/shown.png
+save_pfm $dir/linear.pfm
+dump_state $dir/s01.txt
+set render resolution_scale 0.5
+wait_idle 120
+screenshot $dir/02_half.png
+drag left 440 520 580 480 12
+wait_idle 120
+screenshot $dir/03_orbit.png
+dump_state $dir/s03.txt
+touch $dir/xdotool_ready
+wait_file $dir/xdotool_done 60
+wait_idle 120
+screenshot $dir/04_xdotool.png
+dump_state $dir/s04.txt
+key R
+wait_idle 120
+screenshot $dir/05_reset.png
+dump_state $dir/s05.txt
+touch $dir/pick_ready
+wait_file $dir/pick_done 60
+wait_frames 3
+dump_state $dir/s06.txt
+set material plastic kd 0.1 0.2 0.9
+wait_idle 120
+screenshot $dir/07_edit.png
+dump_state $dir/s07.txt
+set display exposure 1.5
+wait_frames 3
+screenshot $dir/08_exposure.png
+dump_state $dir/s08.txt
+set display exposure 0
+set light 0 position 1.5 2.2 1.5
+wait_idle 120
+dump_state $dir/s09a.txt
+drag_light 0 80 0
+wait_idle 120
+dump_state $dir/s09.txt
+screenshot $dir/09_light.png
+resize 1 1
+wait_frames 10
+dump_state $dir/s10.txt
+resize 1280 720
+wait_frames 5
+wait_idle 120
+screenshot $dir/11_back.png
+dump_state $dir/s11.txt
+key H
+wait_idle 120
+dump_state $dir/s12.txt
+key H
+close
+wait_frames 5
+dump_state $dir/s13.txt
+screenshot $dir/13_modal.png
+modal discard
+wait_frames 300
+fail the unsaved-changes dialog's Discard did not quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" --stats-log "$dir/stats.log" \
+    >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
+  local pid=$!
+  local win=""
+  # Real X input: a left-drag in the viewport through the X server, then a click on the red
+  # sphere to pick its material.
+  if wait_for_file "$dir/xdotool_ready" 120 "$pid"; then
+    win=$(xdotool search --sync --limit 1 --name '^phonglab' 2>/dev/null | head -n 1)
+    xdotool mousemove --window "$win" 300 560
+    sleep 0.2
+    xdotool mousedown 1
+    for x in 320 340 360 380 400 420 440; do
+      xdotool mousemove --window "$win" "$x" 560
+      sleep 0.05
+    done
+    xdotool mouseup 1
+    sleep 0.2
+    touch "$dir/xdotool_done"
+  fi
+  if wait_for_file "$dir/pick_ready" 120 "$pid"; then
+    xdotool mousemove --window "$win" 315 380
+    sleep 0.2
+    xdotool click 1
+    sleep 0.2
+    xdotool mousemove --window "$win" 1270 710  # out of the way of later scripted input
+    touch "$dir/pick_done"
+  fi
+  wait "$pid"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_view() {
+  local dir=$OUT/view
+  echo "session 1: view, picking, editing, window handling"
+  check "exits 0 after the guard's Discard (got $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
+    test "$(cat "$dir/exit_code")" = 0
+  check "the first screenshot shows a scene, not a uniform image" greater "$(stddev "$dir/01_start.png" $SCENE_REGION)" 0.05
+  check "the shown image was saved as PNG ($(state "$dir/s01.txt" image))" test -s "$dir/shown.png"
+  check "the linear image was saved as PFM" test "$(head -c 2 "$dir/linear.pfm" 2>/dev/null)" = PF
+  check "no NaN/Inf in the image" test "$(state "$dir/s01.txt" nan_count)" = 0
+  check "a scripted orbit drag changed the camera" test "$(state "$dir/s03.txt" camera_position)" != "$(state "$dir/s01.txt" camera_position)"
+  check "a scripted orbit drag changed the view" greater "$(rmse "$dir/02_half.png" "$dir/03_orbit.png" $SCENE_REGION)" 0.02
+  check "a real xdotool drag changed the camera" test "$(state "$dir/s04.txt" camera_position)" != "$(state "$dir/s03.txt" camera_position)"
+  check "a real xdotool drag changed the view" greater "$(rmse "$dir/03_orbit.png" "$dir/04_xdotool.png" $SCENE_REGION)" 0.02
+  check "R resets the camera" test "$(state "$dir/s05.txt" camera_position)" = "$(state "$dir/s01.txt" camera_position)"
+  check "the same camera renders the same image (reset vs start)" less "$(rmse "$dir/02_half.png" "$dir/05_reset.png" $SCENE_REGION)" 0.002
+  check "clicking the red sphere selects its material (picked: $(state "$dir/s06.txt" picked))" test "$(state "$dir/s06.txt" selected_material)" = plastic
+  check "a material edit marks the scene unsaved" test "$(state "$dir/s07.txt" dirty)" = 1
+  check "a material edit changed the image" greater "$(rmse "$dir/05_reset.png" "$dir/07_edit.png" $SCENE_REGION)" 0.01
+  check "exposure changed what is shown" greater "$(rmse "$dir/07_edit.png" "$dir/08_exposure.png" $SCENE_REGION)" 0.02
+  check "exposure did not restart rendering" test "$(state "$dir/s08.txt" generation)" = "$(state "$dir/s07.txt" generation)"
+  check "dragging the light marker moved the light ($(state "$dir/s09a.txt" light0_position) -> $(state "$dir/s09.txt" light0_position))" \
+    test "$(state "$dir/s09.txt" light0_position)" != "$(state "$dir/s09a.txt" light0_position)"
+  check "a 1x1 window keeps running ($(state "$dir/s10.txt" framebuffer))" test "$(state "$dir/s10.txt" framebuffer)" = 1x1
+  check "back at 1280x720 the scene shows again" greater "$(stddev "$dir/11_back.png" $SCENE_REGION)" 0.05
+  check "back at 1280x720 the render size follows ($(state "$dir/s11.txt" render))" test "$(state "$dir/s11.txt" render)" = 440x360
+  check "H hides the panels and the render fills the window ($(state "$dir/s12.txt" render))" test "$(state "$dir/s12.txt" render)" = 640x360
+  check "closing with unsaved edits opens the guard" test "$(state "$dir/s13.txt" modal)" = 1
+  check "UI frames were timed" grep -q '^summary session ui_frames' "$dir/stats.log"
+}
+
+# --- Session 2: scene files: auto-reload, bad files, save as, open guard -------------------
+write_scene() {  # write_scene FILE RED_KD RADIUS
+  cat >"$1" <<EOF
+{
+  "camera": {"position": [0, 1.5, 6], "look_at": [0, 0.8, 0], "up": [0, 1, 0], "fov_y": 40},
+  "background": [0.05, 0.06, 0.09],
+  "lights": [{"type": "point", "position": [2, 6, 4], "intensity": [0.9, 0.9, 0.9]}],
+  "materials": {
+    "floor": {"ka": 0.04, "kd": 0.6},
+    "red": {"ka": 0.05, "kd": $2, "ks": 0.5, "n": 20}
+  },
+  "objects": [
+    {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor"},
+    {"type": "sphere", "center": [0, 0.8, 0], "radius": $3, "material": "red"}
+  ]
+}
+EOF
+}
+
+session_files() {
+  local dir=$OUT/files
+  mkdir -p "$dir"
+  rm -f "$dir"/saved.json
+  write_scene "$dir/scene.json" "[0.8, 0.1, 0.1]" 0.8
+  cat >"$dir/script.txt" <<EOF
+set render resolution_scale 0.25
+set render target_spp 1
+wait_idle 120
+dump_state $dir/f01.txt
+touch $dir/ready_edit
+wait_file $dir/edit_done 60
+wait_frames 60
+wait_idle 120
+dump_state $dir/f02.txt
+touch $dir/ready_break
+wait_file $dir/break_done 60
+wait_frames 60
+dump_state $dir/f03.txt
+screenshot $dir/f03_error.png
+set material red kd 0.5
+save_as $dir/saved.json
+dump_state $dir/f04.txt
+open $dir/missing.json
+wait_frames 2
+dump_state $dir/f05.txt
+set material red kd 0.25
+open lecture
+wait_frames 3
+dump_state $dir/f06.txt
+modal cancel
+wait_frames 3
+dump_state $dir/f07.txt
+open lecture
+wait_frames 3
+modal save
+wait_frames 3
+dump_state $dir/f08.txt
+set display ui_size 1.5
+wait_frames 3
+screenshot $dir/f09_ui_size.png
+dump_state $dir/f09.txt
+quit
+EOF
+  "$BIN" "$dir/scene.json" --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
+  local pid=$!
+  if wait_for_file "$dir/ready_edit" 120 "$pid"; then
+    write_scene "$dir/scene.json.new" "[0, 0, 1]" 0.8
+    mv "$dir/scene.json.new" "$dir/scene.json"
+    touch "$dir/edit_done"
+  fi
+  if wait_for_file "$dir/ready_break" 120 "$pid"; then
+    write_scene "$dir/scene.json.new" "[0, 1, 0]" -1
+    mv "$dir/scene.json.new" "$dir/scene.json"
+    touch "$dir/break_done"
+  fi
+  wait "$pid"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_files() {
+  local dir=$OUT/files
+  echo "session 2: scene files"
+  check "exits 0 (got $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" test "$(cat "$dir/exit_code")" = 0
+  check "opens the file given on the command line" test "$(state "$dir/f01.txt" file)" = "$dir/scene.json"
+  check "a changed file reloads by itself ($(state "$dir/f02.txt" status))" test "$(state "$dir/f02.txt" material_red_kd)" = "0 0 1"
+  check "a broken file shows its diagnostics ($(state "$dir/f03.txt" error))" \
+    grep -q '^error=.*scene.json:[0-9]*:[0-9]*: objects\[1\].radius' "$dir/f03.txt"
+  check "a broken file keeps the last good scene" test "$(state "$dir/f03.txt" material_red_kd)" = "0 0 1"
+  check "save as writes the file and clears the unsaved mark" test "$(state "$dir/f04.txt" dirty)" = 0 -a -s "$dir/saved.json"
+  check "save as makes the new file the document" test "$(state "$dir/f04.txt" file)" = "$dir/saved.json"
+  check "opening a missing file shows an error ($(state "$dir/f05.txt" error))" grep -q '^error=.*missing.json' "$dir/f05.txt"
+  check "opening a missing file keeps the scene" test "$(state "$dir/f05.txt" file)" = "$dir/saved.json"
+  check "open with unsaved edits asks first" test "$(state "$dir/f06.txt" modal)" = 1
+  check "Cancel keeps the scene and its edits" test "$(state "$dir/f07.txt" file)-$(state "$dir/f07.txt" dirty)" = "$dir/saved.json-1"
+  check "Save then opens the other scene ($(state "$dir/f08.txt" source))" test "$(state "$dir/f08.txt" source)" = "embedded scene 'lecture'"
+  check "Save wrote the edit" grep -q '0.25' "$dir/saved.json"
+  check "a larger UI size narrows the viewport ($(state "$dir/f09.txt" render))" test "$(state "$dir/f09.txt" render)" = 170x180
+}
+
+# --- Without a display ----------------------------------------------------------------------
+check_no_display() {
+  echo "without a display"
+  local err code
+  err=$(env -u DISPLAY -u WAYLAND_DISPLAY "$BIN" 2>&1 >/dev/null)
+  code=$?
+  check "exits 1 (got $code)" test "$code" = 1
+  check "points at phonglab-cli ($(echo "$err" | head -n 1))" grep -q 'phonglab-cli' <<<"$err"
+  "$BIN" --help >/dev/null
+  check "--help exits 0" test $? = 0
+  "$BIN" --version >/dev/null
+  check "--version exits 0" test $? = 0
+  "$BIN" --no-such-option >/dev/null 2>&1
+  check "an unknown option exits 2" test $? = 2
+}
+
+if ((INSIDE_X)); then
+  session_view
+  session_files
+  exit 0
+fi
+
+for tool in xvfb-run xdotool convert compare; do
+  command -v "$tool" >/dev/null || { echo "run_gui_tests.sh: needs $tool"; exit 2; }
+done
+[[ -x "$BIN" ]] || { echo "run_gui_tests.sh: no previewer at $BIN"; exit 2; }
+rm -rf "$OUT"
+mkdir -p "$OUT"
+start=$SECONDS
+timeout "$TIMEOUT" xvfb-run -a -s '-screen 0 1280x720x24' "$SELF" --inside-x "$BUILD_DIR" "$OUT"
+check_view
+check_files
+check_no_display
+echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
+((failures == 0))

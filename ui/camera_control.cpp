@@ -1,0 +1,133 @@
+#include "ui/camera_control.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/constants.hpp>
+
+#include "renderer/camera.h"
+
+namespace phonglab::ui {
+
+namespace {
+
+// Closest the view direction may come to the up vector, radians (about 0.6 degrees): keeps
+// F x up well away from zero so the camera frame stays defined.
+constexpr double kPoleMargin = 0.01;
+// Smallest allowed camera-to-look_at distance relative to the scene's coordinates: far above
+// double rounding, so normalize(look_at - position) stays accurate.
+constexpr double kMinRelativeDistance = 1e-9;
+
+// Rodrigues' rotation of v about the unit axis k by `angle` radians.
+Vec3 rotate_about(const Vec3& v, const Vec3& k, double angle) {
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1 - c);
+}
+
+double min_distance(const Camera& camera) {
+  return kMinRelativeDistance * std::max(1.0, max_abs(camera.look_at));
+}
+
+}  // namespace
+
+bool camera_is_valid(const Camera& camera) {
+  if (!all_finite(camera.position) || !all_finite(camera.look_at) || !all_finite(camera.up)) return false;
+  if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) return false;
+  const Vec3 view = camera.look_at - camera.position;
+  const double distance = glm::length(view);
+  const double up_length = glm::length(camera.up);
+  if (!(distance > min_distance(camera)) || !(up_length > 0)) return false;
+  // sin of the angle between view and up; 1e-6 is far below any deliberate setting.
+  return glm::length(glm::cross(view / distance, camera.up / up_length)) > 1e-6;
+}
+
+void orbit(Camera& camera, double yaw_rad, double pitch_rad) {
+  const Vec3 up = glm::normalize(camera.up);
+  Vec3 offset = camera.position - camera.look_at;
+  const double distance = glm::length(offset);
+  offset = rotate_about(offset, up, yaw_rad);
+  // Polar angle of the camera measured from up; pitching towards up makes it smaller.
+  const double polar = std::acos(clamp_unit(glm::dot(offset / distance, up)));
+  const double new_polar = std::clamp(polar - pitch_rad, kPoleMargin, glm::pi<double>() - kPoleMargin);
+  const Vec3 right = glm::normalize(glm::cross(up, offset));
+  offset = rotate_about(offset, right, polar - new_polar);
+  Camera moved = camera;
+  moved.position = camera.look_at + offset;
+  if (camera_is_valid(moved)) camera = moved;
+}
+
+void dolly(Camera& camera, double factor) {
+  if (!(factor > 0) || !std::isfinite(factor)) return;
+  const Vec3 offset = camera.position - camera.look_at;
+  const double distance = glm::length(offset);
+  const double new_distance = std::max(distance * factor, 2 * min_distance(camera));
+  Camera moved = camera;
+  moved.position = camera.look_at + offset * (new_distance / distance);
+  if (camera_is_valid(moved)) camera = moved;
+}
+
+void pan(Camera& camera, double dx_px, double dy_px, double viewport_height_px) {
+  if (!(viewport_height_px > 0)) return;
+  const Vec3 forward = glm::normalize(camera.look_at - camera.position);
+  const Vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  const Vec3 up = glm::cross(right, forward);
+  const double distance = glm::length(camera.look_at - camera.position);
+  // World units per pixel at the look-at point: the view is 2 tan(fov/2) distance tall.
+  const double units_per_px = 2 * std::tan(glm::radians(camera.fov_y_deg) / 2) * distance / viewport_height_px;
+  const Vec3 shift = (-dx_px * right + dy_px * up) * units_per_px;
+  camera.position += shift;
+  camera.look_at += shift;
+}
+
+bool frame_scene(Camera& camera, const Scene& scene, double aspect) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3 lo(kInf), hi(-kInf);
+  for (const Sphere& s : scene.spheres) {
+    lo = glm::min(lo, s.center - s.radius);
+    hi = glm::max(hi, s.center + s.radius);
+  }
+  for (const Triangle& t : scene.triangles) {
+    lo = glm::min(glm::min(lo, t.v0), glm::min(t.v1, t.v2));
+    hi = glm::max(glm::max(hi, t.v0), glm::max(t.v1, t.v2));
+  }
+  if (!(lo.x <= hi.x)) return false;  // no finite objects (planes are infinite)
+  const Vec3 center = 0.5 * (lo + hi);
+  const double radius = std::max(0.5 * glm::length(hi - lo), 1e-12);
+  const double half_fov_y = glm::radians(camera.fov_y_deg) / 2;
+  const double half_fov_x = std::atan(std::tan(half_fov_y) * (aspect > 0 ? aspect : 1));
+  // The bounding sphere touches the narrower side of the view; 1.05 leaves a small margin.
+  const double distance = 1.05 * radius / std::sin(std::min(half_fov_x, half_fov_y));
+  Camera framed = camera;
+  framed.look_at = center;
+  framed.position = center - glm::normalize(camera.look_at - camera.position) * distance;
+  if (!camera_is_valid(framed)) return false;
+  camera = framed;
+  return true;
+}
+
+double view_depth(const Camera& camera, const Vec3& p) {
+  return glm::dot(p - camera.position, glm::normalize(camera.look_at - camera.position));
+}
+
+std::optional<ViewportPoint> project(const Camera& camera, const Vec3& p, int width, int height) {
+  if (width <= 0 || height <= 0) return std::nullopt;
+  const CameraFrame frame = make_camera_frame(camera, width, height);
+  const Vec3 d = p - frame.origin;
+  const double z = glm::dot(d, frame.forward);
+  if (!(z > 1e-9 * std::max(1.0, max_abs(d)))) return std::nullopt;  // behind or at the eye
+  // frame.right and frame.up carry the image-plane scale: divide it out twice.
+  const double sx = glm::dot(d, frame.right) / (z * glm::dot(frame.right, frame.right));
+  const double sy = glm::dot(d, frame.up) / (z * glm::dot(frame.up, frame.up));
+  return ViewportPoint{(sx + 1) / 2 * width, (1 - sy) / 2 * height};
+}
+
+Vec3 unproject(const Camera& camera, ViewportPoint pixel, double depth, int width, int height) {
+  const CameraFrame frame = make_camera_frame(camera, std::max(width, 1), std::max(height, 1));
+  const double sx = 2 * pixel.x / std::max(width, 1) - 1;
+  const double sy = 1 - 2 * pixel.y / std::max(height, 1);
+  return frame.origin + depth * (frame.forward + sx * frame.right + sy * frame.up);
+}
+
+}  // namespace phonglab::ui

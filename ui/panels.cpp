@@ -1,0 +1,463 @@
+#include "ui/panels.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+
+#include "renderer/embedded_scenes.h"
+#include "ui/camera_control.h"
+#include "ui/widgets.h"
+
+namespace phonglab::ui {
+
+namespace {
+
+// ImVec4 is not a literal type: these are plain constants.
+const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
+const ImVec4 kWarningColor{1.0f, 0.8f, 0.3f, 1.0f};
+
+// Whether the current font can draw `c` (the built-in font lacks Greek and maths symbols).
+bool font_has(ImWchar c) { return ImGui::GetFont()->FindGlyphNoFallback(c) != nullptr; }
+
+// One row of the coefficient list: the widget takes the width left of the term text, which
+// names the coefficient's place in the equation.
+void widget_before_term(float term_width) {
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  ImGui::SetNextItemWidth(std::max(ImGui::GetContentRegionAvail().x - term_width - spacing, 1.0f));
+}
+
+void term_text(const char* text) {
+  ImGui::SameLine();
+  ImGui::TextUnformatted(text);
+}
+
+// "12.3k", "4.56M": ray counts that fit a narrow overlay.
+void format_count(char* out, std::size_t size, std::uint64_t n) {
+  const auto v = static_cast<double>(n);
+  if (n >= 1000000) std::snprintf(out, size, "%.2fM", v / 1e6);
+  else if (n >= 1000) std::snprintf(out, size, "%.1fk", v / 1e3);
+  else std::snprintf(out, size, "%" PRIu64, n);
+}
+
+ImVec4 display_color(const Color& c) {
+  const double m = max_channel(c);
+  const Color n = m > 1 ? c / m : c;  // keep the hue of intensities above 1
+  return ImVec4(static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 1.0f);
+}
+
+}  // namespace
+
+bool camera_panel(Camera& camera, CameraActions& actions) {
+  bool edited = false;
+  // Edit a copy and keep it only if the renderer can use it (no zero view vector, no up
+  // along the view).
+  Camera edit = camera;
+  bool changed = false;
+  changed |= drag_vec3("position", edit.position, 0.02f);
+  changed |= drag_vec3("look at", edit.look_at, 0.02f);
+  changed |= drag_vec3("up", edit.up, 0.01f);
+  changed |= slider_double("fov y (deg)", edit.fov_y_deg, 5.0, 150.0, "%.1f");
+  if (changed && camera_is_valid(edit)) {
+    camera = edit;
+    edited = true;
+  }
+  if (ImGui::Button("Frame (F)")) actions.frame_scene = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset (R)")) actions.reset = true;
+  ImGui::TextDisabled("Left-drag orbit, right-drag/wheel dolly,");
+  ImGui::TextDisabled("middle- or Shift+left-drag pan, click selects.");
+  return edited;
+}
+
+bool materials_panel(std::vector<Material>& materials, int& selected, SpecularModel model) {
+  if (materials.empty()) {
+    ImGui::TextDisabled("The scene has no materials.");
+    return false;
+  }
+  selected = std::clamp(selected, 0, static_cast<int>(materials.size()) - 1);
+  bool edited = false;
+
+  const auto rows = static_cast<float>(std::min<std::size_t>(materials.size(), 6));
+  const float list_height = ImGui::GetTextLineHeightWithSpacing() * (rows + 0.4f);
+  if (ImGui::BeginListBox("##materials", ImVec2(-FLT_MIN, list_height))) {
+    for (int i = 0; i < static_cast<int>(materials.size()); ++i) {
+      ImGui::PushID(i);
+      const Material& m = materials[static_cast<std::size_t>(i)];
+      ImGui::ColorButton("##swatch", display_color(m.kd + m.ks * 0.25 + m.kr * 0.5),
+                         ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop,
+                         ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
+      ImGui::SameLine();
+      if (ImGui::Selectable(m.name.empty() ? "(unnamed)" : m.name.c_str(), selected == i)) selected = i;
+      ImGui::PopID();
+    }
+    ImGui::EndListBox();
+  }
+
+  // The lecture's equation, each coefficient then repeated beside its slider.
+  const bool greek = font_has(0x03A3);
+  const char* sum = greek ? "\xCE\xA3" : "sum";  // capital sigma
+  const char* spec = model == SpecularModel::kBlinn ? "max(0,N\xC2\xB7H)^n" : "max(0,R\xC2\xB7V)^n";
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("I = ka\xC2\xB7Ia + %s vis\xC2\xB7I_l\xC2\xB7(kd\xC2\xB7max(0,N\xC2\xB7L) + ks\xC2\xB7%s)"
+                      " + kr\xC2\xB7trace(R) + kt\xC2\xB7trace(T)",
+                      sum, spec);
+  ImGui::PopTextWrapPos();
+
+  Material& m = materials[static_cast<std::size_t>(selected)];
+  ImGui::PushID(selected);  // widget state must not carry over from one material to another
+  const float term_width = ImGui::GetFontSize() * 9.0f;
+  widget_before_term(term_width);
+  edited |= color_strength_edit("##ka", m.ka, 1.0f);
+  term_text("ka\xC2\xB7Ia");
+  widget_before_term(term_width);
+  edited |= color_strength_edit("##kd", m.kd, 1.0f);
+  term_text("kd\xC2\xB7max(0,N\xC2\xB7L)");
+  widget_before_term(term_width);
+  edited |= color_strength_edit("##ks", m.ks, 1.0f);
+  term_text(model == SpecularModel::kBlinn ? "ks\xC2\xB7(N\xC2\xB7H)^n" : "ks\xC2\xB7(R\xC2\xB7V)^n");
+  widget_before_term(term_width);
+  if (slider_double("##n", m.n, 0.0, 2000.0, "%.1f", true)) {
+    m.n = std::max(m.n, 0.0);
+    edited = true;
+  }
+  term_text("n: shininess");
+  widget_before_term(term_width);
+  edited |= color_strength_edit("##kr", m.kr, 1.0f);
+  term_text("kr\xC2\xB7trace(R)");
+  widget_before_term(term_width);
+  edited |= color_strength_edit("##kt", m.kt, 1.0f);
+  term_text("kt\xC2\xB7trace(T)");
+  widget_before_term(term_width);
+  if (slider_double("##ior", m.ior, 1.0, 3.0, "%.3f")) {
+    m.ior = std::max(m.ior, 0.01);  // must stay > 0 (SPEC §3)
+    edited = true;
+  }
+  term_text(greek ? "ior: \xCE\xB7 = 1/ior" : "ior: eta = 1/ior");
+  edited |= ImGui::Checkbox("Fresnel", &m.fresnel);
+  ImGui::SameLine();
+  ImGui::TextDisabled(m.fresnel ? "kr' = kr + kt\xC2\xB7" "F, kt' = kt\xC2\xB7(1-F)" : "kr' = kr, kt' = kt");
+  ImGui::PopID();
+  return edited;
+}
+
+bool lights_panel(std::vector<Light>& lights, int& selected) {
+  bool edited = false;
+  for (int i = 0; i < static_cast<int>(lights.size()); ++i) {
+    ImGui::PushID(i);
+    Light& light = lights[static_cast<std::size_t>(i)];
+    edited |= ImGui::Checkbox("##enabled", &light.enabled);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("enabled");
+    ImGui::SameLine();
+    char label[96];
+    if (light.type == LightType::kPoint) {
+      std::snprintf(label, sizeof label, "L%d point at (%.2f, %.2f, %.2f)", i, light.position.x,
+                    light.position.y, light.position.z);
+    } else {
+      std::snprintf(label, sizeof label, "L%d directional (%.2f, %.2f, %.2f)", i, light.direction.x,
+                    light.direction.y, light.direction.z);
+    }
+    if (ImGui::Selectable(label, selected == i)) selected = i;
+    ImGui::PopID();
+  }
+  if (ImGui::Button("Add point")) {
+    Light light;
+    light.position = Vec3(2, 5, 3);
+    light.intensity = Color(0.5);
+    lights.push_back(light);
+    selected = static_cast<int>(lights.size()) - 1;
+    edited = true;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Add directional")) {
+    Light light;
+    light.type = LightType::kDirectional;
+    light.direction = glm::normalize(Vec3(-1, -1, -0.5));
+    light.intensity = Color(0.2);
+    lights.push_back(light);
+    selected = static_cast<int>(lights.size()) - 1;
+    edited = true;
+  }
+  ImGui::SameLine();
+  const bool have_selection = selected >= 0 && selected < static_cast<int>(lights.size());
+  ImGui::BeginDisabled(!have_selection);
+  if (ImGui::Button("Remove") && have_selection) {
+    lights.erase(lights.begin() + selected);
+    selected = std::min(selected, static_cast<int>(lights.size()) - 1);
+    edited = true;
+  }
+  ImGui::EndDisabled();
+  if (selected < 0 || selected >= static_cast<int>(lights.size())) {
+    ImGui::TextDisabled(lights.empty() ? "No lights: only the ambient term remains." : "Select a light to edit it.");
+    return edited;
+  }
+
+  Light& light = lights[static_cast<std::size_t>(selected)];
+  ImGui::PushID(selected);
+  ImGui::Separator();
+  int type = light.type == LightType::kPoint ? 0 : 1;
+  if (ImGui::Combo("type", &type, "point\0directional\0")) {
+    light.type = type == 0 ? LightType::kPoint : LightType::kDirectional;
+    edited = true;
+  }
+  edited |= color_strength_edit("intensity", light.intensity, 2.0f);
+  if (light.type == LightType::kPoint) {
+    edited |= drag_vec3("position", light.position, 0.02f);
+    ImGui::TextDisabled("Or drag its marker in the viewport.");
+  } else {
+    Vec3 direction = light.direction;
+    // A zero direction is invalid (SPEC §3): refuse it rather than hand it to the renderer.
+    if (drag_vec3("direction", direction, 0.01f) && glm::length(direction) > 1e-9 && all_finite(direction)) {
+      light.direction = direction;
+      edited = true;
+    }
+  }
+  edited |= ImGui::Checkbox("enabled", &light.enabled);
+  ImGui::PopID();
+  return edited;
+}
+
+bool shading_settings_panel(Scene& scene) {
+  bool edited = false;
+  edited |= color_edit("ambient Ia", scene.ambient);
+  edited |= color_edit("background", scene.background);
+  edited |= ImGui::SliderInt("max depth", &scene.max_depth, 0, 16, "%d", ImGuiSliderFlags_AlwaysClamp);
+  help_marker("Recursion depth for reflection and refraction rays. 0 = local shading only.");
+  if (slider_double("min weight", scene.min_weight, 0.0, 1.0, "%.4g", true)) {
+    scene.min_weight = std::clamp(scene.min_weight, 0.0, 1.0);
+    edited = true;
+  }
+  help_marker("Child rays whose path weight falls below this are not traced.");
+  int model = scene.specular_model == SpecularModel::kPhong ? 0 : 1;
+  bool model_changed = ImGui::RadioButton("Phong", &model, 0);
+  ImGui::SameLine();
+  model_changed |= ImGui::RadioButton("Blinn-Phong", &model, 1);
+  if (model_changed) {
+    scene.specular_model = model == 0 ? SpecularModel::kPhong : SpecularModel::kBlinn;
+    edited = true;
+  }
+  return edited;
+}
+
+bool render_settings_panel(RenderSettings& settings, int hardware_threads) {
+  bool edited = false;
+  int term = static_cast<int>(settings.term);
+  const char* current = term_name(settings.term).data();  // the names are string literals
+  if (ImGui::BeginCombo("show", current)) {
+    for (int i = 0; i <= static_cast<int>(Term::kRays); ++i) {
+      ImGui::PushID(i);
+      if (ImGui::Selectable(term_name(static_cast<Term>(i)).data(), i == term)) {
+        settings.term = static_cast<Term>(i);
+        edited = true;
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndCombo();
+  }
+  edited |= ImGui::SliderInt("target spp", &settings.target_spp, 1, 4096, "%d",
+                             ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  edited |= ImGui::SliderFloat("resolution", &settings.resolution_scale, 0.125f, 1.0f, "%.3f x",
+                               ImGuiSliderFlags_AlwaysClamp);
+  char threads_format[32];
+  if (settings.threads == 0) std::snprintf(threads_format, sizeof threads_format, "all (%d)", hardware_threads);
+  else std::snprintf(threads_format, sizeof threads_format, "%%d");
+  edited |= ImGui::SliderInt("threads", &settings.threads, 0, std::max(2 * hardware_threads, 4), threads_format,
+                             ImGuiSliderFlags_AlwaysClamp);
+  return edited;
+}
+
+bool display_panel(DisplaySettings& display) {
+  bool edited = false;
+  edited |= ImGui::SliderFloat("exposure", &display.exposure_ev, -8.0f, 8.0f, "%+.1f EV");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("0")) {
+    display.exposure_ev = 0;
+    edited = true;
+  }
+  edited |= ImGui::Checkbox("sRGB display", &display.srgb);
+  help_marker("Off shows the linear values unencoded (too dark): the reason images are sRGB-encoded.");
+  edited |= ImGui::Checkbox("stats overlay", &display.show_stats);
+  // Applied on release: the panels would otherwise resize under the mouse while it drags.
+  float size = display.ui_size;
+  ImGui::SliderFloat("UI size", &size, 0.75f, 2.5f, "%.2f x", ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    display.ui_size = size;
+    edited = true;
+  }
+  return edited;
+}
+
+void scene_file_panel(SceneFileState& state, SceneFileActions& actions) {
+  ImGui::TextWrapped("%s%s", state.source.c_str(), state.dirty ? "  (modified)" : "");
+  input_text("path", state.path_field);
+  if (ImGui::Button("Open")) actions.open = true;
+  ImGui::SameLine();
+  ImGui::BeginDisabled(state.file_path.empty());
+  if (ImGui::Button("Save")) actions.save = true;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Save as")) actions.save_as = true;
+  ImGui::SameLine();
+  ImGui::BeginDisabled(state.file_path.empty());
+  if (ImGui::Button("Reload")) actions.reload = true;
+  ImGui::EndDisabled();
+  if (ImGui::BeginCombo("embedded", "open an embedded scene")) {
+    for (const EmbeddedScene& scene : embedded_scenes()) {
+      ImGui::PushID(scene.name.data(), scene.name.data() + scene.name.size());
+      const std::string name(scene.name);
+      if (ImGui::Selectable(name.c_str())) actions.open_embedded = name;
+      if (ImGui::IsItemHovered()) {
+        const std::string description(scene.description);
+        ImGui::SetTooltip("%s", description.c_str());
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::BeginDisabled(state.file_path.empty());
+  ImGui::Checkbox("reload when the file changes", &state.auto_reload);
+  ImGui::EndDisabled();
+  if (state.changed_on_disk) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+    ImGui::TextWrapped("The file changed on disk. Reload to see it (your edits will be lost).");
+    ImGui::PopStyleColor();
+  }
+  if (!state.error_text.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+    ImGui::TextWrapped("%s", state.error_text.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextDisabled("The previous scene stays open.");
+  }
+  if (!state.status.empty()) ImGui::TextDisabled("%s", state.status.c_str());
+}
+
+void screenshot_panel(ScreenshotState& state, ScreenshotActions& actions) {
+  input_text("##png", state.png_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save PNG")) actions.save_png = true;
+  input_text("##pfm", state.pfm_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save PFM")) actions.save_pfm = true;
+  ImGui::TextDisabled("PNG: what is shown. PFM: the linear image.");
+  if (!state.status.empty()) ImGui::TextWrapped("%s", state.status.c_str());
+}
+
+void stats_overlay(const StatsView& stats, ImVec2 pos) {
+  ImGui::SetNextWindowPos(pos);
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
+  if (ImGui::Begin("##stats", nullptr, flags)) {
+    if (ImGui::BeginTable("##figures", 2, ImGuiTableFlags_SizingFixedFit)) {
+      const auto row = [](const char* label) {
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        ImGui::TextDisabled("%s", label);
+        ImGui::TableSetColumnIndex(1);
+      };
+      row("UI frame");
+      ImGui::Text("%.1f ms (max %.1f)", stats.ui_frame_ms, stats.ui_frame_max_ms);
+      row(font_has(0x2192) ? "edit \xE2\x86\x92 image" : "edit -> image");
+      if (stats.edit_to_image_ms >= 0) ImGui::Text("%.1f ms", stats.edit_to_image_ms);
+      else ImGui::TextUnformatted("-");
+      if (stats.have_frame) {
+        const FrameStats& f = stats.frame;
+        row("image");
+        if (stats.level_divisor > 1) {
+          ImGui::Text("%d\xC3\x97%d (1/%d)", stats.image_width, stats.image_height, stats.level_divisor);
+        } else {
+          ImGui::Text("%d\xC3\x97%d", stats.image_width, stats.image_height);
+        }
+        row("spp");
+        ImGui::Text("%u / %d", stats.spp, stats.target_spp);
+        row("pass");
+        ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
+        char primary[16], shadow[16], reflection[16], refraction[16];
+        format_count(primary, sizeof primary, f.pass_rays.primary);
+        format_count(shadow, sizeof shadow, f.pass_rays.shadow);
+        format_count(reflection, sizeof reflection, f.pass_rays.reflection);
+        format_count(refraction, sizeof refraction, f.pass_rays.refraction);
+        row("rays/pass");
+        ImGui::Text("primary %s, shadow %s", primary, shadow);
+        row("");
+        ImGui::Text("reflection %s, refraction %s", reflection, refraction);
+        row("NaN/Inf");
+        if (f.nan_count > 0) ImGui::TextColored(kErrorColor, "%" PRIu64, f.nan_count);
+        else ImGui::TextUnformatted("0");
+      }
+      ImGui::EndTable();
+    }
+    if (!stats.have_frame) ImGui::TextDisabled("waiting for the first image");
+    const char* state = stats.interacting ? "interacting: coarse levels" : (stats.idle ? "idle: target reached" : "rendering");
+    ImGui::TextDisabled("%s", state);
+    if (!stats.scene_error.empty()) ImGui::TextColored(kErrorColor, "scene file error: see the Scene panel");
+  }
+  ImGui::End();
+}
+
+GuardChoice unsaved_changes_modal(bool open_now, const std::string& action, bool can_save,
+                                  GuardChoice scripted) {
+  constexpr const char* kTitle = "Unsaved changes";
+  if (open_now) ImGui::OpenPopup(kTitle);
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  GuardChoice choice = GuardChoice::kNone;
+  if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("The scene has unsaved changes.");
+    ImGui::Text("Save them before you %s?", action.c_str());
+    if (!can_save) ImGui::TextDisabled("(an embedded scene: use Save as first)");
+    ImGui::Spacing();
+    ImGui::BeginDisabled(!can_save);
+    if (ImGui::Button("Save")) choice = GuardChoice::kSave;
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) choice = GuardChoice::kDiscard;
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
+    if (scripted != GuardChoice::kNone) choice = scripted;
+    if (choice != GuardChoice::kNone) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  return choice;
+}
+
+void draw_light_markers(std::span<const LightMarker> markers, float radius) {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const ImU32 outline = IM_COL32(0, 0, 0, 200);
+  for (const LightMarker& m : markers) {
+    const ImU32 fill = ImGui::ColorConvertFloat4ToU32(m.enabled ? m.color : ImVec4(0.4f, 0.4f, 0.4f, 0.8f));
+    char label[16];
+    std::snprintf(label, sizeof label, "L%d", m.index);
+    if (m.offscreen) {
+      // An arrowhead at the edge of the view pointing at the light.
+      const ImVec2 d = m.toward;
+      const ImVec2 n(-d.y, d.x);
+      const ImVec2 tip(m.pos.x + d.x * radius * 1.5f, m.pos.y + d.y * radius * 1.5f);
+      const ImVec2 left(m.pos.x + n.x * radius, m.pos.y + n.y * radius);
+      const ImVec2 right(m.pos.x - n.x * radius, m.pos.y - n.y * radius);
+      draw->AddTriangleFilled(tip, left, right, fill);
+      draw->AddTriangle(tip, left, right, outline, 1.5f);
+      const ImVec2 text_size = ImGui::CalcTextSize(label);
+      draw->AddText(ImVec2(m.pos.x - d.x * radius * 1.5f - text_size.x / 2, m.pos.y - d.y * radius * 1.5f - text_size.y / 2),
+                    IM_COL32(255, 255, 255, 230), label);
+      continue;
+    }
+    // Short rays around the disc read as "a light", not as a scene object.
+    for (int k = 0; k < 8; ++k) {
+      const float a = static_cast<float>(k) * 0.785398f;  // 45 degrees apart
+      const ImVec2 dir(std::cos(a), std::sin(a));
+      draw->AddLine(ImVec2(m.pos.x + dir.x * radius * 1.3f, m.pos.y + dir.y * radius * 1.3f),
+                    ImVec2(m.pos.x + dir.x * radius * 1.9f, m.pos.y + dir.y * radius * 1.9f), fill, 2.0f);
+    }
+    if (m.enabled) draw->AddCircleFilled(m.pos, radius, fill);
+    draw->AddCircle(m.pos, radius, m.enabled ? outline : fill, 0, 2.0f);
+    if (m.selected || m.hovered) {
+      draw->AddCircle(m.pos, radius * 2.3f, m.selected ? IM_COL32(255, 210, 60, 255) : IM_COL32(255, 255, 255, 160), 0, 2.0f);
+    }
+    draw->AddText(ImVec2(m.pos.x + radius * 2.0f, m.pos.y - radius * 2.6f), IM_COL32(255, 255, 255, 230), label);
+  }
+}
+
+}  // namespace phonglab::ui

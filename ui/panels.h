@@ -1,0 +1,136 @@
+// The previewer's ImGui panels. Each draws into the current ImGui window, edits plain data
+// passed by reference and returns whether it edited it ("edited"); button presses come back as
+// requests in small action structs that the app carries out. No GL here, no file access.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+
+#include "renderer/progressive.h"
+#include "renderer/render.h"
+#include "renderer/scene.h"
+
+namespace phonglab::ui {
+
+// Buttons of the camera panel.
+struct CameraActions {
+  bool frame_scene = false;  // "Frame (F)": fit the scene into the view
+  bool reset = false;        // "Reset (R)": back to the camera of the scene file
+};
+
+// Position, look-at, up and vertical field of view. Returns true when the camera changed.
+bool camera_panel(Camera& camera, CameraActions& actions);
+
+// A list of the materials to pick from and the lecture's coefficients of the selected one,
+// each beside the term of the equation it scales. `selected` may change without an edit.
+bool materials_panel(std::vector<Material>& materials, int& selected, SpecularModel model);
+
+// Light list with add/remove, and the selected light's type, intensity, position or
+// direction and enabled toggle. `selected` may change without an edit.
+bool lights_panel(std::vector<Light>& lights, int& selected);
+
+// Scene-wide shading: ambient Ia, background, recursion depth, pruning weight, specular model.
+bool shading_settings_panel(Scene& scene);
+
+// How the previewer renders (not part of the scene file).
+struct RenderSettings {
+  int target_spp = 64;          // samples per pixel, then the renderer idles
+  float resolution_scale = 1;   // rendered pixels per framebuffer pixel along each axis
+  int threads = 0;              // 0 = all hardware threads
+  Term term = Term::kFull;      // full image, one term of the equation, or a debug view
+};
+bool render_settings_panel(RenderSettings& settings, int hardware_threads);
+
+// Display-time transform of the linear image (a shader uniform: never restarts rendering).
+struct DisplaySettings {
+  float exposure_ev = 0;  // stops: pixels are scaled by 2^exposure_ev
+  bool srgb = true;       // sRGB transfer curve (true) or raw linear values (false)
+  bool show_stats = true; // the stats overlay over the viewport
+  float ui_size = 1;      // panel and text size on top of the monitor's scale (projectors)
+};
+bool display_panel(DisplaySettings& display);
+
+// What is open and what happened to it.
+struct SceneFileState {
+  std::string source;        // shown name: the file path, or "embedded scene 'lecture'"
+  std::string file_path;     // where Save writes; empty for embedded scenes (use Save as)
+  std::string path_field;    // the Open / Save-as text field
+  bool dirty = false;        // edits not saved
+  bool auto_reload = true;   // reload by itself when the file changes on disk
+  bool changed_on_disk = false;  // the file changed while there were unsaved edits
+  std::string error_text;    // diagnostics of the last failed open, reload or save
+  std::string status;        // last success message
+};
+
+// Buttons of the scene panel.
+struct SceneFileActions {
+  bool open = false;             // open path_field (a file or an embedded scene's name)
+  bool save = false;             // write to file_path
+  bool save_as = false;          // write to path_field
+  bool reload = false;           // read file_path again
+  std::string open_embedded;     // name of an embedded scene to open, or empty
+};
+void scene_file_panel(SceneFileState& state, SceneFileActions& actions);
+
+// Where screenshots go.
+struct ScreenshotState {
+  std::string png_path = "phonglab.png";  // what is shown (exposure and sRGB applied)
+  std::string pfm_path = "phonglab.pfm";  // the linear image, unclamped
+  std::string status;                     // last result
+};
+struct ScreenshotActions {
+  bool save_png = false;
+  bool save_pfm = false;
+};
+void screenshot_panel(ScreenshotState& state, ScreenshotActions& actions);
+
+// Figures for the stats overlay.
+struct StatsView {
+  double ui_frame_ms = 0;         // mean UI frame time over the last second
+  double ui_frame_max_ms = 0;     // slowest UI frame in the last second
+  double edit_to_image_ms = -1;   // last edit to the first image of it on screen; <0: none yet
+  bool have_frame = false;        // an image is shown at all
+  int level_divisor = 1;          // of the image shown
+  int image_width = 0;            // pixels of the image shown
+  int image_height = 0;
+  std::uint32_t spp = 0;          // samples per pixel of the image shown
+  int target_spp = 0;
+  FrameStats frame;               // the renderer's figures for the image shown
+  bool idle = false;              // renderer reached its target (or is capped while dragging)
+  bool interacting = false;       // a drag is in progress
+  std::string scene_error;        // non-empty: the last load failed (the old scene stays)
+};
+// A small translucent window at `pos` (screen coordinates) over the viewport.
+void stats_overlay(const StatsView& stats, ImVec2 pos);
+
+// Answer of the unsaved-changes modal.
+enum class GuardChoice : std::uint8_t { kNone, kSave, kDiscard, kCancel };
+// Call every frame. `open_now` opens it (on the frame the guarded action is asked for);
+// `action` names what would lose the edits ("quit", "open other.json"); without `can_save`
+// (an embedded scene without a file) Save is disabled. kNone while undecided or closed.
+// `scripted`, when not kNone, answers for the user (test scripts).
+GuardChoice unsaved_changes_modal(bool open_now, const std::string& action, bool can_save,
+                                  GuardChoice scripted = GuardChoice::kNone);
+
+// A light drawn in the viewport.
+struct LightMarker {
+  ImVec2 pos;            // screen position of the light
+  ImVec4 color;          // its intensity as a display colour
+  bool enabled = true;   // a disabled light is drawn hollow and dim
+  bool selected = false; // drawn with a highlight ring
+  bool hovered = false;  // under the mouse: grab cursor hint
+  bool offscreen = false;  // outside the view: drawn as an arrow at the edge, pointing at it
+  ImVec2 toward;         // offscreen: unit screen direction from `pos` towards the light
+  int index = 0;         // into Scene::lights (the label)
+};
+// Markers on the background draw list: over the rendered image, under the panels.
+void draw_light_markers(std::span<const LightMarker> markers, float radius);
+
+// Radius of a light marker in screen pixels for a UI scale.
+inline float light_marker_radius(float ui_scale) { return 7.0f * ui_scale; }
+
+}  // namespace phonglab::ui

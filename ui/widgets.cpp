@@ -1,0 +1,80 @@
+#include "ui/widgets.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace phonglab::ui {
+
+bool input_text(const char* label, std::string& text, ImGuiInputTextFlags flags) {
+  // ImGui edits a fixed char buffer; give it generous room beyond the current text and copy
+  // back only on an edit (paths longer than this grow by this much per frame of typing).
+  constexpr std::size_t kSlack = 1024;
+  std::vector<char> buffer(text.size() + kSlack, '\0');
+  std::memcpy(buffer.data(), text.data(), text.size());
+  const bool edited = ImGui::InputText(label, buffer.data(), buffer.size(), flags);
+  if (edited) text.assign(buffer.data());
+  return edited;
+}
+
+bool color_edit(const char* label, Color& color) {
+  float rgb[3] = {static_cast<float>(color.x), static_cast<float>(color.y), static_cast<float>(color.z)};
+  // Written back only when edited: a float round trip must not change untouched values.
+  if (!ImGui::ColorEdit3(label, rgb, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) return false;
+  color = Color(std::max(rgb[0], 0.0f), std::max(rgb[1], 0.0f), std::max(rgb[2], 0.0f));
+  return true;
+}
+
+bool color_strength_edit(const char* label, Color& color, float max_strength) {
+  ImGui::PushID(label);
+  // Swatch and slider share the width the caller set for one item.
+  const float width = ImGui::CalcItemWidth();
+  const double strength = max_channel(color);
+  const Color hue = strength > 0 ? color / strength : Color(1);
+  bool edited = false;
+
+  float hue_rgb[3] = {static_cast<float>(hue.x), static_cast<float>(hue.y), static_cast<float>(hue.z)};
+  if (ImGui::ColorEdit3("##hue", hue_rgb, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel |
+                                               ImGuiColorEditFlags_Float)) {
+    color = Color(hue_rgb[0], hue_rgb[1], hue_rgb[2]) * strength;
+    edited = true;
+  }
+  if (ImGui::IsItemHovered()) {
+    const char* name = label[0] == '#' && label[1] == '#' ? label + 2 : label;  // hidden labels
+    ImGui::SetTooltip("%s = (%.3f, %.3f, %.3f)", name, color.x, color.y, color.z);
+  }
+  ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+  ImGui::SetNextItemWidth(std::max(width - ImGui::GetFrameHeight() - ImGui::GetStyle().ItemInnerSpacing.x, 1.0f));
+  float new_strength = static_cast<float>(strength);
+  if (ImGui::SliderFloat(label, &new_strength, 0.0f, max_strength, "%.3f")) {
+    new_strength = std::max(new_strength, 0.0f);
+    color = strength > 0 ? color * (new_strength / strength) : Color(new_strength);
+    edited = true;
+  }
+  ImGui::PopID();
+  return edited;
+}
+
+bool drag_vec3(const char* label, Vec3& v, float speed, const char* format) {
+  return ImGui::DragScalarN(label, ImGuiDataType_Double, &v.x, 3, speed, nullptr, nullptr, format);
+}
+
+bool slider_double(const char* label, double& value, double min, double max, const char* format,
+                   bool logarithmic) {
+  const ImGuiSliderFlags flags = logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
+  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags);
+}
+
+void help_marker(const char* text) {
+  ImGui::SameLine();
+  ImGui::TextDisabled("(?)");
+  if (ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+    ImGui::TextUnformatted(text);
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
+}
+
+}  // namespace phonglab::ui
