@@ -1331,7 +1331,15 @@ LoadResult load_scene_arg(const std::string& scene_arg) {
   if (const EmbeddedScene* s = find_embedded_scene(scene_arg)) {
     return load_scene_text(std::string(s->json), std::string(s->name), ".");
   }
-  return load_scene_file(scene_arg);
+  LoadResult result = load_scene_file(scene_arg);
+  // A bare word that is neither a file nor an embedded scene was most likely meant as a name.
+  const bool looks_like_name = scene_arg.find_first_of("/.") == std::string::npos;
+  if (!result.ok() && looks_like_name && result.errors.size() == 1 && result.errors[0].line == 0) {
+    std::vector<std::string_view> names;
+    for (const EmbeddedScene& e : embedded_scenes()) names.push_back(e.name);
+    result.errors[0].message += "; not an embedded scene either" + suggestion(scene_arg, names, "embedded scenes");
+  }
+  return result;
 }
 
 namespace {

@@ -201,3 +201,9 @@ TEST_F(CliTest, UnwritableOutputIsBadInput) {
   EXPECT_EQ(run_cli("render lecture --width 4 --height 4 -o /nonexistent-dir/x.pfm").exit_code, 1);
   EXPECT_EQ(run_cli("render lecture --width 4 --height 4 -o " + path("x.exr")).exit_code, 2) << "unknown format";
 }
+
+TEST_F(CliTest, MistypedEmbeddedSceneNameGetsASuggestion) {
+  const RunResult r = run_cli("render lectur -o " + path("x.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("did you mean \"lecture\"?"), std::string::npos) << r.out;
+}
