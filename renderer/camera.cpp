@@ -40,7 +40,7 @@ double fract(double x) { return x - std::floor(x); }
 
 }  // namespace
 
-void sample_offset(int x, int y, std::uint32_t index, double& u, double& v) {
+void sample_offset(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed) {
   if (index == 0) {
     u = v = 0.5;
     return;
@@ -48,7 +48,8 @@ void sample_offset(int x, int y, std::uint32_t index, double& u, double& v) {
   // R2 sequence (Roberts 2018): alpha = (1/g, 1/g^2) with g the plastic number.
   constexpr double kA1 = 0.7548776662466927;
   constexpr double kA2 = 0.5698402909980532;
-  const std::uint32_t h = hash32(static_cast<std::uint32_t>(x) * 0x9E3779B1U ^ hash32(static_cast<std::uint32_t>(y)));
+  const std::uint32_t h = hash32(static_cast<std::uint32_t>(x) * 0x9E3779B1U ^
+                                 hash32(static_cast<std::uint32_t>(y) ^ hash32(seed)));
   const double rot_u = (h & 0xFFFFU) / 65536.0;
   const double rot_v = (h >> 16) / 65536.0;
   u = fract(0.5 + rot_u + kA1 * index);

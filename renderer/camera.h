@@ -27,7 +27,8 @@ Ray camera_ray(const CameraFrame& frame, int x, int y, double u, double v);
 
 // Offset (u, v) in [0, 1)^2 of sample `index` of pixel (x, y). Sample 0 is the centre
 // (0.5, 0.5); later samples follow the R2 low-discrepancy sequence, rotated per pixel by a
-// hash of (x, y) so neighbouring pixels do not share a pattern. Depends on nothing else.
-void sample_offset(int x, int y, std::uint32_t index, double& u, double& v);
+// hash of (x, y, seed) so neighbouring pixels do not share a pattern. Depends on nothing
+// else. Other seeds give independent sample sets (for error statistics); 0 is the default.
+void sample_offset(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed = 0);
 
 }  // namespace phonglab

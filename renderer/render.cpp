@@ -40,9 +40,9 @@ int resolve_thread_count(int requested) {
 }
 
 Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
-                    std::uint32_t sample_index, RayCounts& counts) {
+                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed) {
   double u, v;
-  sample_offset(x, y, sample_index, u, v);
+  sample_offset(x, y, sample_index, u, v, seed);
   const Ray ray = camera_ray(frame, x, y, u, v);
   ++counts.primary;
   const TraceLimits limits{scene.max_depth, scene.min_weight};
@@ -107,7 +107,7 @@ PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumula
       for (int y = y0; y < y1; ++y) {
         Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
         for (int x = x0; x < x1; ++x) {
-          Color c = render_sample(scene, frame, options.term, x, y, sample_index, stats.rays);
+          Color c = render_sample(scene, frame, options.term, x, y, sample_index, stats.rays, options.seed);
           if (!all_finite(c)) {
             ++stats.nan_count;
             c = Color(0);

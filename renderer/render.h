@@ -36,6 +36,7 @@ struct RenderOptions {
   Term term = Term::kFull;
   int threads = 0;  // 0: all hardware threads
   int tile_size = 16;  // pixels per tile side
+  std::uint32_t seed = 0;  // sample set (sample 0 is the centre for every seed)
 };
 
 // Sums of samples per pixel, row-major from the top-left, plus the sample count.
@@ -57,7 +58,7 @@ struct PassStats {
 
 // The radiance (or term, or debug value) of one primary ray.
 Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
-                    std::uint32_t sample_index, RayCounts& counts);
+                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed = 0);
 
 // Adds sample number `accum.samples` to every pixel. The scene must be prepared
 // (prepare_scene). When `cancel` becomes true the pass stops between tiles; `accum` is then

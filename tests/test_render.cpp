@@ -195,3 +195,18 @@ TEST(Progressive, CancelledPassDoesNotCountAsASample) {
   EXPECT_FALSE(st.completed);
   EXPECT_EQ(acc.samples, 0u);
 }
+
+TEST(Sampling, SeedsGiveIndependentSampleSetsButTheSameCentre) {
+  double u0, v0, u1, v1;
+  sample_offset(5, 9, 0, u0, v0, 0);
+  sample_offset(5, 9, 0, u1, v1, 17);
+  EXPECT_EQ(u0, u1);
+  EXPECT_EQ(v0, v1);
+  int differ = 0;
+  for (std::uint32_t i = 1; i < 50; ++i) {
+    sample_offset(5, 9, i, u0, v0, 0);
+    sample_offset(5, 9, i, u1, v1, 17);
+    differ += (u0 != u1 || v0 != v1);
+  }
+  EXPECT_EQ(differ, 49);
+}
