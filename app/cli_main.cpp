@@ -11,7 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench_report.h"
 #include "renderer/embedded_scenes.h"
+#include "renderer/figure.h"
 #include "renderer/image_io.h"
 #include "renderer/probe_report.h"
 #include "renderer/render.h"
@@ -36,10 +38,15 @@ commands:
          or the debug views normal, depth, rays.
   probe [SCENE] --pixel X,Y [--json] [--width W] [--height H]
       The illumination equation of that pixel's centre ray, term by term.
+  figure [SCENE] -o OUT.png [--width W] [--height H] [--spp N] [--threads N]
+      The five term images and their sum in a labelled 3x2 grid (W x H each).
   validate SCENE       Parse and check a scene only.
   scenes               List the embedded scenes.
-  bench [SCENE] [--frames N] [--width W] [--height H] [--threads N]
-      Time Whitted frames (1 spp) and report the median.
+  bench [--out DIR] [--quick] [--threads N]
+      The speed-versus-error report: report.md, CSV files and SVG plots in DIR
+      (default bench-out/); --quick finishes in about a minute.
+  bench SCENE [--frames N] [--width W] [--height H] [--threads N]
+      Time Whitted frames (1 spp) of one scene and print the median.
 
 SCENE is a scene file (JSON) or an embedded scene's name; default: lecture.
 Options: --help, --version.
@@ -229,6 +236,25 @@ int cmd_probe(Args& args) {
   return kExitOk;
 }
 
+int cmd_figure(Args& args) {
+  const auto out = args.take_value("-o");
+  FigureOptions options;
+  options.cell_width = args.take_int("--width", 1, 8192).value_or(options.cell_width);
+  options.cell_height = args.take_int("--height", 1, 8192).value_or(options.cell_height);
+  options.spp = args.take_int("--spp", 1, 1 << 16).value_or(options.spp);
+  options.threads = args.take_int("--threads", 0, 1024).value_or(0);
+  const std::string scene_arg = args.take_positional().value_or(default_scene_name());
+  if (!out) throw UsageError{"figure needs -o OUT.png"};
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  prepare_scene(*scene);
+  if (std::string err = write_figure(*out, *scene, options); !err.empty()) {
+    std::cerr << *out << ": " << err << "\n";
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
 int cmd_validate(Args& args) {
   const auto scene_arg = args.take_positional();
   if (!scene_arg) throw UsageError{"validate needs SCENE"};
@@ -255,7 +281,17 @@ int cmd_bench(Args& args) {
   const auto width = args.take_int("--width", 1, 16384);
   const auto height = args.take_int("--height", 1, 16384);
   const auto threads = args.take_int("--threads", 0, 1024);
-  const std::string scene_arg = args.take_positional().value_or(default_scene_name());
+  const auto out_dir = args.take_value("--out");
+  const bool quick = args.take_flag("--quick");
+  const auto positional = args.take_positional();
+  if (!positional) {  // no SCENE: the whole speed-versus-error report
+    BenchReportOptions report;
+    report.out_dir = out_dir.value_or(report.out_dir);
+    report.quick = quick;
+    report.threads = threads.value_or(0);
+    return run_bench_report(report);
+  }
+  const std::string& scene_arg = *positional;
   std::optional<Scene> scene = load_or_report(scene_arg);
   if (!scene) return kExitBadInput;
   scene->width = width.value_or(1280);
@@ -316,6 +352,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "render") return cmd_render(args);
     if (command == "probe") return cmd_probe(args);
+    if (command == "figure") return cmd_figure(args);
     if (command == "validate") return cmd_validate(args);
     if (command == "scenes") return cmd_scenes(args);
     if (command == "bench") return cmd_bench(args);

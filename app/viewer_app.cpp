@@ -1,6 +1,7 @@
 #include "app/viewer_app.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -10,8 +11,10 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "renderer/camera.h"
+#include "renderer/figure.h"
 #include "renderer/geometry.h"
 #include "renderer/image_io.h"
+#include "renderer/probe_report.h"
 #include "renderer/shading.h"
 #include "ui/camera_control.h"
 
@@ -32,6 +35,12 @@ constexpr double kDollyPerWheelClick = 0.85;
 constexpr float kMarkerGrabFactor = 1.8f;   // a marker can be grabbed a little outside its disc
 constexpr int kInteractiveDivisor = 4;      // while dragging, refine no further than 1/4 resolution
 constexpr double kMaxDeferral = 1.0;        // a drag's edit waits at most this long for the renderer, s
+constexpr int kMultiplesColumns = 3;        // small multiples: 3 x 2 cells, the full image last
+constexpr int kMultiplesRows = 2;
+constexpr int kFigureCellHeight = 270;      // slide figure cells: a quarter of 1080p per row
+// The small multiples' cells in reading order (the full image is the main renderer's).
+constexpr std::array<Term, 5> kCellTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
+                                            Term::kRefraction};
 
 // Inverse of the sRGB transfer curve, so that writing through image_io's sRGB encoder gives
 // back the 8-bit value shown on screen.
@@ -106,6 +115,10 @@ Viewer::~Viewer() = default;
 std::string Viewer::init() {
   std::string error = image_view_.init();
   if (!error.empty()) return error;
+  for (ImageView& view : term_views_) {
+    error = view.init();
+    if (!error.empty()) return error;
+  }
   if (!doc_.open(options_.scene_arg)) {
     // The UI starts anyway, on the default scene, with the file's diagnostics on show.
     const std::string load_error = doc_.error_text();
@@ -183,6 +196,9 @@ int Viewer::run() {
 }
 
 bool Viewer::poll_render_frame() {
+  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
+    if (term_renderers_[i] && term_renderers_[i]->take_frame(term_frames_[i])) term_upload_pending_[i] = true;
+  }
   if (!renderer_.take_frame(shown_)) return false;
   upload_pending_ = true;
   return true;
@@ -193,7 +209,7 @@ void Viewer::wait_for_next_frame() {
   const double now = glfwGetTime();
   const bool script_running = script_index_ < script_.size() || !input_steps_.empty();
   const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
-                    script_running || guard_visible_ || drag_.mode != DragMode::kNone;
+                    script_running || guard_visible_ || drag_.mode != DragMode::kNone || !terms_idle();
   slept_idle_ = !busy;
   if (!busy) {
     // Nothing moves: sleep until an event, a new image (the render thread posts an empty
@@ -323,7 +339,11 @@ void Viewer::handle_viewport_input() {
       }
     }
   } else {
-    if (drag_.mode == DragMode::kOrbit && !drag_.moved) pick(drag_.start);
+    if (drag_.mode == DragMode::kOrbit && !drag_.moved) {
+      // Plain click selects a material (as before); Ctrl+click, or any click in probe mode, probes.
+      if (instruments_.probe_mode || io.KeyCtrl) probe_at(drag_.start);
+      else pick(drag_.start);
+    }
     drag_ = Drag{};
   }
   interacting_ = drag_.mode != DragMode::kNone && drag_.moved;
@@ -332,6 +352,14 @@ void Viewer::handle_viewport_input() {
     if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) frame_requested_ = true;
     if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) reset_requested_ = true;
     if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) sidebar_visible_ = !sidebar_visible_;
+  }
+  // Ctrl+Z is also a text field's own undo: only take it when no field has the keyboard.
+  if (!io.WantTextInput && io.KeyCtrl) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_Z, false)) {
+      if (io.KeyShift) redo();
+      else undo();
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo();
   }
 }
 
@@ -418,7 +446,36 @@ void Viewer::draw_sidebar() {
       if (ui::materials_panel(scene.materials, selected_material_, scene.specular_model)) scene_edited_ = true;
     }
     if (ImGui::CollapsingHeader("Lights")) {
-      if (ui::lights_panel(scene.lights, selected_light_)) scene_edited_ = true;
+      if (ui::lights_panel(scene.lights, selected_light_, solo_)) scene_edited_ = true;
+    }
+    if (ImGui::CollapsingHeader("Instruments", ImGuiTreeNodeFlags_DefaultOpen)) {
+      ui::InstrumentActions actions;
+      const ui::InstrumentSettings before = instruments_;
+      if (ui::instruments_panel(instruments_, actions, !image_a_.pixels.empty(), history_.undo_count(),
+                                history_.redo_count(), figure_path_, figure_status_)) {
+        if (before.small_multiples != instruments_.small_multiples) settings_changed_ = true;
+        upload_pending_ = upload_pending_ || !shown_.pixels.empty();  // a compare view changed
+      }
+      if (actions.snapshot_a) snapshot_a();
+      if (actions.undo) undo();
+      if (actions.redo) redo();
+      if (actions.save_figure) save_figure(figure_path_);
+    }
+    if (probe_ && ImGui::CollapsingHeader("Probe", ImGuiTreeNodeFlags_DefaultOpen)) {
+      ui::ProbeView view;
+      view.scene = snapshot_.get();
+      view.probe = &*probe_;
+      view.image_width = render_width_;
+      view.image_height = render_height_;
+      view.report = probe_report_;
+      view.occluders = probe_occluders_;
+      view.exposure_ev = display_.exposure_ev;
+      const double gain = std::exp2(static_cast<double>(display_.exposure_ev));
+      for (int c = 0; c < 3; ++c) {
+        const double v = std::clamp(probe_->root.total[c] * gain, 0.0, 1.0);
+        view.srgb[c] = display_.srgb ? linear_to_srgb8(v) : static_cast<unsigned char>(std::lround(v * 255));
+      }
+      ui::probe_panel(view);
     }
     if (ImGui::CollapsingHeader("Render")) {
       if (ui::shading_settings_panel(scene)) scene_edited_ = true;
@@ -477,6 +534,43 @@ void Viewer::draw_overlays() {
   }
   ui::draw_light_markers(markers, ui::light_marker_radius(scale));
   if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const bool multiples = instruments_.small_multiples;
+  const int columns = multiples ? kMultiplesColumns : 1;
+  const int rows = multiples ? kMultiplesRows : 1;
+  const float cell_w = viewport_.width / static_cast<float>(columns);
+  const float cell_h = viewport_.height / static_cast<float>(rows);
+  if (multiples) {
+    for (int cell = 0; cell < columns * rows; ++cell) {
+      const ImVec2 at(viewport_.x + static_cast<float>(cell % columns) * cell_w + 4 * scale,
+                      viewport_.y + static_cast<float>(cell / columns) * cell_h + cell_h - ImGui::GetFontSize() - 4 * scale);
+      const std::string_view label = figure_label(cell < kTermCells ? kCellTerms[static_cast<std::size_t>(cell)] : Term::kFull);
+      draw->AddText(at, IM_COL32(255, 255, 255, 230), label.data(), label.data() + label.size());
+    }
+  }
+  // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
+  if (probe_ && render_width_ > 0 && render_height_ > 0) {
+    for (int cell = 0; cell < columns * rows; ++cell) {
+      const float x = viewport_.x + static_cast<float>(cell % columns) * cell_w +
+                      (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(render_width_) * cell_w;
+      const float y = viewport_.y + static_cast<float>(cell / columns) * cell_h +
+                      (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(render_height_) * cell_h;
+      const float r = 6 * scale;
+      draw->AddCircle(ImVec2(x, y), r, IM_COL32(0, 0, 0, 255), 20, 3 * scale);
+      draw->AddCircle(ImVec2(x, y), r, IM_COL32(255, 230, 0, 255), 20, 1.5f * scale);
+      draw->AddLine(ImVec2(x - 2.2f * r, y), ImVec2(x - r, y), IM_COL32(255, 230, 0, 255), 1.5f * scale);
+      draw->AddLine(ImVec2(x + r, y), ImVec2(x + 2.2f * r, y), IM_COL32(255, 230, 0, 255), 1.5f * scale);
+      draw->AddLine(ImVec2(x, y - 2.2f * r), ImVec2(x, y - r), IM_COL32(255, 230, 0, 255), 1.5f * scale);
+      draw->AddLine(ImVec2(x, y + r), ImVec2(x, y + 2.2f * r), IM_COL32(255, 230, 0, 255), 1.5f * scale);
+    }
+  }
+  if (instruments_.compare == 1 && !image_a_.pixels.empty()) {
+    const float x = viewport_.x + instruments_.wipe * cell_w + static_cast<float>(columns - 1) * cell_w;
+    const float y0 = viewport_.y + static_cast<float>(rows - 1) * cell_h;
+    draw->AddLine(ImVec2(x, y0), ImVec2(x, y0 + cell_h), IM_COL32(255, 255, 255, 200), 2 * scale);
+    draw->AddText(ImVec2(x - ImGui::CalcTextSize("A ").x, y0 + cell_h / 2), IM_COL32(255, 255, 255, 230), "A");
+  }
 
   if (display_.show_stats) {
     const ProgressiveStatus status = renderer_.status();
@@ -565,6 +659,7 @@ void Viewer::open_scene(const std::string& scene_arg) {
   selected_material_ = 0;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   picked_text_.clear();
+  probe_.reset();
   drag_ = Drag{};
   scene_replaced_ = true;
 }
@@ -684,6 +779,19 @@ void Viewer::apply_edits(double frame_start) {
   }
   frame_requested_ = reset_requested_ = false;
   if (scene_edited_) doc_.mark_dirty();
+  if (scene_replaced_) {
+    history_.reset(scene);
+    commit_pending_ = false;
+    solo_ = ui::LightSolo{};
+  } else if (scene_edited_ && !restored_) {
+    commit_pending_ = true;
+  }
+  restored_ = false;
+  // One undo step per gesture: a slider drag or a light drag commits when it ends.
+  if (commit_pending_ && !ImGui::IsAnyItemActive() && drag_.mode != DragMode::kLight) {
+    history_.commit(scene);
+    commit_pending_ = false;
+  }
 
   if (settings_changed_) {
     const std::uint64_t before = renderer_.status().generation;
@@ -697,6 +805,10 @@ void Viewer::apply_edits(double frame_start) {
   const float resolution = render_settings_.resolution_scale;
   int width = static_cast<int>(std::lround(viewport_.width * io.DisplayFramebufferScale.x * resolution));
   int height = static_cast<int>(std::lround(viewport_.height * io.DisplayFramebufferScale.y * resolution));
+  if (instruments_.small_multiples) {
+    width /= kMultiplesColumns;
+    height /= kMultiplesRows;
+  }
   if (viewport_.width >= 1 && viewport_.height >= 1) {
     width = std::max(width, 1);
     height = std::max(height, 1);
@@ -728,8 +840,13 @@ void Viewer::apply_edits(double frame_start) {
     sent_generation_ = generation;
     // Latency counts from the oldest edit this snapshot carries.
     if (scene_changed) note_restart(generation, deferred_since_);
+    if (probe_) refresh_probe();
   }
+  update_term_renderers((scene_changed && !defer) || resized);
   renderer_.set_interacting(interacting_ || edited_while_active_);
+  for (const auto& term_renderer : term_renderers_) {
+    if (term_renderer) term_renderer->set_interacting(interacting_ || edited_while_active_);
+  }
   scene_edited_ = camera_changed_ = scene_replaced_ = settings_changed_ = false;
   update_title();
 }
@@ -739,7 +856,7 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   if (upload_pending_) {
-    image_view_.upload(shown_.width, shown_.height, shown_.pixels);
+    image_view_.upload(shown_.width, shown_.height, display_pixels());
     upload_pending_ = false;
     if (shown_.generation != drawn_generation_) first_image_generation_ = shown_.generation;
     drawn_generation_ = shown_.generation;
@@ -750,9 +867,32 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   const int view_h = static_cast<int>(std::lround(viewport_.height * scale.y));
   const int view_x = static_cast<int>(std::lround(viewport_.x * scale.x));
   const int view_y = fb_height - view_h - static_cast<int>(std::lround(viewport_.y * scale.y));  // GL counts from the bottom
-  // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
-  const bool nearest = shown_.divisor > 1 || shown_.width == view_w;
-  image_view_.draw(view_x, view_y, view_w, view_h, display_.exposure_ev, display_.srgb, nearest);
+  if (instruments_.small_multiples) {
+    // 3 x 2 cells, top row first; GL rows count from the bottom.
+    const int cell_w = view_w / kMultiplesColumns;
+    const int cell_h = view_h / kMultiplesRows;
+    for (int cell = 0; cell < kMultiplesColumns * kMultiplesRows; ++cell) {
+      const int x = view_x + (cell % kMultiplesColumns) * cell_w;
+      const int y = view_y + (kMultiplesRows - 1 - cell / kMultiplesColumns) * cell_h;
+      if (cell == kTermCells) {
+        image_view_.draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, shown_.divisor > 1);
+        continue;
+      }
+      const auto i = static_cast<std::size_t>(cell);
+      if (term_upload_pending_[i]) {
+        term_views_[i].upload(term_frames_[i].width, term_frames_[i].height, term_frames_[i].pixels);
+        term_upload_pending_[i] = false;
+        term_drawn_serial_[i] = term_frames_[i].stats.serial;
+      }
+      if (term_views_[i].has_image()) {
+        term_views_[i].draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, term_frames_[i].divisor > 1);
+      }
+    }
+  } else {
+    // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
+    const bool nearest = shown_.divisor > 1 || shown_.width == view_w;
+    image_view_.draw(view_x, view_y, view_w, view_h, display_.exposure_ev, display_.srgb, nearest);
+  }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!screenshot_request_.empty()) {
@@ -790,7 +930,138 @@ void Viewer::update_title() {
 bool Viewer::image_is_final() const {
   const ProgressiveStatus status = renderer_.status();
   return status.idle && status.serial > 0 && drawn_serial_ == status.serial &&
-         drawn_generation_ == status.generation && !upload_pending_;
+         drawn_generation_ == status.generation && !upload_pending_ && terms_idle();
+}
+
+bool Viewer::terms_idle() const {
+  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
+    if (!term_renderers_[i]) continue;
+    const ProgressiveStatus status = term_renderers_[i]->status();
+    if (!status.idle || term_upload_pending_[i] || (status.serial > 0 && term_drawn_serial_[i] != status.serial)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void Viewer::update_term_renderers(bool scene_changed) {
+  if (!instruments_.small_multiples) {
+    for (auto& term_renderer : term_renderers_) term_renderer.reset();  // joins its thread
+    return;
+  }
+  const bool started = !term_renderers_[0];
+  ProgressiveSettings settings = progressive_settings(render_settings_);
+  // Five more renderers share the machine with the main one.
+  settings.threads = std::max(1, resolve_thread_count(render_settings_.threads) / 3);
+  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
+    settings.term = kCellTerms[i];
+    if (!term_renderers_[i]) {
+      term_renderers_[i] = std::make_unique<ProgressiveRenderer>(settings, [] { glfwPostEmptyEvent(); });
+      term_frames_[i] = ProgressiveFrame{};
+      term_drawn_serial_[i] = 0;
+      term_upload_pending_[i] = false;
+    } else {
+      term_renderers_[i]->set_settings(settings);
+    }
+    if ((started || scene_changed) && snapshot_) term_renderers_[i]->set_scene(snapshot_, render_width_, render_height_);
+  }
+}
+
+std::optional<std::array<int, 2>> Viewer::render_pixel_at(ImVec2 mouse) const {
+  if (render_width_ <= 0 || render_height_ <= 0 || viewport_.width < 1 || viewport_.height < 1) return std::nullopt;
+  const int columns = instruments_.small_multiples ? kMultiplesColumns : 1;
+  const int rows = instruments_.small_multiples ? kMultiplesRows : 1;
+  const double cell_w = static_cast<double>(viewport_.width) / columns;
+  const double cell_h = static_cast<double>(viewport_.height) / rows;
+  const double x = mouse.x - viewport_.x;
+  const double y = mouse.y - viewport_.y;
+  // Within its cell, the point maps to the render pixel the cell shows there.
+  const double u = (x - std::floor(x / cell_w) * cell_w) / cell_w;
+  const double v = (y - std::floor(y / cell_h) * cell_h) / cell_h;
+  return std::array<int, 2>{std::clamp(static_cast<int>(std::floor(u * render_width_)), 0, render_width_ - 1),
+                            std::clamp(static_cast<int>(std::floor(v * render_height_)), 0, render_height_ - 1)};
+}
+
+void Viewer::probe_at(ImVec2 mouse) {
+  const auto pixel = render_pixel_at(mouse);
+  if (!pixel || !snapshot_) return;
+  probe_x_ = (*pixel)[0];
+  probe_y_ = (*pixel)[1];
+  refresh_probe();
+}
+
+void Viewer::refresh_probe() {
+  if (!snapshot_ || render_width_ <= 0 || render_height_ <= 0) {
+    probe_.reset();
+    return;
+  }
+  probe_x_ = std::clamp(probe_x_, 0, render_width_ - 1);
+  probe_y_ = std::clamp(probe_y_, 0, render_height_ - 1);
+  // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
+  probe_ = probe_pixel(*snapshot_, render_width_, render_height_, probe_x_, probe_y_);
+  probe_report_ = probe_to_text(*snapshot_, *probe_);
+  probe_occluders_.clear();
+  for (const ProbeLight& light : probe_->root.lights) probe_occluders_.push_back(object_name(*snapshot_, light.occluder));
+}
+
+void Viewer::undo() {
+  Scene& scene = doc_.scene();
+  if (commit_pending_) {
+    history_.commit(scene);  // a gesture still in progress becomes the step undone
+    commit_pending_ = false;
+  }
+  std::optional<Scene> previous = history_.undo(scene);
+  if (!previous) return;
+  scene = std::move(*previous);
+  selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
+  scene_edited_ = true;
+  restored_ = true;
+}
+
+void Viewer::redo() {
+  Scene& scene = doc_.scene();
+  std::optional<Scene> next = history_.redo(scene);
+  if (!next) return;
+  scene = std::move(*next);
+  selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
+  scene_edited_ = true;
+  restored_ = true;
+}
+
+void Viewer::snapshot_a() {
+  if (shown_.pixels.empty()) return;
+  image_a_ = shown_;
+  if (instruments_.compare == 0) instruments_.compare = 1;
+  upload_pending_ = true;
+}
+
+std::vector<glm::vec3> Viewer::display_pixels() const {
+  const bool comparable = instruments_.compare != 0 && image_a_.width == shown_.width &&
+                          image_a_.height == shown_.height && image_a_.pixels.size() == shown_.pixels.size();
+  if (!comparable) return shown_.pixels;
+  std::vector<glm::vec3> out(shown_.pixels.size());
+  const int wipe_x = static_cast<int>(std::lround(instruments_.wipe * static_cast<float>(shown_.width)));
+  for (int y = 0; y < shown_.height; ++y) {
+    for (int x = 0; x < shown_.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(shown_.width) + static_cast<std::size_t>(x);
+      if (instruments_.compare == 1) out[i] = x < wipe_x ? image_a_.pixels[i] : shown_.pixels[i];
+      else out[i] = glm::abs(shown_.pixels[i] - image_a_.pixels[i]) * instruments_.difference_gain;
+    }
+  }
+  return out;
+}
+
+void Viewer::save_figure(const std::string& path) {
+  if (!snapshot_ || viewport_.height < 1) {
+    figure_status_ = "no scene yet";
+    return;
+  }
+  FigureOptions options;
+  options.cell_height = kFigureCellHeight;
+  options.cell_width = std::max(1, static_cast<int>(std::lround(kFigureCellHeight * viewport_.width / viewport_.height)));
+  options.threads = render_settings_.threads;
+  const std::string error = write_figure(path, *snapshot_, options);
+  figure_status_ = error.empty() ? "saved " + path : error;
 }
 
 void Viewer::write_stats_summary(const std::string& label) {

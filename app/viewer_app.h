@@ -3,10 +3,12 @@
 // panels, turns mouse drags into camera and light moves, and runs test scripts.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 #include "app/viewer_gl.h"
 #include "app/viewer_platform.h"
 #include "renderer/progressive.h"
+#include "ui/history.h"
 #include "ui/panels.h"
 
 namespace phonglab {
@@ -37,6 +40,7 @@ struct InputStep {
   ImVec2 pos;                  // mouse position, window coordinates
   bool buttons[3] = {};        // left, right, middle held
   bool shift = false;          // shift held
+  bool ctrl = false;           // control held
   int key = -1;                // GLFW key code to press or release in this frame, -1 for none
   bool key_down = false;       // press (true) or release (false) `key`
   float wheel = 0;             // wheel clicks, positive away from the user
@@ -106,6 +110,17 @@ class Viewer {
 
   // Actions.
   void pick(ImVec2 mouse);                       // selects the material under a click
+  void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
+  void refresh_probe();                          // probes the same pixel again in the newest snapshot
+  void undo();                                   // Ctrl+Z: the scene before the last edit
+  void redo();                                   // Ctrl+Shift+Z
+  void snapshot_a();                             // keeps the image shown as A
+  void save_figure(const std::string& path);     // the slide figure of the current snapshot
+  void update_term_renderers(bool scene_changed);  // starts, feeds or stops the small multiples' renderers
+  bool terms_idle() const;                       // every small-multiples renderer is idle and its image shown
+  std::vector<glm::vec3> display_pixels() const; // shown_, or its wipe / difference against A
+  // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
+  std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
   void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
   void perform(const PendingAction& action);     // runs it
   void open_scene(const std::string& scene_arg);
@@ -160,6 +175,8 @@ class Viewer {
   ui::ScreenshotState screenshot_state_;
   ui::RenderSettings render_settings_;
   ui::DisplaySettings display_;
+  ui::InstrumentSettings instruments_;
+  ui::LightSolo solo_;
   int selected_material_ = 0;
   int selected_light_ = -1;
   int hovered_light_ = -1;
@@ -176,6 +193,25 @@ class Viewer {
   bool quit_ = false;
   double next_file_poll_ = 0;        // glfwGetTime() of the next mtime check
   std::string title_;
+
+  // Instruments.
+  ui::SceneHistory history_;           // undo and redo of committed edits
+  bool commit_pending_ = false;        // an edit waits for its gesture to end before it is committed
+  bool restored_ = false;              // this frame's scene change came from undo or redo: no commit
+  std::optional<PixelProbe> probe_;    // the probed pixel's ray tree, in snapshot_
+  int probe_x_ = 0;                    // the probed render pixel
+  int probe_y_ = 0;
+  std::string probe_report_;           // probe_to_text of probe_
+  std::vector<std::string> probe_occluders_;  // object_name of each primary-hit light's occluder
+  ProgressiveFrame image_a_;           // snapshot A (pixels empty: none)
+  std::string figure_path_ = "phonglab-figure.png";
+  std::string figure_status_;
+  static constexpr int kTermCells = 5;  // the small multiples besides the full image
+  std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> term_renderers_;  // ambient .. refraction
+  std::array<ProgressiveFrame, kTermCells> term_frames_;  // their newest images
+  std::array<bool, kTermCells> term_upload_pending_{};   // term_frames_[i] is newer than its texture
+  std::array<std::uint64_t, kTermCells> term_drawn_serial_{};  // serial of the image in each texture
+  std::array<ImageView, kTermCells> term_views_;         // their textures
 
   // Timing.
   double last_frame_start_ = 0;

@@ -122,6 +122,7 @@ void Viewer::step_script(double now) {
     io.MousePos = step.pos;
     for (int b = 0; b < 3; ++b) io.MouseDown[b] = step.buttons[b];
     io.KeyShift = step.shift;
+    io.KeyCtrl = step.ctrl;
     io.MouseWheel += step.wheel;
     if (step.key >= 0) io.KeysDown[step.key] = step.key_down;
     platform_.note_event();
@@ -267,10 +268,15 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     return wait_for(ScriptWait::kInput, 99);
   }
   if (name == "key") {
-    const int key = w.size() == 2 ? key_code(w[1]) : -1;
-    if (key < 0) return fail("usage: key F|R|H|ESCAPE|<letter>");
+    const int key = w.size() >= 2 ? key_code(w[1]) : -1;
+    if (key < 0) return fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
     InputStep press;
     press.pos = ImGui::GetIO().MousePos;
+    for (std::size_t i = 2; i < w.size(); ++i) {
+      if (w[i] == "ctrl") press.ctrl = true;
+      else if (w[i] == "shift") press.shift = true;
+      else return fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
+    }
     press.key = key;
     press.key_down = true;
     InputStep release = press;
@@ -279,10 +285,55 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     input_steps_.push_back(release);
     return wait_for(ScriptWait::kInput, 99);
   }
+  if (name == "probe" || name == "ctrl_click") {
+    double x = 0, y = 0;
+    if (w.size() != 3 || !parse_double(w[1], x) || !parse_double(w[2], y)) return fail("usage: probe|ctrl_click X Y");
+    const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
+    if (name == "probe") {
+      probe_at(at);
+      if (!probe_) return fail("nothing to probe (no scene yet)");
+      return true;
+    }
+    InputStep hover;
+    hover.pos = at;
+    hover.ctrl = true;
+    input_steps_.push_back(hover);
+    InputStep act = hover;
+    act.buttons[0] = true;
+    input_steps_.push_back(act);
+    input_steps_.push_back(hover);
+    InputStep after;
+    after.pos = at;
+    input_steps_.push_back(after);
+    return wait_for(ScriptWait::kInput, 99);
+  }
+  if (name == "undo" || name == "redo" || name == "snapshot_a") {
+    if (name == "undo") undo();
+    else if (name == "redo") redo();
+    else snapshot_a();
+    return true;
+  }
+  if (name == "solo") {
+    int index = 0;
+    if (w.size() != 2 || !parse_int(w[1], index) || index < 0 ||
+        index >= static_cast<int>(doc_.scene().lights.size())) {
+      return fail("usage: solo I");
+    }
+    ui::toggle_solo(doc_.scene().lights, solo_, index);
+    scene_edited_ = true;
+    return true;
+  }
+  if (name == "figure") {
+    if (w.size() != 2) return fail("usage: figure FILE.png");
+    save_figure(w[1]);
+    if (figure_status_.rfind("saved ", 0) != 0) return fail(figure_status_);
+    return true;
+  }
   if (name == "set") {
     if (!script_set(w)) return fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
                                     "position|direction|intensity|enabled V.. | set camera position|look_at|up|fov V.. | "
-                                    "set render target_spp|resolution_scale|threads|term V | set display exposure|srgb|stats V");
+                                    "set render target_spp|resolution_scale|threads|term V | set display exposure|srgb|stats V | "
+                                    "set instruments probe_mode|multiples|compare|wipe|gain V");
     return true;
   }
   if (name == "resize") {
@@ -465,6 +516,18 @@ bool Viewer::script_set(const std::vector<std::string>& w) {
     settings_changed_ = true;
     return true;
   }
+  if (subject == "instruments" && w.size() == 4) {
+    double v = 0;
+    if (!parse_double(w[3], v)) return false;
+    if (w[2] == "probe_mode") instruments_.probe_mode = v != 0;
+    else if (w[2] == "multiples") instruments_.small_multiples = v != 0;
+    else if (w[2] == "compare" && v >= 0 && v <= 2) instruments_.compare = static_cast<int>(v);
+    else if (w[2] == "wipe" && v >= 0 && v <= 1) instruments_.wipe = static_cast<float>(v);
+    else if (w[2] == "gain" && v > 0) instruments_.difference_gain = static_cast<float>(v);
+    else return false;
+    upload_pending_ = upload_pending_ || !shown_.pixels.empty();
+    return true;
+  }
   if (subject == "display" && w.size() == 4) {
     double v = 0;
     if (!parse_double(w[3], v)) return false;
@@ -521,6 +584,27 @@ void Viewer::write_state(const std::string& path) const {
       << "sidebar=" << (sidebar_visible_ ? 1 : 0) << "\n";
   for (std::size_t i = 0; i < scene.lights.size(); ++i) out << "light" << i << "_position=" << vec(scene.lights[i].position) << "\n";
   for (const Material& m : scene.materials) out << "material_" << m.name << "_kd=" << vec(m.kd) << "\n";
+  std::string enabled;
+  for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';
+  out << "lights_enabled=" << enabled << "\n"
+      << "undo=" << history_.undo_count() << "\n"
+      << "redo=" << history_.redo_count() << "\n"
+      << "multiples=" << (instruments_.small_multiples ? 1 : 0) << "\n"
+      << "compare=" << instruments_.compare << "\n"
+      << "have_a=" << (image_a_.pixels.empty() ? 0 : 1) << "\n";
+  if (probe_) {
+    const Color total = probe_->root.total;
+    out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
+        << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"
+        << "probe_total=" << vec(total) << "\n";
+    // The shown image's pixel there, when it is the full-resolution 1-spp image of this
+    // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
+    if (shown_.divisor == 1 && shown_.spp == 1 && shown_.width == render_width_ && shown_.height == render_height_) {
+      const glm::vec3 shown = shown_.pixels[static_cast<std::size_t>(probe_y_) * static_cast<std::size_t>(shown_.width) +
+                                            static_cast<std::size_t>(probe_x_)];
+      out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";
+    }
+  }
 }
 
 }  // namespace phonglab

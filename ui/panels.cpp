@@ -142,13 +142,26 @@ bool materials_panel(std::vector<Material>& materials, int& selected, SpecularMo
   return edited;
 }
 
-bool lights_panel(std::vector<Light>& lights, int& selected) {
+bool lights_panel(std::vector<Light>& lights, int& selected, LightSolo& solo) {
   bool edited = false;
+  // Lights added or removed elsewhere (undo, reload) make the saved flags meaningless.
+  if (solo.soloed >= static_cast<int>(lights.size()) || (solo.soloed >= 0 && solo.saved.size() != lights.size())) {
+    solo = LightSolo{};
+  }
   for (int i = 0; i < static_cast<int>(lights.size()); ++i) {
     ImGui::PushID(i);
     Light& light = lights[static_cast<std::size_t>(i)];
     edited |= ImGui::Checkbox("##enabled", &light.enabled);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("enabled");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("on (unticked: muted)");
+    ImGui::SameLine();
+    const bool soloed = solo.soloed == i;
+    if (soloed) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    if (ImGui::SmallButton("S")) {
+      toggle_solo(lights, solo, i);
+      edited = true;
+    }
+    if (soloed) ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip(soloed ? "end solo: restore the other lights" : "solo: this light alone");
     ImGui::SameLine();
     char label[96];
     if (light.type == LightType::kPoint) {
@@ -167,6 +180,7 @@ bool lights_panel(std::vector<Light>& lights, int& selected) {
     light.intensity = Color(0.5);
     lights.push_back(light);
     selected = static_cast<int>(lights.size()) - 1;
+    solo = LightSolo{};
     edited = true;
   }
   ImGui::SameLine();
@@ -177,6 +191,7 @@ bool lights_panel(std::vector<Light>& lights, int& selected) {
     light.intensity = Color(0.2);
     lights.push_back(light);
     selected = static_cast<int>(lights.size()) - 1;
+    solo = LightSolo{};
     edited = true;
   }
   ImGui::SameLine();
@@ -185,6 +200,7 @@ bool lights_panel(std::vector<Light>& lights, int& selected) {
   if (ImGui::Button("Remove") && have_selection) {
     lights.erase(lights.begin() + selected);
     selected = std::min(selected, static_cast<int>(lights.size()) - 1);
+    solo = LightSolo{};
     edited = true;
   }
   ImGui::EndDisabled();
@@ -286,6 +302,116 @@ bool display_panel(DisplaySettings& display) {
     edited = true;
   }
   return edited;
+}
+
+bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions, bool have_a,
+                       std::size_t undo_count, std::size_t redo_count, std::string& figure_path,
+                       const std::string& figure_status) {
+  bool edited = false;
+  edited |= ImGui::Checkbox("probe mode", &settings.probe_mode);
+  help_marker("On: a click in the view probes that pixel. Off: Ctrl+click probes, a click selects a material.");
+  edited |= ImGui::Checkbox("small multiples", &settings.small_multiples);
+  help_marker("The five terms of the equation and their sum side by side, live while editing.");
+  if (ImGui::Button("Snapshot A")) actions.snapshot_a = true;
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!have_a);
+  edited |= ImGui::RadioButton("live", &settings.compare, 0);
+  ImGui::SameLine();
+  edited |= ImGui::RadioButton("wipe", &settings.compare, 1);
+  ImGui::SameLine();
+  edited |= ImGui::RadioButton("|live - A|", &settings.compare, 2);
+  if (settings.compare == 1) edited |= ImGui::SliderFloat("wipe", &settings.wipe, 0.0f, 1.0f, "A | live at %.2f");
+  if (settings.compare == 2) {
+    edited |= ImGui::SliderFloat("gain", &settings.difference_gain, 1.0f, 64.0f, "x%.0f", ImGuiSliderFlags_Logarithmic);
+  }
+  ImGui::EndDisabled();
+  char label[48];
+  std::snprintf(label, sizeof label, "Undo (%zu)", undo_count);
+  ImGui::BeginDisabled(undo_count == 0);
+  if (ImGui::Button(label)) actions.undo = true;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  std::snprintf(label, sizeof label, "Redo (%zu)", redo_count);
+  ImGui::BeginDisabled(redo_count == 0);
+  if (ImGui::Button(label)) actions.redo = true;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::TextDisabled("Ctrl+Z, Ctrl+Shift+Z");
+  input_text("##figure", figure_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Figure for slides")) actions.save_figure = true;
+  if (!figure_status.empty()) ImGui::TextWrapped("%s", figure_status.c_str());
+  return edited;
+}
+
+namespace {
+
+void rgb_text(const char* label, const Color& c) {
+  ImGui::Text("%-11s (%.4f, %.4f, %.4f)", label, c.x, c.y, c.z);
+}
+
+void vec_text(const char* label, const Vec3& v) {
+  ImGui::Text("%-11s (%+.3f, %+.3f, %+.3f)", label, v.x, v.y, v.z);
+}
+
+}  // namespace
+
+void probe_panel(const ProbeView& view) {
+  if (view.probe == nullptr || view.scene == nullptr) {
+    ImGui::TextDisabled("Ctrl+click a pixel (or turn on probe mode and click) to probe it.");
+    return;
+  }
+  const PixelProbe& probe = *view.probe;
+  const ProbeNode& root = probe.root;
+  const bool blinn = view.scene->specular_model == SpecularModel::kBlinn;
+  ImGui::Text("pixel (%d, %d) of %dx%d, centre ray", probe.x, probe.y, view.image_width, view.image_height);
+  rgb_text("linear", root.total);
+  ImGui::Text("%-11s (%d, %d, %d) at %+.1f EV", "displayed", view.srgb[0], view.srgb[1], view.srgb[2],
+              static_cast<double>(view.exposure_ev));
+  if (!root.hit) {
+    ImGui::TextDisabled("The ray misses: the pixel is the background.");
+    return;
+  }
+  vec_text("P", root.p);
+  vec_text("N", root.n);
+  vec_text("V", root.v);
+  ImGui::Separator();
+  rgb_text("ka\xC2\xB7Ia", root.terms.ambient);
+  rgb_text("diffuse", root.terms.diffuse);
+  rgb_text("specular", root.terms.specular);
+  rgb_text("reflection", root.terms.reflection);
+  rgb_text("refraction", root.terms.refraction);
+  rgb_text("= total", root.terms.sum());
+  ImGui::Text("kr' = (%.3f, %.3f, %.3f)  kt' = (%.3f, %.3f, %.3f)", root.kr_eff.x, root.kr_eff.y, root.kr_eff.z,
+              root.kt_eff.x, root.kt_eff.y, root.kt_eff.z);
+  ImGui::Text("F = %.4f  TIR: %s  entering: %s", root.fresnel, root.tir ? "yes" : "no", root.entering ? "yes" : "no");
+  for (std::size_t i = 0; i < root.lights.size(); ++i) {
+    const ProbeLight& light = root.lights[i];
+    ImGui::PushID(static_cast<int>(i));
+    ImGui::Separator();
+    ImGui::Text("light L%d: %s", light.index,
+                !light.lit_side ? "behind the surface (N\xC2\xB7L <= 0)"
+                : light.visible ? "visible"
+                                : "in shadow");
+    if (!light.visible && light.lit_side && i < view.occluders.size()) {
+      ImGui::SameLine();
+      ImGui::Text("(blocked by %s)", view.occluders[i].c_str());
+    }
+    vec_text("L", light.l);
+    vec_text(blinn ? "H" : "R", light.r);
+    ImGui::Text("N\xC2\xB7L = %.4f   %s = %.4f   ^n = %.4g", light.n_dot_l, blinn ? "N\xC2\xB7H" : "R\xC2\xB7V",
+                light.r_dot_v, light.spec_factor);
+    rgb_text("diffuse", light.diffuse);
+    rgb_text("specular", light.specular);
+    ImGui::PopID();
+  }
+  ImGui::Separator();
+  if (ImGui::TreeNodeEx("The equation with the numbers (and the children)", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(view.report.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::TreePop();
+  }
 }
 
 void scene_file_panel(SceneFileState& state, SceneFileActions& actions) {

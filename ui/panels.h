@@ -13,6 +13,8 @@
 #include "renderer/progressive.h"
 #include "renderer/render.h"
 #include "renderer/scene.h"
+#include "renderer/shading.h"
+#include "ui/history.h"
 
 namespace phonglab::ui {
 
@@ -29,9 +31,10 @@ bool camera_panel(Camera& camera, CameraActions& actions);
 // each beside the term of the equation it scales. `selected` may change without an edit.
 bool materials_panel(std::vector<Material>& materials, int& selected, SpecularModel model);
 
-// Light list with add/remove, and the selected light's type, intensity, position or
-// direction and enabled toggle. `selected` may change without an edit.
-bool lights_panel(std::vector<Light>& lights, int& selected);
+// Light list with add/remove, per-light mute (the enabled box) and solo ("S": this light
+// alone, again to restore), and the selected light's type, intensity, position or direction.
+// `selected` may change without an edit.
+bool lights_panel(std::vector<Light>& lights, int& selected, LightSolo& solo);
 
 // Scene-wide shading: ambient Ia, background, recursion depth, pruning weight, specular model.
 bool shading_settings_panel(Scene& scene);
@@ -44,6 +47,42 @@ struct RenderSettings {
   Term term = Term::kFull;      // full image, one term of the equation, or a debug view
 };
 bool render_settings_panel(RenderSettings& settings, int hardware_threads);
+
+// The teaching instruments' switches (previewer state, not part of the scene file).
+struct InstrumentSettings {
+  bool probe_mode = false;       // a plain click probes the pixel instead of selecting a material
+  bool small_multiples = false;  // the five terms and their sum side by side
+  int compare = 0;               // 0 live image, 1 wipe against snapshot A, 2 |live - A| difference
+  float wipe = 0.5f;             // wipe position: fraction of the viewport showing A (left)
+  float difference_gain = 4;     // the difference image is scaled by this
+};
+// Buttons of the instruments panel.
+struct InstrumentActions {
+  bool snapshot_a = false;   // keep the image shown now as A
+  bool undo = false;
+  bool redo = false;
+  bool save_figure = false;  // write the slide figure to `figure_path`
+};
+// Probe mode, small multiples, compare against A, undo/redo and the slide figure.
+// `have_a` enables the compare views; the counts label the undo buttons. Returns "edited".
+bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions, bool have_a,
+                       std::size_t undo_count, std::size_t redo_count, std::string& figure_path,
+                       const std::string& figure_status);
+
+// What the probe panel shows: the renderer's ray tree of one pixel and the report around it.
+struct ProbeView {
+  const Scene* scene = nullptr;     // the snapshot probed
+  const PixelProbe* probe = nullptr;
+  int image_width = 0;              // of the image the pixel belongs to
+  int image_height = 0;
+  std::string report;               // probe_to_text: the equation with the numbers filled in
+  std::vector<std::string> occluders;  // per primary-hit light: object_name of its occluder
+  unsigned char srgb[3] = {};       // the displayed 8-bit value (exposure and curve applied)
+  float exposure_ev = 0;
+};
+// The probed pixel: P, N, V, per light L, R (or H), N.L, R.V (or N.H), the powered factor,
+// visibility, each term's RGB, the children and the totals. Nothing to edit.
+void probe_panel(const ProbeView& view);
 
 // Display-time transform of the linear image (a shader uniform: never restarts rendering).
 struct DisplaySettings {

@@ -43,6 +43,14 @@ stddev() {
   convert "$1" -crop "$2" +repage -colorspace Gray -format '%[fx:standard_deviation]' info: 2>/dev/null
 }
 # Normalised RMS difference of two images in a region.
+# Normalised RMS difference of two regions of one image.
+rmse_regions() {
+  local a b
+  a=$(mktemp --suffix=.png) b=$(mktemp --suffix=.png)
+  convert "$1" -crop "$2" +repage "$a" && convert "$1" -crop "$3" +repage "$b"
+  compare -metric RMSE "$a" "$b" null: 2>&1 | sed -n 's/.*(\(.*\)).*/\1/p'
+  rm -f "$a" "$b"
+}
 rmse() {
   local a b
   a=$(mktemp --suffix=.png) b=$(mktemp --suffix=.png)
@@ -291,6 +299,87 @@ check_files() {
   check "a larger UI size narrows the viewport ($(state "$dir/f09.txt" render))" test "$(state "$dir/f09.txt" render)" = 170x180
 }
 
+# --- Session 3: teaching instruments: probe, undo/redo, solo, compare, small multiples -----
+session_instruments() {
+  local dir=$OUT/instruments
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+probe 440 420
+wait_frames 2
+dump_state $dir/i01.txt
+screenshot $dir/i01_probe.png
+ctrl_click 250 560
+dump_state $dir/i02.txt
+set instruments probe_mode 1
+click 600 560
+wait_frames 2
+dump_state $dir/i03.txt
+set instruments probe_mode 0
+set material plastic kd 0.9 0.1 0.1
+wait_frames 2
+dump_state $dir/i04.txt
+key Z ctrl
+wait_frames 2
+dump_state $dir/i05.txt
+key Z ctrl shift
+wait_frames 2
+dump_state $dir/i06.txt
+solo 0
+wait_frames 2
+dump_state $dir/i07.txt
+solo 0
+wait_idle 120
+snapshot_a
+set material plastic kd 0.1 0.1 0.9
+set instruments compare 2
+wait_idle 120
+screenshot $dir/i08_difference.png
+set instruments compare 1
+wait_idle 120
+screenshot $dir/i09_wipe.png
+set instruments compare 0
+set instruments multiples 1
+wait_idle 120
+probe 440 420
+wait_frames 2
+screenshot $dir/i10_multiples.png
+dump_state $dir/i10.txt
+figure $dir/figure.png
+quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_instruments() {
+  local dir=$OUT/instruments
+  echo "session 3: teaching instruments"
+  check "the script ran to the end (exit $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
+    test "$(cat "$dir/exit_code")" = 0
+  check "probe: hits the scene at $(state "$dir/i01.txt" probe_pixel)" test "$(state "$dir/i01.txt" probe_hit)" = 1
+  check "probe: its total equals the shown linear pixel exactly" test "$(state "$dir/i01.txt" probe_match)" = 1
+  check "Ctrl+click probes another pixel ($(state "$dir/i02.txt" probe_pixel))" \
+    test "$(state "$dir/i02.txt" probe_pixel)" != "$(state "$dir/i01.txt" probe_pixel)"
+  check "a plain click in probe mode probes ($(state "$dir/i03.txt" probe_pixel))" \
+    test "$(state "$dir/i03.txt" probe_pixel)" != "$(state "$dir/i02.txt" probe_pixel)"
+  check "an edit is one undo step (undo=$(state "$dir/i04.txt" undo))" test "$(state "$dir/i04.txt" undo)" = 1
+  check "Ctrl+Z restores the material ($(state "$dir/i05.txt" material_plastic_kd))" \
+    test "$(state "$dir/i05.txt" material_plastic_kd)" != "0.9 0.1 0.1" -a "$(state "$dir/i05.txt" redo)" = 1
+  check "Ctrl+Shift+Z redoes it" test "$(state "$dir/i06.txt" material_plastic_kd)" = "0.9 0.1 0.1"
+  check "solo leaves one light on ($(state "$dir/i07.txt" lights_enabled))" test "$(state "$dir/i07.txt" lights_enabled)" = 10
+  check "the difference view shows the edited sphere against black" \
+    greater "$(stddev "$dir/i08_difference.png" $SCENE_REGION)" 0.02
+  check "the wipe differs from the difference view" \
+    greater "$(rmse "$dir/i08_difference.png" "$dir/i09_wipe.png" $SCENE_REGION)" 0.02
+  check "small multiples are on" test "$(state "$dir/i10.txt" multiples)" = 1
+  check "small multiples: the ambient and diffuse cells differ" \
+    greater "$(rmse_regions "$dir/i10_multiples.png" 280x300+5+30 280x300+298+30)" 0.02
+  check "the slide figure was written" test -s "$dir/figure.png"
+}
+
+
 # --- Without a display ----------------------------------------------------------------------
 check_no_display() {
   echo "without a display"
@@ -310,6 +399,7 @@ check_no_display() {
 if ((INSIDE_X)); then
   session_view
   session_files
+  session_instruments
   exit 0
 fi
 
@@ -323,6 +413,7 @@ start=$SECONDS
 timeout "$TIMEOUT" xvfb-run -a -s '-screen 0 1280x720x24' "$SELF" --inside-x "$BUILD_DIR" "$OUT"
 check_view
 check_files
+check_instruments
 check_no_display
 echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))
