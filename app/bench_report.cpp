@@ -1,0 +1,391 @@
+#include "app/bench_report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "renderer/embedded_scenes.h"
+#include "renderer/image_io.h"
+#include "renderer/render.h"
+#include "renderer/scene_io.h"
+
+namespace phonglab {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr double kReferenceMinWeight = 1e-6;  // path-weight cut-off of the converged references
+
+// Small image helpers over accumulators.
+std::vector<Color> means(const Accumulator& a) {
+  std::vector<Color> m(a.sum.size());
+  for (std::size_t i = 0; i < m.size(); ++i) m[i] = a.sum[i] / static_cast<double>(std::max(1u, a.samples));
+  return m;
+}
+
+// pbrt's relative MSE: mean over pixels and channels of (x - r)^2 / (r + 0.01)^2.
+double rel_mse(const std::vector<Color>& x, const std::vector<Color>& ref) {
+  double s = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double d = x[i][c] - ref[i][c];
+      const double r = ref[i][c] + 0.01;
+      s += d * d / (r * r);
+    }
+  }
+  return s / (3.0 * static_cast<double>(x.size()));
+}
+
+double rmse(const std::vector<Color>& x, const std::vector<Color>& ref) {
+  double s = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Color d = x[i] - ref[i];
+    s += glm::dot(d, d);
+  }
+  return std::sqrt(s / (3.0 * static_cast<double>(x.size())));
+}
+
+// PSNR of the displayed 8-bit sRGB images, in dB (99 for identical images).
+double psnr_displayed(const std::vector<Color>& x, const std::vector<Color>& ref) {
+  double s = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double d = double(linear_to_srgb8(x[i][c])) - double(linear_to_srgb8(ref[i][c]));
+      s += d * d;
+    }
+  }
+  const double mse = s / (3.0 * static_cast<double>(x.size()));
+  return mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
+}
+
+double max_abs_error(const std::vector<Color>& x, const std::vector<Color>& ref) {
+  double m = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) m = std::max(m, max_abs(x[i] - ref[i]));
+  return m;
+}
+
+double max_value(const std::vector<Color>& x) {
+  double m = 0;
+  for (const Color& c : x) m = std::max(m, max_channel(c));
+  return m;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Least-squares slope of log10(y) against log10(x).
+double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log10(x[i]), ly = std::log10(y[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+std::string fmt(const char* format, double a) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, a);
+  return buf;
+}
+
+Scene load_embedded(std::string_view name) {
+  const LoadResult r = load_scene_arg(std::string(name));
+  Scene s = *r.scene;  // embedded scenes always load (tests check it)
+  prepare_scene(s);
+  return s;
+}
+
+struct Render {
+  Accumulator accum;
+  PassStats stats;
+  double seconds = 0;
+};
+
+// Renders `spp` passes of `scene` at w x h.
+Render render(const Scene& scene, int w, int h, int spp, int threads, std::uint32_t seed) {
+  Render r;
+  r.accum.reset(w, h);
+  RenderOptions opt;
+  opt.threads = threads;
+  opt.seed = seed;
+  const auto t0 = Clock::now();
+  for (int i = 0; i < spp; ++i) {
+    const PassStats st = render_pass(scene, opt, r.accum);
+    r.stats.rays += st.rays;
+    r.stats.nan_count += st.nan_count;
+  }
+  r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return r;
+}
+
+// A log-log line chart as SVG: one polyline per series, plus dashed reference slopes.
+struct Series {
+  std::string name;
+  std::vector<double> x, y;
+};
+
+std::string loglog_svg(const std::string& title, const std::string& x_label, const std::string& y_label,
+                       const std::vector<Series>& series, const std::vector<double>& ref_slopes) {
+  const double w = 640, h = 420, left = 70, right = 150, top = 40, bottom = 50;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const Series& s : series) {
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (!(s.y[i] > 0)) continue;
+      x0 = std::min(x0, std::log10(s.x[i]));
+      x1 = std::max(x1, std::log10(s.x[i]));
+      y0 = std::min(y0, std::log10(s.y[i]));
+      y1 = std::max(y1, std::log10(s.y[i]));
+    }
+  }
+  if (!(x1 > x0)) x1 = x0 + 1;
+  y0 = std::floor(y0);
+  y1 = std::ceil(y1);
+  if (!(y1 > y0)) y1 = y0 + 1;
+  auto px = [&](double lx) { return left + (lx - x0) / (x1 - x0) * (w - left - right); };
+  auto py = [&](double ly) { return top + (y1 - ly) / (y1 - y0) * (h - top - bottom); };
+  const char* colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf"};
+  std::ostringstream o;
+  o << "<svg xmlns='http://www.w3.org/2000/svg' width='" << w << "' height='" << h
+    << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
+  o << "<text x='" << w / 2 << "' y='22' text-anchor='middle' font-size='15'>" << title << "</text>\n";
+  for (double ly = y0; ly <= y1 + 1e-9; ly += 1) {
+    o << "<line x1='" << left << "' x2='" << w - right << "' y1='" << py(ly) << "' y2='" << py(ly)
+      << "' stroke='#ddd'/><text x='" << left - 6 << "' y='" << py(ly) + 4 << "' text-anchor='end'>1e"
+      << static_cast<int>(ly) << "</text>\n";
+  }
+  for (double lx = std::ceil(x0 - 1e-9); lx <= x1 + 1e-9; lx += 1) {
+    o << "<line y1='" << top << "' y2='" << h - bottom << "' x1='" << px(lx) << "' x2='" << px(lx)
+      << "' stroke='#ddd'/><text y='" << h - bottom + 16 << "' x='" << px(lx) << "' text-anchor='middle'>"
+      << std::pow(10.0, lx) << "</text>\n";
+  }
+  o << "<text x='" << (left + w - right) / 2 << "' y='" << h - 12 << "' text-anchor='middle'>" << x_label
+    << "</text>\n<text transform='translate(16," << (top + h - bottom) / 2 << ") rotate(-90)' text-anchor='middle'>"
+    << y_label << "</text>\n";
+  // Reference slopes through the first series' first point.
+  if (!series.empty() && !series[0].x.empty()) {
+    const double ax = std::log10(series[0].x[0]), ay = std::log10(series[0].y[0]);
+    for (double slope : ref_slopes) {
+      const double by = ay + slope * (x1 - ax);
+      o << "<line x1='" << px(ax) << "' y1='" << py(ay) << "' x2='" << px(x1) << "' y2='" << py(by)
+        << "' stroke='#888' stroke-dasharray='5,4'/><text x='" << px(x1) + 4 << "' y='" << py(by) + 4
+        << "' fill='#666'>slope " << slope << "</text>\n";
+    }
+  }
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    const Series& s = series[k];
+    const char* c = colours[k % 7];
+    o << "<polyline fill='none' stroke='" << c << "' stroke-width='2' points='";
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (s.y[i] > 0) o << px(std::log10(s.x[i])) << "," << py(std::log10(s.y[i])) << " ";
+    }
+    o << "'/>\n<text x='" << w - right + 40 << "' y='" << top + 18.0 * static_cast<double>(k + 1) << "' fill='" << c << "'>" << s.name
+      << "</text>\n";
+  }
+  o << "</svg>\n";
+  return o.str();
+}
+
+struct Writer {
+  std::filesystem::path dir;
+  bool ok = true;
+  void write(const std::string& name, const std::string& text) {
+    if (std::string err = write_file_atomically((dir / name).string(), text); !err.empty()) {
+      std::fprintf(stderr, "%s\n", err.c_str());
+      ok = false;
+    }
+  }
+};
+
+}  // namespace
+
+int run_bench_report(const BenchReportOptions& options) {
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  if (ec) {
+    std::fprintf(stderr, "%s: cannot create the folder: %s\n", options.out_dir.c_str(), ec.message().c_str());
+    return 1;
+  }
+  Writer out{options.out_dir};
+  const bool quick = options.quick;
+  const int threads = resolve_thread_count(options.threads);
+  std::ostringstream md;
+  md << "# phonglab: speed against error\n\nMade by `phonglab-cli bench" << (quick ? " --quick" : "")
+     << "` on a machine with " << std::thread::hardware_concurrency() << " hardware threads"
+     << "; every figure below comes from this one run.\n\n";
+
+  // 1. Speed: the Whitted frame of every embedded scene, by ray kind and thread count.
+  const int speed_w = quick ? 640 : 1280, speed_h = quick ? 360 : 720, frames = quick ? 3 : 9;
+  std::printf("speed: %dx%d, median of %d frames\n", speed_w, speed_h, frames);
+  md << "## Speed\n\nThe Whitted frame at " << speed_w << "x" << speed_h << ", 1 spp, median of " << frames
+     << " frames.\n\n| scene | rays per frame | primary | shadow | reflection | refraction | 1 thread ms | "
+     << threads << " threads ms | Mrays/s (" << threads << " threads) | scaling |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string speed_csv = "scene,width,height,threads,median_ms,mrays_per_s,primary,shadow,reflection,refraction\n";
+  for (const EmbeddedScene& e : embedded_scenes()) {
+    const Scene s = load_embedded(e.name);
+    double ms_by_threads[2] = {0, 0};
+    RayCounts rays;
+    const int counts[2] = {1, threads};
+    for (int k = 0; k < 2; ++k) {
+      std::vector<double> ms;
+      for (int f = 0; f < frames; ++f) {
+        const Render r = render(s, speed_w, speed_h, 1, counts[k], 0);
+        ms.push_back(r.seconds * 1000);
+        rays = r.stats.rays;
+      }
+      ms_by_threads[k] = median(ms);
+      const double mrays = static_cast<double>(rays.total()) / (ms_by_threads[k] / 1000) / 1e6;
+      speed_csv += std::string(e.name) + "," + std::to_string(speed_w) + "," + std::to_string(speed_h) + "," +
+                   std::to_string(counts[k]) + "," + fmt("%.3f", ms_by_threads[k]) + "," + fmt("%.3f", mrays) + "," +
+                   std::to_string(rays.primary) + "," + std::to_string(rays.shadow) + "," +
+                   std::to_string(rays.reflection) + "," + std::to_string(rays.refraction) + "\n";
+    }
+    const double mrays = static_cast<double>(rays.total()) / (ms_by_threads[1] / 1000) / 1e6;
+    md << "| " << e.name << " | " << rays.total() << " | " << rays.primary << " | " << rays.shadow << " | "
+       << rays.reflection << " | " << rays.refraction << " | " << fmt("%.1f", ms_by_threads[0]) << " | "
+       << fmt("%.1f", ms_by_threads[1]) << " | " << fmt("%.1f", mrays) << " | "
+       << fmt("%.2f", ms_by_threads[0] / ms_by_threads[1]) << "x |\n";
+    std::printf("  %-10s %.1f ms (1 thread), %.1f ms (%d threads)\n", std::string(e.name).c_str(), ms_by_threads[0],
+                ms_by_threads[1], threads);
+  }
+  out.write("speed.csv", speed_csv);
+
+  // 2. Convergence against a converged reference, over independent seeds.
+  const int cw = quick ? 96 : 240, ch = quick ? 54 : 135;
+  const int ref_spp = quick ? 256 : 2048;
+  const int max_spp = quick ? 32 : 128;
+  const int seeds = 8;
+  std::printf("convergence: %dx%d, reference %d spp, %d seeds up to %d spp\n", cw, ch, ref_spp, seeds, max_spp);
+  md << "\n## Convergence\n\nError of the mean of N samples per pixel against a converged reference (" << ref_spp
+     << " spp, max_depth 64, min_weight 1e-6 (an unpruned tree of glass is exponential), exact Fresnel as the scene says; " << cw << "x" << ch
+     << " pixels), mean over " << seeds
+     << " independent sample sets (seeds). relMSE is pbrt's (x-r)^2/(r+0.01)^2, RMSE is on linear radiance,"
+        " PSNR on the displayed 8-bit sRGB image. Sample 0 of every seed is the pixel centre, so at 1 spp"
+        " all seeds agree. The reference's own noise is estimated from two references with different"
+        " seeds (half their relMSE) and must be 10x below the smallest error plotted.\n\n"
+     << "| scene | relMSE at 1 spp | relMSE at " << max_spp << " spp (min..max over seeds) | RMSE at " << max_spp
+     << " spp | PSNR at " << max_spp << " spp | fitted slope (spp 2.." << max_spp
+     << ") relMSE / RMSE | reference noise (relMSE) | 10x below? |\n|---|---|---|---|---|---|---|---|\n";
+  std::string conv_csv = "scene,spp,seed,rel_mse,rmse,psnr_db,seconds\n";
+  std::vector<Series> plot_spp, plot_time;
+  for (const EmbeddedScene& e : embedded_scenes()) {
+    Scene s = load_embedded(e.name);
+    Scene ref_scene = s;
+    ref_scene.max_depth = 64;
+    // Not 0: glass with Fresnel splits every ray in two, and an unpruned tree of depth 64 is
+    // 2^64 rays. 1e-6 bounds the pruning error at 1e-6 of the scene's radiance.
+    ref_scene.min_weight = kReferenceMinWeight;
+    const std::vector<Color> ref = means(render(ref_scene, cw, ch, ref_spp, threads, 1000).accum);
+    const std::vector<Color> ref2 = means(render(ref_scene, cw, ch, ref_spp, threads, 2000).accum);
+    const double ref_noise = rel_mse(ref, ref2) / 2;
+    std::vector<double> spps, mean_err, mean_rmse, mean_time;
+    std::vector<double> final_errs;
+    double err_at_1 = 0, rmse_final = 0, psnr_final = 0;
+    for (int spp = 1; spp <= max_spp; spp *= 2) spps.push_back(spp);
+    mean_err.assign(spps.size(), 0);
+    mean_rmse.assign(spps.size(), 0);
+    mean_time.assign(spps.size(), 0);
+    for (int seed = 0; seed < seeds; ++seed) {
+      Accumulator acc;
+      acc.reset(cw, ch);
+      RenderOptions opt;
+      opt.threads = threads;
+      opt.seed = static_cast<std::uint32_t>(seed);
+      double elapsed = 0;
+      std::size_t k = 0;
+      for (int spp = 1; spp <= max_spp; ++spp) {
+        elapsed += render_pass(s, opt, acc).seconds;
+        if (k < spps.size() && spp == static_cast<int>(spps[k])) {
+          const std::vector<Color> m = means(acc);
+          const double e_rel = rel_mse(m, ref), e_rms = rmse(m, ref), e_psnr = psnr_displayed(m, ref);
+          conv_csv += std::string(e.name) + "," + std::to_string(spp) + "," + std::to_string(seed) + "," +
+                      fmt("%.6e", e_rel) + "," + fmt("%.6e", e_rms) + "," + fmt("%.3f", e_psnr) + "," +
+                      fmt("%.6f", elapsed) + "\n";
+          mean_err[k] += e_rel / seeds;
+          mean_rmse[k] += e_rms / seeds;
+          mean_time[k] += elapsed / seeds;
+          if (spp == 1) err_at_1 = e_rel;
+          if (spp == max_spp) {
+            final_errs.push_back(e_rel);
+            rmse_final += e_rms / seeds;
+            psnr_final += e_psnr / seeds;
+          }
+          ++k;
+        }
+      }
+    }
+    const std::vector<double> fit_x(spps.begin() + 1, spps.end()), fit_y(mean_err.begin() + 1, mean_err.end());
+    const double slope = loglog_slope(fit_x, fit_y);
+    const double rmse_slope =
+        loglog_slope(fit_x, std::vector<double>(mean_rmse.begin() + 1, mean_rmse.end()));
+    const double smallest = mean_err.back();
+    md << "| " << e.name << " | " << fmt("%.3g", err_at_1) << " | " << fmt("%.3g", smallest) << " ("
+       << fmt("%.3g", *std::min_element(final_errs.begin(), final_errs.end())) << ".."
+       << fmt("%.3g", *std::max_element(final_errs.begin(), final_errs.end())) << ") | " << fmt("%.3g", rmse_final)
+       << " | " << fmt("%.1f dB", psnr_final) << " | " << fmt("%.2f", slope) << " / " << fmt("%.2f", rmse_slope)
+       << " | " << fmt("%.2g", ref_noise)
+       << " | " << (ref_noise * 10 <= smallest ? "yes" : "**no**") << " |\n";
+    plot_spp.push_back({std::string(e.name), spps, mean_rmse});
+    plot_time.push_back({std::string(e.name), mean_time, mean_err});
+    std::printf("  %-10s slope %.2f, relMSE %.3g at %d spp\n", std::string(e.name).c_str(), slope, smallest, max_spp);
+  }
+  out.write("convergence.csv", conv_csv);
+  out.write("convergence_spp.svg", loglog_svg("RMSE against samples per pixel (mean of 8 seeds)",
+                                              "samples per pixel", "RMSE", plot_spp, {-0.5, -0.75}));
+  // relMSE is a squared error: the RMSE slopes -1/2 and -3/4 appear as -1 and -3/2.
+  out.write("convergence_time.svg", loglog_svg("relMSE against render time (mean of 8 seeds)", "seconds", "relMSE",
+                                               plot_time, {-1.0, -1.5}));
+  md << "\n![RMSE against spp](convergence_spp.svg)\n![relMSE against time](convergence_time.svg)\n";
+
+  // 3. Model only what a scene needs: ray-tree pruning by path weight on facing mirrors.
+  const int pw = quick ? 96 : 320, ph = quick ? 54 : 180;
+  std::printf("pruning: mirrors at %dx%d\n", pw, ph);
+  Scene mirrors = load_embedded("mirrors");
+  mirrors.max_depth = 64;
+  mirrors.min_weight = 0;
+  const Render exact = render(mirrors, pw, ph, 1, threads, 0);
+  const std::vector<Color> exact_img = means(exact.accum);
+  const double max_radiance = max_value(exact_img);
+  md << "\n## Pruning the ray tree (model only what a scene needs)\n\n`mirrors` (two facing mirrors, kr 0.9) at "
+     << pw << "x" << ph << ", 1 spp, against max_depth 64 with min_weight 0 (max radiance " << fmt("%.4g", max_radiance)
+     << "). The bound to hold: max error <= min_weight x max radiance.\n\n"
+     << "| max_depth | min_weight | rays | reflection rays | time ms | max error | bound | holds |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  std::string prune_csv = "max_depth,min_weight,rays,reflection_rays,ms,max_error\n";
+  for (int depth : {2, 4, 8, 16, 32, 64}) {
+    for (double mw : {0.0, 1e-3, 1e-2}) {
+      Scene s = mirrors;
+      s.max_depth = depth;
+      s.min_weight = mw;
+      const Render r = render(s, pw, ph, 1, threads, 0);
+      const double err = max_abs_error(means(r.accum), exact_img);
+      const bool bounded = mw > 0 && depth == 64;
+      md << "| " << depth << " | " << mw << " | " << r.stats.rays.total() << " | " << r.stats.rays.reflection << " | "
+         << fmt("%.1f", r.seconds * 1000) << " | " << fmt("%.3g", err) << " | "
+         << (bounded ? fmt("%.3g", mw * max_radiance) : std::string("-")) << " | "
+         << (bounded ? (err <= mw * max_radiance ? "yes" : "**no**") : "-") << " |\n";
+      prune_csv += std::to_string(depth) + "," + fmt("%g", mw) + "," + std::to_string(r.stats.rays.total()) + "," +
+                   std::to_string(r.stats.rays.reflection) + "," + fmt("%.3f", r.seconds * 1000) + "," +
+                   fmt("%.6e", err) + "\n";
+    }
+  }
+  out.write("pruning.csv", prune_csv);
+  out.write("report.md", md.str());
+  std::printf("wrote %s/report.md\n", options.out_dir.c_str());
+  return out.ok ? 0 : 1;
+}
+
+}  // namespace phonglab
