@@ -338,6 +338,7 @@ int run_bench_report(const BenchReportOptions& options) {
        << " | " << fmt("%.1f dB", psnr_final) << " | " << fmt("%.2f", slope) << " / " << fmt("%.2f", rmse_slope)
        << " | " << fmt("%.2g", ref_noise)
        << " | " << (ref_noise * 10 <= smallest ? "yes" : "**no**") << " |\n";
+    if (ref_noise * 10 > smallest) std::printf("CHECK FAILED: %s reference noise not 10x below\n", std::string(e.name).c_str());
     plot_spp.push_back({std::string(e.name), spps, mean_rmse});
     plot_time.push_back({std::string(e.name), mean_time, mean_err});
     std::printf("  %-10s slope %.2f, relMSE %.3g at %d spp\n", std::string(e.name).c_str(), slope, smallest, max_spp);
@@ -377,6 +378,7 @@ int run_bench_report(const BenchReportOptions& options) {
          << fmt("%.1f", r.seconds * 1000) << " | " << fmt("%.3g", err) << " | "
          << (bounded ? fmt("%.3g", mw * max_radiance) : std::string("-")) << " | "
          << (bounded ? (err <= mw * max_radiance ? "yes" : "**no**") : "-") << " |\n";
+      if (bounded && err > mw * max_radiance) std::printf("CHECK FAILED: pruning error above its bound\n");
       prune_csv += std::to_string(depth) + "," + fmt("%g", mw) + "," + std::to_string(r.stats.rays.total()) + "," +
                    std::to_string(r.stats.rays.reflection) + "," + fmt("%.3f", r.seconds * 1000) + "," +
                    fmt("%.6e", err) + "\n";
