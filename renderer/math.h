@@ -33,8 +33,14 @@ inline double clamp_positive(double x) { return x > 0 ? x : 0; }
 // Clamp to [-1, 1]: dot products of unit vectors can leave it by rounding (HARDCASES N4).
 inline double clamp_unit(double x) { return x > 1 ? 1 : (x < -1 ? -1 : x); }
 
-// Mirror direction of d about the unit normal n: d - 2(d.n)n. Renormalised so a slightly
-// non-unit input never yields a non-unit direction (HARDCASES R5).
-inline Vec3 reflect_dir(const Vec3& d, const Vec3& n) { return glm::normalize(d - 2.0 * glm::dot(d, n) * n); }
+// Mirror direction of d about the plane with normal n: d - 2(d.n)n / (n.n), exact for a normal
+// of any length (HARDCASES R5: a normal of length 1.01 would otherwise tilt it by up to 1.1
+// degrees), and renormalised so a slightly non-unit d never yields a non-unit direction.
+// A zero normal leaves d unchanged.
+inline Vec3 reflect_dir(const Vec3& d, const Vec3& n) {
+  const double nn = glm::dot(n, n);
+  const double k = nn > 0 ? 2.0 * glm::dot(d, n) / nn : 0.0;
+  return glm::normalize(d - k * n);
+}
 
 }  // namespace phonglab
