@@ -158,6 +158,7 @@ Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double
       hit.p = s.center + s.radius * hit.ng;
       hit.ns = hit.ng;
       hit.material = s.material;
+      hit.magnitude = std::max(max_abs(hit.p), max_abs(s.center) + s.radius);
       break;
     }
     case ObjectRef::Kind::kPlane: {
@@ -165,6 +166,7 @@ Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double
       hit.ng = pl.normal;
       hit.ns = pl.normal;
       hit.material = pl.material;
+      hit.magnitude = max_abs(hit.p);
       break;
     }
     case ObjectRef::Kind::kTriangle: {
@@ -172,6 +174,7 @@ Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double
       const double b0 = 1 - b1 - b2;
       // Interpolating the vertices is more accurate than o + t d for far-away rays.
       hit.p = b0 * tri.v0 + b1 * tri.v1 + b2 * tri.v2;
+      hit.magnitude = std::max({max_abs(tri.v0), max_abs(tri.v1), max_abs(tri.v2)});
       hit.ng = glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
       hit.ns = hit.ng;
       if (tri.has_vertex_normals) {

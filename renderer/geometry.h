@@ -36,6 +36,7 @@ struct Hit {
   Vec3 ns;           // unit shading normal (interpolated vertex normals, else ng)
   int material = 0;  // index into Scene::materials
   ObjectRef object;  // which primitive was hit
+  double magnitude = 0;  // coordinate magnitude that sets the rounding error of p (see surface_offset)
 };
 
 // Per-primitive tests: distance t > t_min of the nearest hit, or nothing. Never NaN.
@@ -58,10 +59,13 @@ bool occluded(const Scene& scene, const Ray& ray, double t_max);
 // Fills a Hit for the primitive `obj` hit at distance t (used after the nearest-hit loop).
 Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double b1, double b2);
 
-// How far to move a secondary ray's origin off a surface at p, reached after distance t.
-// Rounding puts p within a few ulps of (|p| + t) of the true surface; the offset is 1e7
-// times that, yet at most 1e-9 of the scene's coordinates, so contact shadows keep their size.
-inline double surface_offset(const Vec3& p, double t) { return 1e-9 * (max_abs(p) + t); }
+// How far to move a secondary ray's origin off a surface point reached after distance t,
+// where `magnitude` is the size of the coordinates the point was computed from (|p|; for a
+// sphere |c| + r, for a triangle its largest vertex coordinate). Rounding puts the point within
+// a few ulps of (magnitude + t) of the true surface; the offset is 1e7 times that, yet only
+// 1e-9 of the scene's coordinates, so contact shadows keep their size.
+inline double surface_offset(double magnitude, double t) { return 1e-9 * (magnitude + t); }
+inline double surface_offset(const Vec3& p, double t) { return surface_offset(max_abs(p), t); }
 
 // Origin for a ray leaving the surface with geometric normal ng at p, towards dir.
 inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir, double offset) {

@@ -61,7 +61,7 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
   const Vec3 ng_facing = entering ? hit.ng : -hit.ng;
   const Vec3 n = glm::dot(hit.ns, d) < 0 ? hit.ns : -hit.ns;  // N faces the incoming ray
   const Vec3 v = -d;
-  const double offset = surface_offset(hit.p, hit.t);
+  const double offset = surface_offset(hit.magnitude, hit.t);
 
   Terms terms;
   terms.ambient = m.ka * scene.ambient;
