@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -94,6 +95,17 @@ double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) 
     sxy += lx * ly;
   }
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// y at x on the piecewise log-log line through (xs, ys) (xs increasing); nullopt outside.
+std::optional<double> loglog_at(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
+  for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+    if (x >= xs[i] && x <= xs[i + 1] && xs[i] > 0 && ys[i] > 0 && ys[i + 1] > 0 && xs[i + 1] > xs[i]) {
+      const double f = (std::log(x) - std::log(xs[i])) / (std::log(xs[i + 1]) - std::log(xs[i]));
+      return std::exp(std::log(ys[i]) + f * (std::log(ys[i + 1]) - std::log(ys[i])));
+    }
+  }
+  return std::nullopt;
 }
 
 std::string fmt(const char* format, double a) {
@@ -350,6 +362,25 @@ int run_bench_report(const BenchReportOptions& options) {
   out.write("convergence_time.svg", loglog_svg("relMSE against render time (mean of 8 seeds)", "seconds", "relMSE",
                                                plot_time, {-1.0, -1.5}));
   md << "\n![RMSE against spp](convergence_spp.svg)\n![relMSE against time](convergence_time.svg)\n";
+
+  // Equal time and time to target, read off the mean error-against-time curves above
+  // (log-log interpolation between measured points; '-' where this run's range ends).
+  const double target = 1e-3;
+  md << "\n### Equal time and time to target\n\nrelMSE reached after a given render time, and the time to"
+        " reach relMSE " << target << ", at " << cw << "x" << ch << " pixels with " << threads
+     << " threads ('-': outside the range this run measured).\n\n| scene | after 0.01 s | after 0.1 s | after 1 s |"
+        " time to relMSE 1e-3 |\n|---|---|---|---|---|\n";
+  for (const Series& sr : plot_time) {
+    md << "| " << sr.name;
+    for (double t : {0.01, 0.1, 1.0}) {
+      const auto e = loglog_at(sr.x, sr.y, t);
+      md << " | " << (e ? fmt("%.3g", *e) : std::string("-"));
+    }
+    // Time is the x axis of the curve; swap the axes to read the time at an error.
+    std::vector<double> err_rev(sr.y.rbegin(), sr.y.rend()), time_rev(sr.x.rbegin(), sr.x.rend());
+    const auto t = loglog_at(err_rev, time_rev, target);
+    md << " | " << (t ? fmt("%.3g s", *t) : std::string("-")) << " |\n";
+  }
 
   // 3. Model only what a scene needs: ray-tree pruning by path weight on facing mirrors.
   const int pw = quick ? 96 : 320, ph = quick ? 54 : 180;
