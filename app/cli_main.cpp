@@ -175,13 +175,7 @@ int cmd_render(Args& args) {
   }
   const double render_ms = ms_since(t_render);
 
-  Image image;
-  image.width = accum.width;
-  image.height = accum.height;
-  image.pixels.resize(accum.sum.size());
-  for (int y = 0; y < accum.height; ++y) {
-    for (int x = 0; x < accum.width; ++x) image.at(x, y) = glm::vec3(accum.mean(x, y));
-  }
+  const Image image = mean_image(accum);
   if (std::string err = write_image(*out, image); !err.empty()) {
     std::cerr << *out << ": " << err << "\n";
     return kExitBadInput;

@@ -31,14 +31,7 @@ Image render_term(const Scene& scene, Term term, const FigureOptions& options) {
   Accumulator accum;
   accum.reset(options.cell_width, options.cell_height);
   for (int s = 0; s < std::max(options.spp, 1); ++s) render_pass(scene, render, accum);
-  Image image;
-  image.width = accum.width;
-  image.height = accum.height;
-  image.pixels.resize(accum.sum.size());
-  for (int y = 0; y < accum.height; ++y) {
-    for (int x = 0; x < accum.width; ++x) image.at(x, y) = glm::vec3(accum.mean(x, y));
-  }
-  return image;
+  return mean_image(accum);
 }
 
 }  // namespace

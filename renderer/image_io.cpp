@@ -11,6 +11,17 @@
 
 namespace phonglab {
 
+Image mean_image(const Accumulator& accum) {
+  Image image;
+  image.width = accum.width;
+  image.height = accum.height;
+  image.pixels.resize(accum.sum.size());
+  for (int y = 0; y < accum.height; ++y) {
+    for (int x = 0; x < accum.width; ++x) image.at(x, y) = glm::vec3(accum.mean(x, y));
+  }
+  return image;
+}
+
 unsigned char linear_to_srgb8(double linear) {
   const double c = linear > 0 ? (linear < 1 ? linear : 1) : 0;  // also maps NaN to 0
   const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "renderer/math.h"
+#include "renderer/render.h"
 
 namespace phonglab {
 
@@ -16,6 +17,9 @@ struct Image {
   glm::vec3& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
   const glm::vec3& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
+
+// The accumulator's per-pixel means (what a render shows) as a float image.
+Image mean_image(const Accumulator& accum);
 
 // Linear value in [0, 1] to an 8-bit sRGB code (IEC 61966-2-1 transfer function).
 unsigned char linear_to_srgb8(double linear);
