@@ -48,8 +48,9 @@ double srgb_to_linear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-ProgressiveSettings progressive_settings(const ui::RenderSettings& s) {
+ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std::optional<Vec3>& shading_eye) {
   ProgressiveSettings p;
+  p.shading_eye = shading_eye;
   p.target_spp = s.target_spp;
   p.threads = s.threads;
   p.term = s.term;
@@ -108,7 +109,7 @@ Viewer::Viewer(Platform& platform, const ViewerOptions& options)
     : platform_(platform),
       options_(options),
       // The render thread only wakes the event loop; the UI takes the image itself.
-      renderer_(progressive_settings(ui::RenderSettings{}), [] { glfwPostEmptyEvent(); }) {}
+      renderer_(progressive_settings(ui::RenderSettings{}, std::nullopt), [] { glfwPostEmptyEvent(); }) {}
 
 Viewer::~Viewer() = default;
 
@@ -460,6 +461,11 @@ void Viewer::draw_sidebar() {
       if (actions.undo) undo();
       if (actions.redo) redo();
       if (actions.save_figure) save_figure(figure_path_);
+      if (actions.head_reference) {
+        snapshot_a();
+        instruments_.compare = 2;
+        upload_pending_ = upload_pending_ || !shown_.pixels.empty();
+      }
     }
     if (probe_ && ImGui::CollapsingHeader("Probe", ImGuiTreeNodeFlags_DefaultOpen)) {
       ui::ProbeView view;
@@ -570,6 +576,30 @@ void Viewer::draw_overlays() {
     const float y0 = viewport_.y + static_cast<float>(rows - 1) * cell_h;
     draw->AddLine(ImVec2(x, y0), ImVec2(x, y0 + cell_h), IM_COL32(255, 255, 255, 200), 2 * scale);
     draw->AddText(ImVec2(x - ImGui::CalcTextSize("A ").x, y0 + cell_h / 2), IM_COL32(255, 255, 255, 230), "A");
+  }
+
+  // "Move your head": the highlight against the head angle, in a small window at the
+  // viewport's bottom-left (visible however the panels are scrolled).
+  if (instruments_.move_head && snapshot_) {
+    ui::HeadPlotView plot;
+    plot.hit = probe_ ? &probe_->root : nullptr;
+    plot.eye_at_zero = snapshot_->camera.position;
+    plot.axis = glm::normalize(make_camera_frame(snapshot_->camera, 1, 1).up);
+    if (probe_ && probe_->root.hit && probe_->root.material >= 0 &&
+        probe_->root.material < static_cast<int>(snapshot_->materials.size())) {
+      plot.shininess = snapshot_->materials[static_cast<std::size_t>(probe_->root.material)].n;
+    }
+    plot.blinn = snapshot_->specular_model == SpecularModel::kBlinn;
+    plot.angle_deg = instruments_.head_angle_deg;
+    plot.width = 340 * scale;
+    ImGui::SetNextWindowPos(ImVec2(viewport_.x + 8 * scale, viewport_.y + viewport_.height - 8 * scale), ImGuiCond_Always,
+                            ImVec2(0, 1));
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    if (ImGui::Begin("##head_plot", nullptr, flags)) ui::head_plot(plot);
+    ImGui::End();
   }
 
   if (display_.show_stats) {
@@ -793,9 +823,16 @@ void Viewer::apply_edits(double frame_start) {
     commit_pending_ = false;
   }
 
+  // "Move your head": a new shading eye (angle, probe or camera changed) restarts the renderers.
+  const std::optional<Vec3> eye = head_eye();
+  if (eye != shading_eye_) {
+    shading_eye_ = eye;
+    settings_changed_ = true;
+    if (probe_) refresh_probe();
+  }
   if (settings_changed_) {
     const std::uint64_t before = renderer_.status().generation;
-    const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_));
+    const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_, shading_eye_));
     if (generation != before) {
       sent_generation_ = generation;
       note_restart(generation, frame_start);
@@ -950,7 +987,7 @@ void Viewer::update_term_renderers(bool scene_changed) {
     return;
   }
   const bool started = !term_renderers_[0];
-  ProgressiveSettings settings = progressive_settings(render_settings_);
+  ProgressiveSettings settings = progressive_settings(render_settings_, shading_eye_);
   // Five more renderers share the machine with the main one.
   settings.threads = std::max(1, resolve_thread_count(render_settings_.threads) / 3);
   for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
@@ -998,7 +1035,7 @@ void Viewer::refresh_probe() {
   probe_x_ = std::clamp(probe_x_, 0, render_width_ - 1);
   probe_y_ = std::clamp(probe_y_, 0, render_height_ - 1);
   // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
-  probe_ = probe_pixel(*snapshot_, render_width_, render_height_, probe_x_, probe_y_);
+  probe_ = probe_pixel(*snapshot_, render_width_, render_height_, probe_x_, probe_y_, shading_eye_);
   probe_report_ = probe_to_text(*snapshot_, *probe_);
   probe_occluders_.clear();
   for (const ProbeLight& light : probe_->root.lights) probe_occluders_.push_back(object_name(*snapshot_, light.occluder));
@@ -1049,6 +1086,16 @@ std::vector<glm::vec3> Viewer::display_pixels() const {
     }
   }
   return out;
+}
+
+Vec3 Viewer::head_pivot() const {
+  if (probe_ && probe_->root.hit) return probe_->root.p;
+  return doc_.scene().camera.look_at;
+}
+
+std::optional<Vec3> Viewer::head_eye() const {
+  if (!instruments_.move_head) return std::nullopt;
+  return ui::head_eye(doc_.scene().camera, head_pivot(), static_cast<double>(instruments_.head_angle_deg));
 }
 
 void Viewer::save_figure(const std::string& path) {

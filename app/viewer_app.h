@@ -116,6 +116,8 @@ class Viewer {
   void redo();                                   // Ctrl+Shift+Z
   void snapshot_a();                             // keeps the image shown as A
   void save_figure(const std::string& path);     // the slide figure of the current snapshot
+  std::optional<Vec3> head_eye() const;          // "move your head": the shading eye, nullopt when off
+  Vec3 head_pivot() const;                       // the point the head turns about: the probed hit or look-at
   void update_term_renderers(bool scene_changed);  // starts, feeds or stops the small multiples' renderers
   bool terms_idle() const;                       // every small-multiples renderer is idle and its image shown
   std::vector<glm::vec3> display_pixels() const; // shown_, or its wipe / difference against A
@@ -206,6 +208,7 @@ class Viewer {
   ProgressiveFrame image_a_;           // snapshot A (pixels empty: none)
   std::string figure_path_ = "phonglab-figure.png";
   std::string figure_status_;
+  std::optional<Vec3> shading_eye_;    // the head-moved eye the renderers and the probe use now
   static constexpr int kTermCells = 5;  // the small multiples besides the full image
   std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> term_renderers_;  // ambient .. refraction
   std::array<ProgressiveFrame, kTermCells> term_frames_;  // their newest images

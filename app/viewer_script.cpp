@@ -333,7 +333,7 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     if (!script_set(w)) return fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
                                     "position|direction|intensity|enabled V.. | set camera position|look_at|up|fov V.. | "
                                     "set render target_spp|resolution_scale|threads|term V | set display exposure|srgb|stats V | "
-                                    "set instruments probe_mode|multiples|compare|wipe|gain V");
+                                    "set instruments probe_mode|multiples|compare|wipe|gain|head|head_angle V");
     return true;
   }
   if (name == "resize") {
@@ -524,6 +524,8 @@ bool Viewer::script_set(const std::vector<std::string>& w) {
     else if (w[2] == "compare" && v >= 0 && v <= 2) instruments_.compare = static_cast<int>(v);
     else if (w[2] == "wipe" && v >= 0 && v <= 1) instruments_.wipe = static_cast<float>(v);
     else if (w[2] == "gain" && v > 0) instruments_.difference_gain = static_cast<float>(v);
+    else if (w[2] == "head") instruments_.move_head = v != 0;
+    else if (w[2] == "head_angle" && v >= -90 && v <= 90) instruments_.head_angle_deg = static_cast<float>(v);
     else return false;
     upload_pending_ = upload_pending_ || !shown_.pixels.empty();
     return true;
@@ -591,7 +593,9 @@ void Viewer::write_state(const std::string& path) const {
       << "redo=" << history_.redo_count() << "\n"
       << "multiples=" << (instruments_.small_multiples ? 1 : 0) << "\n"
       << "compare=" << instruments_.compare << "\n"
-      << "have_a=" << (image_a_.pixels.empty() ? 0 : 1) << "\n";
+      << "have_a=" << (image_a_.pixels.empty() ? 0 : 1) << "\n"
+      << "head=" << (shading_eye_ ? 1 : 0) << "\n";
+  if (shading_eye_) out << "head_eye=" << vec(*shading_eye_) << "\n";
   if (probe_) {
     const Color total = probe_->root.total;
     out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"

@@ -105,7 +105,7 @@ std::uint64_t ProgressiveRenderer::set_resolution(int width, int height) {
 
 std::uint64_t ProgressiveRenderer::set_settings(const ProgressiveSettings& settings) {
   const std::lock_guard lock(mutex_);
-  const bool restart = settings.term != settings_.term;
+  const bool restart = settings.term != settings_.term || settings.shading_eye != settings_.shading_eye;
   const bool keep_priority = settings_.lower_thread_priority;  // fixed at construction
   settings_ = settings;
   settings_.lower_thread_priority = keep_priority;
@@ -200,6 +200,7 @@ void ProgressiveRenderer::run() {
     RenderOptions options;
     options.term = settings.term;
     options.threads = settings.threads;
+    options.shading_eye = settings.shading_eye;
     const PassStats pass = render_pass(*scene, options, accum, &cancel_);
     if (!pass.completed) {
       // Cancelled midway: a restart is pending and the accumulator is partly updated.

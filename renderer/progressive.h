@@ -18,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -33,6 +34,7 @@ struct ProgressiveSettings {
   Term term = Term::kFull;          // what the pixels show (a change restarts)
   int interactive_divisor = 4;      // while interacting, refine no further than 1/this resolution
   bool lower_thread_priority = false;  // Linux: render at a higher nice value so the UI stays smooth
+  std::optional<Vec3> shading_eye;  // "move your head": RenderOptions::shading_eye (a change restarts)
 };
 
 // Statistics of one published image.

@@ -40,16 +40,17 @@ int resolve_thread_count(int requested) {
 }
 
 Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
-                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed) {
+                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed,
+                    const Vec3* shading_eye) {
   double u, v;
   sample_offset(x, y, sample_index, u, v, seed);
   const Ray ray = camera_ray(frame, x, y, u, v);
   ++counts.primary;
   const TraceLimits limits{scene.max_depth, scene.min_weight};
-  if (term == Term::kFull) return trace(scene, limits, ray, 0, 1.0, counts);
+  if (term == Term::kFull) return trace(scene, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
   if (term == Term::kRays) {
     const std::uint64_t before = counts.total() - 1;
-    trace(scene, limits, ray, 0, 1.0, counts);
+    trace(scene, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
     return Color(static_cast<double>(counts.total() - before));
   }
   const std::optional<Hit> hit = intersect(scene, ray);
@@ -64,7 +65,7 @@ Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int
     default:
       break;
   }
-  const Terms t = shade(scene, limits, ray, *hit, 0, 1.0, counts);
+  const Terms t = shade(scene, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye);
   switch (term) {
     case Term::kAmbient: return t.ambient;
     case Term::kDiffuse: return t.diffuse;
@@ -85,6 +86,7 @@ PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumula
   const int tile_count = tiles_x * tiles_y;
   const std::uint32_t sample_index = accum.samples;
   const int thread_count = std::max(1, std::min(resolve_thread_count(options.threads), tile_count));
+  const Vec3* shading_eye = options.shading_eye ? &*options.shading_eye : nullptr;
 
   std::atomic<int> next_tile{0};
   std::atomic<bool> stopped{false};
@@ -107,7 +109,8 @@ PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumula
       for (int y = y0; y < y1; ++y) {
         Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
         for (int x = x0; x < x1; ++x) {
-          Color c = render_sample(scene, frame, options.term, x, y, sample_index, stats.rays, options.seed);
+          Color c = render_sample(scene, frame, options.term, x, y, sample_index, stats.rays, options.seed,
+                                  shading_eye);
           if (!all_finite(c)) {
             ++stats.nan_count;
             c = Color(0);
@@ -143,7 +146,8 @@ PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumula
 
 namespace phonglab {
 
-PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y) {
+PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y,
+                       const std::optional<Vec3>& shading_eye) {
   PixelProbe probe;
   probe.x = x;
   probe.y = y;
@@ -152,7 +156,8 @@ PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y) 
   sample_offset(x, y, 0, u, v);
   const Ray ray = camera_ray(frame, x, y, u, v);
   ++probe.rays.primary;
-  trace(scene, TraceLimits{scene.max_depth, scene.min_weight}, ray, 0, 1.0, probe.rays, &probe.root);
+  trace(scene, TraceLimits{scene.max_depth, scene.min_weight}, ray, 0, 1.0, probe.rays, &probe.root,
+        shading_eye ? &*shading_eye : nullptr);
   return probe;
 }
 

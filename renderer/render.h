@@ -37,6 +37,9 @@ struct RenderOptions {
   int threads = 0;  // 0: all hardware threads
   int tile_size = 16;  // pixels per tile side
   std::uint32_t seed = 0;  // sample set (sample 0 is the centre for every seed)
+  // "Move your head": the eye used for V at the primary hit (the view rays stay the camera's;
+  // reflection and refraction children use their own -D). nullopt: V = -D, the plain equation.
+  std::optional<Vec3> shading_eye;
 };
 
 // Sums of samples per pixel, row-major from the top-left, plus the sample count.
@@ -58,7 +61,8 @@ struct PassStats {
 
 // The radiance (or term, or debug value) of one primary ray.
 Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
-                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed = 0);
+                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed = 0,
+                    const Vec3* shading_eye = nullptr);
 
 // Adds sample number `accum.samples` to every pixel. The scene must be prepared
 // (prepare_scene). When `cancel` becomes true the pass stops between tiles; `accum` is then
@@ -80,7 +84,9 @@ struct PixelProbe {
   RayCounts rays;   // rays the tree cast
 };
 
-// Replays pixel (x, y)'s centre ray of a width x height image, recording everything.
-PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y);
+// Replays pixel (x, y)'s centre ray of a width x height image, recording everything
+// (`shading_eye` as in RenderOptions).
+PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y,
+                       const std::optional<Vec3>& shading_eye = std::nullopt);
 
 }  // namespace phonglab

@@ -54,13 +54,20 @@ bool light_visible(const Scene& scene, const Light& light, const Hit& hit, const
 }  // namespace
 
 Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
-            double weight, RayCounts& counts, ProbeNode* probe) {
+            double weight, RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye) {
   const Material& m = scene.materials[hit.material];
   const Vec3& d = ray.dir;
   const bool entering = glm::dot(hit.ng, d) < 0;
   const Vec3 ng_facing = entering ? hit.ng : -hit.ng;
   const Vec3 n = glm::dot(hit.ns, d) < 0 ? hit.ns : -hit.ns;  // N faces the incoming ray
-  const Vec3 v = -d;
+  // V: towards the real eye (-D), or towards a moved eye ("move your head"); an eye exactly at
+  // P has no direction and falls back to -D.
+  Vec3 v = -d;
+  if (shading_eye) {
+    const Vec3 to_eye = *shading_eye - hit.p;
+    const double len = glm::length(to_eye);
+    if (len > 0) v = to_eye / len;
+  }
   const double offset = surface_offset(hit.magnitude, hit.t);
 
   Terms terms;
@@ -197,7 +204,7 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
 }
 
 Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
-            RayCounts& counts, ProbeNode* probe) {
+            RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye) {
   if (probe) {
     probe->depth = depth;
     probe->weight = weight;
@@ -209,7 +216,7 @@ Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int d
     if (probe) probe->total = scene.background;
     return scene.background;
   }
-  return shade(scene, limits, ray, *hit, depth, weight, counts, probe).sum();
+  return shade(scene, limits, ray, *hit, depth, weight, counts, probe, shading_eye).sum();
 }
 
 }  // namespace phonglab

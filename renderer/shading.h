@@ -91,11 +91,14 @@ struct TraceLimits {
 };
 
 // Radiance along a ray (SPEC §1 trace). `probe`, when given, receives the whole ray tree.
+// `shading_eye`, when given, is the eye used for V at this ray's hit only ("move your head":
+// V = normalize(eye - P) instead of -D); the reflected and refracted children still follow the
+// real ray and use their own -D. Without it the result is bit-identical to the plain equation.
 Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
-            RayCounts& counts, ProbeNode* probe = nullptr);
+            RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
 
-// Shading of a known hit, term by term.
+// Shading of a known hit, term by term (`shading_eye` as for trace: V at this hit only).
 Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
-            double weight, RayCounts& counts, ProbeNode* probe = nullptr);
+            double weight, RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
 
 }  // namespace phonglab

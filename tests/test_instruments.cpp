@@ -1,15 +1,18 @@
 // The teaching instruments (issue 4): the probe reproduces the rendered pixel, the term images
 // add up to the full image, the slide figure is deterministic, undo/redo and solo restore what
 // they should.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "renderer/embedded_scenes.h"
+#include "renderer/camera.h"
 #include "renderer/figure.h"
 #include "renderer/render.h"
 #include "renderer/scene_io.h"
@@ -208,6 +211,79 @@ TEST(LightSolo, SoloThenUnsoloRestoresEveryFlag) {
   EXPECT_TRUE(lights[1].enabled);
   EXPECT_FALSE(lights[2].enabled);
   EXPECT_EQ(solo.soloed, -1);
+}
+
+// "Move your head": the eye used for V at the primary hit, rotated `degrees` about the camera's
+// up axis around the look-at point (the view rays stay the camera's).
+Vec3 moved_eye(const Camera& camera, double degrees) {
+  const Vec3 up = glm::normalize(camera.up);
+  const Vec3 d = camera.position - camera.look_at;
+  const double a = degrees * 3.14159265358979323846 / 180;
+  // Rodrigues' rotation of d about `up`.
+  const Vec3 rotated = d * std::cos(a) + glm::cross(up, d) * std::sin(a) + up * glm::dot(up, d) * (1 - std::cos(a));
+  return camera.look_at + rotated;
+}
+
+Accumulator render_with_eye(const Scene& scene, Term term, const std::optional<Vec3>& eye) {
+  RenderOptions options;
+  options.term = term;
+  options.shading_eye = eye;
+  Accumulator accum;
+  accum.reset(kWidth, kHeight);
+  render_pass(scene, options, accum);
+  return accum;
+}
+
+TEST(MoveYourHead, EyeOnlyMovesKeepDiffuseExactlyAndChangeSpecular) {
+  for (const SpecularModel model : {SpecularModel::kPhong, SpecularModel::kBlinn}) {
+    Scene scene = load_prepared("lecture");
+    scene.specular_model = model;
+    const Vec3 eye = moved_eye(scene.camera, 35);
+    for (const Term term : {Term::kAmbient, Term::kDiffuse}) {
+      const Accumulator still = render_with_eye(scene, term, std::nullopt);
+      const Accumulator moved = render_with_eye(scene, term, eye);
+      ASSERT_EQ(still.sum, moved.sum) << term_name(term);
+    }
+    const Accumulator still = render_with_eye(scene, Term::kSpecular, std::nullopt);
+    const Accumulator moved = render_with_eye(scene, Term::kSpecular, eye);
+    int changed = 0;
+    for (std::size_t i = 0; i < still.sum.size(); ++i) changed += still.sum[i] != moved.sum[i] ? 1 : 0;
+    EXPECT_GT(changed, 20) << "specular pixels changed by the head move";
+    // The probe sees the same moved eye: its total is the rendered pixel.
+    const Accumulator full = render_with_eye(scene, Term::kFull, eye);
+    for (int y = 0; y < kHeight; y += 5) {
+      for (int x = 0; x < kWidth; x += 7) {
+        const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, x, y, eye);
+        ASSERT_EQ(probe.root.total, full.mean(x, y)) << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(MoveYourHead, NoOverrideIsBitIdenticalToThePlainRender) {
+  for (const EmbeddedScene& embedded : embedded_scenes()) {
+    const Scene scene = load_prepared(embedded.name);
+    for (const Term term : {Term::kFull, Term::kSpecular, Term::kReflection, Term::kRays}) {
+      const Accumulator plain = render_once(scene, term);
+      const Accumulator defaulted = render_with_eye(scene, term, std::nullopt);
+      ASSERT_EQ(plain.sum, defaulted.sum) << embedded.name << " " << term_name(term);
+      // Each pixel is render_sample's value without an eye.
+      const CameraFrame frame = make_camera_frame(scene.camera, kWidth, kHeight);
+      RayCounts counts;
+      for (int y = 0; y < kHeight; y += 3) {
+        for (int x = 0; x < kWidth; x += 3) {
+          ASSERT_EQ(render_sample(scene, frame, term, x, y, 0, counts), plain.mean(x, y))
+              << embedded.name << " " << x << "," << y;
+        }
+      }
+    }
+    // The eye at the camera's own position gives -D up to rounding: the same image, nearly.
+    const Accumulator plain = render_once(scene, Term::kFull);
+    const Accumulator at_camera = render_with_eye(scene, Term::kFull, scene.camera.position);
+    for (std::size_t i = 0; i < plain.sum.size(); ++i) {
+      ASSERT_NEAR(plain.sum[i].x, at_camera.sum[i].x, 1e-6) << embedded.name << " " << i;
+    }
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "ui/panels.h"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cinttypes>
 #include <cmath>
@@ -337,6 +338,16 @@ bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions,
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::TextDisabled("Ctrl+Z, Ctrl+Shift+Z");
+  ImGui::Separator();
+  edited |= ImGui::Checkbox("move your head", &settings.move_head);
+  help_marker("Shades with the eye turned about the probed point (or the look-at point): only V changes, "
+              "the view stays. Diffuse and ambient stay the same; specular (and reflection) change.");
+  if (settings.move_head) {
+    edited |= ImGui::SliderFloat("head angle", &settings.head_angle_deg, -90.0f, 90.0f, "%.0f deg");
+    if (ImGui::Button("Eye A = this eye, show |live - A|")) actions.head_reference = true;
+    help_marker("Keeps the image now as A; move the head: the difference has no diffuse term left.");
+  }
+  ImGui::Separator();
   input_text("##figure", figure_path);
   ImGui::SameLine();
   if (ImGui::Button("Figure for slides")) actions.save_figure = true;
@@ -355,6 +366,61 @@ void vec_text(const char* label, const Vec3& v) {
 }
 
 }  // namespace
+
+void head_plot(const HeadPlotView& view) {
+  if (view.hit == nullptr || !view.hit->hit) {
+    ImGui::TextDisabled("Probe a pixel on a surface to plot its highlight against the head angle.");
+    return;
+  }
+  const ProbeNode& hit = *view.hit;
+  const ProbeLight* light = nullptr;
+  for (const ProbeLight& l : hit.lights) {
+    if (l.lit_side) {
+      light = &l;
+      break;
+    }
+  }
+  if (light == nullptr) {
+    ImGui::TextDisabled("No light on the lit side of the probed point: no highlight.");
+    return;
+  }
+  constexpr int kSamples = 181;  // one per degree, -90..90
+  std::array<float, kSamples> values{};
+  const Vec3 d = view.eye_at_zero - hit.p;
+  auto factor = [&](double angle_deg) {
+    const double a = -glm::radians(angle_deg);  // as ui::head_eye
+    const Vec3 to_eye =
+        d * std::cos(a) + glm::cross(view.axis, d) * std::sin(a) + view.axis * glm::dot(view.axis, d) * (1 - std::cos(a));
+    const double len = glm::length(to_eye);
+    const Vec3 v = len > 0 ? to_eye / len : hit.v;
+    double c;
+    if (view.blinn) {
+      const Vec3 h = light->l + v;
+      c = glm::length(h) > 0 ? glm::dot(hit.n, glm::normalize(h)) : 0;
+    } else {
+      c = glm::dot(light->r, v);  // R does not depend on V
+    }
+    const double base = std::clamp(c, 0.0, 1.0);
+    return base == 0 && view.shininess > 0 ? 0.0 : std::pow(base, view.shininess);
+  };
+  for (int i = 0; i < kSamples; ++i) values[static_cast<std::size_t>(i)] = static_cast<float>(factor(i - 90.0));
+  const double current = factor(static_cast<double>(view.angle_deg));
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "%s^n = %.4g at %.0f deg (L%d)", view.blinn ? "N\xC2\xB7H" : "R\xC2\xB7V",
+                current, static_cast<double>(view.angle_deg), light->index);
+  ImGui::PlotLines("##head", values.data(), kSamples, 0, overlay, 0.0f, 1.0f,
+                   ImVec2(view.width, 90 * ImGui::GetFontSize() / 13));
+  // The current angle: a vertical line and a dot on the curve.
+  const ImVec2 lo = ImGui::GetItemRectMin();
+  const ImVec2 hi = ImGui::GetItemRectMax();
+  const ImVec2 pad = ImGui::GetStyle().FramePadding;
+  const float x = lo.x + pad.x + (view.angle_deg + 90.0f) / 180.0f * (hi.x - lo.x - 2 * pad.x);
+  const float y = hi.y - pad.y - static_cast<float>(current) * (hi.y - lo.y - 2 * pad.y);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddLine(ImVec2(x, lo.y), ImVec2(x, hi.y), IM_COL32(255, 230, 0, 160), 1.0f);
+  draw->AddCircleFilled(ImVec2(x, y), 4.0f, IM_COL32(255, 230, 0, 255));
+  ImGui::TextDisabled("head angle -90..+90 deg about the camera's up; probed point %s", "P");
+}
 
 void probe_panel(const ProbeView& view) {
   if (view.probe == nullptr || view.scene == nullptr) {

@@ -55,6 +55,8 @@ struct InstrumentSettings {
   int compare = 0;               // 0 live image, 1 wipe against snapshot A, 2 |live - A| difference
   float wipe = 0.5f;             // wipe position: fraction of the viewport showing A (left)
   float difference_gain = 4;     // the difference image is scaled by this
+  bool move_head = false;        // shade with the eye turned about the probed point (view rays stay)
+  float head_angle_deg = 0;      // that turn, degrees about the camera's up axis
 };
 // Buttons of the instruments panel.
 struct InstrumentActions {
@@ -62,12 +64,27 @@ struct InstrumentActions {
   bool undo = false;
   bool redo = false;
   bool save_figure = false;  // write the slide figure to `figure_path`
+  bool head_reference = false;  // keep the image now as A and show |live - A| (move-your-head difference)
 };
 // Probe mode, small multiples, compare against A, undo/redo and the slide figure.
 // `have_a` enables the compare views; the counts label the undo buttons. Returns "edited".
 bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions, bool have_a,
                        std::size_t undo_count, std::size_t redo_count, std::string& figure_path,
                        const std::string& figure_status);
+
+// The "move your head" plot: the probed hit's specular factor against the head angle.
+struct HeadPlotView {
+  const ProbeNode* hit = nullptr;  // the probe's primary hit (P, N, lights)
+  Vec3 eye_at_zero{0};             // the camera position (angle 0)
+  Vec3 axis{0, 1, 0};              // unit axis the eye turns about (the camera's up)
+  double shininess = 1;            // n of the hit's material
+  bool blinn = false;              // N.H instead of R.V
+  float angle_deg = 0;             // the current angle (marked)
+  float width = 300;               // of the plot, screen pixels
+};
+// max(0, R.V)^n (or N.H^n) of the first light on the lit side, for angles -90..90 degrees,
+// with the current angle marked. Nothing to edit.
+void head_plot(const HeadPlotView& view);
 
 // What the probe panel shows: the renderer's ray tree of one pixel and the report around it.
 struct ProbeView {

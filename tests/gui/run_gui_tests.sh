@@ -347,6 +347,35 @@ wait_frames 2
 screenshot $dir/i10_multiples.png
 dump_state $dir/i10.txt
 figure $dir/figure.png
+set instruments multiples 0
+set display stats 0
+set render term diffuse
+set instruments head 1
+wait_idle 120
+dump_state $dir/h00.txt
+snapshot_a
+set instruments compare 2
+set instruments head_angle 40
+wait_idle 120
+dump_state $dir/h01.txt
+screenshot $dir/h01_head_diffuse_difference.png
+set render term specular
+set instruments head_angle 0
+set instruments compare 0
+wait_idle 120
+snapshot_a
+set instruments compare 2
+set instruments head_angle 40
+wait_idle 120
+screenshot $dir/h02_head_specular_difference.png
+set render term full
+set instruments compare 0
+set display stats 1
+probe 315 328
+set instruments head_angle 15
+wait_idle 120
+dump_state $dir/h03.txt
+screenshot $dir/h03_head_full.png
 quit
 EOF
   "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
@@ -377,6 +406,17 @@ check_instruments() {
   check "small multiples: the ambient and diffuse cells differ" \
     greater "$(rmse_regions "$dir/i10_multiples.png" 280x300+5+30 280x300+298+30)" 0.02
   check "the slide figure was written" test -s "$dir/figure.png"
+  check "move your head: the shading eye moved, the camera did not ($(state "$dir/h01.txt" head_eye))" \
+    test "$(state "$dir/h01.txt" head)" = 1 -a "$(state "$dir/h01.txt" head_eye)" != "$(state "$dir/h00.txt" head_eye)" \
+    -a "$(state "$dir/h01.txt" camera_position)" = "$(state "$dir/h00.txt" camera_position)"
+  local diffuse_mean specular_mean
+  diffuse_mean=$(convert "$dir/h01_head_diffuse_difference.png" -crop 880x290+0+280 +repage -format '%[fx:mean]' info:)
+  specular_mean=$(convert "$dir/h02_head_specular_difference.png" -crop 880x290+0+280 +repage -format '%[fx:mean]' info:)
+  check "move your head: the diffuse term cancels in the two-eye difference (mean $diffuse_mean)" \
+    less "$diffuse_mean" 0.002
+  check "move your head: the probe follows the moved eye (probe_match=$(state "$dir/h03.txt" probe_match))" \
+    test "$(state "$dir/h03.txt" probe_match)" = 1
+  check "move your head: the specular term does not (mean $specular_mean)" greater "$specular_mean" 0.004
 }
 
 
