@@ -739,14 +739,7 @@ void Viewer::save_png(const std::string& path) {
     }
     image.pixels.push_back(v);
   }
-  const std::string error = write_image(path, image);
-  std::ostringstream status;
-  if (error.empty()) {
-    status << "saved " << path << " (" << image.width << "x" << image.height << ", " << shown_.spp << " spp)";
-  } else {
-    status << error;
-  }
-  screenshot_state_.status = status.str();
+  write_screenshot(path, image, "");
 }
 
 void Viewer::save_pfm(const std::string& path) {
@@ -758,10 +751,14 @@ void Viewer::save_pfm(const std::string& path) {
   image.width = shown_.width;
   image.height = shown_.height;
   image.pixels = shown_.pixels;
+  write_screenshot(path, image, "linear, ");
+}
+
+void Viewer::write_screenshot(const std::string& path, const Image& image, const char* kind) {
   const std::string error = write_image(path, image);
   std::ostringstream status;
   if (error.empty()) {
-    status << "saved " << path << " (linear, " << image.width << "x" << image.height << ", " << shown_.spp << " spp)";
+    status << "saved " << path << " (" << kind << image.width << "x" << image.height << ", " << shown_.spp << " spp)";
   } else {
     status << error;
   }

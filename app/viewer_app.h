@@ -17,6 +17,7 @@
 #include "app/viewer_document.h"
 #include "app/viewer_gl.h"
 #include "app/viewer_platform.h"
+#include "renderer/image_io.h"
 #include "renderer/progressive.h"
 #include "ui/history.h"
 #include "ui/panels.h"
@@ -130,6 +131,8 @@ class Viewer {
   void save_scene(bool as);                      // Save (false) or Save as the path field (true)
   void save_png(const std::string& path);        // what is shown, exposure and curve applied
   void save_pfm(const std::string& path);        // the linear image
+  // Writes a screenshot and reports it in the Screenshot panel; `kind` prefixes the size.
+  void write_screenshot(const std::string& path, const Image& image, const char* kind);
   void save_window_screenshot(const std::string& path, int fb_width, int fb_height);  // the whole window
   void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
   void update_title();                           // "phonglab - source *"

@@ -866,11 +866,16 @@ class Validator {
       report(v, "must be an array of 3 numbers (got " + shown(v) + ")");
       return std::nullopt;
     }
+    return read_triple(v, &Validator::read_number);
+  }
+
+  // The three elements of an array checked by `read_one`; every element's error is reported.
+  std::optional<Vec3> read_triple(const Val& v, std::optional<double> (Validator::*read_one)(const Val&)) {
+    if (element_count(v) != 3) return std::nullopt;
     Vec3 out;
     bool ok = true;
-    if (element_count(v) != 3) return std::nullopt;
     for (int i = 0; i < 3; ++i) {
-      if (auto x = read_number(element(v, static_cast<std::size_t>(i)))) {
+      if (auto x = (this->*read_one)(element(v, static_cast<std::size_t>(i)))) {
         out[i] = *x;
       } else {
         ok = false;
@@ -899,17 +904,7 @@ class Validator {
       report(v, "must be a number or an array of 3 numbers (got " + shown(v) + ")");
       return std::nullopt;
     }
-    Color out;
-    bool ok = true;
-    if (element_count(v) != 3) return std::nullopt;
-    for (int i = 0; i < 3; ++i) {
-      if (auto x = read_at_least_zero(element(v, static_cast<std::size_t>(i)))) {
-        out[i] = *x;
-      } else {
-        ok = false;
-      }
-    }
-    return ok ? std::optional<Color>(out) : std::nullopt;
+    return read_triple(v, &Validator::read_at_least_zero);
   }
 
   void camera(const Val& v, Camera& cam) {
