@@ -86,6 +86,21 @@ void complete_frame(const Vec3& w, Vec3& e1, Vec3& e2) {
   e2 = glm::cross(w, e1);
 }
 
+// One glass sphere (kt 1, nothing else) alone in an empty scene, unpruned, prepared.
+Scene bare_glass_sphere(const Vec3& c, double r, double ior, bool fresnel, int max_depth) {
+  Scene scene;
+  Material glass;
+  glass.kt = Color(1);
+  glass.ior = ior;
+  glass.fresnel = fresnel;
+  scene.materials = {glass};
+  scene.spheres = {Sphere{c, r, 0}};
+  scene.max_depth = max_depth;
+  scene.min_weight = 0;
+  prepare_scene(scene);
+  return scene;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Reference geometry.
 
@@ -567,15 +582,7 @@ TEST(HardCases, S5_GlassSphereChordLength) {
   Vec3 u, v;
   complete_frame(w, u, v);
   for (const Case& cs : cases) {
-    Scene scene;
-    Material glass;
-    glass.kt = Color(1);
-    glass.ior = 1.5;
-    scene.materials = {glass};
-    scene.spheres = {Sphere{cs.c, cs.r, 0}};
-    scene.max_depth = 2;
-    scene.min_weight = 0;
-    prepare_scene(scene);
+    const Scene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 2);
     for (const double b_over_r : {0.0, 0.5, 0.9, 0.999}) {
       SCOPED_TRACE("centre " + str(cs.c) + ", r = " + std::to_string(cs.r) + ", b/r = " + std::to_string(b_over_r));
       const Vec3 origin = cs.c - 3 * cs.r * w + b_over_r * cs.r * u;
@@ -1683,15 +1690,7 @@ TEST(HardCases, R1_CriticalAngleSnellAndTotalInternalReflection) {
   };
   const Case cases[] = {{{0, 0, 0}, 1}, {{10, -20, 30}, 2.5}};
   for (const Case& cs : cases) {
-    Scene scene;
-    Material glass;
-    glass.kt = Color(1);
-    glass.ior = 1.5;
-    scene.materials = {glass};
-    scene.spheres = {Sphere{cs.c, cs.r, 0}};
-    scene.max_depth = 1;
-    scene.min_weight = 0;
-    prepare_scene(scene);
+    const Scene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 1);
     for (const bool is_above : {false, true}) {
       for (const double theta_deg : is_above ? above : below) {
         SCOPED_TRACE("centre " + str(cs.c) + ", theta " + std::to_string(theta_deg) + " deg");
@@ -1739,15 +1738,7 @@ TEST(HardCases, R3_DeviationThroughASphere) {
   Vec3 u, v;
   complete_frame(w, u, v);
   for (const Case& cs : cases) {
-    Scene scene;
-    Material glass;
-    glass.kt = Color(1);
-    glass.ior = 1.5;
-    scene.materials = {glass};
-    scene.spheres = {Sphere{cs.c, cs.r, 0}};
-    scene.max_depth = 2;
-    scene.min_weight = 0;
-    prepare_scene(scene);
+    const Scene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 2);
     for (int i = 0; i < 100; ++i) {
       const double b_over_r = i / 100.0;
       SCOPED_TRACE("centre " + str(cs.c) + ", b/r = " + std::to_string(b_over_r));
@@ -1829,16 +1820,7 @@ TEST(HardCases, R4_ExactFresnelBothSides) {
   Vec3 u, v;
   complete_frame(w, u, v);
   for (const double ior : {1.33, 1.5, 2.42}) {
-    Scene scene;
-    Material glass;
-    glass.kt = Color(1);
-    glass.ior = ior;
-    glass.fresnel = true;
-    scene.materials = {glass};
-    scene.spheres = {Sphere{Vec3(1, 2, 3), 2, 0}};
-    scene.max_depth = 2;
-    scene.min_weight = 0;
-    prepare_scene(scene);
+    const Scene scene = bare_glass_sphere(Vec3(1, 2, 3), 2, ior, true, 2);
     for (const double b_over_r : {0.0, 0.3, 0.6, 0.9, 0.99, 0.999}) {
       SCOPED_TRACE("ior " + std::to_string(ior) + ", b/r = " + std::to_string(b_over_r));
       const Vec3 origin = scene.spheres[0].center - 6.0 * w + b_over_r * 2.0 * u;
