@@ -64,6 +64,7 @@ const char* object_kind_name(ObjectRef::Kind kind) {
     case ObjectRef::Kind::kSphere: return "sphere";
     case ObjectRef::Kind::kPlane: return "plane";
     case ObjectRef::Kind::kTriangle: return "triangle";
+    case ObjectRef::Kind::kMesh: return "mesh";
     case ObjectRef::Kind::kNone: break;
   }
   return "object";
@@ -388,6 +389,7 @@ void Viewer::pick(ImVec2 mouse) {
     case ObjectRef::Kind::kSphere: to_object = &scene.sphere_object; break;
     case ObjectRef::Kind::kPlane: to_object = &scene.plane_object; break;
     case ObjectRef::Kind::kTriangle: to_object = &scene.triangle_object; break;
+    case ObjectRef::Kind::kMesh: to_object = &scene.mesh_object; break;
     case ObjectRef::Kind::kNone: break;
   }
   std::ostringstream text;

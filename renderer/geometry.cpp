@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "renderer/accel.h"
+
 namespace phonglab {
 
 TriangleShear make_shear(const Vec3& dir) {
@@ -19,34 +21,6 @@ TriangleShear make_shear(const Vec3& dir) {
   return sh;
 }
 
-namespace {
-
-// Nearest root of the ray-sphere quadratic in (t_min, t_max), or 0 for none.
-// Haines et al., Ray Tracing Gems ch. 7: the discriminant from the perpendicular distance
-// r^2 - |f - (f.d)d|^2 avoids the cancellation of b^2 - c, and the roots come from
-// q = -(b + sign(b) sqrt(disc)) so neither is a difference of near-equal numbers.
-inline double sphere_root(const Sphere& s, const Vec3& o, const Vec3& d, double t_min, double t_max) {
-  const Vec3 f = o - s.center;
-  const double b = glm::dot(f, d);
-  const double r2 = s.radius * s.radius;
-  const double c = glm::dot(f, f) - r2;
-  // Outside and moving away (the usual case for a ray leaving the sphere's surface), or the
-  // nearest possible root -b - r already beyond t_max: no sqrt or division needed.
-  if (c > 0 && (b > 0 || -b - s.radius > t_max)) return 0;
-  const Vec3 perp = f - b * d;
-  const double disc = r2 - glm::dot(perp, perp);
-  if (!(disc >= 0)) return 0;  // also rejects NaN
-  const double q = -(b + std::copysign(std::sqrt(disc), b));
-  if (q == 0) return 0;  // tangent at the origin itself: nothing ahead
-  double t0 = c / q;
-  double t1 = q;
-  if (t0 > t1) std::swap(t0, t1);
-  if (t0 > t_min) return t0 < t_max ? t0 : 0;
-  if (t1 > t_min) return t1 < t_max ? t1 : 0;
-  return 0;
-}
-
-}  // namespace
 
 std::optional<double> intersect_sphere(const Sphere& s, const Ray& ray, double t_min) {
   const double t = sphere_root(s, ray.origin, ray.dir, t_min, std::numeric_limits<double>::infinity());
@@ -67,38 +41,17 @@ std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, do
   return intersect_triangle(tri, ray, make_shear(ray.dir), b1, b2, t_min);
 }
 
-std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, const TriangleShear& sh,
-                                         double* b1, double* b2, double t_min) {
-  // Watertight test (Woop, Benthin, Wald, JCGT 2013): vertices are moved into a space where
-  // the ray is the +z axis; the 2D edge functions of a shared edge are then computed from the
-  // same numbers by both triangles, so a ray through an edge or vertex cannot slip between.
-  const Vec3 a = tri.v0 - ray.origin;
-  const Vec3 b = tri.v1 - ray.origin;
-  const Vec3 c = tri.v2 - ray.origin;
-  const double ax = a[sh.kx] - sh.sx * a[sh.kz];
-  const double ay = a[sh.ky] - sh.sy * a[sh.kz];
-  const double bx = b[sh.kx] - sh.sx * b[sh.kz];
-  const double by = b[sh.ky] - sh.sy * b[sh.kz];
-  const double cx = c[sh.kx] - sh.sx * c[sh.kz];
-  const double cy = c[sh.ky] - sh.sy * c[sh.kz];
-  const double u = cx * by - cy * bx;
-  const double v = ax * cy - ay * cx;
-  const double w = bx * ay - by * ax;
-  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return std::nullopt;
-  const double det = u + v + w;
-  if (det == 0) return std::nullopt;  // degenerate or edge-on: no area seen from the ray
-  const double t_scaled = u * (sh.sz * a[sh.kz]) + v * (sh.sz * b[sh.kz]) + w * (sh.sz * c[sh.kz]);
-  const double t = t_scaled / det;
-  if (!(t > t_min) || !(t < std::numeric_limits<double>::infinity())) return std::nullopt;
-  // A zero-area triangle has no normal: never hit it (rounding can leave det != 0 for one).
-  const Vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
-  if (!(glm::dot(cross, cross) > 0)) return std::nullopt;
-  if (b1) *b1 = v / det;
-  if (b2) *b2 = w / det;
-  return t;
+std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.accel) return scene.accel->intersect(scene, ray, t_max);
+  return intersect_all(scene, ray, t_max);
 }
 
-std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
+bool occluded(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.accel) return scene.accel->occluded(scene, ray, t_max);
+  return occluded_all(scene, ray, t_max);
+}
+
+std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray, double t_max) {
   double best = t_max;
   ObjectRef obj;
   double best_b1 = 0, best_b2 = 0;
@@ -114,31 +67,49 @@ std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
       obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
     }
   }
-  const TriangleShear shear = scene.triangles.empty() ? TriangleShear{} : make_shear(ray.dir);
-  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
-    double b1 = 0, b2 = 0;
-    if (auto t = intersect_triangle(scene.triangles[i], ray, shear, &b1, &b2); t && *t < best) {
-      best = *t;
-      best_b1 = b1;
-      best_b2 = b2;
-      obj = {ObjectRef::Kind::kTriangle, static_cast<int>(i)};
+  if (scene.triangles.empty() && scene.meshes.empty()) {
+    if (obj.kind == ObjectRef::Kind::kNone) return std::nullopt;
+    return make_hit(scene, ray, obj, best, 0, 0);
+  }
+  const TriangleShear shear = make_shear(ray.dir);
+  const auto test_triangles = [&](const std::vector<Triangle>& tris, ObjectRef::Kind kind, int index) {
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      double b1 = 0, b2 = 0;
+      if (auto t = intersect_triangle(tris[i], ray, shear, &b1, &b2); t && *t < best) {
+        best = *t;
+        best_b1 = b1;
+        best_b2 = b2;
+        obj = kind == ObjectRef::Kind::kMesh ? ObjectRef{kind, index, static_cast<int>(i)}
+                                             : ObjectRef{kind, static_cast<int>(i)};
+      }
     }
+  };
+  test_triangles(scene.triangles, ObjectRef::Kind::kTriangle, -1);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    test_triangles(scene.meshes[m].geometry->triangles, ObjectRef::Kind::kMesh, static_cast<int>(m));
   }
   if (obj.kind == ObjectRef::Kind::kNone) return std::nullopt;
   return make_hit(scene, ray, obj, best, best_b1, best_b2);
 }
 
-bool occluded(const Scene& scene, const Ray& ray, double t_max) {
+bool occluded_all(const Scene& scene, const Ray& ray, double t_max) {
   for (const Sphere& s : scene.spheres) {
     if (sphere_root(s, ray.origin, ray.dir, 0, t_max) > 0) return true;
   }
   for (const Plane& pl : scene.planes) {
     if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
   }
-  if (scene.triangles.empty()) return false;
+  if (scene.triangles.empty() && scene.meshes.empty()) return false;
   const TriangleShear shear = make_shear(ray.dir);
-  for (const Triangle& tri : scene.triangles) {
-    if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < t_max) return true;
+  const auto any = [&](const std::vector<Triangle>& tris) {
+    for (const Triangle& tri : tris) {
+      if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < t_max) return true;
+    }
+    return false;
+  };
+  if (any(scene.triangles)) return true;
+  for (const Mesh& mesh : scene.meshes) {
+    if (any(mesh.geometry->triangles)) return true;
   }
   return false;
 }
@@ -169,8 +140,9 @@ Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double
       hit.magnitude = max_abs(hit.p);
       break;
     }
-    case ObjectRef::Kind::kTriangle: {
-      const Triangle& tri = scene.triangles[obj.index];
+    case ObjectRef::Kind::kTriangle:
+    case ObjectRef::Kind::kMesh: {
+      const Triangle& tri = triangle_of(scene, obj);
       const double b0 = 1 - b1 - b2;
       // Interpolating the vertices is more accurate than o + t d for far-away rays.
       hit.p = b0 * tri.v0 + b1 * tri.v1 + b2 * tri.v2;

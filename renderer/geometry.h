@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "renderer/math.h"
 #include "renderer/scene.h"
@@ -46,15 +47,88 @@ std::optional<double> intersect_plane(const Plane& pl, const Ray& ray, double t_
 std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, double* b1 = nullptr,
                                          double* b2 = nullptr, double t_min = 0);
 // The same with the ray's shear computed once for many triangles.
-std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, const TriangleShear& shear,
-                                         double* b1, double* b2, double t_min = 0);
+inline std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, const TriangleShear& sh,
+                                                double* b1, double* b2, double t_min = 0) {
+  // Watertight test (Woop, Benthin, Wald, JCGT 2013): vertices are moved into a space where
+  // the ray is the +z axis; the 2D edge functions of a shared edge are then computed from the
+  // same numbers by both triangles, so a ray through an edge or vertex cannot slip between.
+  const Vec3 a = tri.v0 - ray.origin;
+  const Vec3 b = tri.v1 - ray.origin;
+  const Vec3 c = tri.v2 - ray.origin;
+  const double ax = a[sh.kx] - sh.sx * a[sh.kz];
+  const double ay = a[sh.ky] - sh.sy * a[sh.kz];
+  const double bx = b[sh.kx] - sh.sx * b[sh.kz];
+  const double by = b[sh.ky] - sh.sy * b[sh.kz];
+  const double cx = c[sh.kx] - sh.sx * c[sh.kz];
+  const double cy = c[sh.ky] - sh.sy * c[sh.kz];
+  const double u = cx * by - cy * bx;
+  const double v = ax * cy - ay * cx;
+  const double w = bx * ay - by * ax;
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return std::nullopt;
+  const double det = u + v + w;
+  if (det == 0) return std::nullopt;  // degenerate or edge-on: no area seen from the ray
+  const double t_scaled = u * (sh.sz * a[sh.kz]) + v * (sh.sz * b[sh.kz]) + w * (sh.sz * c[sh.kz]);
+  const double t = t_scaled / det;
+  if (!(t > t_min) || !(t < std::numeric_limits<double>::infinity())) return std::nullopt;
+  // A zero-area triangle has no normal: never hit it (rounding can leave det != 0 for one).
+  const Vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+  if (!(glm::dot(cross, cross) > 0)) return std::nullopt;
+  if (b1) *b1 = v / det;
+  if (b2) *b2 = w / det;
+  return t;
+}
 
-// Nearest hit with t in (0, t_max).
+// Nearest root in (t_min, t_max) of the ray-sphere quadratic, or 0 for none.
+// Haines et al., Ray Tracing Gems ch. 7: the discriminant from the perpendicular distance
+// r^2 - |f - (f.d)d|^2 avoids the cancellation of b^2 - c, and the roots come from
+// q = -(b + sign(b) sqrt(disc)) so neither is a difference of near-equal numbers.
+inline double sphere_root(const Sphere& s, const Vec3& o, const Vec3& d, double t_min, double t_max) {
+  const Vec3 f = o - s.center;
+  const double b = glm::dot(f, d);
+  const double r2 = s.radius * s.radius;
+  const double c = glm::dot(f, f) - r2;
+  // Outside and moving away (the usual case for a ray leaving the sphere's surface), or the
+  // nearest possible root -b - r already beyond t_max: no sqrt or division needed.
+  if (c > 0 && (b > 0 || -b - s.radius > t_max)) return 0;
+  const Vec3 perp = f - b * d;
+  const double disc = r2 - glm::dot(perp, perp);
+  if (!(disc >= 0)) return 0;  // also rejects NaN
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  if (q == 0) return 0;  // tangent at the origin itself: nothing ahead
+  double t0 = c / q;
+  double t1 = q;
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 > t_min) return t0 < t_max ? t0 : 0;
+  if (t1 > t_min) return t1 < t_max ? t1 : 0;
+  return 0;
+}
+
+// Nearest-hit and any-hit queries over a prepared scene (built by prepare_scene, or by a
+// benchmark that compares acceleration structures). Answers must equal the brute-force ones.
+class Accelerator {
+ public:
+  virtual ~Accelerator() = default;
+  // Nearest hit with t in (0, t_max).
+  virtual std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) const = 0;
+  // Whether anything lies on the ray with t in (0, t_max).
+  virtual bool occluded(const Scene& scene, const Ray& ray, double t_max) const = 0;
+  // Whether it was built over this scene's primitives as they are now (a cheap check, run
+  // once per pass: a scene edited after prepare_scene is re-prepared, never traced stale).
+  virtual bool matches(const Scene& scene) const = 0;
+};
+
+// Nearest hit with t in (0, t_max), through scene.accel when there is one.
 std::optional<Hit> intersect(const Scene& scene, const Ray& ray,
                              double t_max = std::numeric_limits<double>::infinity());
 
 // Whether anything lies on the ray with t in (0, t_max). Stops at the first hit found.
 bool occluded(const Scene& scene, const Ray& ray, double t_max);
+
+// The same queries testing every primitive (mesh triangles one by one): the reference the
+// acceleration structures are tested against.
+std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray,
+                                 double t_max = std::numeric_limits<double>::infinity());
+bool occluded_all(const Scene& scene, const Ray& ray, double t_max);
 
 // Fills a Hit for the primitive `obj` hit at distance t (used after the nearest-hit loop).
 Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double b1, double b2);

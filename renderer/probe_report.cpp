@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "renderer/accel.h"
 #include "renderer/image_io.h"
 
 namespace phonglab {
@@ -19,10 +20,16 @@ std::string object_name(const Scene& scene, ObjectRef ref) {
     case ObjectRef::Kind::kSphere: map = &scene.sphere_object; kind = "sphere"; break;
     case ObjectRef::Kind::kPlane: map = &scene.plane_object; kind = "plane"; break;
     case ObjectRef::Kind::kTriangle: map = &scene.triangle_object; kind = "triangle"; break;
+    case ObjectRef::Kind::kMesh: map = &scene.mesh_object; kind = "mesh"; break;
     case ObjectRef::Kind::kNone: return "";
   }
   if (ref.index >= 0 && static_cast<std::size_t>(ref.index) < map->size()) {
-    return "objects[" + std::to_string((*map)[static_cast<std::size_t>(ref.index)]) + "]";
+    std::string name = "objects[" + std::to_string((*map)[static_cast<std::size_t>(ref.index)]) + "]";
+    if (ref.kind == ObjectRef::Kind::kMesh && ref.prim >= 0) {
+      const MeshGeometry& g = *scene.meshes[static_cast<std::size_t>(ref.index)].geometry;
+      name += " face " + std::to_string(g.source_face[static_cast<std::size_t>(ref.prim)]);
+    }
+    return name;
   }
   return std::string(kind) + "#" + std::to_string(ref.index);
 }

@@ -76,9 +76,24 @@ Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int
   }
 }
 
-PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumulator& accum,
+namespace {
+
+// The scene itself, or, when its geometry was edited after prepare_scene, a re-prepared copy
+// in `holder`: a stale acceleration structure would silently miss or invent hits.
+const Scene& up_to_date(const Scene& scene, std::optional<Scene>& holder) {
+  if (!scene.accel || scene.accel->matches(scene)) return scene;
+  holder = scene;
+  prepare_scene(*holder);
+  return *holder;
+}
+
+}  // namespace
+
+PassStats render_pass(const Scene& given, const RenderOptions& options, Accumulator& accum,
                       const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
+  std::optional<Scene> refreshed;
+  const Scene& scene = up_to_date(given, refreshed);
   const CameraFrame frame = make_camera_frame(scene.camera, accum.width, accum.height);
   const int tile = options.tile_size > 0 ? options.tile_size : 16;
   const int tiles_x = (accum.width + tile - 1) / tile;
@@ -146,8 +161,10 @@ PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumula
 
 namespace phonglab {
 
-PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y,
+PixelProbe probe_pixel(const Scene& given, int width, int height, int x, int y,
                        const std::optional<Vec3>& shading_eye) {
+  std::optional<Scene> refreshed;
+  const Scene& scene = up_to_date(given, refreshed);
   PixelProbe probe;
   probe.x = x;
   probe.y = y;

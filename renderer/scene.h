@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -66,12 +67,36 @@ struct Triangle {
   Vec3 n0{0}, n1{0}, n2{0};
 };
 
+// Where a mesh's OBJ coordinates go: scale, then rotations about x, then y, then z (degrees,
+// right-handed), then translation.
+struct MeshTransform {
+  Vec3 scale{1, 1, 1};
+  Vec3 rotate_deg{0, 0, 0};
+  Vec3 translate{0, 0, 0};
+};
+
+// A loaded mesh's world-space triangles and their bounding volume hierarchy: immutable and
+// shared by every snapshot of the scene, so editing anything else never copies or rebuilds it.
+struct MeshGeometry;
+
+// A "mesh" object of the scene file.
+struct Mesh {
+  std::string file;               // OBJ path as written in the scene file (relative to it)
+  std::string material_override;  // material name replacing the MTL's; empty: the MTL's
+  MeshTransform transform;
+  std::shared_ptr<const MeshGeometry> geometry;  // never null in a loaded scene
+};
+
 // Which scene object a primitive came from (for picking and error messages).
 struct ObjectRef {
-  enum class Kind : std::uint8_t { kSphere, kPlane, kTriangle, kNone };
+  enum class Kind : std::uint8_t { kSphere, kPlane, kTriangle, kMesh, kNone };
   Kind kind = Kind::kNone;
   int index = -1;  // index into the matching Scene vector
+  int prim = -1;   // kMesh: the triangle's index in its MeshGeometry
 };
+
+// Nearest-hit and any-hit queries over a scene's primitives, built by prepare_scene.
+class Accelerator;
 
 struct Scene {
   Camera camera;
@@ -87,8 +112,11 @@ struct Scene {
   std::vector<Sphere> spheres;
   std::vector<Plane> planes;
   std::vector<Triangle> triangles;
-  // Index of the scene-file object each sphere/plane/triangle came from ("objects[i]").
-  std::vector<int> sphere_object, plane_object, triangle_object;
+  std::vector<Mesh> meshes;
+  // Index of the scene-file object each sphere/plane/triangle/mesh came from ("objects[i]").
+  std::vector<int> sphere_object, plane_object, triangle_object, mesh_object;
+  // Built from the primitives above by prepare_scene; null: queries test every primitive.
+  std::shared_ptr<const Accelerator> accel;
 };
 
 }  // namespace phonglab

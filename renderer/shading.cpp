@@ -1,5 +1,7 @@
 #include "renderer/shading.h"
 
+#include "renderer/accel.h"
+
 namespace phonglab {
 
 void prepare_scene(Scene& scene) {
@@ -7,6 +9,7 @@ void prepare_scene(Scene& scene) {
   for (Light& l : scene.lights) {
     if (l.type == LightType::kDirectional) l.direction = glm::normalize(l.direction);
   }
+  scene.accel = build_scene_accel(scene);
 }
 
 double fresnel_exact(double cos_i, double eta) {

@@ -39,7 +39,8 @@ struct RayCounts {
   }
 };
 
-// Normalises the scene's direction vectors (plane normals, directional lights) in place.
+// Normalises the scene's direction vectors (plane normals, directional lights) in place and
+// builds its acceleration structure (scene.accel); run it again after any geometry edit.
 // Every function below expects a prepared scene.
 void prepare_scene(Scene& scene);
 

@@ -2641,6 +2641,7 @@ TEST(HardCases, T5_ZeroDirectionComponentsAndOriginsOnSurfaces) {
     prepare_scene(scene);
     Scene square = scene;
     square.triangles = {tri, other};
+    prepare_scene(square);  // its acceleration structure must hold both halves
     const TraceLimits limits{scene.max_depth, 0};
     // Targets in the triangle's (u, v) = (coord i - 0.5, coord j + 0.25): vertices, edge points,
     // inside, outside; inside means u >= 0, v >= 0, u + v <= 2.

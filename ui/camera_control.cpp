@@ -6,6 +6,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "renderer/accel.h"
 #include "renderer/camera.h"
 
 namespace phonglab::ui {
@@ -82,17 +83,9 @@ void pan(Camera& camera, double dx_px, double dy_px, double viewport_height_px) 
 }
 
 bool frame_scene(Camera& camera, const Scene& scene, double aspect) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  Vec3 lo(kInf), hi(-kInf);
-  for (const Sphere& s : scene.spheres) {
-    lo = glm::min(lo, s.center - s.radius);
-    hi = glm::max(hi, s.center + s.radius);
-  }
-  for (const Triangle& t : scene.triangles) {
-    lo = glm::min(glm::min(lo, t.v0), glm::min(t.v1, t.v2));
-    hi = glm::max(glm::max(hi, t.v0), glm::max(t.v1, t.v2));
-  }
-  if (!(lo.x <= hi.x)) return false;  // no finite objects (planes are infinite)
+  const Aabb bounds = scene_bounds(scene);
+  if (bounds.empty()) return false;  // no finite objects (planes are infinite)
+  const Vec3 lo = bounds.lo, hi = bounds.hi;
   const Vec3 center = 0.5 * (lo + hi);
   const double radius = std::max(0.5 * glm::length(hi - lo), 1e-12);
   const double half_fov_y = glm::radians(camera.fov_y_deg) / 2;

@@ -24,7 +24,7 @@ void dolly(Camera& camera, double factor);
 // drag of (dx_px, dy_px) in a viewport `viewport_height_px` pixels tall.
 void pan(Camera& camera, double dx_px, double dy_px, double viewport_height_px);
 
-// Aims at the centre of the finite objects (spheres, triangles) from a distance that fits
+// Aims at the centre of the finite objects (spheres, triangles, meshes) from a distance that fits
 // them in a view of this aspect (width / height). False, camera unchanged, when there are none.
 bool frame_scene(Camera& camera, const Scene& scene, double aspect);
 
