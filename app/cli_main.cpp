@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/bench_report.h"
+#include "renderer/accel.h"
 #include "renderer/embedded_scenes.h"
 #include "renderer/figure.h"
 #include "renderer/image_io.h"
@@ -120,9 +121,10 @@ class Args {
   std::vector<std::string> words_;
 };
 
-// Loads SCENE (or the default) and prints its errors. nullopt when it has errors.
+// Loads SCENE (or the default) and prints its warnings and errors. nullopt when it has errors.
 std::optional<Scene> load_or_report(const std::string& arg) {
   LoadResult r = load_scene_arg(arg);
+  for (const Diagnostic& w : r.warnings) std::cerr << "warning: " << w.to_string() << "\n";
   if (!r.ok()) {
     std::cerr << r.error_text() << "\n";
     return std::nullopt;
@@ -255,8 +257,13 @@ int cmd_validate(Args& args) {
   std::optional<Scene> scene = load_or_report(*scene_arg);
   if (!scene) return kExitBadInput;
   std::cout << *scene_arg << ": ok (" << scene->spheres.size() << " spheres, " << scene->planes.size()
-            << " planes, " << scene->triangles.size() << " triangles, " << scene->lights.size() << " lights, "
-            << scene->materials.size() << " materials)\n";
+            << " planes, " << scene->triangles.size() << " triangles, ";
+  if (!scene->meshes.empty()) {
+    std::size_t mesh_triangles = 0;
+    for (const Mesh& m : scene->meshes) mesh_triangles += m.geometry->triangles.size();
+    std::cout << scene->meshes.size() << " meshes of " << mesh_triangles << " triangles, ";
+  }
+  std::cout << scene->lights.size() << " lights, " << scene->materials.size() << " materials)\n";
   return kExitOk;
 }
 

@@ -9,4 +9,14 @@ const EmbeddedScene* find_embedded_scene(std::string_view name) {
   return nullptr;
 }
 
+std::optional<std::string> embedded_file(std::string_view path) {
+  for (const EmbeddedFile& f : embedded_files()) {
+    if (f.path != path) continue;
+    std::string text;
+    for (const std::string_view chunk : f.chunks) text += chunk;
+    return text;
+  }
+  return std::nullopt;
+}
+
 }  // namespace phonglab

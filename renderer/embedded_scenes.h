@@ -1,7 +1,9 @@
 // Scenes compiled into the binaries, so the previewer and CLI need no files on disk.
 #pragma once
 
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace phonglab {
@@ -12,10 +14,23 @@ struct EmbeddedScene {
   std::string_view json;         // scene file text (SPEC §3)
 };
 
+// A mesh file of an embedded scene, as string chunks to concatenate.
+struct EmbeddedFile {
+  std::string_view path;                  // relative to assets/scenes, '/'-separated
+  std::span<const std::string_view> chunks;
+};
+
 // All embedded scenes; the first is the default (`lecture`).
 std::span<const EmbeddedScene> embedded_scenes();
 
 // The embedded scene of that name, or nullptr.
 const EmbeddedScene* find_embedded_scene(std::string_view name);
+
+// Every embedded mesh file.
+std::span<const EmbeddedFile> embedded_files();
+
+// A file compiled in beside the embedded scenes (their meshes), by its path relative to
+// assets/scenes ("cornell/CornellBox-Original.obj"); nullopt when there is none.
+std::optional<std::string> embedded_file(std::string_view path);
 
 }  // namespace phonglab

@@ -41,6 +41,8 @@ struct Material {
   Color kt{0, 0, 0};       // transmission weight
   double ior = 1.5;        // index of refraction inside the object (outside is 1)
   bool fresnel = false;    // weight kr/kt by the exact unpolarised Fresnel reflectance
+  std::string source;      // empty: the scene file's; else the mesh file whose MTL made it
+                           // (not written back by scene_to_json: the MTL holds it)
 };
 
 enum class SpecularModel : std::uint8_t { kPhong, kBlinn };
@@ -79,11 +81,16 @@ struct MeshTransform {
 // shared by every snapshot of the scene, so editing anything else never copies or rebuilds it.
 struct MeshGeometry;
 
+// How MTL's Ns becomes the lecture's n. MTL's highlight is Blinn's (N.H)^Ns; (R.V)^n with
+// n = Ns / 4 gives about the same highlight under the Phong model.
+enum class NsMapping : std::uint8_t { kAsIs, kBlinnToPhong };
+
 // A "mesh" object of the scene file.
 struct Mesh {
   std::string file;               // OBJ path as written in the scene file (relative to it)
   std::string material_override;  // material name replacing the MTL's; empty: the MTL's
   MeshTransform transform;
+  NsMapping ns = NsMapping::kAsIs;
   std::shared_ptr<const MeshGeometry> geometry;  // never null in a loaded scene
 };
 

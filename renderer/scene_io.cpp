@@ -22,14 +22,18 @@
 #include <limits>
 #include <new>
 #include <span>
+#include <sstream>
 #include <string_view>
 #include <system_error>
 #include <unordered_map>
 #include <utility>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "renderer/accel.h"
 #include "renderer/embedded_scenes.h"
+#include "renderer/obj_io.h"
 
 namespace phonglab {
 
@@ -632,6 +636,10 @@ constexpr std::array<std::string_view, 4> kSphereKeys = {"type", "center", "radi
 constexpr std::array<std::string_view, 4> kPlaneKeys = {"type", "point", "normal", "material"};
 constexpr std::array<std::string_view, 4> kTriangleKeys = {"type", "vertices", "normals",
                                                            "material"};
+constexpr std::array<std::string_view, 5> kMeshKeys = {"type", "file", "material", "transform", "ns"};
+constexpr std::array<std::string_view, 3> kTransformKeys = {"scale", "rotate_deg", "translate"};
+constexpr std::array<std::string_view, 2> kNsMappings = {"as_is", "blinn_to_phong"};
+constexpr std::size_t kMaxMeshFileBytes = std::size_t{1} << 31;  // a 1.3M-triangle OBJ is ~100 MB
 
 // True when v has a usable direction: normalising it in double gives a finite unit vector.
 bool normalizable(const Vec3& v) {
@@ -655,11 +663,175 @@ class Issues {
   std::vector<Issue> list_;
 };
 
+std::string os_reason(int err) { return std::generic_category().message(err); }
+
+// A whole file as text, or nullopt and the reason; files over `limit` bytes are refused
+// (reading /dev/zero must not hang or exhaust memory).
+std::optional<std::string> read_text_file(const std::string& path, std::size_t limit, std::string& error) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) {
+    error = "cannot read file: " + os_reason(errno);
+    return std::nullopt;
+  }
+  std::string text;
+  std::array<char, 1 << 16> buffer;
+  bool too_large = false;
+  int read_error = 0;
+  for (;;) {
+    const std::size_t got = std::fread(buffer.data(), 1, buffer.size(), f);
+    text.append(buffer.data(), got);
+    if (text.size() > limit) {
+      too_large = true;
+      break;
+    }
+    if (got < buffer.size()) {
+      if (std::ferror(f)) read_error = errno != 0 ? errno : EIO;
+      break;
+    }
+  }
+  std::fclose(f);
+  if (read_error != 0) {
+    error = "cannot read file: " + os_reason(read_error);
+    return std::nullopt;
+  }
+  if (too_large) {
+    error = "cannot read file: larger than " + std::to_string(limit >> 20) + " MiB";
+    return std::nullopt;
+  }
+  return text;
+}
+
+// Where a scene's mesh files come from: the disk, relative to the scene file's folder, or the
+// files compiled in beside the embedded scenes.
+struct SceneFiles {
+  std::string base_dir = ".";
+  bool embedded = false;
+
+  // `relative` as written in the scene (or in an OBJ's mtllib, joined to the OBJ's folder).
+  std::optional<std::string> read(const std::string& relative, std::string& error) const {
+    namespace fs = std::filesystem;
+    const fs::path p(relative);
+    if (embedded) {
+      const std::string key = p.lexically_normal().generic_string();
+      if (auto text = embedded_file(key)) return text;
+      error = "no such embedded file";
+      return std::nullopt;
+    }
+    const fs::path full = p.is_absolute() ? p : fs::path(base_dir) / p;
+    return read_text_file(full.string(), kMaxMeshFileBytes, error);
+  }
+};
+
+// The rotation of a mesh transform: about x, then y, then z (degrees, right-handed).
+glm::dmat3 rotation_of(const MeshTransform& t) {
+  const Vec3 r = glm::radians(t.rotate_deg);
+  const double cx = std::cos(r.x), sx = std::sin(r.x);
+  const double cy = std::cos(r.y), sy = std::sin(r.y);
+  const double cz = std::cos(r.z), sz = std::sin(r.z);
+  const glm::dmat3 rx(1, 0, 0, 0, cx, sx, 0, -sx, cx);  // glm is column-major
+  const glm::dmat3 ry(cy, 0, -sy, 0, 1, 0, sy, 0, cy);
+  const glm::dmat3 rz(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
+  return rz * ry * rx;
+}
+
+struct MeshLoad {
+  std::shared_ptr<const MeshGeometry> geometry;
+  std::vector<Material> materials;  // the MTL's, to append to the scene's (none with an override)
+  std::vector<std::string> errors;  // "file.obj:LINE: message"
+  std::vector<std::string> warnings;
+  std::vector<Emitter> emitters;    // centroids in world coordinates
+};
+
+// Reads an OBJ (and its MTL) and places it in the world. MTL materials get indices from
+// `material_base` on; with `override_material` >= 0 every face uses that instead.
+MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshTransform& transform,
+                   NsMapping ns, int override_material, int material_base) {
+  MeshLoad out;
+  std::string error;
+  const std::optional<std::string> text = files.read(file, error);
+  if (!text) {
+    out.errors.push_back("cannot load mesh '" + file + "': " + error);
+    return out;
+  }
+  const std::string obj_dir = std::filesystem::path(file).parent_path().generic_string();
+  const FileReader read_mtl = [&](const std::string& mtl, std::string& err) {
+    return files.read(obj_dir.empty() ? mtl : obj_dir + "/" + mtl, err);
+  };
+  ObjMesh obj = load_obj(*text, file, read_mtl, ns);
+  for (const ObjProblem& w : obj.warnings) out.warnings.push_back(w.to_string());
+  for (const ObjProblem& e : obj.errors) out.errors.push_back(e.to_string());
+  if (!out.errors.empty()) return out;
+  if (obj.triangles.empty()) {
+    out.errors.push_back(file + ": no faces (a mesh needs at least one triangle of non-zero area)");
+    return out;
+  }
+  const std::string stem = std::filesystem::path(file).stem().string();
+  if (override_material < 0) {
+    for (Material& m : obj.materials) {
+      m.name = stem + "/" + m.name;
+      m.source = file;
+      out.materials.push_back(std::move(m));
+    }
+  }
+  const glm::dmat3 rotation = rotation_of(transform);
+  const glm::dmat3 linear = rotation * glm::dmat3(glm::scale(glm::dmat4(1), transform.scale));
+  const glm::dmat3 normal_matrix = rotation * glm::dmat3(glm::scale(glm::dmat4(1), 1.0 / transform.scale));
+  const auto place = [&](const Vec3& p) { return linear * p + transform.translate; };
+  std::vector<Triangle> placed;
+  std::vector<int> faces;
+  placed.reserve(obj.triangles.size());
+  faces.reserve(obj.triangles.size());
+  int degenerate = 0;
+  for (std::size_t i = 0; i < obj.triangles.size(); ++i) {
+    Triangle t = obj.triangles[i];
+    t.v0 = place(t.v0);
+    t.v1 = place(t.v1);
+    t.v2 = place(t.v2);
+    if (!all_finite(t.v0) || !all_finite(t.v1) || !all_finite(t.v2)) {
+      out.errors.push_back(file + ": the transform takes face " + std::to_string(obj.source_face[i] + 1) +
+                           " beyond the range of doubles");
+      return out;
+    }
+    const Vec3 cross = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
+    if (!(glm::dot(cross, cross) > 0)) {
+      ++degenerate;
+      continue;
+    }
+    if (t.has_vertex_normals) {
+      t.n0 = normal_matrix * t.n0;
+      t.n1 = normal_matrix * t.n1;
+      t.n2 = normal_matrix * t.n2;
+    }
+    t.material = override_material >= 0 ? override_material : material_base + t.material;
+    placed.push_back(t);
+    faces.push_back(obj.source_face[i]);
+  }
+  if (degenerate > 0) {
+    out.warnings.push_back(file + ": " + std::to_string(degenerate) + " triangles have zero area after the transform; left out");
+  }
+  if (placed.empty()) {
+    out.errors.push_back(file + ": no triangle of non-zero area after the transform");
+    return out;
+  }
+  for (Emitter e : obj.emitters) {
+    e.centroid = place(e.centroid);
+    std::ostringstream hint;
+    hint << file << ": material '" << e.material << "' emits light (Ke " << e.ke.x << " " << e.ke.y << " "
+         << e.ke.z << ") from " << e.faces << " face(s); phonglab has point lights only: place one near ["
+         << e.centroid.x << ", " << e.centroid.y << ", " << e.centroid.z << "], their centre";
+    out.warnings.push_back(hint.str());
+    out.emitters.push_back(e);
+  }
+  out.geometry = make_mesh_geometry(std::move(placed), std::move(faces));
+  return out;
+}
+
 class Validator {
  public:
   Validator(std::string_view original, const PosIndex& index, const Json& root,
-            const std::vector<Overflow>& overflows, Issues& issues)
-      : text_(original), index_(index), root_(root), overflows_(overflows), issues_(issues) {}
+            const std::vector<Overflow>& overflows, Issues& issues, const SceneFiles& files, Issues& warnings)
+      : text_(original), index_(index), root_(root), overflows_(overflows), issues_(issues), files_(files),
+        warnings_(warnings) {}
 
   Scene run() {
     Scene s;
@@ -1071,8 +1243,7 @@ class Validator {
       } else if (t == "triangle") {
         triangle(e, s, object);
       } else if (t == "mesh") {
-        issues_.add({index_.begin(type->first.node), e.path,
-                     "mesh objects are not supported yet (a later version loads OBJ files)"});
+        mesh(e, s, object);
       } else {
         report(type->first, "unknown object type " + shown(type->first) +
                                 suggestion(t, kObjectTypes, "expected one of"));
@@ -1154,11 +1325,83 @@ class Validator {
     s.triangle_object.push_back(object);
   }
 
+  // A mesh transform: "scale" (a number or 3, none zero), "rotate_deg", "translate".
+  bool transform(const Val& v, MeshTransform& out) {
+    if (!expect_object(v)) return false;
+    const Fields f = fields(v, kTransformKeys);
+    bool ok = true;
+    if (const Val* x = f.find("scale")) {
+      std::optional<Vec3> scale;
+      if (x->json->is_number()) {
+        if (const auto k = read_number(*x)) scale = Vec3(*k);
+      } else {
+        scale = read_vec3(*x);
+      }
+      if (scale && (scale->x == 0 || scale->y == 0 || scale->z == 0)) {
+        report(*x, "must not be zero (got " + shown(*x) + ")");
+        scale.reset();
+      }
+      ok = assign(out.scale, scale) && ok;
+    }
+    if (const Val* x = f.find("rotate_deg")) ok = assign(out.rotate_deg, read_vec3(*x)) && ok;
+    if (const Val* x = f.find("translate")) ok = assign(out.translate, read_vec3(*x)) && ok;
+    return ok;
+  }
+
+  void mesh(const Val& e, Scene& s, int object) {
+    const Fields f = fields(e, kMeshKeys);
+    bool ok = require(e, f, {"file"});
+    Mesh mesh;
+    const Val* file = f.find("file");
+    if (file) {
+      if (auto name = read_string(*file)) {
+        mesh.file = *name;
+        if (mesh.file.empty()) {
+          report(*file, "must name an OBJ file (got \"\")");
+          ok = false;
+        }
+      } else {
+        ok = false;
+      }
+    }
+    int override_material = -1;
+    if (const Val* x = f.find("material")) {
+      const auto m = material_ref(*x);
+      ok = m.has_value() && ok;
+      if (m) {
+        override_material = *m;
+        mesh.material_override = s.materials[static_cast<std::size_t>(*m)].name;
+      }
+    }
+    if (const Val* x = f.find("transform")) ok = transform(*x, mesh.transform) && ok;
+    NsMapping ns = NsMapping::kAsIs;
+    if (const Val* x = f.find("ns")) {
+      const auto choice = read_choice(*x, kNsMappings, "Ns mapping");
+      ok = choice.has_value() && ok;
+      if (choice && *choice == "blinn_to_phong") ns = NsMapping::kBlinnToPhong;
+    }
+    if (!ok || file == nullptr) return;
+    MeshLoad loaded = load_mesh(files_, mesh.file, mesh.transform, ns, override_material,
+                                static_cast<int>(s.materials.size()));
+    for (std::string& w : loaded.warnings) warnings_.add({index_.begin(file->node), file->path, std::move(w)});
+    if (!loaded.errors.empty()) {
+      for (std::string& message : loaded.errors) report(*file, std::move(message));
+      return;
+    }
+    mesh.geometry = std::move(loaded.geometry);
+    mesh.ns = ns;
+    for (Material& m : loaded.materials) s.materials.push_back(std::move(m));
+    s.meshes.push_back(std::move(mesh));
+    s.mesh_object.push_back(object);
+  }
+
   std::string_view text_;
   const PosIndex& index_;
   const Json& root_;
   const std::vector<Overflow>& overflows_;
   Issues& issues_;
+  const SceneFiles& files_;
+  Issues& warnings_;  // problems that do not stop the scene from loading (mesh files' quirks)
   bool has_materials_ = false;       // the scene has a "materials" member
   bool materials_unusable_ = false;  // ... but it is not an object
   bool reported_no_materials_ = false;
@@ -1213,12 +1456,13 @@ LoadResult fail(const std::string& file, std::string message) {
   return r;
 }
 
-LoadResult load_text(const std::string& text, const std::string& file_name) {
-  Issues issues;
+LoadResult load_text(const std::string& text, const std::string& file_name, const SceneFiles& files) {
+  Issues issues, warnings;
   const auto finish = [&](std::optional<Scene> scene) {
     LoadResult r;
     const bool truncated = issues.full();
     r.errors = to_diagnostics(text, std::move(issues.list()), truncated, file_name);
+    r.warnings = to_diagnostics(text, std::move(warnings.list()), false, file_name);
     if (r.errors.empty()) r.scene = std::move(scene);
     return r;
   };
@@ -1272,20 +1516,18 @@ LoadResult load_text(const std::string& text, const std::string& file_name) {
     return finish(std::nullopt);
   }
   const PosIndex index(parsed_text);
-  Validator validator(text, index, root, pre.overflows, issues);
+  Validator validator(text, index, root, pre.overflows, issues, files, warnings);
   Scene scene = validator.run();
   return finish(std::move(scene));
 }
 
-std::string os_reason(int err) { return std::generic_category().message(err); }
-
 }  // namespace
 
-LoadResult load_scene_text(const std::string& text, const std::string& file_name,
-                           const std::string& base_dir) {
-  static_cast<void>(base_dir);  // only mesh objects need it, and they are not supported yet
+namespace {
+
+LoadResult load_scene_text_from(const std::string& text, const std::string& file_name, const SceneFiles& files) {
   try {
-    return load_text(text, file_name);
+    return load_text(text, file_name, files);
   } catch (const std::bad_alloc&) {
     return fail(file_name, "out of memory while loading the scene");
   } catch (const std::exception& e) {
@@ -1293,38 +1535,78 @@ LoadResult load_scene_text(const std::string& text, const std::string& file_name
   }
 }
 
+// An OBJ opened on its own: its MTL materials, a camera that frames it from the front (+z)
+// and above, a white point light above the camera, a dim ambient term.
+LoadResult load_obj_scene(const std::string& path) {
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  const SceneFiles files{dir.empty() ? "." : dir, false};
+  const std::string name = std::filesystem::path(path).filename().string();
+  MeshLoad loaded = load_mesh(files, name, MeshTransform{}, NsMapping::kAsIs, -1, 0);
+  LoadResult r;
+  const auto diagnostic = [&](std::string message) {
+    Diagnostic d;
+    d.file = path;
+    d.message = std::move(message);
+    return d;
+  };
+  for (std::string& w : loaded.warnings) r.warnings.push_back(diagnostic(std::move(w)));
+  for (std::string& e : loaded.errors) r.errors.push_back(diagnostic(std::move(e)));
+  if (!r.errors.empty()) return r;
+  Scene scene;
+  scene.ambient = Color(0.2);
+  scene.materials = std::move(loaded.materials);
+  Mesh mesh;
+  mesh.file = name;
+  mesh.geometry = std::move(loaded.geometry);
+  const Aabb box = mesh.geometry->bounds;
+  scene.meshes.push_back(std::move(mesh));
+  scene.mesh_object.push_back(0);
+  const Vec3 centre = box.centroid();
+  const double radius = std::max(0.5 * glm::length(box.hi - box.lo), 1e-12);
+  Camera& cam = scene.camera;
+  cam.look_at = centre;
+  // The bounding sphere fits the vertical field of view with a 10 % margin, seen slightly
+  // from above (1 in 4).
+  const double distance = 1.1 * radius / std::sin(glm::radians(cam.fov_y_deg) / 2);
+  cam.position = centre + distance * glm::normalize(Vec3(0, 0.25, 1));
+  Light light;
+  light.position = cam.position + Vec3(0, radius, 0);
+  scene.lights.push_back(light);
+  r.scene = std::move(scene);
+  return r;
+}
+
+bool has_obj_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = to_lower(c);
+  return ext == ".obj";
+}
+
+}  // namespace
+
+LoadResult load_scene_text(const std::string& text, const std::string& file_name,
+                           const std::string& base_dir) {
+  return load_scene_text_from(text, file_name, SceneFiles{base_dir, false});
+}
+
 LoadResult load_scene_file(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return fail(path, "cannot read file: " + os_reason(errno));
-  std::string text;
-  std::array<char, 1 << 16> buffer;
-  bool too_large = false;
-  int read_error = 0;
-  for (;;) {
-    const std::size_t got = std::fread(buffer.data(), 1, buffer.size(), f);
-    text.append(buffer.data(), got);
-    if (text.size() > kMaxFileBytes) {
-      too_large = true;
-      break;
-    }
-    if (got < buffer.size()) {
-      if (std::ferror(f)) read_error = errno != 0 ? errno : EIO;
-      break;
+  if (has_obj_extension(path)) {
+    try {
+      return load_obj_scene(path);
+    } catch (const std::bad_alloc&) {
+      return fail(path, "out of memory while loading the mesh");
     }
   }
-  std::fclose(f);
-  if (read_error != 0) return fail(path, "cannot read file: " + os_reason(read_error));
-  if (too_large) {
-    return fail(path,
-                "cannot read file: larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
-  }
+  std::string error;
+  const std::optional<std::string> text = read_text_file(path, kMaxFileBytes, error);
+  if (!text) return fail(path, error);
   std::string dir = std::filesystem::path(path).parent_path().string();
-  return load_scene_text(text, path, dir.empty() ? "." : dir);
+  return load_scene_text(*text, path, dir.empty() ? "." : dir);
 }
 
 LoadResult load_scene_arg(const std::string& scene_arg) {
   if (const EmbeddedScene* s = find_embedded_scene(scene_arg)) {
-    return load_scene_text(std::string(s->json), std::string(s->name), ".");
+    return load_scene_text_from(std::string(s->json), std::string(s->name), SceneFiles{"", true});
   }
   LoadResult result = load_scene_file(scene_arg);
   // A bare word that is neither a file nor an embedded scene was most likely meant as a name.
@@ -1401,6 +1683,17 @@ std::string scene_to_json(const Scene& scene) {
     line += ", \"material\": " + material_name(t.material) + "}";
     lines.push_back({order_of(scene.triangle_object, i), std::move(line)});
   }
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const Mesh& m = scene.meshes[i];
+    const MeshTransform& tr = m.transform;
+    std::string line = "{\"type\": \"mesh\", \"file\": " + json_string(m.file);
+    if (!m.material_override.empty()) line += ", \"material\": " + json_string(m.material_override);
+    line += ", \"transform\": {\"scale\": " + vec_text(tr.scale) + ", \"rotate_deg\": " + vec_text(tr.rotate_deg) +
+            ", \"translate\": " + vec_text(tr.translate) + "}";
+    if (m.ns == NsMapping::kBlinnToPhong) line += ", \"ns\": \"blinn_to_phong\"";
+    line += "}";
+    lines.push_back({order_of(scene.mesh_object, i), std::move(line)});
+  }
   std::stable_sort(lines.begin(), lines.end(),
                    [](const ObjectLine& a, const ObjectLine& b) { return a.order < b.order; });
 
@@ -1438,9 +1731,12 @@ std::string scene_to_json(const Scene& scene) {
   out += scene.lights.empty() ? "],\n" : "\n  ],\n";
 
   out += "  \"materials\": {";
+  bool first_material = true;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
-    out += i == 0 ? "\n    " : ",\n    ";
+    if (!m.source.empty()) continue;  // an MTL's: the mesh brings it back
+    out += first_material ? "\n    " : ",\n    ";
+    first_material = false;
     out += json_string(m.name) + ": {\n";
     out += "      \"ka\": " + vec_text(m.ka) + ",\n";
     out += "      \"kd\": " + vec_text(m.kd) + ",\n";
@@ -1452,7 +1748,7 @@ std::string scene_to_json(const Scene& scene) {
     out += "      \"fresnel\": " + bool_text(m.fresnel) + "\n";
     out += "    }";
   }
-  out += scene.materials.empty() ? "},\n" : "\n  },\n";
+  out += first_material ? "},\n" : "\n  },\n";
 
   out += "  \"objects\": [";
   for (std::size_t i = 0; i < lines.size(); ++i) {

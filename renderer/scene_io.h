@@ -23,6 +23,7 @@ struct Diagnostic {
 struct LoadResult {
   std::optional<Scene> scene;            // set when there are no errors
   std::vector<Diagnostic> errors;        // empty on success
+  std::vector<Diagnostic> warnings;      // what was tolerated (mesh files' quirks, emitter hints)
   bool ok() const { return scene.has_value(); }
   std::string error_text() const;        // all errors, one per line
 };
@@ -31,7 +32,8 @@ struct LoadResult {
 LoadResult load_scene_text(const std::string& text, const std::string& file_name,
                            const std::string& base_dir = ".");
 
-// Reads and parses a scene file; an unreadable file is an error, not an exception.
+// Reads and parses a scene file; an unreadable file is an error, not an exception. A path
+// ending in .obj opens that mesh alone, with a camera framing it and a light.
 LoadResult load_scene_file(const std::string& path);
 
 // Resolves SCENE as the CLI takes it: an embedded scene's name, else a file path.

@@ -12,7 +12,7 @@ namespace {
 Scene load(std::string_view name) {
   const EmbeddedScene* e = find_embedded_scene(name);
   EXPECT_NE(e, nullptr) << name;
-  LoadResult r = load_scene_text(std::string(e->json), std::string(name));
+  LoadResult r = load_scene_arg(std::string(name));  // with the mesh files compiled in beside it
   EXPECT_TRUE(r.ok()) << r.error_text();
   Scene s = r.ok() ? *r.scene : Scene{};
   prepare_scene(s);

@@ -574,12 +574,16 @@ TEST(SceneLoader, BrokenMaterialsSectionDoesNotCascadeIntoObjects) {
             "scene.json:1:27: materials.m.n: must be >= 0 (got -2)");
 }
 
-TEST(SceneLoader, MeshObjectsAreNotSupportedYet) {
+TEST(SceneLoader, MeshErrorsComeWithTheObjectsPositionAndTheMeshFilesLine) {
   EXPECT_EQ(errors(R"({"materials": {"m": {}}, "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}, )"
-                   R"({}, {}, {"type": "mesh", "file": "cornell/CornellBox-Sphere.obj"}]})"),
+                   R"({}, {}, {"type": "mesh", "file": "no/such/mesh.obj"}]})"),
             "scene.json:1:109: objects[1]: missing key \"type\"\n"
             "scene.json:1:113: objects[2]: missing key \"type\"\n"
-            "scene.json:1:126: objects[3]: mesh objects are not supported yet (a later version loads OBJ files)");
+            "scene.json:1:142: objects[3].file: cannot load mesh 'no/such/mesh.obj': cannot read file: No such file or directory");
+  EXPECT_EQ(errors(R"({"objects": [{"type": "mesh", "file": "a.obj", "transform": {"scale": 0, "rotat_deg": [0, 0, 0]}, "ns": "phong"}]})"),
+            "scene.json:1:71: objects[0].transform.scale: must not be zero (got 0)\n"
+            "scene.json:1:74: objects[0].transform.rotat_deg: unknown key (did you mean \"rotate_deg\"?)\n"
+            "scene.json:1:105: objects[0].ns: unknown Ns mapping \"phong\" (expected one of: as_is, blinn_to_phong)");
 }
 
 // ----- Missing keys ----------------------------------------------------------------------------

@@ -1,0 +1,321 @@
+#include "renderer/obj_io.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <string_view>
+
+#include <tiny_obj_loader.h>  // double precision: the target defines TINYOBJLOADER_USE_DOUBLE
+
+namespace phonglab {
+
+std::string ObjProblem::to_string() const {
+  std::string s = file;
+  if (line > 0) {
+    s += ':';
+    s += std::to_string(line);
+  }
+  s += ": ";
+  s += message;
+  return s;
+}
+
+Material default_mesh_material() {
+  Material m;
+  m.name = "default";
+  m.ka = Color(0.1);
+  m.kd = Color(0.7);
+  m.ks = Color(0.2);
+  m.n = 32;
+  return m;
+}
+
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+// What tinyobjloader does not check: the line of every face (so index errors can name it) and
+// vertex coordinates that are not finite numbers (it would read "nan" as 0).
+struct Prescan {
+  std::vector<int> face_lines;  // line of each face with 3 or more vertices, in file order
+  std::vector<ObjProblem> errors;
+};
+
+Prescan prescan(std::string_view text, const std::string& name) {
+  Prescan out;
+  int line = 0;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    ++line;
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view l = text.substr(pos, end - pos);
+    pos = end + 1;
+    std::size_t i = 0;
+    while (i < l.size() && is_blank(l[i])) ++i;
+    if (i + 1 >= l.size() || !is_blank(l[i + 1])) continue;
+    if (l[i] == 'f') {
+      int vertices = 0;
+      for (std::size_t j = i + 1; j < l.size();) {
+        while (j < l.size() && is_blank(l[j])) ++j;
+        if (j >= l.size() || l[j] == '#') break;
+        ++vertices;
+        while (j < l.size() && !is_blank(l[j])) ++j;
+      }
+      if (vertices >= 3) out.face_lines.push_back(line);
+    } else if (l[i] == 'v') {
+      // Three coordinates; strtod needs a terminated string.
+      const std::string rest(l.substr(i + 1));
+      const char* p = rest.c_str();
+      for (int k = 0; k < 3; ++k) {
+        char* after = nullptr;
+        const double x = std::strtod(p, &after);
+        if (after == p || !std::isfinite(x)) {
+          std::string token;
+          const char* q = p;
+          while (*q == ' ' || *q == '\t') ++q;
+          while (*q != '\0' && *q != ' ' && *q != '\t' && *q != '\r') token += *q++;
+          out.errors.push_back({name, line,
+                                "vertex coordinate " + std::to_string(k + 1) +
+                                    " must be a finite number (got " + (token.empty() ? "nothing" : "'" + token + "'") +
+                                    ")"});
+          break;
+        }
+        p = after;
+      }
+    }
+  }
+  return out;
+}
+
+// tinyobjloader's messages end in "(line N.)" or "line: N"; split them into our problems.
+void add_messages(const std::string& text, const std::string& file, std::vector<ObjProblem>& to) {
+  std::istringstream in(text);
+  std::string msg;
+  while (std::getline(in, msg)) {
+    while (!msg.empty() && (msg.back() == '\r' || msg.back() == ' ')) msg.pop_back();
+    if (msg.empty() || msg == ".") continue;
+    to.push_back({file, 0, msg});
+  }
+}
+
+// Reads the MTL files an OBJ names through the caller's FileReader, and remembers which
+// could not be read (a warning each, then the default material).
+class MtlReader final : public tinyobj::MaterialReader {
+ public:
+  MtlReader(const FileReader& read, std::vector<ObjProblem>& warnings, const std::string& obj_name)
+      : read_(read), warnings_(warnings), obj_name_(obj_name) {}
+
+  bool operator()(const std::string& mat_id, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* mat_map, std::string* warn, std::string* err) override {
+    std::string error;
+    const std::optional<std::string> text = read_ ? read_(mat_id, error) : std::nullopt;
+    if (!text) {
+      warnings_.push_back({obj_name_, 0, "cannot read material library '" + mat_id + "'" +
+                                             (error.empty() ? "" : ": " + error) +
+                                             "; its faces get the default material"});
+      return false;
+    }
+    std::istringstream stream(*text);
+    std::string mtl_warn;
+    tinyobj::LoadMtl(mat_map, materials, &stream, &mtl_warn, err);
+    add_messages(mtl_warn, mat_id, warnings_);
+    if (warn) warn->clear();
+    return true;
+  }
+
+ private:
+  const FileReader& read_;
+  std::vector<ObjProblem>& warnings_;
+  const std::string& obj_name_;
+};
+
+// A coefficient from the MTL: finite and >= 0, else 0 with a warning.
+double coefficient(double x, const std::string& what, const std::string& material, std::vector<ObjProblem>& warnings) {
+  if (std::isfinite(x) && x >= 0) return x;
+  warnings.push_back({"", 0, "material '" + material + "': " + what + " must be finite and >= 0; using 0"});
+  return 0;
+}
+
+Color mtl_color(const double c[3], const std::string& what, const std::string& material,
+                std::vector<ObjProblem>& warnings) {
+  return Color(coefficient(c[0], what, material, warnings), coefficient(c[1], what, material, warnings),
+               coefficient(c[2], what, material, warnings));
+}
+
+// The MTL mapping (docs/scene-format.md has it as a table).
+Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<ObjProblem>& warnings) {
+  Material out;
+  out.name = m.name;
+  out.ka = mtl_color(m.ambient, "Ka", m.name, warnings);
+  out.kd = mtl_color(m.diffuse, "Kd", m.name, warnings);
+  out.ks = mtl_color(m.specular, "Ks", m.name, warnings);
+  const double shininess = coefficient(m.shininess, "Ns", m.name, warnings);
+  out.n = ns == NsMapping::kBlinnToPhong ? shininess / 4 : shininess;
+  out.ior = std::isfinite(m.ior) && m.ior > 0 ? m.ior : 1.5;
+  const int illum = m.illum;
+  // illum 3..7 trace a mirror ray weighted by Ks; 4, 6 and 7 also refract; 5 and 7 weight
+  // both by Fresnel.
+  const bool reflective = illum >= 3 && illum <= 7;
+  const bool refractive = illum == 4 || illum == 6 || illum == 7;
+  if (reflective) out.kr = out.ks;
+  const Color tf = mtl_color(m.transmittance, "Tf", m.name, warnings);
+  const double dissolve = std::isfinite(m.dissolve) ? std::clamp(m.dissolve, 0.0, 1.0) : 1.0;
+  const Color filter = is_zero(tf) ? Color(1) : tf;
+  if (dissolve < 1) {
+    out.kt = (1 - dissolve) * filter;  // d (or 1 - Tr) below 1: see-through
+  } else if (refractive) {
+    out.kt = tf;  // glass illum with an opaque d: Tf alone says how much passes
+  }
+  out.fresnel = illum == 5 || illum == 7;
+  return out;
+}
+
+// Rounds an index-bound check into one message.
+std::string index_error(const char* what, int index, std::size_t count) {
+  return std::string(what) + " index " + std::to_string(index + 1) + " is out of range (the file has " +
+         std::to_string(count) + " before this face)";
+}
+
+}  // namespace
+
+ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
+                 NsMapping ns) {
+  ObjMesh out;
+  Prescan pre = prescan(obj_text, obj_name);
+  if (!pre.errors.empty()) {
+    out.errors = std::move(pre.errors);
+    return out;
+  }
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> mtl;
+  std::string warn, err;
+  std::istringstream stream(obj_text);
+  MtlReader reader(read_mtl, out.warnings, obj_name);
+  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtl, &warn, &err, &stream, &reader,
+                                   /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (!ok) {
+    add_messages(err.empty() ? "cannot parse the file" : err, obj_name, out.errors);
+    return out;
+  }
+  for (ObjProblem& w : out.warnings) {
+    if (w.file.empty()) w.file = obj_name;
+  }
+
+  std::vector<ObjProblem> mapping_warnings;
+  for (const tinyobj::material_t& m : mtl) out.materials.push_back(map_material(m, ns, mapping_warnings));
+  for (ObjProblem& w : mapping_warnings) w.file = obj_name;
+  out.warnings.insert(out.warnings.end(), mapping_warnings.begin(), mapping_warnings.end());
+  int default_material = -1;
+
+  const std::size_t vertex_count = attrib.vertices.size() / 3;
+  const std::size_t normal_count = attrib.normals.size() / 3;
+  const auto vertex = [&](std::size_t i) {
+    return Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+  };
+  const auto normal = [&](std::size_t i) {
+    return Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+  };
+  std::size_t total_faces = 0;
+  for (const tinyobj::shape_t& s : shapes) total_faces += s.mesh.num_face_vertices.size();
+  // Our count of face lines matches tinyobjloader's faces unless the file uses a syntax we
+  // do not scan (line continuations): then errors name the face number instead of a line.
+  const bool lines_known = total_faces == pre.face_lines.size();
+  std::vector<double> emitter_area(out.materials.size(), 0.0);
+  std::vector<Vec3> emitter_sum(out.materials.size(), Vec3(0));
+  std::vector<int> emitter_faces(out.materials.size(), 0);
+
+  int face = 0;
+  for (const tinyobj::shape_t& s : shapes) {
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < s.mesh.num_face_vertices.size(); ++f, ++face) {
+      const std::size_t n = s.mesh.num_face_vertices[f];
+      const int line = lines_known ? pre.face_lines[static_cast<std::size_t>(face)] : 0;
+      const auto fail = [&](const std::string& message) {
+        out.errors.push_back({obj_name, line, lines_known ? message : "face " + std::to_string(face + 1) + ": " + message});
+      };
+      bool face_ok = true;
+      bool smooth = true;
+      for (std::size_t k = 0; k < n; ++k) {
+        const tinyobj::index_t idx = s.mesh.indices[offset + k];
+        if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= vertex_count) {
+          fail(index_error("vertex", idx.vertex_index, vertex_count));
+          face_ok = false;
+          break;
+        }
+        if (idx.normal_index >= 0 && static_cast<std::size_t>(idx.normal_index) >= normal_count) {
+          fail(index_error("normal", idx.normal_index, normal_count));
+          face_ok = false;
+          break;
+        }
+        if (idx.normal_index < 0) smooth = false;
+      }
+      if (out.errors.size() >= 20) return out;  // enough to go on
+      if (!face_ok) {
+        offset += n;
+        continue;
+      }
+      int material = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
+      if (material < 0 || static_cast<std::size_t>(material) >= out.materials.size()) {
+        if (default_material < 0) {
+          default_material = static_cast<int>(out.materials.size());
+          out.materials.push_back(default_mesh_material());
+          emitter_area.push_back(0);
+          emitter_sum.emplace_back(0);
+          emitter_faces.push_back(0);
+        }
+        material = default_material;
+      }
+      // A fan from the first vertex: exact for the convex quads and polygons real files hold.
+      const tinyobj::index_t i0 = s.mesh.indices[offset];
+      for (std::size_t k = 1; k + 1 < n; ++k) {
+        const tinyobj::index_t i1 = s.mesh.indices[offset + k];
+        const tinyobj::index_t i2 = s.mesh.indices[offset + k + 1];
+        Triangle tri;
+        tri.v0 = vertex(static_cast<std::size_t>(i0.vertex_index));
+        tri.v1 = vertex(static_cast<std::size_t>(i1.vertex_index));
+        tri.v2 = vertex(static_cast<std::size_t>(i2.vertex_index));
+        tri.material = material;
+        const Vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+        const double area2 = glm::length(cross);
+        if (!(area2 > 0) || !std::isfinite(area2)) {
+          ++out.skipped_degenerate;
+          continue;
+        }
+        if (smooth) {
+          tri.has_vertex_normals = true;
+          tri.n0 = normal(static_cast<std::size_t>(i0.normal_index));
+          tri.n1 = normal(static_cast<std::size_t>(i1.normal_index));
+          tri.n2 = normal(static_cast<std::size_t>(i2.normal_index));
+        }
+        const auto m = static_cast<std::size_t>(material);
+        emitter_area[m] += area2;
+        emitter_sum[m] += area2 * (tri.v0 + tri.v1 + tri.v2) / 3.0;
+        out.triangles.push_back(tri);
+        out.source_face.push_back(face);
+      }
+      const auto m = static_cast<std::size_t>(material);
+      ++emitter_faces[m];
+      offset += n;
+    }
+  }
+  if (out.skipped_degenerate > 0) {
+    out.warnings.push_back({obj_name, 0, std::to_string(out.skipped_degenerate) +
+                                             " zero-area triangles left out"});
+  }
+  for (std::size_t i = 0; i < mtl.size(); ++i) {
+    const Color ke(mtl[i].emission[0], mtl[i].emission[1], mtl[i].emission[2]);
+    if (!(max_channel(ke) > 0) || !(emitter_area[i] > 0)) continue;
+    Emitter e;
+    e.material = mtl[i].name;
+    e.ke = ke;
+    e.centroid = emitter_sum[i] / emitter_area[i];
+    e.faces = emitter_faces[i];
+    out.emitters.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace phonglab
