@@ -139,9 +139,12 @@ std::vector<ScreenSegment> project_ray_tree(const CameraFrame& frame, const std:
     screen.escapes = s.escapes;
     screen.from = (*ends)[0];
     screen.to = (*ends)[1];
-    const auto end = project_point(frame, s.to);
+    // The real end is on screen when it lies in front of the near plane and inside the image
+    // (the clip then kept it); take its projection exactly rather than the clip's re-computation.
     const double z_end = glm::dot(s.to - frame.origin, frame.forward);
-    screen.to_visible = !s.escapes && z_end >= near && end && end->x == screen.to.x && end->y == screen.to.y;
+    const auto end = z_end >= near ? project_point(frame, s.to) : std::nullopt;
+    screen.to_visible = !s.escapes && end && end->x >= 0 && end->x <= frame.width && end->y >= 0 && end->y <= frame.height;
+    if (screen.to_visible) screen.to = *end;
     out.push_back(screen);
   }
   return out;

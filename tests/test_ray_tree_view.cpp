@@ -168,6 +168,19 @@ TEST(RayTreeProjection, EveryProjectedSegmentLiesInsideTheImage) {
   }
 }
 
+TEST(RayTreeProjection, EndsInsideTheImageAreMarkedVisibleAndExact) {
+  const Scene scene = load_prepared("lecture");
+  const CameraFrame frame = make_camera_frame(scene.camera, kWidth, kHeight);
+  const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, kWidth / 2, kHeight / 2);
+  ASSERT_TRUE(probe.root.hit);
+  const auto screen = project_ray_tree(frame, ray_tree_segments(scene, probe.root), ray_tree_near(scene, probe.root));
+  ASSERT_FALSE(screen.empty());
+  ASSERT_EQ(screen[0].kind, TreeSegmentKind::kPrimary);
+  EXPECT_TRUE(screen[0].to_visible) << "the primary hit is on screen";
+  EXPECT_NEAR(screen[0].to.x, kWidth / 2 + 0.5, 1e-6);
+  EXPECT_NEAR(screen[0].to.y, kHeight / 2 + 0.5, 1e-6);
+}
+
 TEST(RayTreeSegments, KindsAndCountsMatchTheProbedTreeInEveryEmbeddedScene) {
   for (const EmbeddedScene& e : embedded_scenes()) {
     const Scene scene = load_prepared(e.name);
