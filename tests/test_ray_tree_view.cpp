@@ -228,22 +228,22 @@ TEST(RayTreeSegments, OptionsLeaveOutShadowsSecondaryRaysAndArrows) {
 }
 
 // A sphere between a floor point and a point light, a second light beside it that sees the
-// point, and a directional light from the side.
-Scene shadow_scene() {
+// point, and a directional light from the side; every position times `scale`.
+Scene shadow_scene(double scale = 1) {
   Scene scene;
-  scene.camera = Camera{{0, 3, 8}, {0, 0, 0}, {0, 1, 0}, 40};
+  scene.camera = Camera{Vec3(0, 3, 8) * scale, {0, 0, 0}, {0, 1, 0}, 40};
   Material floor;
   floor.kd = Color(0.5);
   floor.ks = Color(0.25);
   scene.materials.push_back(floor);
   scene.planes.push_back(Plane{Vec3(0), Vec3(0, 1, 0), 0});
   scene.plane_object.push_back(0);
-  scene.spheres.push_back(Sphere{Vec3(0, 2, 0), 0.5, 0});
+  scene.spheres.push_back(Sphere{Vec3(0, 2, 0) * scale, 0.5 * scale, 0});
   scene.sphere_object.push_back(1);
   Light above;
-  above.position = Vec3(0, 4, 0);
+  above.position = Vec3(0, 4, 0) * scale;
   Light beside;
-  beside.position = Vec3(4, 4, 0);
+  beside.position = Vec3(4, 4, 0) * scale;
   Light sun;
   sun.type = LightType::kDirectional;
   sun.direction = Vec3(0, -1, -1);
@@ -286,12 +286,7 @@ TEST(RayTreeSegments, ShadowRaysEndAtTheLightOrAtTheOccluder) {
 
 TEST(RayTreeSegments, ArrowsAreUnitVectorsScaledByTheHitDistance) {
   for (const double scale : {1e-4, 1.0, 1e5}) {
-    Scene scene = shadow_scene();
-    scene.camera.position *= scale;
-    scene.planes[0].point *= scale;
-    scene.spheres[0].center *= scale;
-    scene.spheres[0].radius *= scale;
-    for (Light& l : scene.lights) l.position *= scale;
+    const Scene scene = shadow_scene(scale);
     const PixelProbe probe = probe_pixel(scene, 64, 36, 20, 30);
     ASSERT_TRUE(probe.root.hit) << scale;
     for (const TreeSegment& s : ray_tree_segments(scene, probe.root)) {
