@@ -15,6 +15,7 @@
 #include "renderer/accel.h"
 #include "renderer/embedded_scenes.h"
 #include "renderer/figure.h"
+#include "renderer/heat_map.h"
 #include "renderer/image_io.h"
 #include "renderer/probe_report.h"
 #include "renderer/render.h"
@@ -36,7 +37,8 @@ commands:
          [--max-depth D] [--threads N] [--stats FILE.json]
       Render to OUT (.pfm: linear float32, unclamped; .png: 8-bit sRGB).
       T: full (default), ambient, diffuse, specular, reflection, refraction,
-         or the debug views normal, depth, rays.
+         or the debug views normal, depth, rays. A .png of rays is a heat map
+         (0 black .. the image's maximum pale yellow; the maximum is printed).
   probe [SCENE] --pixel X,Y [--json] [--width W] [--height H]
       The illumination equation of that pixel's centre ray, term by term.
   figure [SCENE] -o OUT.png [--width W] [--height H] [--spp N] [--threads N]
@@ -177,7 +179,14 @@ int cmd_render(Args& args) {
   }
   const double render_ms = ms_since(t_render);
 
-  const Image image = mean_image(accum);
+  Image image = mean_image(accum);
+  if (options.term == Term::kRays && ext == ".png") {
+    // Rays per pixel as grey would be white almost everywhere: a PNG shows them as a heat map.
+    // The PFM keeps the counts.
+    const double max = heat_max(image.pixels);
+    image.pixels = heat_map_pixels(image.pixels, max);
+    std::printf("heat map: 0 (black) .. %g (pale yellow) rays per pixel\n", max);
+  }
   if (std::string err = write_image(*out, image); !err.empty()) {
     std::cerr << *out << ": " << err << "\n";
     return kExitBadInput;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -13,8 +14,10 @@
 #include "renderer/camera.h"
 #include "renderer/figure.h"
 #include "renderer/geometry.h"
+#include "renderer/heat_map.h"
 #include "renderer/image_io.h"
 #include "renderer/probe_report.h"
+#include "renderer/ray_tree_view.h"
 #include "renderer/shading.h"
 #include "ui/camera_control.h"
 
@@ -469,6 +472,20 @@ void Viewer::draw_sidebar() {
         upload_pending_ = upload_pending_ || !shown_.pixels.empty();
       }
     }
+    if (ImGui::CollapsingHeader("Rays: tree, depth cut, heat map", ImGuiTreeNodeFlags_DefaultOpen)) {
+      rays_.heat_map = render_settings_.term == Term::kRays;
+      const ui::RayTreeSettings before = rays_;
+      ui::RayTreeSummary summary;
+      summary.probe = probe_ ? &*probe_ : nullptr;
+      summary.scene_max_depth = scene.max_depth;
+      summary.heat_max = heat_max_;
+      if (ui::rays_panel(rays_, summary)) {
+        if (before.depth_cut != rays_.depth_cut || (rays_.depth_cut && before.cut_depth != rays_.cut_depth)) {
+          view_changed_ = true;
+        }
+        if (before.heat_map != rays_.heat_map) set_heat_map(rays_.heat_map);
+      }
+    }
     if (probe_ && ImGui::CollapsingHeader("Probe", ImGuiTreeNodeFlags_DefaultOpen)) {
       ui::ProbeView view;
       view.scene = snapshot_.get();
@@ -573,6 +590,32 @@ void Viewer::draw_overlays() {
       draw->AddLine(ImVec2(x, y + r), ImVec2(x, y + 2.2f * r), IM_COL32(255, 230, 0, 255), 1.5f * scale);
     }
   }
+  // The depth cut is a way of looking: say so on the image, at the top centre.
+  if (snapshot_ && rays_.depth_cut) {
+    char caption[96];
+    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", snapshot_->max_depth,
+                  doc_.scene().max_depth);
+    const ImVec2 size = ImGui::CalcTextSize(caption);
+    const ImVec2 at(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + 8 * scale);
+    draw->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
+                        IM_COL32(0, 0, 0, 170), 4 * scale);
+    draw->AddText(at, IM_COL32(255, 255, 255, 240), caption);
+  }
+  // The ray tree over the full image: the only cell, or the last of the small multiples.
+  tree_segments_.clear();
+  const int full_cell = columns * rows - 1;
+  draw_ray_tree_overlay(viewport_.x + static_cast<float>(full_cell % columns) * cell_w,
+                        viewport_.y + static_cast<float>(full_cell / columns) * cell_h, cell_w, cell_h);
+  if (heat_shown() && heat_max_ > 0) {
+    ImGui::SetNextWindowPos(ImVec2(viewport_.x + viewport_.width - 8 * scale, viewport_.y + viewport_.height - 8 * scale),
+                            ImGuiCond_Always, ImVec2(1, 1));
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    if (ImGui::Begin("##heat_legend", nullptr, flags)) ui::heat_legend(heat_max_, 220 * scale);
+    ImGui::End();
+  }
   if (instruments_.compare == 1 && !image_a_.pixels.empty()) {
     const float x = viewport_.x + instruments_.wipe * cell_w + static_cast<float>(columns - 1) * cell_w;
     const float y0 = viewport_.y + static_cast<float>(rows - 1) * cell_h;
@@ -634,6 +677,34 @@ void Viewer::draw_overlays() {
         ImVec2(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + (viewport_.height - size.y) / 2),
         IM_COL32(200, 200, 200, 255), text);
   }
+}
+
+void Viewer::draw_ray_tree_overlay(float cell_x, float cell_y, float cell_w, float cell_h) {
+  if (!probe_ || !rays_.overlay || !snapshot_ || render_width_ <= 0 || render_height_ <= 0) return;
+  RayTreeViewOptions options;
+  options.shadow_rays = rays_.shadow_rays;
+  options.secondary_rays = rays_.secondary_rays;
+  options.arrows = rays_.arrows;
+  // The probe was taken in snapshot_ at the render size: project with that camera and size.
+  const CameraFrame frame = make_camera_frame(snapshot_->camera, render_width_, render_height_);
+  tree_segments_ = project_ray_tree(frame, ray_tree_segments(*snapshot_, probe_->root, options),
+                                    ray_tree_near(*snapshot_, probe_->root));
+  int lit_lights = 0;
+  for (const ProbeLight& light : probe_->root.lights) lit_lights += light.lit_side ? 1 : 0;
+  const float scale = platform_.ui_scale();
+  const ui::ImageRect rect{ImVec2(cell_x, cell_y), ImVec2(cell_w / static_cast<float>(render_width_),
+                                                          cell_h / static_cast<float>(render_height_))};
+  const bool blinn = snapshot_->specular_model == SpecularModel::kBlinn;
+  ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), tree_segments_, rect, scale, blinn, lit_lights);
+  if (!rays_.legend) return;
+  ImGui::SetNextWindowPos(ImVec2(viewport_.x + viewport_.width - 8 * scale, viewport_.y + 8 * scale), ImGuiCond_Always,
+                          ImVec2(1, 0));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+  if (ImGui::Begin("##ray_tree_legend", nullptr, flags)) ui::ray_tree_legend(tree_segments_, blinn);
+  ImGui::End();
 }
 
 void Viewer::request(PendingAction action) {
@@ -731,8 +802,11 @@ void Viewer::save_png(const std::string& path) {
   image.width = shown_.width;
   image.height = shown_.height;
   image.pixels.reserve(shown_.pixels.size());
-  const float exposure = std::exp2(display_.exposure_ev);
-  for (const glm::vec3& p : shown_.pixels) {
+  // The heat map is written as shown: its colours, without exposure.
+  const bool heat = heat_shown();
+  const std::vector<glm::vec3> source = heat ? display_pixels() : shown_.pixels;
+  const float exposure = heat ? 1.0f : std::exp2(display_.exposure_ev);
+  for (const glm::vec3& p : source) {
     glm::vec3 v = glm::clamp(p * exposure, 0.0f, 1.0f);
     // Linear display shows the values themselves as 8-bit codes: pre-decode them so the
     // sRGB encoder of write_image gives those codes back.
@@ -852,7 +926,7 @@ void Viewer::apply_edits(double frame_start) {
     width = height = 0;  // nothing visible: the renderer idles
   }
   const bool resized = width != render_width_ || height != render_height_;
-  const bool edited = scene_edited_ || camera_changed_ || scene_replaced_ || !snapshot_;
+  const bool edited = scene_edited_ || camera_changed_ || scene_replaced_ || view_changed_ || !snapshot_;
   if (edited && !change_deferred_) deferred_since_ = frame_start;
   const bool scene_changed = edited || change_deferred_;
   // During a drag, a new snapshot waits until the renderer has shown the previous one:
@@ -866,6 +940,8 @@ void Viewer::apply_edits(double frame_start) {
   if ((scene_changed && !defer) || resized) {
     if (scene_changed) {
       auto snapshot = std::make_shared<Scene>(scene);
+      // The depth cut changes what is rendered, never the scene: history and file keep max_depth.
+      apply_depth_cut(*snapshot, ui::depth_cut_of(rays_));
       prepare_scene(*snapshot);
       snapshot_ = std::move(snapshot);
     }
@@ -883,7 +959,7 @@ void Viewer::apply_edits(double frame_start) {
   for (const auto& term_renderer : term_renderers_) {
     if (term_renderer) term_renderer->set_interacting(interacting_ || edited_while_active_);
   }
-  scene_edited_ = camera_changed_ = scene_replaced_ = settings_changed_ = false;
+  scene_edited_ = camera_changed_ = scene_replaced_ = settings_changed_ = view_changed_ = false;
   update_title();
 }
 
@@ -892,6 +968,7 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   if (upload_pending_) {
+    heat_max_ = heat_shown() ? heat_max(shown_.pixels) : 0;
     image_view_.upload(shown_.width, shown_.height, display_pixels());
     upload_pending_ = false;
     if (shown_.generation != drawn_generation_) first_image_generation_ = shown_.generation;
@@ -899,6 +976,8 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
     drawn_serial_ = shown_.stats.serial;
   }
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  // The heat map's colours are final: exposure does not apply to them.
+  const float exposure_ev = heat_shown() ? 0.0f : display_.exposure_ev;
   const int view_w = static_cast<int>(std::lround(viewport_.width * scale.x));
   const int view_h = static_cast<int>(std::lround(viewport_.height * scale.y));
   const int view_x = static_cast<int>(std::lround(viewport_.x * scale.x));
@@ -911,7 +990,7 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
       const int x = view_x + (cell % kMultiplesColumns) * cell_w;
       const int y = view_y + (kMultiplesRows - 1 - cell / kMultiplesColumns) * cell_h;
       if (cell == kTermCells) {
-        image_view_.draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, shown_.divisor > 1);
+        image_view_.draw(x, y, cell_w, cell_h, exposure_ev, display_.srgb, shown_.divisor > 1);
         continue;
       }
       const auto i = static_cast<std::size_t>(cell);
@@ -927,7 +1006,7 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   } else {
     // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
     const bool nearest = shown_.divisor > 1 || shown_.width == view_w;
-    image_view_.draw(view_x, view_y, view_w, view_h, display_.exposure_ev, display_.srgb, nearest);
+    image_view_.draw(view_x, view_y, view_w, view_h, exposure_ev, display_.srgb, nearest);
   }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -1071,7 +1150,26 @@ void Viewer::snapshot_a() {
   upload_pending_ = true;
 }
 
+bool Viewer::heat_shown() const { return render_settings_.term == Term::kRays && instruments_.compare == 0; }
+
+void Viewer::set_heat_map(bool on) {
+  if (on == (render_settings_.term == Term::kRays)) return;
+  if (on) term_before_heat_ = render_settings_.term;
+  render_settings_.term = on ? Term::kRays : (term_before_heat_ == Term::kRays ? Term::kFull : term_before_heat_);
+  rays_.heat_map = on;
+  settings_changed_ = true;
+}
+
 std::vector<glm::vec3> Viewer::display_pixels() const {
+  if (heat_shown()) {
+    // Rays per pixel on the ramp, 0 to the image's maximum. With the sRGB curve the shader
+    // encodes heat_color back to the ramp; raw display shows the ramp's codes themselves.
+    const double max = heat_max(shown_.pixels);
+    if (display_.srgb) return heat_map_pixels(shown_.pixels, max);
+    std::vector<glm::vec3> out(shown_.pixels.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(heat_ramp_srgb(max > 0 ? shown_.pixels[i].x / max : 0));
+    return out;
+  }
   const bool comparable = instruments_.compare != 0 && image_a_.width == shown_.width &&
                           image_a_.height == shown_.height && image_a_.pixels.size() == shown_.pixels.size();
   if (!comparable) return shown_.pixels;

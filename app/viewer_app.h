@@ -21,6 +21,7 @@
 #include "renderer/progressive.h"
 #include "ui/history.h"
 #include "ui/panels.h"
+#include "ui/ray_tree_overlay.h"
 
 namespace phonglab {
 
@@ -121,7 +122,10 @@ class Viewer {
   Vec3 head_pivot() const;                       // the point the head turns about: the probed hit or look-at
   void update_term_renderers(bool scene_changed);  // starts, feeds or stops the small multiples' renderers
   bool terms_idle() const;                       // every small-multiples renderer is idle and its image shown
-  std::vector<glm::vec3> display_pixels() const; // shown_, or its wipe / difference against A
+  std::vector<glm::vec3> display_pixels() const; // shown_, its heat map, or its wipe / difference against A
+  bool heat_shown() const;                       // the rays view is on screen as a heat map
+  void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
+  void draw_ray_tree_overlay(float cell_x, float cell_y, float cell_w, float cell_h);  // the probed tree over a cell
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
   std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
   void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
@@ -166,6 +170,7 @@ class Viewer {
   bool camera_changed_ = false;    // navigation: restart, not an unsaved change
   bool scene_replaced_ = false;    // opened or reloaded
   bool settings_changed_ = false;  // render settings panel
+  bool view_changed_ = false;      // the depth cut: a new snapshot of the same scene, not an edit
   bool frame_requested_ = false;   // F / "Frame"
   bool reset_requested_ = false;   // R / "Reset"
   bool edited_while_active_ = false;  // a slider drag is editing: render coarse while it lasts
@@ -212,6 +217,10 @@ class Viewer {
   std::string figure_path_ = "phonglab-figure.png";
   std::string figure_status_;
   std::optional<Vec3> shading_eye_;    // the head-moved eye the renderers and the probe use now
+  ui::RayTreeSettings rays_;           // ray tree overlay, depth cut, heat map
+  Term term_before_heat_ = Term::kFull;  // what the heat map switch goes back to
+  std::vector<ScreenSegment> tree_segments_;  // the overlay as drawn this frame (image coordinates)
+  double heat_max_ = 0;                // top of the heat map's scale in the image on screen
   static constexpr int kTermCells = 5;  // the small multiples besides the full image
   std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> term_renderers_;  // ambient .. refraction
   std::array<ProgressiveFrame, kTermCells> term_frames_;  // their newest images

@@ -333,7 +333,8 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     if (!script_set(w)) return fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
                                     "position|direction|intensity|enabled V.. | set camera position|look_at|up|fov V.. | "
                                     "set render target_spp|resolution_scale|threads|term V | set display exposure|srgb|stats V | "
-                                    "set instruments probe_mode|multiples|compare|wipe|gain|head|head_angle V");
+                                    "set instruments probe_mode|multiples|compare|wipe|gain|head|head_angle|ray_tree|tree_shadows|"
+                                    "tree_secondary|tree_arrows|tree_legend|depth_cut|heat V");
     return true;
   }
   if (name == "resize") {
@@ -526,6 +527,18 @@ bool Viewer::script_set(const std::vector<std::string>& w) {
     else if (w[2] == "gain" && v > 0) instruments_.difference_gain = static_cast<float>(v);
     else if (w[2] == "head") instruments_.move_head = v != 0;
     else if (w[2] == "head_angle" && v >= -90 && v <= 90) instruments_.head_angle_deg = static_cast<float>(v);
+    else if (w[2] == "ray_tree") rays_.overlay = v != 0;
+    else if (w[2] == "tree_shadows") rays_.shadow_rays = v != 0;
+    else if (w[2] == "tree_secondary") rays_.secondary_rays = v != 0;
+    else if (w[2] == "tree_arrows") rays_.arrows = v != 0;
+    else if (w[2] == "tree_legend") rays_.legend = v != 0;
+    else if (w[2] == "depth_cut" && v >= -1 && v <= 100) {
+      // -1 ends the cut; 0, 1, ... cut there (as the panel's box and slider).
+      rays_.depth_cut = v >= 0;
+      if (v >= 0) rays_.cut_depth = static_cast<int>(v);
+      view_changed_ = true;
+    }
+    else if (w[2] == "heat") set_heat_map(v != 0);
     else return false;
     upload_pending_ = upload_pending_ || !shown_.pixels.empty();
     return true;
@@ -596,11 +609,41 @@ void Viewer::write_state(const std::string& path) const {
       << "have_a=" << (image_a_.pixels.empty() ? 0 : 1) << "\n"
       << "head=" << (shading_eye_ ? 1 : 0) << "\n";
   if (shading_eye_) out << "head_eye=" << vec(*shading_eye_) << "\n";
+  // Rays: the overlay as drawn in the last frame, the depth cut and the heat map.
+  int tree_blocked = 0, tree_deepest = 0;
+  for (const ScreenSegment& segment : tree_segments_) {
+    tree_blocked += segment.kind == TreeSegmentKind::kShadowBlocked ? 1 : 0;
+    if (segment.kind == TreeSegmentKind::kReflection || segment.kind == TreeSegmentKind::kRefraction) {
+      tree_deepest = std::max(tree_deepest, segment.depth);
+    }
+  }
+  out << "term=" << term_name(render_settings_.term) << "\n"
+      << "ray_tree=" << (rays_.overlay ? 1 : 0) << "\n"
+      << "tree_segments=" << tree_segments_.size() << "\n"
+      << "tree_blocked=" << tree_blocked << "\n"
+      << "tree_deepest=" << tree_deepest << "\n"
+      << "depth_cut=" << (rays_.depth_cut ? rays_.cut_depth : -1) << "\n"
+      << "scene_max_depth=" << scene.max_depth << "\n"
+      << "render_max_depth=" << (snapshot_ ? snapshot_->max_depth : -1) << "\n"
+      << "heat=" << (heat_shown() ? 1 : 0) << "\n"
+      << "heat_max=" << heat_max_ << "\n";
   if (probe_) {
     const Color total = probe_->root.total;
     out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
         << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"
         << "probe_total=" << vec(total) << "\n";
+    // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).
+    int blocked = 0;
+    std::vector<const ProbeNode*> stack{&probe_->root};
+    while (!stack.empty()) {
+      const ProbeNode* node = stack.back();
+      stack.pop_back();
+      for (const ProbeLight& light : node->lights) blocked += light.lit_side && !light.visible ? 1 : 0;
+      if (node->reflection) stack.push_back(node->reflection.get());
+      if (node->refraction) stack.push_back(node->refraction.get());
+    }
+    out << "probe_blocked=" << blocked << "\n"
+        << "probe_rays=" << probe_->rays.total() << "\n";
     // The shown image's pixel there, when it is the full-resolution 1-spp image of this
     // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
     if (shown_.divisor == 1 && shown_.spp == 1 && shown_.width == render_width_ && shown_.height == render_height_) {

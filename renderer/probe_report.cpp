@@ -84,7 +84,10 @@ json node_json(const Scene& scene, const ProbeNode& node) {
     l["spec_factor"] = pl.spec_factor;
     l["shadow_ray"] = pl.lit_side;
     l["visible"] = pl.visible;
-    if (pl.lit_side && !pl.visible) l["occluder"] = object_name(scene, pl.occluder);
+    if (pl.lit_side && !pl.visible) {
+      l["occluder"] = object_name(scene, pl.occluder);
+      l["occluder_distance"] = pl.occluder_distance;
+    }
     l["diffuse"] = vec_json(pl.diffuse);
     l["specular"] = vec_json(pl.specular);
     lights.push_back(std::move(l));

@@ -26,21 +26,27 @@ double fresnel_exact(double cos_i, double eta) {
 
 namespace {
 
-// The nearest object strictly between the ends of a shadow ray (for the probe only).
-ObjectRef find_occluder(const Scene& scene, const Ray& ray, double t_max) {
-  if (auto hit = intersect(scene, ray, t_max)) return hit->object;
+// What blocks a shadow ray, for the probe only.
+struct Occluder {
+  ObjectRef object;     // nearest blocker, none when the light is visible
+  double distance = 0;  // from the shaded point P to the blocker's hit
+};
+
+// The nearest object strictly between the ends of a shadow ray from P (for the probe only).
+Occluder find_occluder(const Scene& scene, const Ray& ray, double t_max, const Vec3& p) {
+  if (auto hit = intersect(scene, ray, t_max)) return Occluder{hit->object, glm::length(hit->p - p)};
   return {};
 }
 
 // Shadow ray for one light from a surface point. Returns vis_l.
 bool light_visible(const Scene& scene, const Light& light, const Hit& hit, const Vec3& ng_facing,
-                   const Vec3& l, double offset, RayCounts& counts, ObjectRef* occluder) {
+                   const Vec3& l, double offset, RayCounts& counts, Occluder* occluder) {
   ++counts.shadow;
   const Vec3 origin = offset_origin(hit.p, ng_facing, l, offset);
   if (light.type == LightType::kDirectional) {
     const Ray ray = make_ray(origin, l);
     const double t_max = std::numeric_limits<double>::infinity();
-    if (occluder) *occluder = find_occluder(scene, ray, t_max);
+    if (occluder) *occluder = find_occluder(scene, ray, t_max, hit.p);
     return !occluded(scene, ray, t_max);
   }
   // The open segment to the light, pulled in at the light's end by the same relative amount
@@ -50,7 +56,7 @@ bool light_visible(const Scene& scene, const Light& light, const Hit& hit, const
   const double t_max = dist - surface_offset(light.position, 0);
   if (!(t_max > 0)) return true;  // the light is within rounding distance of the surface
   const Ray ray = make_ray(origin, to_light / dist);
-  if (occluder) *occluder = find_occluder(scene, ray, t_max);
+  if (occluder) *occluder = find_occluder(scene, ray, t_max, hit.p);
   return !occluded(scene, ray, t_max);
 }
 
@@ -139,13 +145,14 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
           pl->spec_factor = spec;
         }
       }
-      ObjectRef occluder;
+      Occluder occluder;
       const bool visible =
           light_visible(scene, light, hit, ng_facing, l, offset, counts, probe ? &occluder : nullptr);
       if (pl) {
         pl->lit_side = true;
         pl->visible = visible;
-        pl->occluder = occluder;
+        pl->occluder = occluder.object;
+        pl->occluder_distance = occluder.distance;
       }
       if (!visible) continue;
       const Color diffuse = light.intensity * m.kd * n_dot_l;

@@ -60,6 +60,7 @@ struct ProbeLight {
   bool lit_side = false;  // N.L > 0, so a shadow ray was cast
   bool visible = false;   // vis_l
   ObjectRef occluder;     // nearest blocker when not visible
+  double occluder_distance = 0;  // from P to where the shadow ray meets it (when not visible)
   Color diffuse{0};       // vis * I * kd * max(0, N.L)
   Color specular{0};      // vis * I * ks * spec
 };

@@ -1,6 +1,8 @@
 // phonglab-cli end to end: exit codes, image formats and orientation, stats, probe (SPEC §4).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <sys/wait.h>
@@ -186,6 +188,25 @@ TEST_F(CliTest, TermImagesMatchTermFlag) {
     EXPECT_EQ(run_cli(std::string("render lecture --width 16 --height 9 --term ") + term + " -o " + path("t.pfm")).exit_code, 0)
         << term;
   }
+}
+
+TEST_F(CliTest, RaysPngIsAHeatMapScaledToTheImageMaximumWhileThePfmKeepsTheCounts) {
+  const RunResult png = run_cli("render glass --width 32 --height 18 --term rays -o " + path("heat.png"));
+  ASSERT_EQ(png.exit_code, 0) << png.out;
+  EXPECT_TRUE(fs::file_size(path("heat.png")) > 0);
+  double printed_max = 0;
+  ASSERT_EQ(std::sscanf(png.out.c_str(), "heat map: 0 (black) .. %lf (pale yellow) rays per pixel", &printed_max), 1)
+      << png.out;
+  ASSERT_EQ(run_cli("render glass --width 32 --height 18 --term rays -o " + path("rays.pfm")).exit_code, 0);
+  const Image counts = phonglab::read_pfm(path("rays.pfm"));
+  ASSERT_EQ(counts.width, 32);
+  float max = 0;
+  for (const auto& p : counts.pixels) {
+    EXPECT_EQ(p.x, std::floor(p.x)) << "whole rays at 1 spp";
+    EXPECT_GE(p.x, 1.0f) << "at least the primary ray";
+    max = std::max(max, p.x);
+  }
+  EXPECT_EQ(printed_max, static_cast<double>(max));
 }
 
 TEST_F(CliTest, ScenesListsEveryEmbeddedScene) {

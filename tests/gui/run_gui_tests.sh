@@ -420,6 +420,112 @@ check_instruments() {
 }
 
 
+# --- Session 4: rays: the ray tree overlay, the depth cut, the heat map ----------------------
+session_rays() {
+  local dir=$OUT/rays
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+set display stats 0
+wait_idle 120
+# The red sphere's highlight, with the probe panel scrolled into view.
+probe 340 330
+wait_frames 3
+scroll 1080 400 -16
+wait_frames 5
+screenshot $dir/r00_probe_panel.png
+scroll 1080 400 4
+# The glass sphere: reflected and refracted rays to several depths, blocked shadow rays inside.
+probe 590 440
+wait_frames 3
+screenshot $dir/r01_tree_glass.png
+dump_state $dir/r01.txt
+# The floor in the red sphere's shadow.
+probe 260 480
+wait_frames 3
+screenshot $dir/r02_tree_shadow.png
+dump_state $dir/r02.txt
+set instruments ray_tree 0
+wait_frames 3
+screenshot $dir/r03_no_tree.png
+dump_state $dir/r03.txt
+set instruments ray_tree 1
+# The mirror sphere, then the image with recursion cut at depth 0, 1, 2.
+probe 770 330
+set instruments depth_cut 0
+wait_idle 120
+screenshot $dir/r04_cut0.png
+save_pfm $dir/cut0.pfm
+dump_state $dir/r04.txt
+set instruments depth_cut 1
+wait_idle 120
+screenshot $dir/r05_cut1.png
+save_pfm $dir/cut1.pfm
+dump_state $dir/r05.txt
+set instruments depth_cut 2
+wait_idle 120
+screenshot $dir/r06_cut2.png
+set instruments depth_cut -1
+wait_idle 120
+save_pfm $dir/cut_off.pfm
+dump_state $dir/r07.txt
+set instruments ray_tree 0
+set instruments heat 1
+wait_idle 120
+screenshot $dir/r08_heat.png
+save_png $dir/heat_shown.png
+save_pfm $dir/rays.pfm
+dump_state $dir/r08.txt
+set instruments heat 0
+wait_idle 120
+dump_state $dir/r09.txt
+quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_rays() {
+  local dir=$OUT/rays cli=$BUILD_DIR/bin/phonglab-cli size w h
+  echo "session 4: ray tree overlay, depth cut, heat map"
+  check "the script ran to the end (exit $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
+    test "$(cat "$dir/exit_code")" = 0
+  check "the glass sphere's tree is drawn ($(state "$dir/r01.txt" tree_segments) segments, deepest ray $(state "$dir/r01.txt" tree_deepest))" \
+    test "$(state "$dir/r01.txt" tree_segments)" -ge 10 -a "$(state "$dir/r01.txt" tree_deepest)" -ge 2
+  check "a shaded floor point: the overlay's blocked shadow rays are the probe's ($(state "$dir/r02.txt" tree_blocked))" \
+    test "$(state "$dir/r02.txt" tree_blocked)" = "$(state "$dir/r02.txt" probe_blocked)" -a "$(state "$dir/r02.txt" probe_blocked)" -ge 1
+  check "switching the overlay off draws nothing" test "$(state "$dir/r03.txt" tree_segments)" = 0
+  check "the overlay is visible on screen" greater "$(rmse "$dir/r02_tree_shadow.png" "$dir/r03_no_tree.png" $SCENE_REGION)" 0.005
+  check "the depth cut renders with max depth 0, the scene keeps 5 ($(state "$dir/r04.txt" render_max_depth) / $(state "$dir/r04.txt" scene_max_depth))" \
+    test "$(state "$dir/r04.txt" render_max_depth)" = 0 -a "$(state "$dir/r04.txt" scene_max_depth)" = 5
+  check "the depth cut is not an edit (no undo step, not unsaved)" \
+    test "$(state "$dir/r04.txt" undo)" = 0 -a "$(state "$dir/r04.txt" dirty)" = 0
+  check "the probed tree follows the cut (deepest ray $(state "$dir/r04.txt" tree_deepest), then $(state "$dir/r05.txt" tree_deepest))" \
+    test "$(state "$dir/r04.txt" tree_deepest)" = 0 -a "$(state "$dir/r05.txt" tree_deepest)" = 1
+  size=$(state "$dir/r04.txt" render)
+  w=${size%x*} h=${size#*x}
+  "$cli" render lecture --width "$w" --height "$h" --spp 1 --max-depth 0 -o "$dir/cli_cut0.pfm" >/dev/null
+  "$cli" render lecture --width "$w" --height "$h" --spp 1 --max-depth 1 -o "$dir/cli_cut1.pfm" >/dev/null
+  "$cli" render lecture --width "$w" --height "$h" --spp 1 -o "$dir/cli_full.pfm" >/dev/null
+  check "the image cut at depth 0 is phonglab-cli's --max-depth 0 render, bit for bit" cmp -s "$dir/cut0.pfm" "$dir/cli_cut0.pfm"
+  check "the image cut at depth 1 is phonglab-cli's --max-depth 1 render, bit for bit" cmp -s "$dir/cut1.pfm" "$dir/cli_cut1.pfm"
+  check "ending the cut gives the scene's own image back" cmp -s "$dir/cut_off.pfm" "$dir/cli_full.pfm"
+  check "cut 0 and cut 1 look different" greater "$(rmse "$dir/r04_cut0.png" "$dir/r05_cut1.png" $SCENE_REGION)" 0.01
+  check "cut 1 and cut 2 look different" greater "$(rmse "$dir/r05_cut1.png" "$dir/r06_cut2.png" $SCENE_REGION)" 0.001
+  local cli_max
+  cli_max=$("$cli" render lecture --width "$w" --height "$h" --spp 1 --term rays -o "$dir/cli_heat.png" |
+    sed -n 's/^heat map: 0 (black) \.\. \([0-9.e+]*\) (pale yellow).*/\1/p')
+  "$cli" render lecture --width "$w" --height "$h" --spp 1 --term rays -o "$dir/cli_rays.pfm" >/dev/null
+  check "the heat map shows the rays view ($(state "$dir/r08.txt" term), heat=$(state "$dir/r08.txt" heat))" \
+    test "$(state "$dir/r08.txt" term)" = rays -a "$(state "$dir/r08.txt" heat)" = 1
+  check "its scale tops at the image's maximum, as phonglab-cli's ($(state "$dir/r08.txt" heat_max) = $cli_max)" \
+    test -n "$cli_max" -a "$(state "$dir/r08.txt" heat_max)" = "$cli_max"
+  check "its counts are phonglab-cli's --term rays, bit for bit" cmp -s "$dir/rays.pfm" "$dir/cli_rays.pfm"
+  check "its PNG is phonglab-cli's heat map PNG, pixel for pixel" \
+    test "$(compare -metric AE "$dir/heat_shown.png" "$dir/cli_heat.png" null: 2>&1)" = 0
+  check "switching the heat map off goes back to the full image" test "$(state "$dir/r09.txt" term)" = full
+}
+
 # --- Without a display ----------------------------------------------------------------------
 check_no_display() {
   echo "without a display"
@@ -440,6 +546,7 @@ if ((INSIDE_X)); then
   session_view
   session_files
   session_instruments
+  session_rays
   exit 0
 fi
 
@@ -454,6 +561,7 @@ timeout "$TIMEOUT" xvfb-run -a -s '-screen 0 1280x720x24' "$SELF" --inside-x "$B
 check_view
 check_files
 check_instruments
+check_rays
 check_no_display
 echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The README's screenshots, from the screenshots the GUI tests write:
+#
+#   tests/gui/run_gui_tests.sh build && tools/readme_images.sh build
+#
+# copies them from BUILD_DIR/gui-tests into docs/images, scaled to 960 pixels wide (the depth
+# cut as the viewports of cut 0, 1 and 2 side by side). Needs ImageMagick.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SRC=${1:?usage: tools/readme_images.sh BUILD_DIR}/gui-tests
+OUT=docs/images
+mkdir -p "$OUT"
+
+shot() {  # shot SOURCE NAME: one screenshot, 960 wide
+  convert "$SRC/$1" -resize 960x -strip "$OUT/$2"
+  echo "$OUT/$2 <- $1"
+}
+shot view/01_start.png previewer.png
+shot instruments/i10_multiples.png small-multiples.png
+shot instruments/i09_wipe.png wipe.png
+shot instruments/figure.png figure.png
+shot rays/r00_probe_panel.png probe.png
+shot rays/r01_tree_glass.png ray-tree.png
+shot rays/r08_heat.png heat-map.png
+shot instruments/h03_head_full.png move-your-head.png
+shot instruments/h02_head_specular_difference.png head-difference.png
+# The viewport (left of the 400-pixel panels) of cut 0, 1, 2 in a row.
+convert "$SRC/rays/r04_cut0.png" "$SRC/rays/r05_cut1.png" "$SRC/rays/r06_cut2.png" -crop 880x720+0+0 +repage \
+  -bordercolor black -border 4x0 +append -resize 960x -strip "$OUT/depth-cut.png"
+echo "$OUT/depth-cut.png <- rays/r04_cut0.png rays/r05_cut1.png rays/r06_cut2.png"
