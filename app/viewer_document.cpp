@@ -1,5 +1,7 @@
 #include "app/viewer_document.h"
 
+#include <cctype>
+#include <filesystem>
 #include <system_error>
 
 #include "renderer/embedded_scenes.h"
@@ -46,6 +48,18 @@ bool SceneDocument::open(const std::string& scene_arg) {
   return true;
 }
 
+namespace {
+
+bool is_obj_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".obj";
+}
+
+}  // namespace
+
+bool SceneDocument::opened_mesh() const { return is_obj_path(file_path_); }
+
 bool SceneDocument::reload(bool keep_view) {
   if (file_path_.empty()) {
     error_text_ = "an embedded scene has no file to reload";
@@ -71,7 +85,8 @@ bool SceneDocument::reload(bool keep_view) {
 }
 
 bool SceneDocument::write(const std::string& path) {
-  const std::string error = write_file_atomically(path, scene_to_json(scene_));
+  std::string dir = std::filesystem::path(path).parent_path().string();
+  const std::string error = write_file_atomically(path, scene_to_json(scene_, dir.empty() ? "." : dir));
   if (!error.empty()) {
     error_text_ = error;
     return false;
@@ -87,6 +102,10 @@ bool SceneDocument::save() {
     error_text_ = "an embedded scene has no file: use Save as";
     return false;
   }
+  if (opened_mesh()) {
+    error_text_ = "this scene was opened from an OBJ file, which Save must not overwrite: use Save as (.json)";
+    return false;
+  }
   if (!write(file_path_)) return false;
   loaded_camera_ = scene_.camera;
   mtime_ = current_mtime();  // our own write is not a change on disk
@@ -96,6 +115,10 @@ bool SceneDocument::save() {
 bool SceneDocument::save_as(const std::string& path) {
   if (path.empty()) {
     error_text_ = "Save as: type a file name into the path field first";
+    return false;
+  }
+  if (is_obj_path(path)) {
+    error_text_ = "Save as: a scene is saved as JSON; '" + path + "' would overwrite a mesh";
     return false;
   }
   if (!write(path)) return false;

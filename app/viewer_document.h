@@ -23,6 +23,8 @@ class SceneDocument {
   bool save();
   // Writes to `path`, which then becomes the document's file.
   bool save_as(const std::string& path);
+  // True when the document is an OBJ opened on its own (Save must not write JSON over it).
+  bool opened_mesh() const;
   // True when the file's modification time differs from the one last loaded or saved.
   bool changed_on_disk() const;
 

@@ -1,5 +1,6 @@
 #include "renderer/obj_io.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -65,24 +66,25 @@ Prescan prescan(std::string_view text, const std::string& name) {
       }
       if (vertices >= 3) out.face_lines.push_back(line);
     } else if (l[i] == 'v') {
-      // Three coordinates; strtod needs a terminated string.
-      const std::string rest(l.substr(i + 1));
-      const char* p = rest.c_str();
+      // Three coordinates (std::from_chars: exact, and several times faster than strtod).
+      const char* p = l.data() + i + 1;
+      const char* const stop = l.data() + l.size();
       for (int k = 0; k < 3; ++k) {
-        char* after = nullptr;
-        const double x = std::strtod(p, &after);
-        if (after == p || !std::isfinite(x)) {
-          std::string token;
-          const char* q = p;
-          while (*q == ' ' || *q == '\t') ++q;
-          while (*q != '\0' && *q != ' ' && *q != '\t' && *q != '\r') token += *q++;
+        while (p < stop && is_blank(*p)) ++p;
+        const char* token_end = p;
+        while (token_end < stop && !is_blank(*token_end)) ++token_end;
+        double x = 0;
+        const char* number = p < token_end && *p == '+' ? p + 1 : p;
+        const auto [after, ec] = std::from_chars(number, token_end, x);
+        if (ec != std::errc() || after != token_end || !std::isfinite(x)) {
+          const std::string token(p, token_end);
           out.errors.push_back({name, line,
                                 "vertex coordinate " + std::to_string(k + 1) +
                                     " must be a finite number (got " + (token.empty() ? "nothing" : "'" + token + "'") +
                                     ")"});
           break;
         }
-        p = after;
+        p = token_end;
       }
     }
   }
@@ -227,6 +229,12 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
   std::vector<Vec3> emitter_sum(out.materials.size(), Vec3(0));
   std::vector<int> emitter_faces(out.materials.size(), 0);
 
+  std::size_t triangle_count = 0;
+  for (const tinyobj::shape_t& s : shapes) {
+    for (const unsigned char n : s.mesh.num_face_vertices) triangle_count += n >= 3 ? n - 2u : 0u;
+  }
+  out.triangles.reserve(triangle_count);
+  out.source_face.reserve(triangle_count);
   int face = 0;
   for (const tinyobj::shape_t& s : shapes) {
     std::size_t offset = 0;

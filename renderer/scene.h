@@ -88,6 +88,7 @@ enum class NsMapping : std::uint8_t { kAsIs, kBlinnToPhong };
 // A "mesh" object of the scene file.
 struct Mesh {
   std::string file;               // OBJ path as written in the scene file (relative to it)
+  std::string resolved_path;      // absolute path it was read from; empty for embedded files
   std::string material_override;  // material name replacing the MTL's; empty: the MTL's
   MeshTransform transform;
   NsMapping ns = NsMapping::kAsIs;

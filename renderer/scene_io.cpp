@@ -717,8 +717,17 @@ struct SceneFiles {
       error = "no such embedded file";
       return std::nullopt;
     }
-    const fs::path full = p.is_absolute() ? p : fs::path(base_dir) / p;
-    return read_text_file(full.string(), kMaxMeshFileBytes, error);
+    return read_text_file(resolve(relative), kMaxMeshFileBytes, error);
+  }
+
+  // The absolute path `relative` names on disk; empty for embedded files.
+  std::string resolve(const std::string& relative) const {
+    namespace fs = std::filesystem;
+    if (embedded) return "";
+    const fs::path p(relative);
+    std::error_code ec;
+    const fs::path full = fs::absolute(p.is_absolute() ? p : fs::path(base_dir) / p, ec);
+    return ec ? (fs::path(base_dir) / p).string() : full.lexically_normal().string();
   }
 };
 
@@ -777,18 +786,18 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   const glm::dmat3 linear = rotation * glm::dmat3(glm::scale(glm::dmat4(1), transform.scale));
   const glm::dmat3 normal_matrix = rotation * glm::dmat3(glm::scale(glm::dmat4(1), 1.0 / transform.scale));
   const auto place = [&](const Vec3& p) { return linear * p + transform.translate; };
-  std::vector<Triangle> placed;
-  std::vector<int> faces;
-  placed.reserve(obj.triangles.size());
-  faces.reserve(obj.triangles.size());
+  // In place: a 1.3M-triangle mesh is 200 MB of triangles, not to be copied needlessly.
+  std::vector<Triangle>& placed = obj.triangles;
+  std::vector<int>& faces = obj.source_face;
+  std::size_t kept = 0;
   int degenerate = 0;
-  for (std::size_t i = 0; i < obj.triangles.size(); ++i) {
-    Triangle t = obj.triangles[i];
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    Triangle t = placed[i];
     t.v0 = place(t.v0);
     t.v1 = place(t.v1);
     t.v2 = place(t.v2);
     if (!all_finite(t.v0) || !all_finite(t.v1) || !all_finite(t.v2)) {
-      out.errors.push_back(file + ": the transform takes face " + std::to_string(obj.source_face[i] + 1) +
+      out.errors.push_back(file + ": the transform takes face " + std::to_string(faces[i] + 1) +
                            " beyond the range of doubles");
       return out;
     }
@@ -803,9 +812,11 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
       t.n2 = normal_matrix * t.n2;
     }
     t.material = override_material >= 0 ? override_material : material_base + t.material;
-    placed.push_back(t);
-    faces.push_back(obj.source_face[i]);
+    faces[kept] = faces[i];
+    placed[kept++] = t;
   }
+  placed.resize(kept);
+  faces.resize(kept);
   if (degenerate > 0) {
     out.warnings.push_back(file + ": " + std::to_string(degenerate) + " triangles have zero area after the transform; left out");
   }
@@ -1390,6 +1401,7 @@ class Validator {
     }
     mesh.geometry = std::move(loaded.geometry);
     mesh.ns = ns;
+    mesh.resolved_path = files_.resolve(mesh.file);
     for (Material& m : loaded.materials) s.materials.push_back(std::move(m));
     s.meshes.push_back(std::move(mesh));
     s.mesh_object.push_back(object);
@@ -1557,6 +1569,7 @@ LoadResult load_obj_scene(const std::string& path) {
   scene.materials = std::move(loaded.materials);
   Mesh mesh;
   mesh.file = name;
+  mesh.resolved_path = files.resolve(name);
   mesh.geometry = std::move(loaded.geometry);
   const Aabb box = mesh.geometry->bounds;
   scene.meshes.push_back(std::move(mesh));
@@ -1645,7 +1658,7 @@ struct ObjectLine {
 
 }  // namespace
 
-std::string scene_to_json(const Scene& scene) {
+std::string scene_to_json(const Scene& scene, const std::string& save_dir) {
   const auto material_name = [&](int m) {
     const bool valid = m >= 0 && static_cast<std::size_t>(m) < scene.materials.size();
     return json_string(valid ? scene.materials[static_cast<std::size_t>(m)].name : std::string());
@@ -1686,7 +1699,15 @@ std::string scene_to_json(const Scene& scene) {
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const Mesh& m = scene.meshes[i];
     const MeshTransform& tr = m.transform;
-    std::string line = "{\"type\": \"mesh\", \"file\": " + json_string(m.file);
+    // A mesh read from disk is named relative to where this text will be saved.
+    std::string file = m.file;
+    if (!save_dir.empty() && !m.resolved_path.empty()) {
+      std::error_code ec;
+      const auto dir = std::filesystem::absolute(save_dir, ec);
+      const auto rel = std::filesystem::path(m.resolved_path).lexically_relative(dir.lexically_normal());
+      if (!ec && !rel.empty()) file = rel.generic_string();
+    }
+    std::string line = "{\"type\": \"mesh\", \"file\": " + json_string(file);
     if (!m.material_override.empty()) line += ", \"material\": " + json_string(m.material_override);
     line += ", \"transform\": {\"scale\": " + vec_text(tr.scale) + ", \"rotate_deg\": " + vec_text(tr.rotate_deg) +
             ", \"translate\": " + vec_text(tr.translate) + "}";

@@ -39,8 +39,10 @@ LoadResult load_scene_file(const std::string& path);
 // Resolves SCENE as the CLI takes it: an embedded scene's name, else a file path.
 LoadResult load_scene_arg(const std::string& scene_arg);
 
-// Serialises a scene to JSON text that load_scene_text reads back to an equal scene.
-std::string scene_to_json(const Scene& scene);
+// Serialises a scene to JSON text that load_scene_text reads back to an equal scene. With
+// `save_dir`, the folder the text will be saved in, mesh files read from disk are named
+// relative to it (else as they were written).
+std::string scene_to_json(const Scene& scene, const std::string& save_dir = "");
 
 // Writes text to `path` through a temporary file and a rename, so a crash never leaves a
 // half-written file. Returns an empty string on success, else the error.
