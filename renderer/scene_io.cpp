@@ -777,6 +777,9 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   const glm::dmat3 linear = rotation * glm::dmat3(glm::scale(glm::dmat4(1), transform.scale));
   const glm::dmat3 normal_matrix = rotation * glm::dmat3(glm::scale(glm::dmat4(1), 1.0 / transform.scale));
   const auto place = [&](const Vec3& p) { return linear * p + transform.translate; };
+  // A mirroring transform (an odd number of negative scales) reverses the winding: swapping two
+  // vertices keeps Ng on the side the OBJ's winding put it (outward for a closed mesh).
+  const bool mirrored = glm::determinant(linear) < 0;
   std::vector<Triangle> placed;
   std::vector<int> faces;
   placed.reserve(obj.triangles.size());
@@ -801,6 +804,10 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
       t.n0 = normal_matrix * t.n0;
       t.n1 = normal_matrix * t.n1;
       t.n2 = normal_matrix * t.n2;
+    }
+    if (mirrored) {
+      std::swap(t.v1, t.v2);
+      std::swap(t.n1, t.n2);
     }
     t.material = override_material >= 0 ? override_material : material_base + t.material;
     placed.push_back(t);
