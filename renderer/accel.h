@@ -15,7 +15,7 @@ namespace phonglab {
 
 struct MeshGeometry {
   std::vector<Triangle> triangles;  // world space, in BVH leaf order
-  std::vector<int> source_face;     // each triangle's face number in the OBJ (0-based, after fan-splitting)
+  std::vector<int> source_face;     // each triangle's face in the OBJ (0-based, file order; a polygon's fan shares it)
   Bvh bvh;                          // over `triangles`; bvh.order is the identity
   Aabb bounds;                      // of all triangles
   std::size_t memory_bytes() const;

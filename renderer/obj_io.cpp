@@ -1,5 +1,6 @@
 #include "renderer/obj_io.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -40,14 +41,46 @@ bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 // vertex coordinates that are not finite numbers (it would read "nan" as 0).
 struct Prescan {
   std::vector<int> face_lines;  // line of each face with 3 or more vertices, in file order
+  std::vector<double> vertices;  // x, y, z of each `v`, correctly rounded (std::from_chars)
   std::vector<ObjProblem> errors;
 };
 
+// Checks one face vertex ("v", "v/t", "v//n", "v/t/n") where tinyobjloader would stop at the
+// first bad one without a line: indices must be integers other than 0, and relative (negative)
+// ones must not reach before the first element read so far (`read`: vertices, texture
+// coordinates, normals). Returns the problem, or "".
+std::string check_face_vertex(std::string_view token, const long read[3]) {
+  static const char* const kKinds[3] = {"vertex", "texture", "normal"};
+  std::size_t start = 0;
+  for (int kind = 0; kind < 3 && start <= token.size(); ++kind) {
+    std::size_t slash = token.find('/', start);
+    if (slash == std::string_view::npos) slash = token.size();
+    const std::string part(token.substr(start, slash - start));
+    start = slash + 1;
+    if (part.empty() && kind > 0) continue;  // "v//n" has no texture index
+    char* after = nullptr;
+    const long index = std::strtol(part.c_str(), &after, 10);
+    if (part.empty() || *after != '\0') {
+      return "face vertex '" + std::string(token) + "' is not made of integer indices";
+    }
+    if (index == 0) {
+      return "face vertex '" + std::string(token) + "': index 0 (OBJ indices start at 1; negative ones count back)";
+    }
+    if (index < 0 && -index > read[kind]) {
+      return "relative " + std::string(kKinds[kind]) + " index " + std::to_string(index) +
+             " reaches before the first " + kKinds[kind] + " (" + std::to_string(read[kind]) + " read so far)";
+    }
+  }
+  return "";
+}
+
 Prescan prescan(std::string_view text, const std::string& name) {
   Prescan out;
+  constexpr std::size_t kMaxErrors = 20;
   int line = 0;
+  long read[3] = {0, 0, 0};  // vertices, texture coordinates, normals so far
   std::size_t pos = 0;
-  while (pos < text.size()) {
+  while (pos < text.size() && out.errors.size() < kMaxErrors) {
     ++line;
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
@@ -55,18 +88,27 @@ Prescan prescan(std::string_view text, const std::string& name) {
     pos = end + 1;
     std::size_t i = 0;
     while (i < l.size() && is_blank(l[i])) ++i;
+    if (i + 2 < l.size() && l[i] == 'v' && (l[i + 1] == 't' || l[i + 1] == 'n') && is_blank(l[i + 2])) {
+      ++read[l[i + 1] == 't' ? 1 : 2];
+      continue;
+    }
     if (i + 1 >= l.size() || !is_blank(l[i + 1])) continue;
     if (l[i] == 'f') {
       int vertices = 0;
+      std::string problem;
       for (std::size_t j = i + 1; j < l.size();) {
         while (j < l.size() && is_blank(l[j])) ++j;
         if (j >= l.size() || l[j] == '#') break;
         ++vertices;
+        const std::size_t begin = j;
         while (j < l.size() && !is_blank(l[j])) ++j;
+        if (problem.empty()) problem = check_face_vertex(l.substr(begin, j - begin), read);
       }
+      if (!problem.empty()) out.errors.push_back({name, line, problem});
       if (vertices >= 3) out.face_lines.push_back(line);
     } else if (l[i] == 'v') {
-      // Three coordinates (std::from_chars: exact, and several times faster than strtod).
+      ++read[0];
+      // Three coordinates (std::from_chars: correctly rounded, and several times faster than strtod).
       const char* p = l.data() + i + 1;
       const char* const stop = l.data() + l.size();
       for (int k = 0; k < 3; ++k) {
@@ -84,6 +126,7 @@ Prescan prescan(std::string_view text, const std::string& name) {
                                     ")"});
           break;
         }
+        out.vertices.push_back(x);
         p = token_end;
       }
     }
@@ -91,14 +134,27 @@ Prescan prescan(std::string_view text, const std::string& name) {
   return out;
 }
 
-// tinyobjloader's messages end in "(line N.)" or "line: N"; split them into our problems.
+// tinyobjloader's messages end in "(line N.)", "line N.)" or "line: N"; split them into our
+// problems, with N as their line.
 void add_messages(const std::string& text, const std::string& file, std::vector<ObjProblem>& to) {
   std::istringstream in(text);
   std::string msg;
   while (std::getline(in, msg)) {
     while (!msg.empty() && (msg.back() == '\r' || msg.back() == ' ')) msg.pop_back();
     if (msg.empty() || msg == ".") continue;
-    to.push_back({file, 0, msg});
+    int line = 0;
+    if (const std::size_t at = msg.rfind("line"); at != std::string::npos) {
+      std::size_t j = at + 4;
+      while (j < msg.size() && (msg[j] == ' ' || msg[j] == ':')) ++j;
+      long n = 0;
+      std::size_t digits = 0;
+      while (j < msg.size() && msg[j] >= '0' && msg[j] <= '9' && digits < 9) {
+        n = 10 * n + (msg[j++] - '0');
+        ++digits;
+      }
+      if (digits > 0) line = static_cast<int>(n);
+    }
+    to.push_back({file, line, msg});
   }
 }
 
@@ -174,10 +230,12 @@ Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<Ob
   return out;
 }
 
-// Rounds an index-bound check into one message.
-std::string index_error(const char* what, int index, std::size_t count) {
+// An index-bound check as one message. Positive indices may refer to elements further down the
+// file, so they are checked against the file's count; relative ones the prescan checked.
+std::string index_error(const char* what, const char* plural, int index, std::size_t count) {
+  if (index < 0) return std::string("a relative ") + what + " index reaches before the first " + what;
   return std::string(what) + " index " + std::to_string(index + 1) + " is out of range (the file has " +
-         std::to_string(count) + " before this face)";
+         std::to_string(count) + " " + (count == 1 ? what : plural) + ")";
 }
 
 }  // namespace
@@ -204,6 +262,24 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
   }
   for (ObjProblem& w : out.warnings) {
     if (w.file.empty()) w.file = obj_name;
+  }
+  // tinyobjloader's own number parser is off by up to a few ulps for about half of all decimal
+  // coordinates ("-1.9159" reads as -1.9158999999999997); the prescan's from_chars values are the
+  // doubles nearest to what the file says.
+  if (pre.vertices.size() == attrib.vertices.size()) attrib.vertices = std::move(pre.vertices);
+  // tinyobjloader's own warnings (a `usemtl` naming no material of the MTL, faces of fewer
+  // than 3 vertices), once each; index bounds are errors below and unreadable MTLs have one
+  // warning already.
+  std::vector<ObjProblem> parse_warnings;
+  add_messages(warn, obj_name, parse_warnings);
+  for (ObjProblem& w : parse_warnings) {
+    if (w.message.find("out of bounds") != std::string::npos ||
+        w.message.starts_with("Failed to load material file")) {
+      continue;
+    }
+    const bool seen = std::any_of(out.warnings.begin(), out.warnings.end(),
+                                  [&](const ObjProblem& o) { return o.message == w.message; });
+    if (!seen) out.warnings.push_back(std::move(w));
   }
 
   std::vector<ObjProblem> mapping_warnings;
@@ -249,12 +325,12 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
       for (std::size_t k = 0; k < n; ++k) {
         const tinyobj::index_t idx = s.mesh.indices[offset + k];
         if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= vertex_count) {
-          fail(index_error("vertex", idx.vertex_index, vertex_count));
+          fail(index_error("vertex", "vertices", idx.vertex_index, vertex_count));
           face_ok = false;
           break;
         }
         if (idx.normal_index >= 0 && static_cast<std::size_t>(idx.normal_index) >= normal_count) {
-          fail(index_error("normal", idx.normal_index, normal_count));
+          fail(index_error("normal", "normals", idx.normal_index, normal_count));
           face_ok = false;
           break;
         }

@@ -27,7 +27,8 @@ std::string object_name(const Scene& scene, ObjectRef ref) {
     std::string name = "objects[" + std::to_string((*map)[static_cast<std::size_t>(ref.index)]) + "]";
     if (ref.kind == ObjectRef::Kind::kMesh && ref.prim >= 0) {
       const MeshGeometry& g = *scene.meshes[static_cast<std::size_t>(ref.index)].geometry;
-      name += " face " + std::to_string(g.source_face[static_cast<std::size_t>(ref.prim)]);
+      // Counted from 1 in file order, as OBJ indices and the loader's messages count.
+      name += " face " + std::to_string(g.source_face[static_cast<std::size_t>(ref.prim)] + 1);
     }
     return name;
   }

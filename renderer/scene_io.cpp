@@ -790,6 +790,9 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   std::vector<Triangle>& placed = obj.triangles;
   std::vector<int>& faces = obj.source_face;
   std::size_t kept = 0;
+  // A mirroring transform (an odd number of negative scales) reverses the winding: swapping two
+  // vertices keeps Ng on the side the OBJ's winding put it (outward for a closed mesh).
+  const bool mirrored = glm::determinant(linear) < 0;
   int degenerate = 0;
   for (std::size_t i = 0; i < placed.size(); ++i) {
     Triangle t = placed[i];
@@ -810,6 +813,10 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
       t.n0 = normal_matrix * t.n0;
       t.n1 = normal_matrix * t.n1;
       t.n2 = normal_matrix * t.n2;
+    }
+    if (mirrored) {
+      std::swap(t.v1, t.v2);
+      std::swap(t.n1, t.n2);
     }
     t.material = override_material >= 0 ? override_material : material_base + t.material;
     faces[kept] = faces[i];
