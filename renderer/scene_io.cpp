@@ -717,7 +717,13 @@ struct SceneFiles {
       error = "no such embedded file";
       return std::nullopt;
     }
-    return read_text_file(resolve(relative), kMaxMeshFileBytes, error);
+    const std::string path = resolve(relative);
+    std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec)) {
+      error = "not a regular file";  // a device such as /dev/zero would be read for ever
+      return std::nullopt;
+    }
+    return read_text_file(path, kMaxMeshFileBytes, error);
   }
 
   // The absolute path `relative` names on disk; empty for embedded files.
