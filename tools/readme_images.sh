@@ -4,7 +4,8 @@
 #   tests/gui/run_gui_tests.sh build && tools/readme_images.sh build
 #
 # copies them from BUILD_DIR/gui-tests into docs/images, scaled to 960 pixels wide (the depth
-# cut as the viewports of cut 0, 1 and 2 side by side). Needs ImageMagick.
+# cut as the viewports of cut 0, 1 and 2 side by side), and renders the Cornell boxes with
+# BUILD_DIR/bin/phonglab-cli. Needs ImageMagick.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SRC=${1:?usage: tools/readme_images.sh BUILD_DIR}/gui-tests
@@ -28,3 +29,9 @@ shot instruments/h02_head_specular_difference.png head-difference.png
 convert "$SRC/rays/r04_cut0.png" "$SRC/rays/r05_cut1.png" "$SRC/rays/r06_cut2.png" -crop 880x720+0+0 +repage \
   -bordercolor black -border 4x0 +append -resize 960x -strip "$OUT/depth-cut.png"
 echo "$OUT/depth-cut.png <- rays/r04_cut0.png rays/r05_cut1.png rays/r06_cut2.png"
+# The two embedded Cornell boxes side by side, 1 spp renders at 480x480.
+for scene in cornell cornell-sphere; do
+  "$SRC/../bin/phonglab-cli" render "$scene" -o "$SRC/$scene.png" --width 480 --height 480 2>/dev/null
+done
+convert "$SRC/cornell.png" "$SRC/cornell-sphere.png" -bordercolor black -border 4x0 +append -strip "$OUT/cornell.png"
+echo "$OUT/cornell.png <- phonglab-cli render cornell, cornell-sphere"
