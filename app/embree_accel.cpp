@@ -354,6 +354,9 @@ std::vector<PacketCast> embree_cast_primary_packets(const Scene& scene, int widt
     right[a] = static_cast<float>(frame.right[a]);
     up[a] = static_cast<float>(frame.up[a]);
   }
+  std::vector<float> screen_x(static_cast<std::size_t>(width)), screen_y(static_cast<std::size_t>(height));
+  for (int x = 0; x < width; ++x) screen_x[static_cast<std::size_t>(x)] = static_cast<float>(2 * (x + 0.5) / width - 1);
+  for (int y = 0; y < height; ++y) screen_y[static_cast<std::size_t>(y)] = static_cast<float>(1 - 2 * (y + 0.5) / height);
   constexpr int kSide = 4;  // 4 x 4 pixels per 16-wide packet
   const int blocks_x = (width + kSide - 1) / kSide;
   const int blocks = blocks_x * ((height + kSide - 1) / kSide);
@@ -372,26 +375,35 @@ std::vector<PacketCast> embree_cast_primary_packets(const Scene& scene, int widt
       for (int blk = first; blk < std::min(blocks, first + kBlocksPerTask); ++blk) {
         const int x0 = (blk % blocks_x) * kSide, y0 = (blk / blocks_x) * kSide;
         alignas(64) int valid[16];
-        alignas(64) RTCRayHit16 rh{};
-        // camera_ray's formula in float, so the compiler can run the 16 lanes side by side.
+        alignas(64) RTCRayHit16 rh;  // every field Embree reads is set below
+        // camera_ray's formula in float, with the screen coordinates of every column and row
+        // computed once per frame; lane by lane loops the compiler turns into SIMD.
+        alignas(64) float sx[16], sy[16];
         for (int k = 0; k < 16; ++k) {
-          const int x = x0 + k % kSide, y = y0 + k / kSide;
+          const int x = x0 + (k & 3), y = y0 + (k >> 2);
           valid[k] = x < width && y < height ? -1 : 0;
-          const float sx = 2 * (static_cast<float>(x) + 0.5f) / static_cast<float>(width) - 1;
-          const float sy = 1 - 2 * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
-          const float dx = fwd[0] + sx * right[0] + sy * up[0];
-          const float dy = fwd[1] + sx * right[1] + sy * up[1];
-          const float dz = fwd[2] + sx * right[2] + sy * up[2];
+          sx[k] = screen_x[static_cast<std::size_t>(std::min(x, width - 1))];
+          sy[k] = screen_y[static_cast<std::size_t>(std::min(y, height - 1))];
+        }
+        for (int k = 0; k < 16; ++k) {
+          const float dx = fwd[0] + sx[k] * right[0] + sy[k] * up[0];
+          const float dy = fwd[1] + sx[k] * right[1] + sy[k] * up[1];
+          const float dz = fwd[2] + sx[k] * right[2] + sy[k] * up[2];
           const float inv_len = 1 / std::sqrt(dx * dx + dy * dy + dz * dz);
-          rh.ray.org_x[k] = org[0];
-          rh.ray.org_y[k] = org[1];
-          rh.ray.org_z[k] = org[2];
           rh.ray.dir_x[k] = dx * inv_len;
           rh.ray.dir_y[k] = dy * inv_len;
           rh.ray.dir_z[k] = dz * inv_len;
+        }
+        for (int k = 0; k < 16; ++k) {
+          rh.ray.org_x[k] = org[0];
+          rh.ray.org_y[k] = org[1];
+          rh.ray.org_z[k] = org[2];
           rh.ray.tnear[k] = 0;
           rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+          rh.ray.time[k] = 0;
           rh.ray.mask[k] = ~0u;
+          rh.ray.id[k] = 0;
+          rh.ray.flags[k] = 0;
           rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         }
         rtcIntersect16(valid, embree.scene(), &context, &rh);
