@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -47,11 +48,10 @@ struct MemoryCounter {
   std::atomic<std::int64_t> bytes{0};
 };
 
-bool count_memory(void* user, ssize_t bytes, bool post) {
-  // Allocations are announced before they happen (post false); releases after (post true).
-  // Count both exactly once: an allocation when announced (it is never cancelled here).
-  auto* counter = static_cast<MemoryCounter*>(user);
-  if ((bytes > 0 && !post) || (bytes < 0 && post)) counter->bytes += static_cast<std::int64_t>(bytes);
+bool count_memory(void* user, ssize_t bytes, bool /*post*/) {
+  // Each allocation (bytes > 0) and release (< 0) is reported once; as nothing is ever
+  // cancelled here, every report is accumulated (rtcSetDeviceMemoryMonitorFunction(3)).
+  static_cast<MemoryCounter*>(user)->bytes += static_cast<std::int64_t>(bytes);
   return true;
 }
 
@@ -61,7 +61,9 @@ class EmbreeHandle {
   explicit EmbreeHandle(int build_threads) : memory_(std::make_unique<MemoryCounter>()) {
     const std::string config = build_threads > 0 ? "threads=" + std::to_string(build_threads) : "";
     device_ = rtcNewDevice(config.c_str());
-    if (!device_) return;
+    if (!device_) {
+      throw std::runtime_error("Embree: rtcNewDevice failed (error " + std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+    }
     rtcSetDeviceErrorFunction(device_, report_error, nullptr);
     rtcSetDeviceMemoryMonitorFunction(device_, count_memory, memory_.get());
     scene_ = rtcNewScene(device_);

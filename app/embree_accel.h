@@ -31,7 +31,8 @@ struct EmbreeBuildStats {
 //   original double ray, so spheres stay exact and the rays are the renderer's own;
 // - planes (infinite) tested apart, in double, as the project's BVH does.
 // Triangle hits closer than a float rounding margin of the ray origin are ignored (Embree's
-// float test would see the surface a ray leaves). Thread-safe for concurrent queries.
+// float test would see the surface a ray leaves). Thread-safe for concurrent queries. Throws
+// std::runtime_error when Embree cannot make a device.
 std::shared_ptr<const Accelerator> make_embree_accel(const Scene& scene, const EmbreeOptions& options = {},
                                                      EmbreeBuildStats* stats = nullptr);
 
