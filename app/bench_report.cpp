@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/bench_accel.h"  // issue 6: the acceleration section
 #include "renderer/embedded_scenes.h"
 #include "renderer/image_io.h"
 #include "renderer/render.h"
@@ -416,6 +417,11 @@ int run_bench_report(const BenchReportOptions& options) {
     }
   }
   out.write("pruning.csv", prune_csv);
+
+  // 4. Acceleration (issue 6): app/bench_accel.cpp measures and writes this section.
+  const AccelBenchResult accel = run_accel_bench(AccelBenchOptions{quick, options.threads});
+  md << accel.markdown;
+  out.write("accel.csv", accel.csv);
   out.write("report.md", md.str());
   std::printf("wrote %s/report.md\n", options.out_dir.c_str());
   return out.ok ? 0 : 1;

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench_accel.h"
 #include "app/bench_report.h"
 #include "renderer/accel.h"
 #include "renderer/embedded_scenes.h"
@@ -45,9 +46,10 @@ commands:
       The five term images and their sum in a labelled 3x2 grid (W x H each).
   validate SCENE       Parse and check a scene only.
   scenes               List the embedded scenes.
-  bench [--out DIR] [--quick] [--threads N]
+  bench [--out DIR] [--quick] [--threads N] [--only accel]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR
-      (default bench-out/); --quick finishes in about a minute.
+      (default bench-out/); --quick finishes in about a minute. --only accel:
+      the acceleration section alone (accel.md, accel.csv).
   bench SCENE [--frames N] [--width W] [--height H] [--threads N]
       Time Whitted frames (1 spp) of one scene and print the median.
 
@@ -293,7 +295,12 @@ int cmd_bench(Args& args) {
   const auto threads = args.take_int("--threads", 0, 1024);
   const auto out_dir = args.take_value("--out");
   const bool quick = args.take_flag("--quick");
+  const auto only = args.take_value("--only");
   const auto positional = args.take_positional();
+  if (only) {
+    if (*only != "accel" || positional) throw UsageError{"bench --only takes 'accel' and no SCENE"};
+    return write_accel_report(AccelBenchOptions{quick, threads.value_or(0)}, out_dir.value_or("bench-out"));
+  }
   if (!positional) {  // no SCENE: the whole speed-versus-error report
     BenchReportOptions report;
     report.out_dir = out_dir.value_or(report.out_dir);

@@ -218,12 +218,14 @@ class SceneBvh final : public Accelerator {
 
 }  // namespace
 
-std::shared_ptr<const Accelerator> build_scene_accel(const Scene& scene) {
+std::shared_ptr<const Accelerator> build_scene_accel(const Scene& scene, bool force_bvh) {
   // A handful of spheres and triangles is cheaper to test in a row than through any structure
   // (callgrind on `lecture`, 320x180: a hierarchy over its 5 spheres cost 5 % more instructions,
   // and even a flat accelerator's extra calls 4 %).
   constexpr std::size_t kBruteForceLimit = 8;
-  if (scene.meshes.empty() && scene.spheres.size() + scene.triangles.size() <= kBruteForceLimit) return nullptr;
+  if (!force_bvh && scene.meshes.empty() && scene.spheres.size() + scene.triangles.size() <= kBruteForceLimit) {
+    return nullptr;
+  }
   return std::make_shared<SceneBvh>(scene);
 }
 

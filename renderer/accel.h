@@ -26,8 +26,8 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::vector<Triangle> tri
                                                        std::vector<int> source_face);
 
 // The default accelerator: top-level BVH over spheres, triangles and meshes; null (brute force)
-// for scenes of a few spheres and triangles and no mesh.
-std::shared_ptr<const Accelerator> build_scene_accel(const Scene& scene);
+// for scenes of a few spheres and triangles and no mesh, unless `force_bvh` (benchmarks).
+std::shared_ptr<const Accelerator> build_scene_accel(const Scene& scene, bool force_bvh = false);
 
 // Bounds of everything but planes (empty when there is nothing else).
 Aabb scene_bounds(const Scene& scene);

@@ -228,3 +228,8 @@ TEST_F(CliTest, MistypedEmbeddedSceneNameGetsASuggestion) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.out.find("did you mean \"lecture\"?"), std::string::npos) << r.out;
 }
+
+TEST_F(CliTest, BenchOnlyAcceptsTheAccelSectionAndNoScene) {
+  EXPECT_EQ(run_cli("bench --only speed").exit_code, 2);
+  EXPECT_EQ(run_cli("bench lecture --only accel").exit_code, 2);
+}
