@@ -1,5 +1,6 @@
 #include "renderer/accel.h"
 
+#include <chrono>
 #include <utility>
 
 namespace phonglab {
@@ -38,6 +39,7 @@ void permute_in_place(std::vector<T>& v, const std::vector<std::uint32_t>& order
 
 std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::vector<Triangle> triangles,
                                                        std::vector<int> source_face) {
+  const auto start = std::chrono::steady_clock::now();
   auto geometry = std::make_shared<MeshGeometry>();
   std::vector<Aabb> boxes(triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
@@ -56,6 +58,7 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::vector<Triangle> tri
   geometry->triangles = std::move(triangles);
   geometry->source_face = std::move(source_face);
   geometry->bvh.order = {};
+  geometry->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return geometry;
 }
 

@@ -18,6 +18,7 @@ struct MeshGeometry {
   std::vector<int> source_face;     // each triangle's face in the OBJ (0-based, file order; a polygon's fan shares it)
   Bvh bvh;                          // over `triangles`; bvh.order is the identity
   Aabb bounds;                      // of all triangles
+  double build_seconds = 0;         // wall-clock time make_mesh_geometry took
   std::size_t memory_bytes() const;
 };
 

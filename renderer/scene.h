@@ -41,7 +41,7 @@ struct Material {
   Color kt{0, 0, 0};       // transmission weight
   double ior = 1.5;        // index of refraction inside the object (outside is 1)
   bool fresnel = false;    // weight kr/kt by the exact unpolarised Fresnel reflectance
-  std::string source;      // empty: the scene file's; else the mesh file whose MTL made it
+  std::string source{};    // empty: the scene file's; else the mesh file whose MTL made it
                            // (not written back by scene_to_json: the MTL holds it)
 };
 
