@@ -68,7 +68,7 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
     const double len = glm::length(to_eye);
     if (len > 0) v = to_eye / len;
   }
-  const double offset = surface_offset(hit.magnitude, hit.t);
+  const double offset = surface_offset(scene, hit);
 
   Terms terms;
   terms.ambient = m.ka * scene.ambient;
