@@ -70,7 +70,7 @@ inline double surface_offset(const Vec3& p, double t) { return surface_offset(ma
 // The same for a ray leaving `hit`, from bounds of each primitive's rounding errors rather
 // than one magnitude for all. Two kinds of error meet there. (a) Absolute coordinates: P, and
 // the differences o - c (sphere), point - o (plane), v - o (triangle) the next test forms from
-// the offset origin, are rounded to a few ulps of the coordinates involved (the sphere's centre,
+// the offset origin, are rounded to a few ulps of the coordinates involved (the sphere's centre and radius,
 // the plane's stored point, the vertices, P itself); kCoordinateMargin covers 4096 ulps of them.
 // (b) Sizes: the next test's own error is relative to what it computes with once those
 // differences are formed: the radius, the distance t travelled; kSizeMargin is the 1e-9 of
@@ -80,18 +80,17 @@ inline double surface_offset(const Vec3& p, double t) { return surface_offset(ma
 inline constexpr double kCoordinateMargin = 0x1p-40;  // 9.1e-13 = 4096 ulps of a coordinate
 inline constexpr double kSizeMargin = 1e-9;
 inline double surface_offset(const Scene& scene, const Hit& hit) {
-  const double pos = max_abs(hit.p);
   switch (hit.object.kind) {
-    case ObjectRef::Kind::kSphere: {
+    case ObjectRef::Kind::kSphere: {  // |P| <= |C| + r
       const Sphere& s = scene.spheres[static_cast<std::size_t>(hit.object.index)];
-      return kCoordinateMargin * std::max(pos, max_abs(s.center)) + kSizeMargin * (s.radius + hit.t);
+      return kCoordinateMargin * (max_abs(s.center) + s.radius) + kSizeMargin * (s.radius + hit.t);
     }
     case ObjectRef::Kind::kPlane: {
       const Plane& pl = scene.planes[static_cast<std::size_t>(hit.object.index)];
-      return kCoordinateMargin * std::max(pos, max_abs(pl.point)) + kSizeMargin * hit.t;
+      return kCoordinateMargin * std::max(max_abs(hit.p), max_abs(pl.point)) + kSizeMargin * hit.t;
     }
-    case ObjectRef::Kind::kTriangle:  // magnitude: the largest vertex coordinate
-      return kCoordinateMargin * std::max(pos, hit.magnitude) + kSizeMargin * hit.t;
+    case ObjectRef::Kind::kTriangle:  // magnitude: the largest vertex coordinate, >= |P|
+      return kCoordinateMargin * hit.magnitude + kSizeMargin * hit.t;
     case ObjectRef::Kind::kNone:
       break;
   }
