@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "renderer/numerics_variants.h"
+
 namespace phonglab {
 
 TriangleShear make_shear(const Vec3& dir) {
@@ -99,6 +101,7 @@ std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, co
 }
 
 std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.numerics.geometry()) [[unlikely]] return intersect_variant(scene, ray, t_max);  // bench only
   double best = t_max;
   ObjectRef obj;
   double best_b1 = 0, best_b2 = 0;
@@ -129,6 +132,7 @@ std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
 }
 
 bool occluded(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.numerics.occlusion()) [[unlikely]] return occluded_variant(scene, ray, t_max);  // bench only
   for (const Sphere& s : scene.spheres) {
     if (sphere_root(s, ray.origin, ray.dir, 0, t_max) > 0) return true;
   }
