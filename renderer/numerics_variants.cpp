@@ -1,7 +1,11 @@
 #include "renderer/numerics_variants.h"
 
 #include <limits>
+#include <thread>
 #include <utility>
+#include <vector>
+
+#include "renderer/render.h"
 
 namespace phonglab {
 
@@ -220,6 +224,84 @@ std::optional<double> intersect_sphere_robust_float(const Sphere& s, const Ray& 
   return as_optional(sphere_robust(V3<float>(s.center), static_cast<float>(s.radius), V3<float>(ray.origin),
                                    V3<float>(ray.dir), limit_in<float>(t_min),
                                    std::numeric_limits<float>::infinity()));
+}
+
+namespace {
+
+bool same_object(const ObjectRef& a, const ObjectRef& b) { return a.kind == b.kind && a.index == b.index; }
+
+// Acne rays in the tree below `node` (see count_acne).
+std::uint64_t acne_rays(const ProbeNode& node) {
+  if (!node.hit) return 0;
+  // Which rays leave towards a side the primitive cannot be met from again: on a plane or a
+  // triangle every ray; on a sphere, rays leaving its outside. Shadow and reflection rays leave
+  // on the side N faces (the outside when the ray arrived from outside, `entering`); a refracted
+  // ray crosses to the other side (the outside when leaving), unless it is totally reflected.
+  const bool flat = node.object.kind != ObjectRef::Kind::kSphere;
+  const bool n_side_outward = flat || node.entering;
+  std::uint64_t rays = 0;
+  if (n_side_outward) {
+    for (const ProbeLight& l : node.lights) {
+      if (l.lit_side && !l.visible && same_object(l.occluder, node.object)) ++rays;
+    }
+  }
+  if (const ProbeNode* r = node.reflection.get()) {
+    if (r->hit && n_side_outward && same_object(r->object, node.object)) ++rays;
+    rays += acne_rays(*r);
+  }
+  if (const ProbeNode* r = node.refraction.get()) {
+    const bool outward = flat || (node.tir ? node.entering : !node.entering);
+    if (r->hit && outward && same_object(r->object, node.object)) ++rays;
+    rays += acne_rays(*r);
+  }
+  return rays;
+}
+
+}  // namespace
+
+AcneCount count_acne(const Scene& scene, int width, int height, int threads) {
+  const int n = std::max(1, std::min(resolve_thread_count(threads), height));
+  std::vector<AcneCount> parts(static_cast<std::size_t>(n));
+  auto work = [&](int part) {
+    AcneCount& c = parts[static_cast<std::size_t>(part)];
+    for (int y = part; y < height; y += n) {
+      for (int x = 0; x < width; ++x) {
+        const std::uint64_t rays = acne_rays(probe_pixel(scene, width, height, x, y).root);
+        c.rays += rays;
+        c.pixels += rays > 0 ? 1 : 0;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < n; ++i) pool.emplace_back(work, i);
+  work(0);
+  for (std::thread& t : pool) t.join();
+  AcneCount total;
+  for (const AcneCount& c : parts) {
+    total.pixels += c.pixels;
+    total.rays += c.rays;
+  }
+  return total;
+}
+
+Scene transformed_scene(Scene scene, double s, const Vec3& shift) {
+  auto move = [&](Vec3& p) { p = s * p + shift; };
+  move(scene.camera.position);
+  move(scene.camera.look_at);
+  for (Light& l : scene.lights) {
+    if (l.type == LightType::kPoint) move(l.position);
+  }
+  for (Sphere& sp : scene.spheres) {
+    move(sp.center);
+    sp.radius *= s;
+  }
+  for (Plane& pl : scene.planes) move(pl.point);
+  for (Triangle& tri : scene.triangles) {
+    move(tri.v0);
+    move(tri.v1);
+    move(tri.v2);
+  }
+  return scene;
 }
 
 double fresnel_schlick(double cos_i, double eta) {
