@@ -212,6 +212,24 @@ std::string loglog_svg(const std::string& title, const std::string& x_label, con
   return o.str();
 }
 
+// The CPU's model name from /proc/cpuinfo ("unknown CPU" elsewhere).
+std::string cpu_model() {
+  std::FILE* f = std::fopen("/proc/cpuinfo", "r");
+  if (!f) return "unknown CPU";
+  char line[512];
+  std::string model = "unknown CPU";
+  while (std::fgets(line, sizeof line, f)) {
+    const std::string l(line);
+    if (l.rfind("model name", 0) == 0) {
+      const std::size_t colon = l.find(':');
+      if (colon != std::string::npos) model = l.substr(colon + 2, l.size() - colon - 3);
+      break;
+    }
+  }
+  std::fclose(f);
+  return model;
+}
+
 struct Writer {
   std::filesystem::path dir;
   bool ok = true;
@@ -428,19 +446,21 @@ void precision_section(std::ostringstream& md, Writer& out, bool quick, int thre
                 static_cast<unsigned long long>(summary[ci].pixels_off));
   }
   out.write("precision.csv", csv);
-  md << "\n### Precision summary\n\nWorst over the " << scenes.size() << " scenes above.\n\n"
-     << "| # | configuration | Mrays/s on lecture | worst max error | pixels off, all scenes (worst scene) | acne pixels (scenes) | NaN | verdict |\n"
+  std::ostringstream table;
+  table << "| # | configuration | Mrays/s on lecture | worst max error | pixels off, all scenes (worst scene) | acne pixels (scenes) | NaN | verdict |\n"
         "|---|---|---|---|---|---|---|---|\n";
   std::vector<ScatterPoint> pts;
   for (std::size_t ci = 0; ci < configs.size(); ++ci) {
     const Summary& sm = summary[ci];
     const bool usable = sm.acne == 0 && sm.nan == 0;
-    md << "| " << ci + 1 << " | " << configs[ci].name << " | " << fmt("%.1f", sm.mrays_lecture) << " | "
+    table << "| " << ci + 1 << " | " << configs[ci].name << " | " << fmt("%.1f", sm.mrays_lecture) << " | "
        << fmt("%.3g", sm.worst_error) << " | " << sm.pixels_off << " (" << sm.worst_scene << ") | " << sm.acne
        << (sm.acne_scenes.empty() ? "" : " (" + sm.acne_scenes + ")") << " | " << sm.nan << " | "
        << (usable ? "usable" : "**unusable**") << " |\n";
     pts.push_back({configs[ci].name, sm.mrays_lecture, static_cast<double>(sm.pixels_off), !usable});
   }
+  md << "\n### Precision summary\n\nWorst over the " << scenes.size() << " scenes above.\n\n" << table.str();
+  out.write("precision_summary.md", table.str());
   out.write("precision.svg", scatter_svg("Numerics: speed against pixels off (all precision scenes)",
                                          "Mrays/s on lecture", "pixels off by > 1/255 (sum over scenes)", pts));
   md << "\n![Speed against pixels off](precision.svg)\n";
@@ -464,8 +484,9 @@ void savings_section(std::ostringstream& md, Writer& out, bool quick, int thread
         " time (the naive tracer's way), on every embedded scene: the Whitted frame at " << w << "x" << h
      << ", 1 spp, " << threads << " threads, median of " << frames
      << " frames (interleaved with the production frames, so load drifts hit both alike). 'identical' compares"
-        " the pixel sums bit for bit. The pruning of the ray tree by path weight is measured above.\n\n"
-        "| scene | production rule | rays with the rule | rays without | shadow / refraction rays without (with) | ms with | ms without | time saved | image |\n"
+        " the pixel sums bit for bit. The pruning of the ray tree by path weight is measured above.\n\n";
+  std::ostringstream table;
+  table << "| scene | production rule | rays with the rule | rays without | shadow / refraction rays without (with) | ms with | ms without | time saved | image |\n"
         "|---|---|---|---|---|---|---|---|---|\n";
   std::string csv = "scene,rule,width,height,rays_with,rays_without,primary,shadow_with,shadow_without,reflection_with,"
                     "reflection_without,refraction_with,refraction_without,ms_with,ms_without,saved_percent,identical\n";
@@ -495,7 +516,7 @@ void savings_section(std::ostringstream& md, Writer& out, bool quick, int thread
                                   ablations[k - 1].rule);
       const bool applies = ra.total() != rb.total() || ablations[k - 1].flag == &NumericsVariant::nearest_hit_shadows;
       const double saved = 100.0 * (ms_k - ms_base) / ms_k;
-      md << "| " << e.name << " | " << ablations[k - 1].rule << " | " << rb.total() << " | " << ra.total() << " | "
+      table << "| " << e.name << " | " << ablations[k - 1].rule << " | " << rb.total() << " | " << ra.total() << " | "
          << ra.shadow << " (" << rb.shadow << ") / " << ra.refraction << " (" << rb.refraction << ") | "
          << fmt("%.1f", ms_base) << " | " << fmt("%.1f", ms_k) << " | "
          << (applies ? fmt("%.1f %%", saved) : std::string("does not apply")) << " | "
@@ -510,6 +531,8 @@ void savings_section(std::ostringstream& md, Writer& out, bool quick, int thread
     std::printf("  %-10s %.1f ms; without the rules: %.1f, %.1f, %.1f ms\n", std::string(e.name).c_str(), ms_base,
                 median(ms[1]), median(ms[2]), median(ms[3]));
   }
+  md << table.str();
+  out.write("savings.md", table.str());
   out.write("savings.csv", csv);
 }
 
@@ -527,7 +550,7 @@ int run_bench_report(const BenchReportOptions& options) {
   const int threads = resolve_thread_count(options.threads);
   std::ostringstream md;
   md << "# phonglab: speed against error\n\nMade by `phonglab-cli bench" << (quick ? " --quick" : "")
-     << "` on a machine with " << std::thread::hardware_concurrency() << " hardware threads"
+     << "` on a machine with " << std::thread::hardware_concurrency() << " hardware threads (" << cpu_model() << ")"
      << "; every figure below comes from this one run.\n\n";
 
   // 1. Speed: the Whitted frame of every embedded scene, by ray kind and thread count.
