@@ -29,7 +29,7 @@ cp "$out"/report.md "$out"/*.csv "$out"/*.svg docs/bench/
 cpu=$(grep -m1 '^model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 machine="Measured $(date -u +%Y-%m-%d) with \`tools/bench-figures.sh\` (\`phonglab-cli bench --out $out\`,"
-machine+=" Release build of commit $commit) on $(nproc) cores of a $cpu (\`nproc\` = $(nproc)),"
+machine+=" Release build of commit $commit) on a machine with \`nproc\` = $(nproc), CPU \"$cpu\","
 machine+=" load average $load_before before and $load_after after; the full run took $((seconds / 60)) min"
 machine+=" $((seconds % 60)) s."
 echo "$machine" > docs/bench/machine.md
