@@ -245,6 +245,7 @@ struct Writer {
 // scenes that stress it, against a reference image.
 struct PrecisionConfig {
   std::string name;
+  std::string short_name;  // for the plot's legend
   NumericsVariant variant;
 };
 
@@ -269,6 +270,9 @@ std::vector<PrecisionConfig> precision_configs() {
   c[7].variant.textbook_sphere = true;
   c[7].variant.fixed_offset = 1e-3;
   c[7].variant.schlick_fresnel = true;
+  for (PrecisionConfig& ci : c) ci.short_name = ci.name;
+  c[0].short_name = "production";
+  c[7].short_name = "naive: float, textbook, 1e-3, Schlick";
   return c;
 }
 
@@ -304,7 +308,7 @@ struct ScatterPoint {
 
 std::string scatter_svg(const std::string& title, const std::string& x_label, const std::string& y_label,
                         const std::vector<ScatterPoint>& pts) {
-  const double w = 760, h = 440, left = 70, right = 250, top = 40, bottom = 50;
+  const double w = 820, h = 440, left = 80, right = 310, top = 40, bottom = 50;
   double x1 = 0, y1 = 1;
   for (const ScatterPoint& p : pts) {
     x1 = std::max(x1, p.x);
@@ -318,8 +322,8 @@ std::string scatter_svg(const std::string& title, const std::string& x_label, co
   o << "<svg xmlns='http://www.w3.org/2000/svg' width='" << w << "' height='" << h
     << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
   o << "<text x='" << (left + w - right) / 2 << "' y='22' text-anchor='middle' font-size='15'>" << title << "</text>\n";
-  for (int e = 0; e <= static_cast<int>(y1); ++e) {
-    const double n = std::pow(10.0, e) - 1;
+  for (int e = -1; e <= static_cast<int>(y1); ++e) {
+    const double n = e < 0 ? 0 : std::pow(10.0, e);
     o << "<line x1='" << left << "' x2='" << w - right << "' y1='" << py(n) << "' y2='" << py(n)
       << "' stroke='#ddd'/><text x='" << left - 6 << "' y='" << py(n) + 4 << "' text-anchor='end'>" << n << "</text>\n";
   }
@@ -457,7 +461,7 @@ void precision_section(std::ostringstream& md, Writer& out, bool quick, int thre
        << fmt("%.3g", sm.worst_error) << " | " << sm.pixels_off << " (" << sm.worst_scene << ") | " << sm.acne
        << (sm.acne_scenes.empty() ? "" : " (" + sm.acne_scenes + ")") << " | " << sm.nan << " | "
        << (usable ? "usable" : "**unusable**") << " |\n";
-    pts.push_back({configs[ci].name, sm.mrays_lecture, static_cast<double>(sm.pixels_off), !usable});
+    pts.push_back({configs[ci].short_name, sm.mrays_lecture, static_cast<double>(sm.pixels_off), !usable});
   }
   md << "\n### Precision summary\n\nWorst over the " << scenes.size() << " scenes above.\n\n" << table.str();
   out.write("precision_summary.md", table.str());
