@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "renderer/accel.h"
+#include "renderer/numerics_variants.h"
 
 namespace phonglab {
 
@@ -42,11 +43,13 @@ std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, do
 }
 
 std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.numerics.geometry()) [[unlikely]] return intersect_variant(scene, ray, t_max);  // bench only
   if (scene.accel) return scene.accel->intersect(scene, ray, t_max);
   return intersect_all(scene, ray, t_max);
 }
 
 bool occluded(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.numerics.occlusion()) [[unlikely]] return occluded_variant(scene, ray, t_max);  // bench only
   if (scene.accel) return scene.accel->occluded(scene, ray, t_max);
   return occluded_all(scene, ray, t_max);
 }

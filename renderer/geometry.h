@@ -141,6 +141,37 @@ Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double
 inline double surface_offset(double magnitude, double t) { return 1e-9 * (magnitude + t); }
 inline double surface_offset(const Vec3& p, double t) { return surface_offset(max_abs(p), t); }
 
+// The same for a ray leaving `hit`, from bounds of each primitive's rounding errors rather
+// than one magnitude for all. Two kinds of error meet there. (a) Absolute coordinates: P, and
+// the differences o - c (sphere), point - o (plane), v - o (triangle) the next test forms from
+// the offset origin, are rounded to a few ulps of the coordinates involved (the sphere's centre and radius,
+// the plane's stored point, the vertices, P itself); kCoordinateMargin covers 4096 ulps of them.
+// (b) Sizes: the next test's own error is relative to what it computes with once those
+// differences are formed: the radius, the distance t travelled; kSizeMargin is the 1e-9 of
+// surface_offset. Splitting them keeps the offset at 1e-12 of the coordinates far from the
+// origin (a unit scene moved 1e5 away: 1e-7, not 1e-4 of its size, HARDCASES O5) while a huge
+// sphere still gets 1e-9 of its radius (S3).
+inline constexpr double kCoordinateMargin = 0x1p-40;  // 9.1e-13 = 4096 ulps of a coordinate
+inline constexpr double kSizeMargin = 1e-9;
+inline double surface_offset(const Scene& scene, const Hit& hit) {
+  switch (hit.object.kind) {
+    case ObjectRef::Kind::kSphere: {  // |P| <= |C| + r
+      const Sphere& s = scene.spheres[static_cast<std::size_t>(hit.object.index)];
+      return kCoordinateMargin * (max_abs(s.center) + s.radius) + kSizeMargin * (s.radius + hit.t);
+    }
+    case ObjectRef::Kind::kPlane: {
+      const Plane& pl = scene.planes[static_cast<std::size_t>(hit.object.index)];
+      return kCoordinateMargin * std::max(max_abs(hit.p), max_abs(pl.point)) + kSizeMargin * hit.t;
+    }
+    case ObjectRef::Kind::kTriangle:  // magnitude: the largest vertex coordinate, >= |P|
+    case ObjectRef::Kind::kMesh:
+      return kCoordinateMargin * hit.magnitude + kSizeMargin * hit.t;
+    case ObjectRef::Kind::kNone:
+      break;
+  }
+  return surface_offset(hit.magnitude, hit.t);
+}
+
 // Origin for a ray leaving the surface with geometric normal ng at p, towards dir.
 inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir, double offset) {
   return glm::dot(dir, ng) >= 0 ? p + offset * ng : p - offset * ng;

@@ -106,6 +106,24 @@ struct ObjectRef {
 // Nearest-hit and any-hit queries over a scene's primitives, built by prepare_scene.
 class Accelerator;
 
+// Switches for measuring the numerics and the "model only what a scene needs" savings (the
+// bench's precision and savings tables, and their tests). All off is the production renderer;
+// the scene loader never sets them. Any geometry switch routes intersect() and occluded() to
+// renderer/numerics_variants.cpp through one branch at their top.
+struct NumericsVariant {
+  bool float_geometry = false;   // intersection tests and hit points in float (shading stays double)
+  bool textbook_sphere = false;  // b^2 - 4ac with (-b -+ sqrt)/2a roots, hit point not re-projected
+  // Ablations of work the production renderer skips; the image stays the same, only rays grow.
+  bool nearest_hit_shadows = false;    // shadow rays as nearest-hit queries, not any-hit
+  bool shadow_rays_behind = false;     // cast shadow rays also to lights with N.L <= 0
+  bool refraction_for_opaque = false;  // trace a refraction ray for opaque materials (kt = 0) too
+  bool schlick_fresnel = false;  // Schlick's approximation, cos(theta_i) on both sides
+  double fixed_offset = 0;       // > 0: secondary rays start this far (world units) along the normal
+  // Bitwise, not ||: one test of adjacent bytes at the top of every query, no extra branches.
+  bool geometry() const { return float_geometry | textbook_sphere; }
+  bool occlusion() const { return float_geometry | textbook_sphere | nearest_hit_shadows; }
+};
+
 struct Scene {
   Camera camera;
   int width = 960;                    // image width, pixels
@@ -125,6 +143,7 @@ struct Scene {
   std::vector<int> sphere_object, plane_object, triangle_object, mesh_object;
   // Built from the primitives above by prepare_scene; null: queries test every primitive.
   std::shared_ptr<const Accelerator> accel;
+  NumericsVariant numerics;  // experiments only (bench, tests); all off when loaded
 };
 
 }  // namespace phonglab

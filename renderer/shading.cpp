@@ -1,6 +1,7 @@
 #include "renderer/shading.h"
 
 #include "renderer/accel.h"
+#include "renderer/numerics_variants.h"
 
 namespace phonglab {
 
@@ -38,8 +39,9 @@ Occluder find_occluder(const Scene& scene, const Ray& ray, double t_max, const V
   return {};
 }
 
-// Shadow ray for one light from a surface point. Returns vis_l.
-bool light_visible(const Scene& scene, const Light& light, const Hit& hit, const Vec3& ng_facing,
+// Shadow ray for one light from a surface point. Returns vis_l. Always inlined: shade's light
+// loop is the hot path, and the bench ablation's second call site must not move it out of line.
+[[gnu::always_inline]] inline bool light_visible(const Scene& scene, const Light& light, const Hit& hit, const Vec3& ng_facing,
                    const Vec3& l, double offset, RayCounts& counts, Occluder* occluder) {
   ++counts.shadow;
   const Vec3 origin = offset_origin(hit.p, ng_facing, l, offset);
@@ -77,7 +79,8 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
     const double len = glm::length(to_eye);
     if (len > 0) v = to_eye / len;
   }
-  const double offset = surface_offset(hit.magnitude, hit.t);
+  const double offset =
+      scene.numerics.fixed_offset > 0 ? scene.numerics.fixed_offset : surface_offset(scene, hit);
 
   Terms terms;
   terms.ambient = m.ka * scene.ambient;
@@ -119,7 +122,11 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
         pl->n_dot_l = n_dot_l;
         pl->distance = dist;
       }
-      if (!(n_dot_l > 0)) continue;  // light behind the surface: neither diffuse nor specular
+      if (!(n_dot_l > 0)) {  // light behind the surface: neither diffuse nor specular
+        if (scene.numerics.shadow_rays_behind) [[unlikely]]  // bench ablation: a ray for nothing
+          light_visible(scene, light, hit, ng_facing, l, offset, counts, nullptr);
+        continue;
+      }
       if (!has_diffuse && !has_specular && !probe) continue;
 
       double spec = 0;
@@ -167,7 +174,9 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
   }
 
   // Recursion for mirrors and glass.
-  if (depth < limits.max_depth && (!is_zero(m.kr) || !is_zero(m.kt))) {
+  // Bench ablation: also a refraction ray for opaque materials (kt = 0), as a naive tracer casts.
+  const bool force_refraction = scene.numerics.refraction_for_opaque && is_zero(m.kt);
+  if (depth < limits.max_depth && (!is_zero(m.kr) || !is_zero(m.kt) || force_refraction)) {
     Color kr = m.kr;
     Color kt = m.kt;
     const double cos_i = clamp_unit(-glm::dot(d, n));
@@ -176,7 +185,8 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
     const bool tir = k < 0;
     double fresnel = 0;
     if (m.fresnel && !is_zero(kt)) {
-      fresnel = tir ? 1.0 : fresnel_exact(cos_i, eta);
+      fresnel = tir ? 1.0
+                    : (scene.numerics.schlick_fresnel ? fresnel_schlick(cos_i, eta) : fresnel_exact(cos_i, eta));
       kr = m.kr + m.kt * fresnel;
       kt = m.kt * (1 - fresnel);
     }
@@ -201,9 +211,15 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
     std::unique_ptr<ProbeNode> no_probe;
     const Vec3 mirror = reflect_dir(d, n);
     terms.reflection = child(kr, mirror, counts.reflection, probe ? probe->reflection : no_probe);
-    if (!is_zero(kt)) {
+    if (!is_zero(kt) || force_refraction) {
       const Vec3 dir = tir ? mirror : glm::normalize(eta * d + (eta * cos_i - std::sqrt(k)) * n);
-      terms.refraction = child(kt, dir, counts.refraction, probe ? probe->refraction : no_probe);
+      if (!is_zero(kt)) {
+        terms.refraction = child(kt, dir, counts.refraction, probe ? probe->refraction : no_probe);
+      } else {  // the ablation: traced at the parent's path weight, and multiplied by kt' = 0
+        ++counts.refraction;
+        const Ray ray_out = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
+        terms.refraction = kt * trace(scene, limits, ray_out, depth + 1, weight, counts);
+      }
     }
   }
   if (probe) {
