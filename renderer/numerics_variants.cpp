@@ -1,5 +1,7 @@
 #include "renderer/numerics_variants.h"
 
+#include "renderer/accel.h"
+
 #include <limits>
 #include <thread>
 #include <utility>
@@ -301,6 +303,16 @@ Scene transformed_scene(Scene scene, double s, const Vec3& shift) {
     move(tri.v0);
     move(tri.v1);
     move(tri.v2);
+  }
+  // A mesh's triangles are shared and immutable: a moved copy gets its own, and its own BVH.
+  for (Mesh& mesh : scene.meshes) {
+    std::vector<Triangle> tris = mesh.geometry->triangles;
+    for (Triangle& tri : tris) {
+      move(tri.v0);
+      move(tri.v1);
+      move(tri.v2);
+    }
+    mesh.geometry = make_mesh_geometry(std::move(tris), mesh.geometry->source_face);
   }
   return scene;
 }

@@ -20,6 +20,7 @@
 #include "renderer/camera.h"
 #include "renderer/geometry.h"
 #include "renderer/math.h"
+#include "renderer/numerics_variants.h"
 #include "renderer/render.h"
 #include "renderer/scene.h"
 #include "renderer/scene_io.h"
@@ -2216,25 +2217,7 @@ namespace {
 
 // The scene with every position and length mapped by p -> s p + shift (directions, colours and
 // coefficients unchanged).
-Scene transformed(Scene scene, double s, const Vec3& shift) {
-  auto move = [&](Vec3& p) { p = s * p + shift; };
-  move(scene.camera.position);
-  move(scene.camera.look_at);
-  for (Light& l : scene.lights) {
-    if (l.type == LightType::kPoint) move(l.position);
-  }
-  for (Sphere& sp : scene.spheres) {
-    move(sp.center);
-    sp.radius *= s;
-  }
-  for (Plane& pl : scene.planes) move(pl.point);
-  for (Triangle& tri : scene.triangles) {
-    move(tri.v0);
-    move(tri.v1);
-    move(tri.v2);
-  }
-  return scene;
-}
+Scene transformed(const Scene& scene, double s, const Vec3& shift) { return transformed_scene(scene, s, shift); }
 
 // Pixels whose largest channel differs by more than tol.
 int pixels_differing(const Rendered& a, const Rendered& b, double tol, std::string* example = nullptr) {

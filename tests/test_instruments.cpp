@@ -16,6 +16,7 @@
 #include "renderer/figure.h"
 #include "renderer/render.h"
 #include "renderer/scene_io.h"
+#include "tests/test_support.h"
 #include "ui/history.h"
 
 namespace phonglab {
@@ -23,14 +24,6 @@ namespace {
 
 constexpr int kWidth = 64;   // small images: every embedded scene, many pixels, still quick
 constexpr int kHeight = 36;
-
-Scene load_prepared(std::string_view name) {
-  LoadResult result = load_scene_arg(std::string(name));
-  EXPECT_TRUE(result.ok()) << result.error_text();
-  Scene scene = std::move(*result.scene);
-  prepare_scene(scene);
-  return scene;
-}
 
 Accumulator render_once(const Scene& scene, Term term) {
   RenderOptions options;

@@ -16,20 +16,13 @@
 #include "renderer/ray_tree_view.h"
 #include "renderer/render.h"
 #include "renderer/scene_io.h"
+#include "tests/test_support.h"
 
 namespace phonglab {
 namespace {
 
 constexpr int kWidth = 48;  // small images: every embedded scene, every pixel, still quick
 constexpr int kHeight = 27;
-
-Scene load_prepared(std::string_view name) {
-  LoadResult result = load_scene_arg(std::string(name));
-  EXPECT_TRUE(result.ok()) << result.error_text();
-  Scene scene = std::move(*result.scene);
-  prepare_scene(scene);
-  return scene;
-}
 
 std::string describe(const Camera& c) {
   std::ostringstream s;
