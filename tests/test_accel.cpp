@@ -188,6 +188,51 @@ TEST(SceneBvh, BuiltOnlyWhenAskedForAHandfulOfSpheres) {
   EXPECT_TRUE(build_scene_accel(s, true));
 }
 
+// A mesh large enough for the build to split its top levels over threads (2^16 triangles and
+// more): every triangle lands in exactly one leaf, and queries equal brute force. Also run under
+// ThreadSanitizer.
+TEST(SceneBvh, AParallelBuildOfALargeMeshKeepsEveryTriangleOnceAndEqualsBruteForce) {
+  const std::uint32_t seed = 20261123;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> pos(-10, 10), step(-0.2, 0.2);
+  std::vector<Triangle> tris;
+  for (int i = 0; i < 90000; ++i) {
+    const Vec3 a(pos(rng), pos(rng), pos(rng));
+    tris.push_back(Triangle{a, a + Vec3(step(rng), step(rng), step(rng)), a + Vec3(step(rng), step(rng), step(rng)), 0});
+  }
+  std::vector<int> faces(tris.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = static_cast<int>(i);
+  Scene scene;
+  scene.materials.resize(1);
+  Mesh mesh;
+  mesh.geometry = make_mesh_geometry(tris, faces);
+  const MeshGeometry& g = *mesh.geometry;
+  ASSERT_EQ(g.triangles.size(), tris.size());
+  std::vector<int> seen(tris.size(), 0);
+  for (std::size_t slot = 0; slot < g.triangles.size(); ++slot) {
+    const int face = g.source_face[slot];
+    ASSERT_GE(face, 0);
+    ++seen[static_cast<std::size_t>(face)];
+    EXPECT_EQ(g.triangles[slot].v0, tris[static_cast<std::size_t>(face)].v0) << "slot " << slot;
+  }
+  for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "face " << i;
+  scene.meshes.push_back(std::move(mesh));
+  scene.mesh_object.push_back(0);
+  prepare_scene(scene);
+  ASSERT_TRUE(scene.accel);
+  std::uniform_real_distribution<double> dir(-1, 1);
+  for (int i = 0; i < 300; ++i) {
+    const Ray ray = make_ray(Vec3(pos(rng), pos(rng), pos(rng)), glm::normalize(Vec3(dir(rng), dir(rng), dir(rng))));
+    const auto fast = intersect(scene, ray);
+    const auto slow = intersect_all(scene, ray);
+    ASSERT_EQ(fast.has_value(), slow.has_value()) << "seed " << seed << ", ray " << i;
+    if (fast) {
+      EXPECT_EQ(fast->t, slow->t) << "seed " << seed << ", ray " << i;
+      EXPECT_EQ(fast->object.prim, slow->object.prim) << "seed " << seed << ", ray " << i;
+    }
+  }
+}
+
 #ifdef PHONGLAB_HAVE_EMBREE
 
 // Above Embree's self-hit margin for these scenes (2^-16 of coordinates up to about 16).
