@@ -387,19 +387,9 @@ void Viewer::pick(ImVec2 mouse) {
   const Scene& scene = *snapshot_;
   selected_material_ = hit->material;
   open_materials_ = true;
-  const std::vector<int>* to_object = nullptr;
-  switch (hit->object.kind) {
-    case ObjectRef::Kind::kSphere: to_object = &scene.sphere_object; break;
-    case ObjectRef::Kind::kPlane: to_object = &scene.plane_object; break;
-    case ObjectRef::Kind::kTriangle: to_object = &scene.triangle_object; break;
-    case ObjectRef::Kind::kMesh: to_object = &scene.mesh_object; break;
-    case ObjectRef::Kind::kNone: break;
-  }
   std::ostringstream text;
-  text << object_kind_name(hit->object.kind);
-  if (to_object && hit->object.index >= 0 && hit->object.index < static_cast<int>(to_object->size())) {
-    text << " objects[" << (*to_object)[static_cast<std::size_t>(hit->object.index)] << "]";
-  }
+  // The probe's naming: "objects[i]", and a mesh's OBJ face.
+  text << object_kind_name(hit->object.kind) << " " << object_name(scene, hit->object);
   if (hit->material >= 0 && hit->material < static_cast<int>(scene.materials.size())) {
     text << ", material '" << scene.materials[static_cast<std::size_t>(hit->material)].name << "'";
   }
@@ -1120,24 +1110,19 @@ void Viewer::refresh_probe() {
 }
 
 void Viewer::undo() {
-  Scene& scene = doc_.scene();
   if (commit_pending_) {
-    history_.commit(scene);  // a gesture still in progress becomes the step undone
+    history_.commit(doc_.scene());  // a gesture still in progress becomes the step undone
     commit_pending_ = false;
   }
-  std::optional<Scene> previous = history_.undo(scene);
-  if (!previous) return;
-  scene = std::move(*previous);
-  selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
-  scene_edited_ = true;
-  restored_ = true;
+  restore(history_.undo(doc_.scene()));
 }
 
-void Viewer::redo() {
+void Viewer::redo() { restore(history_.redo(doc_.scene())); }
+
+void Viewer::restore(std::optional<Scene> step) {
+  if (!step) return;
   Scene& scene = doc_.scene();
-  std::optional<Scene> next = history_.redo(scene);
-  if (!next) return;
-  scene = std::move(*next);
+  scene = std::move(*step);
   selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
   scene_edited_ = true;
   restored_ = true;

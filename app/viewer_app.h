@@ -116,6 +116,7 @@ class Viewer {
   void refresh_probe();                          // probes the same pixel again in the newest snapshot
   void undo();                                   // Ctrl+Z: the scene before the last edit
   void redo();                                   // Ctrl+Shift+Z
+  void restore(std::optional<Scene> step);       // makes an undo/redo step the scene, if any
   void snapshot_a();                             // keeps the image shown as A
   void save_figure(const std::string& path);     // the slide figure of the current snapshot
   std::optional<Vec3> head_eye() const;          // "move your head": the shading eye, nullopt when off

@@ -1,6 +1,5 @@
 #include "app/viewer_document.h"
 
-#include <cctype>
 #include <filesystem>
 #include <system_error>
 
@@ -47,16 +46,6 @@ bool SceneDocument::open(const std::string& scene_arg) {
   status_ = "opened " + source_;
   return true;
 }
-
-namespace {
-
-bool is_obj_path(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".obj";
-}
-
-}  // namespace
 
 bool SceneDocument::opened_mesh() const { return is_obj_path(file_path_); }
 

@@ -1602,13 +1602,13 @@ LoadResult load_obj_scene(const std::string& path) {
   return r;
 }
 
-bool has_obj_extension(const std::string& path) {
+}  // namespace
+
+bool is_obj_path(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = to_lower(c);
   return ext == ".obj";
 }
-
-}  // namespace
 
 LoadResult load_scene_text(const std::string& text, const std::string& file_name,
                            const std::string& base_dir) {
@@ -1616,7 +1616,7 @@ LoadResult load_scene_text(const std::string& text, const std::string& file_name
 }
 
 LoadResult load_scene_file(const std::string& path) {
-  if (has_obj_extension(path)) {
+  if (is_obj_path(path)) {
     try {
       return load_obj_scene(path);
     } catch (const std::bad_alloc&) {

@@ -36,6 +36,10 @@ LoadResult load_scene_text(const std::string& text, const std::string& file_name
 // ending in .obj opens that mesh alone, with a camera framing it and a light.
 LoadResult load_scene_file(const std::string& path);
 
+// Whether `path` names a Wavefront OBJ (by its extension, any case): such a path opens as a mesh
+// alone, and a scene must never be saved over it.
+bool is_obj_path(const std::string& path);
+
 // Resolves SCENE as the CLI takes it: an embedded scene's name, else a file path.
 LoadResult load_scene_arg(const std::string& scene_arg);
 
