@@ -19,6 +19,7 @@
 #include "renderer/heat_map.h"
 #include "renderer/image_io.h"
 #include "renderer/probe_report.h"
+#include "renderer/packet.h"
 #include "renderer/render.h"
 #include "renderer/scene_io.h"
 
@@ -50,8 +51,9 @@ commands:
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR
       (default bench-out/); --quick finishes in about a minute. --only accel:
       the acceleration section alone (accel.md, accel.csv).
-  bench SCENE [--frames N] [--width W] [--height H] [--threads N]
+  bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
       Time Whitted frames (1 spp) of one scene and print the median.
+      --scalar: without the packet tracer (the same image, traced ray by ray).
 
 SCENE is a scene file (JSON) or an embedded scene's name; default: lecture.
 Options: --help, --version.
@@ -296,6 +298,7 @@ int cmd_bench(Args& args) {
   const auto out_dir = args.take_value("--out");
   const bool quick = args.take_flag("--quick");
   const auto only = args.take_value("--only");
+  const bool scalar = args.take_flag("--scalar");
   const auto positional = args.take_positional();
   if (only) {
     if (*only != "accel" || positional) throw UsageError{"bench --only takes 'accel' and no SCENE"};
@@ -316,6 +319,7 @@ int cmd_bench(Args& args) {
   prepare_scene(*scene);
   RenderOptions options;
   options.threads = threads.value_or(0);
+  options.packets = !scalar;
   std::vector<double> ms;
   std::vector<double> mrays;
   RayCounts rays;
@@ -332,8 +336,9 @@ int cmd_bench(Args& args) {
     const std::size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
   };
-  std::printf("scene %s, %dx%d, 1 spp, %d threads, %zu frames\n", scene_arg.c_str(), scene->width, scene->height,
-              resolve_thread_count(options.threads), ms.size());
+  std::printf("scene %s, %dx%d, 1 spp, %d threads, %zu frames, %s tracer\n", scene_arg.c_str(), scene->width,
+              scene->height, resolve_thread_count(options.threads), ms.size(),
+              options.packets && packet_tracing_applies(*scene) ? "packet (AVX2)" : "scalar");
   std::printf("rays per frame: %llu (primary %llu, shadow %llu, reflection %llu, refraction %llu)\n",
               static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
               static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.reflection),

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <thread>
 
+#include "renderer/packet.h"
+
 namespace phonglab {
 
 namespace {
@@ -109,7 +111,21 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
 
   // Each tile is written by exactly one thread and each pixel's value depends only on
   // (x, y, sample_index), so the image is the same for any thread count or tile order.
+  const bool packets = options.packets && options.term == Term::kFull && !shading_eye && packet_tracing_applies(scene);
   auto worker = [&](PassStats& stats) {
+    std::optional<PacketTracer> tracer;
+    std::vector<Color> tile_radiance;
+    if (packets) {
+      tracer.emplace(scene);
+      tile_radiance.resize(static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile));
+    }
+    const auto add = [&](Color* row, int x, Color c) {
+      if (!all_finite(c)) {
+        ++stats.nan_count;
+        c = Color(0);
+      }
+      row[x] += c;
+    };
     for (;;) {
       if (cancel && cancel->load(std::memory_order_relaxed)) {
         stopped.store(true, std::memory_order_relaxed);
@@ -121,16 +137,20 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
       const int y0 = (t / tiles_x) * tile;
       const int x1 = std::min(x0 + tile, accum.width);
       const int y1 = std::min(y0 + tile, accum.height);
+      if (tracer) {
+        tracer->render_tile(frame, x0, y0, x1, y1, sample_index, options.seed, tile_radiance.data(), stats.rays);
+        const Color* c = tile_radiance.data();
+        for (int y = y0; y < y1; ++y) {
+          Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
+          for (int x = x0; x < x1; ++x) add(row, x, *c++);
+        }
+        continue;
+      }
       for (int y = y0; y < y1; ++y) {
         Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
         for (int x = x0; x < x1; ++x) {
-          Color c = render_sample(scene, frame, options.term, x, y, sample_index, stats.rays, options.seed,
-                                  shading_eye);
-          if (!all_finite(c)) {
-            ++stats.nan_count;
-            c = Color(0);
-          }
-          row[x] += c;
+          add(row, x, render_sample(scene, frame, options.term, x, y, sample_index, stats.rays, options.seed,
+                                    shading_eye));
         }
       }
     }

@@ -40,6 +40,9 @@ struct RenderOptions {
   // "Move your head": the eye used for V at the primary hit (the view rays stay the camera's;
   // reflection and refraction children use their own -D). nullopt: V = -D, the plain equation.
   std::optional<Vec3> shading_eye;
+  // Trace full images in packets (renderer/packet.h) where the scene and the CPU allow it.
+  // The image is bit-identical either way; off forces the scalar renderer (tests, comparisons).
+  bool packets = true;
 };
 
 // Sums of samples per pixel, row-major from the top-left, plus the sample count.

@@ -25,6 +25,28 @@ double fresnel_exact(double cos_i, double eta) {
   return f > 1 ? 1 : (f < 0 ? 0 : f);
 }
 
+Bounce bounce(const Scene& scene, const Material& m, const Vec3& d, const Vec3& n, bool entering,
+              bool force_refraction) {
+  Bounce b;
+  b.kr = m.kr;
+  b.kt = m.kt;
+  const double cos_i = clamp_unit(-glm::dot(d, n));
+  b.eta = entering ? 1.0 / m.ior : m.ior;
+  const double k = 1 - b.eta * b.eta * (1 - cos_i * cos_i);
+  b.tir = k < 0;
+  if (m.fresnel && !is_zero(m.kt)) {
+    b.fresnel = b.tir ? 1.0
+                      : (scene.numerics.schlick_fresnel ? fresnel_schlick(cos_i, b.eta) : fresnel_exact(cos_i, b.eta));
+    b.kr = m.kr + m.kt * b.fresnel;
+    b.kt = m.kt * (1 - b.fresnel);
+  }
+  b.mirror = reflect_dir(d, n);
+  if (!is_zero(b.kt) || force_refraction) {
+    b.refracted = b.tir ? b.mirror : glm::normalize(b.eta * d + (b.eta * cos_i - std::sqrt(k)) * n);
+  }
+  return b;
+}
+
 namespace {
 
 // What blocks a shadow ray, for the probe only.
@@ -68,9 +90,10 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
             double weight, RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye) {
   const Material& m = scene.materials[hit.material];
   const Vec3& d = ray.dir;
-  const bool entering = glm::dot(hit.ng, d) < 0;
-  const Vec3 ng_facing = entering ? hit.ng : -hit.ng;
-  const Vec3 n = glm::dot(hit.ns, d) < 0 ? hit.ns : -hit.ns;  // N faces the incoming ray
+  const HitSide side = hit_side(hit, d);
+  const bool entering = side.entering;
+  const Vec3& ng_facing = side.ng;
+  const Vec3& n = side.n;
   // V: towards the real eye (-D), or towards a moved eye ("move your head"); an eye exactly at
   // P has no direction and falls back to -D.
   Vec3 v = -d;
@@ -142,10 +165,7 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
           r = len > 0 ? h / len : n;  // L = -V only at grazing: any H then gives N.H <= 0
           cos_spec = len > 0 ? glm::dot(n, r) : 0;
         }
-        // The base is clamped before pow, so a fractional n never sees a negative base;
-        // pow(0, n) is exactly 0 for n > 0, which spares the call for most lit points.
-        const double base = clamp_positive(clamp_unit(cos_spec));
-        spec = (base == 0 && m.n > 0) ? 0.0 : std::pow(base, m.n);
+        spec = specular_factor(cos_spec, m.n);
         if (pl) {
           pl->r = r;
           pl->r_dot_v = cos_spec;
@@ -177,25 +197,15 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
   // Bench ablation: also a refraction ray for opaque materials (kt = 0), as a naive tracer casts.
   const bool force_refraction = scene.numerics.refraction_for_opaque && is_zero(m.kt);
   if (depth < limits.max_depth && (!is_zero(m.kr) || !is_zero(m.kt) || force_refraction)) {
-    Color kr = m.kr;
-    Color kt = m.kt;
-    const double cos_i = clamp_unit(-glm::dot(d, n));
-    const double eta = entering ? 1.0 / m.ior : m.ior;
-    const double k = 1 - eta * eta * (1 - cos_i * cos_i);
-    const bool tir = k < 0;
-    double fresnel = 0;
-    if (m.fresnel && !is_zero(kt)) {
-      fresnel = tir ? 1.0
-                    : (scene.numerics.schlick_fresnel ? fresnel_schlick(cos_i, eta) : fresnel_exact(cos_i, eta));
-      kr = m.kr + m.kt * fresnel;
-      kt = m.kt * (1 - fresnel);
-    }
+    const Bounce bn = bounce(scene, m, d, n, entering, force_refraction);
+    const Color& kr = bn.kr;
+    const Color& kt = bn.kt;
     if (probe) {
       probe->kr_eff = kr;
       probe->kt_eff = kt;
-      probe->fresnel = fresnel;
-      probe->tir = tir;
-      probe->eta = eta;
+      probe->fresnel = bn.fresnel;
+      probe->tir = bn.tir;
+      probe->eta = bn.eta;
     }
     // One child ray with weight k along dir; nothing when k = 0 or the path weight is too low.
     auto child = [&](const Color& kw, const Vec3& dir, std::uint64_t& count,
@@ -209,10 +219,9 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
       return kw * trace(scene, limits, ray_out, depth + 1, w, counts, probe_child.get());
     };
     std::unique_ptr<ProbeNode> no_probe;
-    const Vec3 mirror = reflect_dir(d, n);
-    terms.reflection = child(kr, mirror, counts.reflection, probe ? probe->reflection : no_probe);
+    terms.reflection = child(kr, bn.mirror, counts.reflection, probe ? probe->reflection : no_probe);
     if (!is_zero(kt) || force_refraction) {
-      const Vec3 dir = tir ? mirror : glm::normalize(eta * d + (eta * cos_i - std::sqrt(k)) * n);
+      const Vec3& dir = bn.refracted;
       if (!is_zero(kt)) {
         terms.refraction = child(kt, dir, counts.refraction, probe ? probe->refraction : no_probe);
       } else {  // the ablation: traced at the parent's path weight, and multiplied by kt' = 0

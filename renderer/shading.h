@@ -48,6 +48,39 @@ void prepare_scene(Scene& scene);
 // eta = n_incident / n_transmitted. 1 under total internal reflection.
 double fresnel_exact(double cos_i, double eta);
 
+// How a hit faces the incoming ray (direction d).
+struct HitSide {
+  bool entering = false;  // d arrives on the outward side of the geometric normal
+  Vec3 ng{0};             // geometric normal on d's side
+  Vec3 n{0};              // shading normal N, facing d
+};
+inline HitSide hit_side(const Hit& hit, const Vec3& d) {
+  const bool entering = glm::dot(hit.ng, d) < 0;
+  return HitSide{entering, entering ? hit.ng : -hit.ng, glm::dot(hit.ns, d) < 0 ? hit.ns : -hit.ns};
+}
+
+// The specular factor max(0, cos)^n. The base is clamped before pow, so a fractional n never
+// sees a negative base (HARDCASES N4, N5); pow(0, n) is exactly 0 for n > 0, which spares the
+// call for most lit points.
+inline double specular_factor(double cos_spec, double n) {
+  const double base = clamp_positive(clamp_unit(cos_spec));
+  return (base == 0 && n > 0) ? 0.0 : std::pow(base, n);
+}
+
+// What a mirror or glass hit passes on to its children.
+struct Bounce {
+  Color kr{0}, kt{0};    // kr', kt': with Fresnel, kr + kt F and kt (1 - F)
+  double eta = 1;        // n_incident / n_transmitted
+  bool tir = false;      // total internal reflection
+  double fresnel = 0;    // F, when the material uses Fresnel
+  Vec3 mirror{0};        // reflected direction
+  Vec3 refracted{0};     // transmitted direction (the mirror one under TIR); set when kt' != 0
+                         // or `force_refraction`
+};
+// For a ray with direction d meeting material m with facing normal n.
+Bounce bounce(const Scene& scene, const Material& m, const Vec3& d, const Vec3& n, bool entering,
+              bool force_refraction = false);
+
 // One light's part in a probed hit.
 struct ProbeLight {
   int index = 0;          // into Scene::lights

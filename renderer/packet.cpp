@@ -1,0 +1,429 @@
+#include "renderer/packet.h"
+
+#include <limits>
+#include <vector>
+
+#include "renderer/geometry.h"
+#include "renderer/packet_kernels.h"
+
+namespace phonglab {
+
+bool packet_cpu_supported() {
+#if defined(PHONGLAB_PACKET_AVX2)
+  static const bool supported = __builtin_cpu_supports("avx2");
+  return supported;
+#else
+  return false;
+#endif
+}
+
+bool packet_tracing_applies(const Scene& scene) {
+  const NumericsVariant& v = scene.numerics;
+  const bool production = !v.geometry() && !v.occlusion() && !v.shadow_rays_behind && !v.refraction_for_opaque &&
+                          !v.schlick_fresnel && !(v.fixed_offset > 0);
+  return production && !scene.accel && scene.meshes.empty() && packet_cpu_supported();
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+int padded(int n) { return (n + 3) & ~3; }
+
+// Grows v to at least n elements (never shrinks, never clears: lanes past the live ones keep
+// old but initialised values, which the kernels compute on and the driver ignores).
+template <class T>
+void fit(std::vector<T>& v, int n) {
+  if (v.size() < static_cast<std::size_t>(n)) v.resize(static_cast<std::size_t>(n));
+}
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+// Rays of one batch as structure of arrays, with room for a multiple of 4 lanes.
+struct RayBatch {
+  std::vector<double> ox, oy, oz, dx, dy, dz;
+  std::vector<double> weight;        // path weight from the camera
+  std::vector<std::int32_t> sender;  // the hit (in the level before) that sent the ray
+  int n = 0;
+
+  void reserve_lanes(int count) {
+    const int size = padded(count);
+    for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &weight}) fit(*v, size);
+    fit(sender, size);
+  }
+  void push(const Vec3& o, const Vec3& d, double w, int from) {
+    const std::size_t i = at(n);
+    ox[i] = o.x, oy[i] = o.y, oz[i] = o.z;
+    dx[i] = d.x, dy[i] = d.y, dz[i] = d.z;
+    weight[i] = w;
+    sender[i] = from;
+    ++n;
+  }
+  Vec3 origin(int i) const { return {ox[at(i)], oy[at(i)], oz[at(i)]}; }
+  Vec3 dir(int i) const { return {dx[at(i)], dy[at(i)], dz[at(i)]}; }
+  packet::Rays view() const { return {ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data()}; }
+};
+
+// A shadow ray's fate for one light at one hit.
+enum class Shadow : std::uint8_t { kNone, kTest, kVisible };
+
+// Everything one recursion level keeps while its children are traced. All arrays are indexed
+// by the level's ray (lane); lanes whose ray missed are skipped (their light kernel lanes are
+// computed and ignored, and their shadow lanes are idle).
+struct Level {
+  // Nearest hits.
+  std::vector<double> t, b1, b2;
+  std::vector<std::int32_t> id;  // sphere k, spheres + plane k, spheres + planes + triangle k; -1: miss
+  // Shading frame at the hit.
+  std::vector<int> material;
+  std::vector<std::uint8_t> entering;
+  std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset;
+  std::vector<Terms> terms;
+  // One light at those points, with its shadow rays (kernel output, tested in place).
+  std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max, spec;
+  std::vector<Shadow> shadow;
+  std::vector<std::uint8_t> blocked;
+  // Children: the level's reflected and refracted rays, and what they bring back.
+  RayBatch reflected, refracted;
+  std::vector<Color> kr, kt;  // kr', kt' of each hit
+  std::vector<Color> reflected_radiance, refracted_radiance;
+  std::vector<int> reflected_index, refracted_index;  // per lane: lane in the child batch, or -1
+
+  void fit_lanes(int count) {
+    const int size = padded(count);
+    for (std::vector<double>* v : {&t, &b1, &b2, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz, &vx, &vy, &vz, &offset,
+                                   &n_dot_l, &cos_spec, &sox, &soy, &soz, &sdx, &sdy, &sdz, &st_max, &spec}) {
+      fit(*v, size);
+    }
+    fit(id, size);
+    fit(material, size);
+    fit(entering, size);
+    fit(terms, size);
+    fit(shadow, size);
+    fit(blocked, size);
+    fit(kr, size);
+    fit(kt, size);
+    fit(reflected_index, size);
+    fit(refracted_index, size);
+  }
+  packet::HitRecords records() {
+    return {px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), gx.data(),
+            gy.data(), gz.data(), vx.data(), vy.data(), vz.data(), offset.data(), entering.data()};
+  }
+};
+
+// What the light loop needs of a material, gathered once per scene.
+struct MaterialInfo {
+  bool lit = false;       // kd or ks non-zero: lights are evaluated
+  bool specular = false;  // ks non-zero
+  bool bounces = false;   // kr or kt non-zero: children may follow
+  double n = 0;
+  Color ambient{0};       // ka * Ia, as shade() computes it
+};
+
+}  // namespace
+
+struct PacketTracer::Impl {
+  const Scene& scene;
+  TraceLimits limits;
+  // The scene's spheres and planes as arrays for the kernels.
+  std::vector<double> cx, cy, cz, radius, sphere_offset;
+  std::vector<double> plx, ply, plz, pnx, pny, pnz, plane_size;
+  std::vector<int> prim_material;  // by kernel id (spheres, then planes, then triangles)
+  packet::Spheres spheres{};
+  packet::Planes planes{};
+  std::vector<MaterialInfo> info;
+  std::vector<Color> light_kd, light_ks;  // I_l * kd and I_l * ks, per light and material
+  std::vector<Level> levels;
+  RayBatch primary;
+  std::vector<double> x_plus_u, y_plus_v;
+
+  explicit Impl(const Scene& s) : scene(s), limits{s.max_depth, s.min_weight} {
+    for (const Sphere& sp : scene.spheres) {
+      cx.push_back(sp.center.x);
+      cy.push_back(sp.center.y);
+      cz.push_back(sp.center.z);
+      radius.push_back(sp.radius);
+      sphere_offset.push_back(kCoordinateMargin * (max_abs(sp.center) + sp.radius));
+      prim_material.push_back(sp.material);
+    }
+    for (const Plane& pl : scene.planes) {
+      plx.push_back(pl.point.x);
+      ply.push_back(pl.point.y);
+      plz.push_back(pl.point.z);
+      pnx.push_back(pl.normal.x);
+      pny.push_back(pl.normal.y);
+      pnz.push_back(pl.normal.z);
+      plane_size.push_back(max_abs(pl.point));
+      prim_material.push_back(pl.material);
+    }
+    for (const Triangle& tri : scene.triangles) prim_material.push_back(tri.material);
+    spheres = {cx.data(), cy.data(), cz.data(), radius.data(), sphere_offset.data(), static_cast<int>(cx.size())};
+    planes = {plx.data(), ply.data(), plz.data(), pnx.data(), pny.data(), pnz.data(), plane_size.data(),
+              static_cast<int>(plx.size())};
+    for (const Material& m : scene.materials) {
+      MaterialInfo mi;
+      mi.specular = !is_zero(m.ks);
+      mi.lit = !is_zero(m.kd) || mi.specular;
+      mi.bounces = !is_zero(m.kr) || !is_zero(m.kt);
+      mi.n = m.n;
+      mi.ambient = m.ka * scene.ambient;
+      info.push_back(mi);
+    }
+    for (const Light& light : scene.lights) {
+      for (const Material& m : scene.materials) {
+        light_kd.push_back(light.intensity * m.kd);
+        light_ks.push_back(light.intensity * m.ks);
+      }
+    }
+    levels.resize(at(std::max(0, limits.max_depth)) + 1);
+  }
+
+  ObjectRef object_of(std::int32_t id) const {
+    const int s = spheres.count, p = planes.count;
+    if (id < s) return {ObjectRef::Kind::kSphere, id};
+    if (id < s + p) return {ObjectRef::Kind::kPlane, id - s};
+    return {ObjectRef::Kind::kTriangle, id - s - p};
+  }
+
+  // The nearest hit of every ray: spheres and planes in the kernel, then the scene's few loose
+  // triangles ray by ray, in intersect_all's order.
+  void find_hits(Level& lv, const RayBatch& rays) {
+    lv.fit_lanes(rays.n);
+    for (int i = 0; i < rays.n; ++i) {
+      lv.t[at(i)] = kInf;
+      lv.id[at(i)] = -1;
+    }
+    packet::nearest(spheres, planes, rays.view(), padded(rays.n), lv.t.data(), lv.id.data());
+    if (scene.triangles.empty()) return;
+    const int first = spheres.count + planes.count;
+    for (int i = 0; i < rays.n; ++i) {
+      const std::size_t u = at(i);
+      const Ray ray = make_ray(rays.origin(i), rays.dir(i));
+      const TriangleShear shear = make_shear(ray.dir);
+      for (std::size_t k = 0; k < scene.triangles.size(); ++k) {
+        double b1 = 0, b2 = 0;
+        if (auto t = intersect_triangle(scene.triangles[k], ray, shear, &b1, &b2); t && *t < lv.t[u]) {
+          lv.t[u] = *t;
+          lv.id[u] = first + static_cast<std::int32_t>(k);
+          lv.b1[u] = b1;
+          lv.b2[u] = b2;
+        }
+      }
+    }
+  }
+
+  // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
+  void test_shadows(Level& lv, int hits) {
+    for (int h = 0; h < padded(hits); ++h) lv.blocked[at(h)] = 0;
+    const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
+    packet::occluded(spheres, planes, rays, lv.st_max.data(), padded(hits), lv.blocked.data());
+    if (scene.triangles.empty()) return;
+    for (int h = 0; h < hits; ++h) {
+      const std::size_t u = at(h);
+      if (lv.shadow[u] != Shadow::kTest || lv.blocked[u]) continue;
+      const Ray ray = make_ray(Vec3(lv.sox[u], lv.soy[u], lv.soz[u]), Vec3(lv.sdx[u], lv.sdy[u], lv.sdz[u]));
+      const TriangleShear shear = make_shear(ray.dir);
+      for (const Triangle& tri : scene.triangles) {
+        if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < lv.st_max[u]) {
+          lv.blocked[u] = 1;
+          break;
+        }
+      }
+    }
+  }
+
+  // The light loop of shade() for every hit of the level, one light at a time.
+  void shade_lights(Level& lv, int hits, RayCounts& counts) {
+    const packet::ShadedPoints pts{lv.px.data(), lv.py.data(), lv.pz.data(), lv.nx.data(), lv.ny.data(),
+                                   lv.nz.data(), lv.gx.data(), lv.gy.data(), lv.gz.data(), lv.vx.data(),
+                                   lv.vy.data(), lv.vz.data(), lv.offset.data()};
+    const packet::LightOut out{lv.n_dot_l.data(), lv.cos_spec.data(), lv.sox.data(), lv.soy.data(), lv.soz.data(),
+                               lv.sdx.data(),     lv.sdy.data(),      lv.sdz.data(), lv.st_max.data()};
+    const bool blinn = scene.specular_model == SpecularModel::kBlinn;
+    const std::size_t materials = scene.materials.size();
+    for (std::size_t li = 0; li < scene.lights.size(); ++li) {
+      const Light& light = scene.lights[li];
+      if (!light.enabled) continue;
+      packet::LightIn in{};
+      in.point = light.type == LightType::kPoint;
+      const Vec3 l = in.point ? light.position : -light.direction;
+      in.x = l.x, in.y = l.y, in.z = l.z;
+      in.shrink = in.point ? surface_offset(light.position, 0) : 0.0;
+      in.blinn = blinn;
+      packet::light(in, pts, padded(hits), out);
+
+      // Lit points (N.L > 0, a material with kd or ks) cast a shadow ray, except where the
+      // light is within rounding distance (visible without one).
+      bool any_test = false;
+      for (int h = 0; h < hits; ++h) {
+        const std::size_t u = at(h);
+        Shadow& fate = lv.shadow[u];
+        fate = Shadow::kNone;
+        if (lv.id[u] < 0) {  // a miss
+          lv.st_max[u] = 0;
+          continue;
+        }
+        const MaterialInfo& mi = info[at(lv.material[u])];
+        if (!(lv.n_dot_l[u] > 0) || !mi.lit) {  // N.L is NaN for a point light exactly at P
+          lv.st_max[u] = 0;
+          continue;
+        }
+        ++counts.shadow;
+        lv.spec[u] = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
+        fate = lv.st_max[u] > 0 ? Shadow::kTest : Shadow::kVisible;
+        any_test |= fate == Shadow::kTest;
+      }
+      for (int h = hits; h < padded(hits); ++h) lv.st_max[at(h)] = 0;
+      if (any_test) test_shadows(lv, hits);
+      for (int h = 0; h < hits; ++h) {
+        const std::size_t u = at(h);
+        if (lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
+        const std::size_t lm = li * materials + at(lv.material[u]);
+        Terms& t = lv.terms[u];
+        t.diffuse += light_kd[lm] * lv.n_dot_l[u];
+        t.specular += light_ks[lm] * lv.spec[u];
+      }
+    }
+  }
+
+  // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n).
+  void trace_level(int depth, const RayBatch& rays, Color* out, RayCounts& counts) {
+    Level& lv = levels[at(depth)];
+    find_hits(lv, rays);
+    const int lanes = rays.n;
+    packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
+                        padded(lanes), lv.records());
+    bool any_hit = false;
+    for (int i = 0; i < lanes; ++i) {
+      const std::size_t u = at(i);
+      const std::int32_t id = lv.id[u];
+      if (id < 0) {
+        out[i] = scene.background;
+        continue;
+      }
+      any_hit = true;
+      const int material = prim_material[at(id)];
+      lv.material[u] = material;
+      Terms& t = lv.terms[u];
+      t = Terms{};
+      t.ambient = info[at(material)].ambient;
+      if (id >= spheres.count + planes.count) record_triangle_hit(lv, rays, i);
+    }
+    if (!any_hit) return;
+    shade_lights(lv, lanes, counts);
+
+    const bool children = depth < limits.max_depth && send_children(lv, rays, lanes, depth, counts);
+    for (int i = 0; i < lanes; ++i) {
+      const std::size_t u = at(i);
+      if (lv.id[u] < 0) continue;
+      Terms& t = lv.terms[u];
+      if (children && lv.reflected_index[u] >= 0) {
+        t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
+      }
+      if (children && lv.refracted_index[u] >= 0) {
+        t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
+      }
+      out[i] = t.sum();
+    }
+  }
+
+  // A loose triangle's hit record, by the scalar functions (the kernel does spheres and planes).
+  void record_triangle_hit(Level& lv, const RayBatch& rays, int i) {
+    const std::size_t u = at(i);
+    const Vec3 d = rays.dir(i);
+    const Hit hit = make_hit(scene, make_ray(rays.origin(i), d), object_of(lv.id[u]), lv.t[u], lv.b1[u], lv.b2[u]);
+    const HitSide side = hit_side(hit, d);
+    lv.entering[u] = side.entering;
+    lv.px[u] = hit.p.x, lv.py[u] = hit.p.y, lv.pz[u] = hit.p.z;
+    lv.nx[u] = side.n.x, lv.ny[u] = side.n.y, lv.nz[u] = side.n.z;
+    lv.gx[u] = side.ng.x, lv.gy[u] = side.ng.y, lv.gz[u] = side.ng.z;
+    lv.vx[u] = -d.x, lv.vy[u] = -d.y, lv.vz[u] = -d.z;
+    lv.offset[u] = surface_offset(scene, hit);
+  }
+
+  // Reflected and refracted rays of the level's mirror and glass hits, traced as the next
+  // level's two batches (shade()'s recursion, with its path-weight pruning). False when no hit
+  // sends any.
+  bool send_children(Level& lv, const RayBatch& rays, int hits, int depth, RayCounts& counts) {
+    lv.reflected.n = 0;
+    lv.refracted.n = 0;
+    bool any = false;
+    for (int k = 0; k < hits; ++k) {
+      const std::size_t u = at(k);
+      lv.reflected_index[u] = lv.refracted_index[u] = -1;
+      any |= lv.id[u] >= 0 && info[at(lv.material[u])].bounces;
+    }
+    if (!any) return false;
+    lv.reflected.reserve_lanes(hits);
+    lv.refracted.reserve_lanes(hits);
+    for (int k = 0; k < hits; ++k) {
+      const std::size_t u = at(k);
+      if (lv.id[u] < 0 || !info[at(lv.material[u])].bounces) continue;
+      const Material& m = scene.materials[at(lv.material[u])];
+      const int i = k;
+      const Vec3 d = rays.dir(i);
+      const Vec3 n(lv.nx[u], lv.ny[u], lv.nz[u]);
+      const Vec3 ng(lv.gx[u], lv.gy[u], lv.gz[u]);
+      const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
+      const Bounce bn = bounce(scene, m, d, n, lv.entering[u] != 0);
+      lv.kr[u] = bn.kr;
+      lv.kt[u] = bn.kt;
+      const double weight = rays.weight[at(i)];
+      const double offset = lv.offset[u];
+      const auto send = [&](const Color& kw, const Vec3& dir, RayBatch& batch, int& index, std::uint64_t& count) {
+        if (is_zero(kw)) return;
+        const double w = weight * max_channel(kw);
+        if (w < limits.min_weight) return;
+        ++count;
+        index = batch.n;
+        batch.push(offset_origin(p, ng, dir, offset), dir, w, k);
+      };
+      send(bn.kr, bn.mirror, lv.reflected, lv.reflected_index[u], counts.reflection);
+      if (!is_zero(bn.kt)) send(bn.kt, bn.refracted, lv.refracted, lv.refracted_index[u], counts.refraction);
+    }
+    fit(lv.reflected_radiance, lv.reflected.n);
+    fit(lv.refracted_radiance, lv.refracted.n);
+    if (lv.reflected.n > 0) trace_level(depth + 1, lv.reflected, lv.reflected_radiance.data(), counts);
+    if (lv.refracted.n > 0) trace_level(depth + 1, lv.refracted, lv.refracted_radiance.data(), counts);
+    return true;
+  }
+};
+
+PacketTracer::PacketTracer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+PacketTracer::~PacketTracer() = default;
+
+void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
+                               std::uint32_t seed, Color* out, RayCounts& counts) {
+  Impl& im = *impl_;
+  const int w = x1 - x0;
+  const int n = w * (y1 - y0);
+  RayBatch& rays = im.primary;
+  rays.reserve_lanes(n);
+  rays.n = n;
+  fit(im.x_plus_u, padded(n));
+  fit(im.y_plus_v, padded(n));
+  for (int i = 0; i < n; ++i) {
+    const int x = x0 + i % w, y = y0 + i / w;
+    double u, v;
+    sample_offset(x, y, sample_index, u, v, seed);
+    im.x_plus_u[static_cast<std::size_t>(i)] = x + u;
+    im.y_plus_v[static_cast<std::size_t>(i)] = y + v;
+  }
+  const packet::CameraIn cam{frame.forward.x, frame.forward.y, frame.forward.z, frame.right.x,
+                             frame.right.y,   frame.right.z,   frame.up.x,      frame.up.y,
+                             frame.up.z,      static_cast<double>(frame.width), static_cast<double>(frame.height)};
+  packet::camera_dirs(cam, im.x_plus_u.data(), im.y_plus_v.data(), padded(n), rays.dx.data(), rays.dy.data(),
+                      rays.dz.data());
+  for (int i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    rays.ox[u] = frame.origin.x;
+    rays.oy[u] = frame.origin.y;
+    rays.oz[u] = frame.origin.z;
+    rays.weight[u] = 1.0;
+  }
+  counts.primary += static_cast<std::uint64_t>(n);
+  im.trace_level(0, rays, out, counts);
+}
+
+}  // namespace phonglab

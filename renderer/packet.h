@@ -1,0 +1,48 @@
+// The packet tracer: a tile's primary rays traced together, one recursion level at a time.
+//
+// All rays of a level go through each stage as one batch: nearest hits, the light loop with its
+// shadow rays (one batch per light), then the reflected and the refracted rays as the next
+// level's batches. The intersection tests, the camera rays and the light geometry run four
+// lanes wide (AVX2, packet_kernels.h); hit records, pow and the recursion set-up reuse the
+// scalar renderer's own functions. The image is bit-identical to render_sample's, pixel by
+// pixel (tests/test_packet.cpp), so the packet tracer is purely a matter of speed.
+//
+// It serves the full image of scenes traced by brute force (no acceleration structure: a few
+// spheres and triangles, any planes, no mesh) with the production numerics, on CPUs with AVX2;
+// render_pass falls back to the scalar renderer for everything else.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "renderer/camera.h"
+#include "renderer/scene.h"
+#include "renderer/shading.h"
+
+namespace phonglab {
+
+// Whether this CPU runs the packet kernels (AVX2), checked once.
+bool packet_cpu_supported();
+
+// Whether the packet tracer can render `scene` (prepared) on this CPU.
+bool packet_tracing_applies(const Scene& scene);
+
+// Traces tiles of one scene. One per thread: it owns its batch buffers, reused tile to tile.
+class PacketTracer {
+ public:
+  explicit PacketTracer(const Scene& scene);  // the scene must outlive the tracer
+  ~PacketTracer();
+  PacketTracer(const PacketTracer&) = delete;
+  PacketTracer& operator=(const PacketTracer&) = delete;
+
+  // Sample `sample_index` of pixels [x0, x1) x [y0, y1), row by row into `out`
+  // ((x1 - x0) * (y1 - y0) colours): the value render_sample(Term::kFull) gives each pixel.
+  void render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
+                   std::uint32_t seed, Color* out, RayCounts& counts);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace phonglab
