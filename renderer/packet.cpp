@@ -1,5 +1,6 @@
 #include "renderer/packet.h"
 
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -130,6 +131,8 @@ struct PacketTracer::Impl {
   std::vector<double> cx, cy, cz, radius, sphere_offset;
   std::vector<double> plx, ply, plz, pnx, pny, pnz, plane_size;
   std::vector<int> prim_material;  // by kernel id (spheres, then planes, then triangles)
+  std::vector<std::int32_t> every_sphere, primary_tested, shadow_tested;
+  packet::Spheres primary_view{};  // the current tile's primary rays
   packet::Spheres spheres{};
   packet::Planes planes{};
   std::vector<MaterialInfo> info;
@@ -158,7 +161,9 @@ struct PacketTracer::Impl {
       prim_material.push_back(pl.material);
     }
     for (const Triangle& tri : scene.triangles) prim_material.push_back(tri.material);
-    spheres = {cx.data(), cy.data(), cz.data(), radius.data(), sphere_offset.data(), static_cast<int>(cx.size())};
+    for (std::size_t k = 0; k < cx.size(); ++k) every_sphere.push_back(static_cast<std::int32_t>(k));
+    spheres = {cx.data(), cy.data(), cz.data(), radius.data(), sphere_offset.data(), every_sphere.data(),
+               static_cast<int>(cx.size()), static_cast<int>(cx.size())};
     planes = {plx.data(), ply.data(), plz.data(), pnx.data(), pny.data(), pnz.data(), plane_size.data(),
               static_cast<int>(plx.size())};
     for (const Material& m : scene.materials) {
@@ -186,15 +191,76 @@ struct PacketTracer::Impl {
     return {ObjectRef::Kind::kTriangle, id - s - p};
   }
 
+  // The spheres the primary rays of image region [x0, x1] x [y0, y1] can meet: the rays share
+  // the eye and lie in the cone of the region's corner rays (axis a, half-angle theta); a sphere
+  // of angular radius alpha whose centre is more than theta + alpha off the axis meets none.
+  // The margin (1e-6 rad) is far beyond rounding, so culling never changes a hit.
+  packet::Spheres primary_spheres(const CameraFrame& f, int x0, int y0, int x1, int y1) {
+    Vec3 corner[4];
+    Vec3 sum(0);
+    for (int c = 0; c < 4; ++c) {
+      const double sx = 2.0 * (c & 1 ? x1 : x0) / f.width - 1;
+      const double sy = 1 - 2.0 * (c & 2 ? y1 : y0) / f.height;
+      corner[c] = glm::normalize(f.forward + sx * f.right + sy * f.up);
+      sum += corner[c];
+    }
+    const Vec3 axis = glm::normalize(sum);
+    double cos_theta = 1;
+    for (const Vec3& c : corner) cos_theta = std::min(cos_theta, glm::dot(axis, c));
+    const double theta = std::acos(clamp_unit(cos_theta));
+    if (!(theta < 1.0)) return spheres;  // a wide region: no cone worth testing
+    primary_tested.clear();
+    for (std::size_t k = 0; k < scene.spheres.size(); ++k) {
+      const Sphere& sp = scene.spheres[k];
+      const Vec3 v = sp.center - f.origin;
+      const double dist = glm::length(v);
+      bool keep = !(dist > sp.radius * (1 + 1e-6));  // the eye inside or on the sphere
+      if (!keep) {
+        const double off_axis = std::acos(clamp_unit(glm::dot(axis, v) / dist));
+        keep = !(off_axis > theta + std::asin(sp.radius / dist) + 1e-6);
+      }
+      if (keep) primary_tested.push_back(static_cast<std::int32_t>(k));
+    }
+    packet::Spheres view = spheres;
+    view.tested = primary_tested.data();
+    view.tested_count = static_cast<int>(primary_tested.size());
+    return view;
+  }
+
+  // The spheres shadow rays from points within the ball (b, ball) towards `light` can meet:
+  // the rays lie within `ball` of the segment from b to a point light (of the ray from b along
+  // L for a directional one), so a sphere farther than its radius + `ball` from that segment
+  // meets none. The margins dwarf rounding, so culling never changes an answer.
+  packet::Spheres shadow_spheres(const Vec3& b, double ball, const Light& light, const Vec3& l) {
+    shadow_tested.clear();
+    const bool point = light.type == LightType::kPoint;
+    const Vec3 w = point ? light.position - b : l;
+    const double ww = glm::dot(w, w);
+    const double reach = point ? glm::length(w) : 0.0;
+    for (std::size_t k = 0; k < scene.spheres.size(); ++k) {
+      const Sphere& sp = scene.spheres[k];
+      const Vec3 cb = sp.center - b;
+      double s = ww > 0 ? glm::dot(cb, w) / ww : 0.0;
+      s = point ? std::clamp(s, 0.0, 1.0) : std::max(s, 0.0);
+      const double dist = glm::length(cb - s * w);
+      const double margin = 1e-6 * (sp.radius + ball) + 1e-9 * (glm::length(cb) + reach + max_abs(b));
+      if (!(dist > sp.radius + ball + margin)) shadow_tested.push_back(static_cast<std::int32_t>(k));
+    }
+    packet::Spheres view = spheres;
+    view.tested = shadow_tested.data();
+    view.tested_count = static_cast<int>(shadow_tested.size());
+    return view;
+  }
+
   // The nearest hit of every ray: spheres and planes in the kernel, then the scene's few loose
   // triangles ray by ray, in intersect_all's order.
-  void find_hits(Level& lv, const RayBatch& rays) {
+  void find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested) {
     lv.fit_lanes(rays.n);
     for (int i = 0; i < rays.n; ++i) {
       lv.t[at(i)] = kInf;
       lv.id[at(i)] = -1;
     }
-    packet::nearest(spheres, planes, rays.view(), padded(rays.n), lv.t.data(), lv.id.data());
+    packet::nearest(tested, planes, rays.view(), padded(rays.n), lv.t.data(), lv.id.data());
     if (scene.triangles.empty()) return;
     const int first = spheres.count + planes.count;
     for (int i = 0; i < rays.n; ++i) {
@@ -214,10 +280,10 @@ struct PacketTracer::Impl {
   }
 
   // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
-  void test_shadows(Level& lv, int hits) {
+  void test_shadows(Level& lv, int hits, const packet::Spheres& tested) {
     for (int h = 0; h < padded(hits); ++h) lv.blocked[at(h)] = 0;
     const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
-    packet::occluded(spheres, planes, rays, lv.st_max.data(), padded(hits), lv.blocked.data());
+    packet::occluded(tested, planes, rays, lv.st_max.data(), padded(hits), lv.blocked.data());
     if (scene.triangles.empty()) return;
     for (int h = 0; h < hits; ++h) {
       const std::size_t u = at(h);
@@ -256,6 +322,7 @@ struct PacketTracer::Impl {
       // Lit points (N.L > 0, a material with kd or ks) cast a shadow ray, except where the
       // light is within rounding distance (visible without one).
       bool any_test = false;
+      Vec3 lo(kInf), hi(-kInf);  // bounds of the shadow rays' origins
       for (int h = 0; h < hits; ++h) {
         const std::size_t u = at(h);
         Shadow& fate = lv.shadow[u];
@@ -272,10 +339,15 @@ struct PacketTracer::Impl {
         ++counts.shadow;
         lv.spec[u] = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
         fate = lv.st_max[u] > 0 ? Shadow::kTest : Shadow::kVisible;
-        any_test |= fate == Shadow::kTest;
+        if (fate == Shadow::kTest) {
+          any_test = true;
+          const Vec3 o(lv.sox[u], lv.soy[u], lv.soz[u]);
+          lo = glm::min(lo, o);
+          hi = glm::max(hi, o);
+        }
       }
       for (int h = hits; h < padded(hits); ++h) lv.st_max[at(h)] = 0;
-      if (any_test) test_shadows(lv, hits);
+      if (any_test) test_shadows(lv, hits, shadow_spheres(0.5 * (lo + hi), 0.5 * glm::length(hi - lo) * (1 + 1e-9), light, l));
       for (int h = 0; h < hits; ++h) {
         const std::size_t u = at(h);
         if (lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
@@ -290,7 +362,7 @@ struct PacketTracer::Impl {
   // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n).
   void trace_level(int depth, const RayBatch& rays, Color* out, RayCounts& counts) {
     Level& lv = levels[at(depth)];
-    find_hits(lv, rays);
+    find_hits(lv, rays, depth == 0 ? primary_view : spheres);
     const int lanes = rays.n;
     packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
                         padded(lanes), lv.records());
@@ -423,6 +495,7 @@ void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1,
     rays.weight[u] = 1.0;
   }
   counts.primary += static_cast<std::uint64_t>(n);
+  im.primary_view = im.primary_spheres(frame, x0, y0, x1, y1);
   im.trace_level(0, rays, out, counts);
 }
 

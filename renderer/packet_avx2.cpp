@@ -74,7 +74,8 @@ void nearest(const Spheres& spheres, const Planes& planes, const Rays& rays, int
     const V dx = load(rays.dx + i), dy = load(rays.dy + i), dz = load(rays.dz + i);
     V best = load(t_best + i);
     V best_id = splat(-1);
-    for (int k = 0; k < spheres.count; ++k) {
+    for (int j = 0; j < spheres.tested_count; ++j) {
+      const int k = spheres.tested[j];
       const V t = sphere_root(ox, oy, oz, dx, dy, dz, spheres.cx[k], spheres.cy[k], spheres.cz[k], spheres.r[k], best);
       const V hit = gt(t, _mm256_setzero_pd());
       best = pick(hit, t, best);
@@ -105,7 +106,8 @@ void occluded(const Spheres& spheres, const Planes& planes, const Rays& rays, co
     const V idle = _mm256_cmp_pd(limit, _mm256_setzero_pd(), _CMP_NGT_UQ);  // !(t_max > 0): no ray
     if (lanes_set(idle) == 0xF) continue;
     V blocked = _mm256_setzero_pd();
-    for (int k = 0; k < spheres.count && lanes_set(either(blocked, idle)) != 0xF; ++k) {
+    for (int j = 0; j < spheres.tested_count && lanes_set(either(blocked, idle)) != 0xF; ++j) {
+      const int k = spheres.tested[j];
       const V t = sphere_root(ox, oy, oz, dx, dy, dz, spheres.cx[k], spheres.cy[k], spheres.cz[k], spheres.r[k], limit);
       blocked = either(blocked, gt(t, _mm256_setzero_pd()));
     }
@@ -134,7 +136,7 @@ void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargi
   for (int i = 0; i < lanes; i += 4) {
     // Gather each lane's primitive (index 0 stands in where the lane has another kind).
     alignas(32) double cx[4] = {}, cy[4] = {}, cz[4] = {}, r[4] = {}, base[4] = {}, sph[4] = {};
-    alignas(32) double nx[4] = {}, ny[4] = {}, nz[4] = {}, size[4] = {}, pln[4] = {};
+    alignas(32) double nx[4] = {}, ny[4] = {}, nz[4] = {}, size[4] = {};
     int kinds = 0;
     for (int j = 0; j < 4; ++j) {
       const std::int32_t k = id[i + j];
@@ -146,13 +148,11 @@ void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargi
       } else if (k >= s_count && k < s_count + p_count) {
         const int q = k - s_count;
         nx[j] = planes.nx[q], ny[j] = planes.ny[q], nz[j] = planes.nz[q], size[j] = planes.point_size[q];
-        pln[j] = -1.0;
         kinds |= 2;
       }
     }
     if (kinds == 0) continue;
     const V is_sphere = _mm256_cmp_pd(_mm256_load_pd(sph), zero, _CMP_NEQ_UQ);
-    const V is_plane = _mm256_cmp_pd(_mm256_load_pd(pln), zero, _CMP_NEQ_UQ);
     const V t = load(t_in + i);
     const V dx = load(rays.dx + i), dy = load(rays.dy + i), dz = load(rays.dz + i);
     // P = O + t D; a sphere's is re-projected onto it along the radial direction.
@@ -179,19 +179,23 @@ void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargi
     gx = pick(entering, gx, negate(gx));
     gy = pick(entering, gy, negate(gy));
     gz = pick(entering, gz, negate(gz));
-    const V mine = either(is_sphere, is_plane);
-    const int live = lanes_set(mine);
-    alignas(32) double tmp[13][4];
-    const V values[13] = {px, py, pz, gx, gy, gz, gx, gy, gz, negate(dx), negate(dy), negate(dz), offset};
-    double* const dst[13] = {out.px, out.py, out.pz, out.nx, out.ny, out.nz, out.gx,
-                             out.gy, out.gz, out.vx, out.vy, out.vz, out.offset};
-    for (int a = 0; a < 13; ++a) _mm256_store_pd(tmp[a], values[a]);
+    // All four lanes are written: a triangle's lane is overwritten by the caller afterwards,
+    // a missed ray's is never read.
+    store(out.px + i, px);
+    store(out.py + i, py);
+    store(out.pz + i, pz);
+    store(out.nx + i, gx);
+    store(out.ny + i, gy);
+    store(out.nz + i, gz);
+    store(out.gx + i, gx);
+    store(out.gy + i, gy);
+    store(out.gz + i, gz);
+    store(out.vx + i, negate(dx));
+    store(out.vy + i, negate(dy));
+    store(out.vz + i, negate(dz));
+    store(out.offset + i, offset);
     const int enter_bits = lanes_set(entering);
-    for (int j = 0; j < 4; ++j) {
-      if (!(live & (1 << j))) continue;
-      for (int a = 0; a < 13; ++a) dst[a][i + j] = tmp[a][j];
-      out.entering[i + j] = (enter_bits >> j) & 1;
-    }
+    for (int j = 0; j < 4; ++j) out.entering[i + j] = (enter_bits >> j) & 1;
   }
 }
 

@@ -23,9 +23,12 @@ struct Rays {
 };
 
 struct Spheres {
-  const double *cx, *cy, *cz, *r;
+  const double *cx, *cy, *cz, *r;  // every sphere of the scene, by index
   const double* offset_base;  // the coordinate part of surface_offset: margin (max|c| + r)
-  int count;
+  // The spheres a query tests, in increasing order: all, or those a batch's rays can meet.
+  const std::int32_t* tested;
+  int tested_count;
+  int count;  // all spheres
 };
 
 struct Planes {
