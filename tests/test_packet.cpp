@@ -173,6 +173,48 @@ TEST(PacketTracer, RandomScenesAreBitIdenticalToTheScalarRenderer) {
   EXPECT_GT(seen.shadow, 10000u);
 }
 
+// The per-tile culling (the primary rays' cone, the shadow rays' capsule) must never drop a
+// sphere a ray meets: many small spheres whose outlines cross tile edges and shadow volumes,
+// at several scales and far from the origin, rendered over many tiles.
+TEST(PacketTracer, CullingNeverDropsASphereARayMeets) {
+  REQUIRE_PACKETS();
+  std::uint64_t shadow_rays = 0;
+  for (std::uint32_t seed = 1; seed <= 60; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1), c(-2, 2);
+    const double scale = std::pow(10.0, std::uniform_int_distribution<int>(-2, 3)(rng));
+    const Vec3 shift = u(rng) < 0.3 ? Vec3(1e5, -3e4, 2e4) * scale : Vec3(0);
+    Scene s;
+    s.camera.position = (Vec3(0, 1, 6) + shift / scale) * scale;
+    s.camera.look_at = (Vec3(0, 0.5, 0) + shift / scale) * scale;
+    s.camera.fov_y_deg = 10 + 80 * u(rng);
+    Material m;
+    m.ka = Color(0.1);
+    m.kd = Color(0.7);
+    m.ks = Color(0.3);
+    m.n = 20;
+    s.materials = {m};
+    for (int i = 0; i < 8; ++i) {
+      s.spheres.push_back(Sphere{Vec3(c(rng), 0.5 + c(rng) * 0.4, c(rng)) * scale + shift, (0.02 + 0.3 * u(rng)) * scale, 0});
+    }
+    s.planes.push_back(Plane{Vec3(0, -0.2, 0) * scale + shift, Vec3(0, 1, 0), 0});
+    Light point;
+    point.position = Vec3(c(rng), 3 + u(rng), c(rng)) * scale + shift;
+    Light sun;
+    sun.type = LightType::kDirectional;
+    sun.direction = Vec3(c(rng), -1, c(rng));
+    s.lights = {point, sun};
+    prepare_scene(s);
+    ASSERT_TRUE(packet_tracing_applies(s));
+    const Frame packets = render(s, 96, 64, 2, true, 1, seed);
+    const Frame scalar = render(s, 96, 64, 2, false, 1, seed);
+    ASSERT_TRUE(same_bits(packets, scalar));
+    shadow_rays += packets.rays.shadow;
+  }
+  EXPECT_GT(shadow_rays, 100000u);
+}
+
 TEST(PacketTracer, TheImageDoesNotDependOnTheThreadCount) {
   REQUIRE_PACKETS();
   const Scene scene = load_prepared("glass");
