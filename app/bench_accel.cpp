@@ -16,6 +16,7 @@
 #include "renderer/accel.h"
 #include "renderer/camera.h"
 #include "renderer/embedded_scenes.h"
+#include "renderer/packet.h"
 #include "renderer/render.h"
 #include "renderer/scene_io.h"
 
@@ -52,6 +53,7 @@ std::string mib(std::size_t bytes) { return fmt("%.1f MiB", static_cast<double>(
 struct Contender {
   std::string name;
   Scene scene;
+  bool packets = true;  // RenderOptions::packets
 };
 
 struct Frame {
@@ -60,11 +62,12 @@ struct Frame {
   std::vector<Color> image;
 };
 
-Frame render_frame(const Scene& scene, int w, int h, int threads) {
+Frame render_frame(const Scene& scene, int w, int h, int threads, bool packets = true) {
   Accumulator accum;
   accum.reset(w, h);
   RenderOptions options;
   options.threads = threads;
+  options.packets = packets;
   const PassStats st = render_pass(scene, options, accum);
   return Frame{st.seconds * 1000, st.rays, std::move(accum.sum)};
 }
@@ -123,6 +126,35 @@ PrimaryCast cast_primary(const Scene& scene, int w, int h, int threads) {
   return PrimaryCast{seconds_since(t0), rays.load(), hits.load()};
 }
 
+// The same rays through the packet tracer's kernels (camera rays and nearest hits, four lanes
+// wide), in its own 16x16-pixel tiles.
+PrimaryCast cast_primary_packets(const Scene& scene, int w, int h, int threads) {
+  const CameraFrame frame = make_camera_frame(scene.camera, w, h);
+  constexpr int kTile = 16;
+  const int tiles_x = (w + kTile - 1) / kTile;
+  const int tiles = tiles_x * ((h + kTile - 1) / kTile);
+  std::atomic<int> next{0};
+  std::atomic<std::uint64_t> rays{0}, hits{0};
+  const auto worker = [&] {
+    PacketTracer tracer(scene);
+    std::uint64_t my_rays = 0, my_hits = 0;
+    for (int t = next.fetch_add(1); t < tiles; t = next.fetch_add(1)) {
+      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+      const int x1 = std::min(w, x0 + kTile), y1 = std::min(h, y0 + kTile);
+      my_rays += static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
+      my_hits += static_cast<std::uint64_t>(tracer.cast_primary(frame, x0, y0, x1, y1));
+    }
+    rays += my_rays;
+    hits += my_hits;
+  };
+  const auto t0 = Clock::now();
+  std::vector<std::thread> pool;
+  for (int i = 1; i < std::max(1, threads); ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return PrimaryCast{seconds_since(t0), rays.load(), hits.load()};
+}
+
 Scene load_prepared(std::string_view name) {
   Scene s = *load_scene_arg(std::string(name)).scene;  // embedded scenes always load (tests check it)
   prepare_scene(s);
@@ -150,7 +182,7 @@ SceneRun run_frames(const std::string& scene_name, const std::vector<Contender>&
   // so a change of machine load affects them alike.
   std::vector<std::vector<Color>> images(n);
   for (std::size_t i = 0; i < n; ++i) {
-    Frame f = render_frame(cs[i].scene, w, h, threads);
+    Frame f = render_frame(cs[i].scene, w, h, threads, cs[i].packets);
     run.rays[i] = f.rays;
     images[i] = std::move(f.image);
   }
@@ -160,7 +192,7 @@ SceneRun run_frames(const std::string& scene_name, const std::vector<Contender>&
   for (int k = 0; k < 2; ++k) {
     std::vector<std::vector<double>> ms(n);
     for (int f = 0; f < frames[k]; ++f) {
-      for (std::size_t i = 0; i < n; ++i) ms[i].push_back(render_frame(cs[i].scene, w, h, counts[k]).ms);
+      for (std::size_t i = 0; i < n; ++i) ms[i].push_back(render_frame(cs[i].scene, w, h, counts[k], cs[i].packets).ms);
     }
     for (std::size_t i = 0; i < n; ++i) run.ms[k].push_back(median(ms[i]));
   }
@@ -286,10 +318,16 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   std::printf("acceleration: %dx%d, median of %d frames (%d threads) and %d (1 thread)%s\n", w, h, frames_multi,
               threads, frames_single, kEmbree ? "" : "; Embree not built");
 
-  // Contenders for a prepared scene: the default path, the BVH forced, Embree single-ray.
+  // Contenders for a prepared scene: the default path, the scalar renderer where the default is
+  // the packet tracer, the BVH forced, Embree single-ray.
   const auto contenders = [&](const Scene& s) {
     std::vector<Contender> cs;
-    cs.push_back({s.accel ? "default (BVH)" : "default (brute force)", s});
+    if (packet_tracing_applies(s)) {
+      cs.push_back({"default (packets, brute force)", s});
+      cs.push_back({"scalar brute force", s, false});
+    } else {
+      cs.push_back({s.accel ? "default (BVH)" : "default (brute force)", s});
+    }
     if (!s.accel) {
       Scene b = s;
       b.accel = build_scene_accel(b, true);
@@ -370,7 +408,9 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   md << "\n## Acceleration\n\nThe Whitted frame at " << w << "x" << h << ", 1 spp, median of " << frames_multi
      << " frames with " << threads << " threads and " << frames_single
      << " with 1 thread, the contenders alternating frame by frame: the project's default path (prepare_scene:"
-        " brute force for a few spheres and triangles, else its BVH), its BVH forced on every scene, and "
+        " brute force for a few spheres and triangles, traced by the packet tracer where the CPU has AVX2, else its"
+        " BVH), the scalar renderer where the default is the packet tracer (the same image, ray by ray), its BVH"
+        " forced on every scene, and "
      << (kEmbree ? "Embree 3 single-ray queries (rtcIntersect1 for the nearest hit, rtcOccluded1 for shadow rays; "
                    "float triangles, spheres as user geometry running the renderer's exact double test, planes in "
                    "double outside Embree), all with the same shading and rays."
@@ -404,7 +444,8 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
                    std::to_string(rc.reflection) + "," + std::to_string(rc.refraction) + "," +
                    fmt("%.6e", r.diff[i].first) + "," + std::to_string(r.diff[i].second) + "\n";
       }
-      // The BVH must answer exactly as brute force: the same image and the same rays.
+      // The BVH and the scalar renderer must answer exactly as the default path: the same image
+      // and the same rays.
       if (!is_embree && i > 0 && (!same || r.diff[i].second != 0)) fail(r.scene + ": " + r.names[i] + " differs from the default path");
     }
     if (r.scene == "lecture") {
@@ -431,6 +472,7 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   const auto primary_rows = [&](const std::string& name, const std::vector<Contender>& cs, const Scene& base) {
     std::vector<std::pair<std::string, PrimaryCast>> rows;
     for (const Contender& c : cs) {
+      if (c.packets && packet_tracing_applies(c.scene)) continue;  // single rays: the scalar contender's row
       std::vector<double> secs;
       PrimaryCast last = cast_primary(c.scene, w, h, threads);  // warm-up
       for (int f = 0; f < frames_multi; ++f) {
@@ -439,6 +481,16 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
       }
       last.seconds = median(secs);
       rows.push_back({c.name + " single-ray", last});
+    }
+    if (packet_tracing_applies(base)) {
+      std::vector<double> secs;
+      PrimaryCast last = cast_primary_packets(base, w, h, threads);  // warm-up
+      for (int f = 0; f < frames_multi; ++f) {
+        last = cast_primary_packets(base, w, h, threads);
+        secs.push_back(last.seconds);
+      }
+      last.seconds = median(secs);
+      rows.push_back({"packet tracer kernels (AVX2, 4 lanes, 16x16 tiles)", last});
     }
 #ifdef PHONGLAB_HAVE_EMBREE
     {

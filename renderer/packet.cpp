@@ -66,7 +66,7 @@ struct RayBatch {
 };
 
 // A shadow ray's fate for one light at one hit.
-enum class Shadow : std::uint8_t { kNone, kTest, kVisible };
+enum class Shadow : std::uint8_t { kNone = 0, kVisible = 1, kTest = 2 };
 
 // Everything one recursion level keeps while its children are traced. All arrays are indexed
 // by the level's ray (lane); lanes whose ray missed are skipped (their light kernel lanes are
@@ -78,10 +78,13 @@ struct Level {
   // Shading frame at the hit.
   std::vector<int> material;
   std::vector<std::uint8_t> entering;
+  std::vector<std::uint8_t> lit;  // a hit whose material has kd or ks: lights are evaluated there
+  Vec3 lo{0}, hi{0};              // bounds of the hit points
+  double max_offset = 0;          // the largest surface_offset among them
   std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset;
   std::vector<Terms> terms;
   // One light at those points, with its shadow rays (kernel output, tested in place).
-  std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max, spec;
+  std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max;
   std::vector<Shadow> shadow;
   std::vector<std::uint8_t> blocked;
   // Children: the level's reflected and refracted rays, and what they bring back.
@@ -93,12 +96,13 @@ struct Level {
   void fit_lanes(int count) {
     const int size = padded(count);
     for (std::vector<double>* v : {&t, &b1, &b2, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz, &vx, &vy, &vz, &offset,
-                                   &n_dot_l, &cos_spec, &sox, &soy, &soz, &sdx, &sdy, &sdz, &st_max, &spec}) {
+                                   &n_dot_l, &cos_spec, &sox, &soy, &soz, &sdx, &sdy, &sdz, &st_max}) {
       fit(*v, size);
     }
     fit(id, size);
     fit(material, size);
     fit(entering, size);
+    fit(lit, size);
     fit(terms, size);
     fit(shadow, size);
     fit(blocked, size);
@@ -320,43 +324,73 @@ struct PacketTracer::Impl {
       packet::light(in, pts, padded(hits), out);
 
       // Lit points (N.L > 0, a material with kd or ks) cast a shadow ray, except where the
-      // light is within rounding distance (visible without one).
+      // light is within rounding distance (visible without one). N.L is NaN for a point light
+      // exactly at P.
       bool any_test = false;
-      Vec3 lo(kInf), hi(-kInf);  // bounds of the shadow rays' origins
+      std::uint64_t shadow_rays = 0;
       for (int h = 0; h < hits; ++h) {
         const std::size_t u = at(h);
-        Shadow& fate = lv.shadow[u];
-        fate = Shadow::kNone;
-        if (lv.id[u] < 0) {  // a miss
-          lv.st_max[u] = 0;
-          continue;
-        }
-        const MaterialInfo& mi = info[at(lv.material[u])];
-        if (!(lv.n_dot_l[u] > 0) || !mi.lit) {  // N.L is NaN for a point light exactly at P
-          lv.st_max[u] = 0;
-          continue;
-        }
-        ++counts.shadow;
-        lv.spec[u] = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
-        fate = lv.st_max[u] > 0 ? Shadow::kTest : Shadow::kVisible;
-        if (fate == Shadow::kTest) {
-          any_test = true;
-          const Vec3 o(lv.sox[u], lv.soy[u], lv.soz[u]);
-          lo = glm::min(lo, o);
-          hi = glm::max(hi, o);
-        }
+        const bool on = lv.lit[u] && lv.n_dot_l[u] > 0;
+        const bool test = on && lv.st_max[u] > 0;
+        shadow_rays += on;
+        any_test |= test;
+        lv.shadow[u] = static_cast<Shadow>(on + test);
+        if (!test) lv.st_max[u] = 0;
       }
+      counts.shadow += shadow_rays;
       for (int h = hits; h < padded(hits); ++h) lv.st_max[at(h)] = 0;
-      if (any_test) test_shadows(lv, hits, shadow_spheres(0.5 * (lo + hi), 0.5 * glm::length(hi - lo) * (1 + 1e-9), light, l));
+      if (any_test) {
+        // The rays start within max_offset of the hit points' bounding box.
+        const double ball = (0.5 * glm::length(lv.hi - lv.lo) + lv.max_offset) * (1 + 1e-9);
+        test_shadows(lv, hits, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l));
+      }
+      // The light's terms where it is seen. The specular factor (pow) is computed only there:
+      // a blocked light's would be multiplied by vis = 0.
       for (int h = 0; h < hits; ++h) {
         const std::size_t u = at(h);
         if (lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
-        const std::size_t lm = li * materials + at(lv.material[u]);
+        const std::size_t m = at(lv.material[u]);
+        const MaterialInfo& mi = info[m];
+        const double spec = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
+        const std::size_t lm = li * materials + m;
         Terms& t = lv.terms[u];
         t.diffuse += light_kd[lm] * lv.n_dot_l[u];
-        t.specular += light_ks[lm] * lv.spec[u];
+        t.specular += light_ks[lm] * spec;
       }
     }
+  }
+
+  // The primary rays of pixels [x0, x1) x [y0, y1) (sample `sample_index`), row by row, and the
+  // spheres they can meet.
+  void primary_rays(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
+                    std::uint32_t seed) {
+    const int w = x1 - x0;
+    const int n = w * (y1 - y0);
+    primary.reserve_lanes(n);
+    primary.n = n;
+    fit(x_plus_u, padded(n));
+    fit(y_plus_v, padded(n));
+    int i = 0;
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x, ++i) {
+        double u, v;
+        sample_offset(x, y, sample_index, u, v, seed);
+        x_plus_u[at(i)] = x + u;
+        y_plus_v[at(i)] = y + v;
+      }
+    }
+    const packet::CameraIn cam{frame.forward.x, frame.forward.y, frame.forward.z, frame.right.x,
+                               frame.right.y,   frame.right.z,   frame.up.x,      frame.up.y,
+                               frame.up.z,      static_cast<double>(frame.width), static_cast<double>(frame.height)};
+    packet::camera_dirs(cam, x_plus_u.data(), y_plus_v.data(), padded(n), primary.dx.data(), primary.dy.data(),
+                        primary.dz.data());
+    for (int k = 0; k < padded(n); ++k) {
+      primary.ox[at(k)] = frame.origin.x;
+      primary.oy[at(k)] = frame.origin.y;
+      primary.oz[at(k)] = frame.origin.z;
+      primary.weight[at(k)] = 1.0;
+    }
+    primary_view = primary_spheres(frame, x0, y0, x1, y1);
   }
 
   // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n).
@@ -367,22 +401,33 @@ struct PacketTracer::Impl {
     packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
                         padded(lanes), lv.records());
     bool any_hit = false;
+    Vec3 lo(kInf), hi(-kInf);
+    double max_offset = 0;
     for (int i = 0; i < lanes; ++i) {
       const std::size_t u = at(i);
       const std::int32_t id = lv.id[u];
       if (id < 0) {
         out[i] = scene.background;
+        lv.lit[u] = 0;
         continue;
       }
       any_hit = true;
       const int material = prim_material[at(id)];
       lv.material[u] = material;
+      lv.lit[u] = info[at(material)].lit;
       Terms& t = lv.terms[u];
       t = Terms{};
       t.ambient = info[at(material)].ambient;
       if (id >= spheres.count + planes.count) record_triangle_hit(lv, rays, i);
+      const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+      max_offset = std::max(max_offset, lv.offset[u]);
     }
     if (!any_hit) return;
+    lv.lo = lo;
+    lv.hi = hi;
+    lv.max_offset = max_offset;
     shade_lights(lv, lanes, counts);
 
     const bool children = depth < limits.max_depth && send_children(lv, rays, lanes, depth, counts);
@@ -468,35 +513,19 @@ PacketTracer::~PacketTracer() = default;
 void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                                std::uint32_t seed, Color* out, RayCounts& counts) {
   Impl& im = *impl_;
-  const int w = x1 - x0;
-  const int n = w * (y1 - y0);
-  RayBatch& rays = im.primary;
-  rays.reserve_lanes(n);
-  rays.n = n;
-  fit(im.x_plus_u, padded(n));
-  fit(im.y_plus_v, padded(n));
-  for (int i = 0; i < n; ++i) {
-    const int x = x0 + i % w, y = y0 + i / w;
-    double u, v;
-    sample_offset(x, y, sample_index, u, v, seed);
-    im.x_plus_u[static_cast<std::size_t>(i)] = x + u;
-    im.y_plus_v[static_cast<std::size_t>(i)] = y + v;
-  }
-  const packet::CameraIn cam{frame.forward.x, frame.forward.y, frame.forward.z, frame.right.x,
-                             frame.right.y,   frame.right.z,   frame.up.x,      frame.up.y,
-                             frame.up.z,      static_cast<double>(frame.width), static_cast<double>(frame.height)};
-  packet::camera_dirs(cam, im.x_plus_u.data(), im.y_plus_v.data(), padded(n), rays.dx.data(), rays.dy.data(),
-                      rays.dz.data());
-  for (int i = 0; i < n; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    rays.ox[u] = frame.origin.x;
-    rays.oy[u] = frame.origin.y;
-    rays.oz[u] = frame.origin.z;
-    rays.weight[u] = 1.0;
-  }
-  counts.primary += static_cast<std::uint64_t>(n);
-  im.primary_view = im.primary_spheres(frame, x0, y0, x1, y1);
-  im.trace_level(0, rays, out, counts);
+  im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
+  counts.primary += static_cast<std::uint64_t>(im.primary.n);
+  im.trace_level(0, im.primary, out, counts);
+}
+
+int PacketTracer::cast_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1) {
+  Impl& im = *impl_;
+  im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
+  Level& lv = im.levels[0];
+  im.find_hits(lv, im.primary, im.primary_view);
+  int hits = 0;
+  for (int i = 0; i < im.primary.n; ++i) hits += lv.id[at(i)] >= 0;
+  return hits;
 }
 
 }  // namespace phonglab

@@ -40,6 +40,10 @@ class PacketTracer {
   void render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                    std::uint32_t seed, Color* out, RayCounts& counts);
 
+  // The nearest hits of the pixel-centre rays of pixels [x0, x1) x [y0, y1), without shading
+  // (the benchmark of primary rays alone). Returns how many rays hit something.
+  int cast_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
