@@ -307,7 +307,7 @@ struct PacketTracer::Impl {
   void shade_lights(Level& lv, int hits, RayCounts& counts) {
     const packet::ShadedPoints pts{lv.px.data(), lv.py.data(), lv.pz.data(), lv.nx.data(), lv.ny.data(),
                                    lv.nz.data(), lv.gx.data(), lv.gy.data(), lv.gz.data(), lv.vx.data(),
-                                   lv.vy.data(), lv.vz.data(), lv.offset.data()};
+                                   lv.vy.data(), lv.vz.data(), lv.offset.data(), lv.lit.data()};
     const packet::LightOut out{lv.n_dot_l.data(), lv.cos_spec.data(), lv.sox.data(), lv.soy.data(), lv.soz.data(),
                                lv.sdx.data(),     lv.sdy.data(),      lv.sdz.data(), lv.st_max.data()};
     const bool blinn = scene.specular_model == SpecularModel::kBlinn;
@@ -424,6 +424,7 @@ struct PacketTracer::Impl {
       hi = glm::max(hi, p);
       max_offset = std::max(max_offset, lv.offset[u]);
     }
+    for (int i = lanes; i < padded(lanes); ++i) lv.lit[at(i)] = 0;
     if (!any_hit) return;
     lv.lo = lo;
     lv.hi = hi;

@@ -220,6 +220,7 @@ void light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const Light
   const V zero = _mm256_setzero_pd();
   const V lpx = splat(lt_in.x), lpy = splat(lt_in.y), lpz = splat(lt_in.z);
   for (int i = 0; i < lanes; i += 4) {
+    if ((pts.active[i] | pts.active[i + 1] | pts.active[i + 2] | pts.active[i + 3]) == 0) continue;
     const V px = load(pts.px + i), py = load(pts.py + i), pz = load(pts.pz + i);
     const V nx = load(pts.nx + i), ny = load(pts.ny + i), nz = load(pts.nz + i);
     // L: towards a point light (NaN when it sits on P), or minus a directional light's direction.

@@ -89,6 +89,7 @@ struct ShadedPoints {
   const double *gx, *gy, *gz;  // geometric normal on the same side
   const double *vx, *vy, *vz;  // V
   const double* offset;        // surface_offset of each point
+  const std::uint8_t* active;  // lanes to compute (others' outputs are left as they are)
 };
 struct LightOut {
   double* n_dot_l;   // N.L; NaN where a point light sits exactly on P (no direction)
