@@ -1,3 +1,4 @@
+// The packet tracer's driver: batches, culling, and the scalar steps between the AVX2 kernels.
 #include "renderer/packet.h"
 
 #include <algorithm>
@@ -43,21 +44,18 @@ std::size_t at(int i) { return static_cast<std::size_t>(i); }
 // Rays of one batch as structure of arrays, with room for a multiple of 4 lanes.
 struct RayBatch {
   std::vector<double> ox, oy, oz, dx, dy, dz;
-  std::vector<double> weight;        // path weight from the camera
-  std::vector<std::int32_t> sender;  // the hit (in the level before) that sent the ray
+  std::vector<double> weight;  // path weight from the camera
   int n = 0;
 
   void reserve_lanes(int count) {
     const int size = padded(count);
     for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &weight}) fit(*v, size);
-    fit(sender, size);
   }
-  void push(const Vec3& o, const Vec3& d, double w, int from) {
+  void push(const Vec3& o, const Vec3& d, double w) {
     const std::size_t i = at(n);
     ox[i] = o.x, oy[i] = o.y, oz[i] = o.z;
     dx[i] = d.x, dy[i] = d.y, dz[i] = d.z;
     weight[i] = w;
-    sender[i] = from;
     ++n;
   }
   Vec3 origin(int i) const { return {ox[at(i)], oy[at(i)], oz[at(i)]}; }
@@ -284,12 +282,12 @@ struct PacketTracer::Impl {
   }
 
   // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
-  void test_shadows(Level& lv, int hits, const packet::Spheres& tested) {
-    for (int h = 0; h < padded(hits); ++h) lv.blocked[at(h)] = 0;
+  void test_shadows(Level& lv, int lanes, const packet::Spheres& tested) {
+    for (int h = 0; h < padded(lanes); ++h) lv.blocked[at(h)] = 0;
     const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
-    packet::occluded(tested, planes, rays, lv.st_max.data(), padded(hits), lv.blocked.data());
+    packet::occluded(tested, planes, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
     if (scene.triangles.empty()) return;
-    for (int h = 0; h < hits; ++h) {
+    for (int h = 0; h < lanes; ++h) {
       const std::size_t u = at(h);
       if (lv.shadow[u] != Shadow::kTest || lv.blocked[u]) continue;
       const Ray ray = make_ray(Vec3(lv.sox[u], lv.soy[u], lv.soz[u]), Vec3(lv.sdx[u], lv.sdy[u], lv.sdz[u]));
@@ -304,7 +302,7 @@ struct PacketTracer::Impl {
   }
 
   // The light loop of shade() for every hit of the level, one light at a time.
-  void shade_lights(Level& lv, int hits, RayCounts& counts) {
+  void shade_lights(Level& lv, int lanes, RayCounts& counts) {
     const packet::ShadedPoints pts{lv.px.data(), lv.py.data(), lv.pz.data(), lv.nx.data(), lv.ny.data(),
                                    lv.nz.data(), lv.gx.data(), lv.gy.data(), lv.gz.data(), lv.vx.data(),
                                    lv.vy.data(), lv.vz.data(), lv.offset.data(), lv.lit.data()};
@@ -321,14 +319,14 @@ struct PacketTracer::Impl {
       in.x = l.x, in.y = l.y, in.z = l.z;
       in.shrink = in.point ? surface_offset(light.position, 0) : 0.0;
       in.blinn = blinn;
-      packet::light(in, pts, padded(hits), out);
+      packet::light(in, pts, padded(lanes), out);
 
       // Lit points (N.L > 0, a material with kd or ks) cast a shadow ray, except where the
       // light is within rounding distance (visible without one). N.L is NaN for a point light
       // exactly at P.
       bool any_test = false;
       std::uint64_t shadow_rays = 0;
-      for (int h = 0; h < hits; ++h) {
+      for (int h = 0; h < lanes; ++h) {
         const std::size_t u = at(h);
         const bool on = lv.lit[u] && lv.n_dot_l[u] > 0;
         const bool test = on && lv.st_max[u] > 0;
@@ -338,15 +336,15 @@ struct PacketTracer::Impl {
         if (!test) lv.st_max[u] = 0;
       }
       counts.shadow += shadow_rays;
-      for (int h = hits; h < padded(hits); ++h) lv.st_max[at(h)] = 0;
+      for (int h = lanes; h < padded(lanes); ++h) lv.st_max[at(h)] = 0;
       if (any_test) {
         // The rays start within max_offset of the hit points' bounding box.
         const double ball = (0.5 * glm::length(lv.hi - lv.lo) + lv.max_offset) * (1 + 1e-9);
-        test_shadows(lv, hits, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l));
+        test_shadows(lv, lanes, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l));
       }
       // The light's terms where it is seen. The specular factor (pow) is computed only there:
       // a blocked light's would be multiplied by vis = 0.
-      for (int h = 0; h < hits; ++h) {
+      for (int h = 0; h < lanes; ++h) {
         const std::size_t u = at(h);
         if (lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
         const std::size_t m = at(lv.material[u]);
@@ -463,31 +461,30 @@ struct PacketTracer::Impl {
   // Reflected and refracted rays of the level's mirror and glass hits, traced as the next
   // level's two batches (shade()'s recursion, with its path-weight pruning). False when no hit
   // sends any.
-  bool send_children(Level& lv, const RayBatch& rays, int hits, int depth, RayCounts& counts) {
+  bool send_children(Level& lv, const RayBatch& rays, int lanes, int depth, RayCounts& counts) {
     lv.reflected.n = 0;
     lv.refracted.n = 0;
     bool any = false;
-    for (int k = 0; k < hits; ++k) {
+    for (int k = 0; k < lanes; ++k) {
       const std::size_t u = at(k);
       lv.reflected_index[u] = lv.refracted_index[u] = -1;
       any |= lv.id[u] >= 0 && info[at(lv.material[u])].bounces;
     }
     if (!any) return false;
-    lv.reflected.reserve_lanes(hits);
-    lv.refracted.reserve_lanes(hits);
-    for (int k = 0; k < hits; ++k) {
+    lv.reflected.reserve_lanes(lanes);
+    lv.refracted.reserve_lanes(lanes);
+    for (int k = 0; k < lanes; ++k) {
       const std::size_t u = at(k);
       if (lv.id[u] < 0 || !info[at(lv.material[u])].bounces) continue;
       const Material& m = scene.materials[at(lv.material[u])];
-      const int i = k;
-      const Vec3 d = rays.dir(i);
+      const Vec3 d = rays.dir(k);
       const Vec3 n(lv.nx[u], lv.ny[u], lv.nz[u]);
       const Vec3 ng(lv.gx[u], lv.gy[u], lv.gz[u]);
       const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
       const Bounce bn = bounce(scene, m, d, n, lv.entering[u] != 0);
       lv.kr[u] = bn.kr;
       lv.kt[u] = bn.kt;
-      const double weight = rays.weight[at(i)];
+      const double weight = rays.weight[u];
       const double offset = lv.offset[u];
       const auto send = [&](const Color& kw, const Vec3& dir, RayBatch& batch, int& index, std::uint64_t& count) {
         if (is_zero(kw)) return;
@@ -495,7 +492,7 @@ struct PacketTracer::Impl {
         if (w < limits.min_weight) return;
         ++count;
         index = batch.n;
-        batch.push(offset_origin(p, ng, dir, offset), dir, w, k);
+        batch.push(offset_origin(p, ng, dir, offset), dir, w);
       };
       send(bn.kr, bn.mirror, lv.reflected, lv.reflected_index[u], counts.reflection);
       if (!is_zero(bn.kt)) send(bn.kt, bn.refracted, lv.refracted, lv.refracted_index[u], counts.refraction);
