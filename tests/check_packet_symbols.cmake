@@ -1,7 +1,8 @@
-# The AVX2 kernels' object file may define only its own functions (phonglab::packet::*) and
-# local data. A weak or inline-function definition there (a template, a glm or std helper not
-# inlined) could be picked by the linker for the whole program, and would then run AVX2
-# instructions on a CPU without them. Usage: cmake -DNM=nm -DOBJECTS="a.o;b.o" -P this-file
+# The AVX2 kernels' object file may define no code but its own functions (phonglab::packet::*)
+# and local functions. A weak function there (a template, a glm or std helper not inlined)
+# could be picked by the linker for the whole program, and would then run AVX2 instructions on
+# a CPU without them. Data cannot: weak objects (V, such as the typeinfo UndefinedBehaviorSanitizer
+# emits) and read-only or local data pass. Usage: cmake -DNM=nm -DOBJECTS="a.o;b.o" -P this-file
 foreach(obj IN LISTS OBJECTS)
   execute_process(COMMAND ${NM} -C --defined-only ${obj} OUTPUT_VARIABLE out RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
@@ -10,8 +11,8 @@ foreach(obj IN LISTS OBJECTS)
   string(REPLACE "\n" ";" lines "${out}")
   set(kernels 0)
   foreach(line IN LISTS lines)
-    if(line STREQUAL "" OR line MATCHES "^[0-9a-f]* [tbdrn] ")
-      continue()  # local symbols
+    if(line STREQUAL "" OR line MATCHES "^[0-9a-f]* [tbdrnBDRVvu] ")
+      continue()  # local symbols and data
     endif()
     if(line MATCHES "^[0-9a-f]* T phonglab::packet::")
       math(EXPR kernels "${kernels} + 1")
@@ -22,5 +23,5 @@ foreach(obj IN LISTS OBJECTS)
   if(kernels EQUAL 0)
     message(FATAL_ERROR "${obj} defines no kernel: nm output was\n${out}")
   endif()
-  message(STATUS "${obj}: ${kernels} kernels, nothing else shared")
+  message(STATUS "${obj}: ${kernels} kernels, no other shared code")
 endforeach()
