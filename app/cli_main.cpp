@@ -180,6 +180,7 @@ int cmd_render(Args& args) {
     const PassStats pass = render_pass(*scene, options, accum);
     total.rays += pass.rays;
     total.nan_count += pass.nan_count;
+    total.packets = pass.packets;
   }
   const double render_ms = ms_since(t_render);
 
@@ -210,7 +211,8 @@ int cmd_render(Args& args) {
                           {"reflection", total.rays.reflection},
                           {"refraction", total.rays.refraction}}},
                         {"mrays_per_s", seconds > 0 ? static_cast<double>(total.rays.total()) / seconds / 1e6 : 0.0},
-                        {"nan_count", total.nan_count}};
+                        {"nan_count", total.nan_count},
+                        {"tracer", total.packets ? "packet" : "scalar"}};
     if (std::string err = write_file_atomically(*stats_path, j.dump(2) + "\n"); !err.empty()) {
       std::cerr << *stats_path << ": " << err << "\n";
       return kExitBadInput;

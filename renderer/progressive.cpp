@@ -222,6 +222,7 @@ void ProgressiveRenderer::run() {
     back_.stats.pass_rays = pass.rays;
     back_.stats.mrays_per_s = pass.seconds > 0 ? static_cast<double>(pass.rays.total()) / pass.seconds * 1e-6 : 0;
     back_.stats.nan_count = nan_count;
+    back_.stats.packets = pass.packets;
 
     bool published = false;
     {

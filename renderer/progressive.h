@@ -45,6 +45,7 @@ struct FrameStats {
   std::uint64_t nan_count = 0;        // NaN/Inf samples since the restart (replaced by 0)
   double ms_since_restart = 0;        // from the restart to this image's publication
   std::uint64_t serial = 0;           // counts every image ever published (1, 2, ...)
+  bool packets = false;               // PassStats::packets of that pass
 };
 
 // One finished image: the mean of the samples so far at one level of resolution.

@@ -172,6 +172,7 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
     total.nan_count += s.nan_count;
   }
   total.completed = !stopped.load();
+  total.packets = packets;
   if (total.completed) ++accum.samples;
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return total;

@@ -60,6 +60,7 @@ struct PassStats {
   std::uint64_t nan_count = 0;  // samples that were NaN or Inf (replaced by 0; should stay 0)
   double seconds = 0;           // wall-clock time of the pass
   bool completed = true;        // false when cancelled midway (accum must then be reset)
+  bool packets = false;         // traced by the packet tracer (else by the scalar renderer)
 };
 
 // The radiance (or term, or debug value) of one primary ray.

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "renderer/packet.h"
 #include "renderer/image_io.h"
 
 namespace fs = std::filesystem;
@@ -151,6 +152,14 @@ TEST_F(CliTest, WidthHeightOverridesAndStatsFile) {
   EXPECT_EQ(j["samples_per_pixel"], 2);
   EXPECT_EQ(j["rays"]["primary"], 40 * 30 * 2);
   EXPECT_EQ(j["nan_count"], 0);
+  // lecture's full image goes to the packet tracer wherever the CPU has AVX2.
+  EXPECT_EQ(j["tracer"], phonglab::packet_cpu_supported() ? "packet" : "scalar");
+  ASSERT_EQ(run_cli("render lecture -o " + path("d.pfm") + " --width 8 --height 8 --term diffuse --stats " +
+                    path("stats_term.json"))
+                .exit_code,
+            0);
+  std::ifstream term_in(path("stats_term.json"));
+  EXPECT_EQ(nlohmann::json::parse(term_in)["tracer"], "scalar");  // term views are traced ray by ray
 }
 
 TEST_F(CliTest, ProbeTotalEqualsRenderedPixel) {

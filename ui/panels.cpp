@@ -566,6 +566,8 @@ void stats_overlay(const StatsView& stats, ImVec2 pos) {
         ImGui::Text("%u / %d", stats.spp, stats.target_spp);
         row("pass");
         ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
+        row("tracer");
+        ImGui::TextUnformatted(f.packets ? "packets, 4 rays wide (AVX2)" : "scalar, ray by ray");
         char primary[16], shadow[16], reflection[16], refraction[16];
         format_count(primary, sizeof primary, f.pass_rays.primary);
         format_count(shadow, sizeof shadow, f.pass_rays.shadow);
