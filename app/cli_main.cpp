@@ -18,8 +18,8 @@
 #include "renderer/figure.h"
 #include "renderer/heat_map.h"
 #include "renderer/image_io.h"
-#include "renderer/probe_report.h"
 #include "renderer/packet.h"
+#include "renderer/probe_report.h"
 #include "renderer/render.h"
 #include "renderer/scene_io.h"
 

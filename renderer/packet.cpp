@@ -85,7 +85,10 @@ struct Level {
   std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max;
   std::vector<Shadow> shadow;
   std::vector<std::uint8_t> blocked;
-  // Children: the level's reflected and refracted rays, and what they bring back.
+  // Children: the bounce at mirror and glass hits (kernel output), the level's reflected and
+  // refracted rays, and what they bring back.
+  std::vector<std::uint8_t> bounces, tir;
+  std::vector<double> ior, eta, fresnel, mx, my, mz, tx, ty, tz;
   RayBatch reflected, refracted;
   std::vector<Color> kr, kt;  // kr', kt' of each hit
   std::vector<Color> reflected_radiance, refracted_radiance;
@@ -94,13 +97,16 @@ struct Level {
   void fit_lanes(int count) {
     const int size = padded(count);
     for (std::vector<double>* v : {&t, &b1, &b2, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz, &vx, &vy, &vz, &offset,
-                                   &n_dot_l, &cos_spec, &sox, &soy, &soz, &sdx, &sdy, &sdz, &st_max}) {
+                                   &n_dot_l, &cos_spec, &sox, &soy, &soz, &sdx, &sdy, &sdz, &st_max, &ior, &eta,
+                                   &fresnel, &mx, &my, &mz, &tx, &ty, &tz}) {
       fit(*v, size);
     }
     fit(id, size);
     fit(material, size);
     fit(entering, size);
     fit(lit, size);
+    fit(bounces, size);
+    fit(tir, size);
     fit(terms, size);
     fit(shadow, size);
     fit(blocked, size);
@@ -465,23 +471,36 @@ struct PacketTracer::Impl {
     lv.reflected.n = 0;
     lv.refracted.n = 0;
     bool any = false;
-    for (int k = 0; k < lanes; ++k) {
+    for (int k = 0; k < padded(lanes); ++k) {
       const std::size_t u = at(k);
       lv.reflected_index[u] = lv.refracted_index[u] = -1;
-      any |= lv.id[u] >= 0 && info[at(lv.material[u])].bounces;
+      const bool b = k < lanes && lv.id[u] >= 0 && info[at(lv.material[u])].bounces;
+      lv.bounces[u] = b;
+      if (b) lv.ior[u] = scene.materials[at(lv.material[u])].ior;
+      any |= b;
     }
     if (!any) return false;
+    packet::bounce({rays.dx.data(), rays.dy.data(), rays.dz.data(), lv.nx.data(), lv.ny.data(), lv.nz.data(),
+                    lv.ior.data(), lv.entering.data(), lv.bounces.data()},
+                   padded(lanes),
+                   {lv.eta.data(), lv.fresnel.data(), lv.tir.data(), lv.mx.data(), lv.my.data(), lv.mz.data(),
+                    lv.tx.data(), lv.ty.data(), lv.tz.data()});
     lv.reflected.reserve_lanes(lanes);
     lv.refracted.reserve_lanes(lanes);
     for (int k = 0; k < lanes; ++k) {
       const std::size_t u = at(k);
-      if (lv.id[u] < 0 || !info[at(lv.material[u])].bounces) continue;
+      if (!lv.bounces[u]) continue;
       const Material& m = scene.materials[at(lv.material[u])];
-      const Vec3 d = rays.dir(k);
-      const Vec3 n(lv.nx[u], lv.ny[u], lv.nz[u]);
       const Vec3 ng(lv.gx[u], lv.gy[u], lv.gz[u]);
       const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
-      const Bounce bn = bounce(scene, m, d, n, lv.entering[u] != 0);
+      // bounce(), from the kernel's geometry and Fresnel reflectance.
+      Bounce bn;
+      bn.eta = lv.eta[u];
+      bn.tir = lv.tir[u] != 0;
+      if (uses_fresnel(m)) bn.fresnel = lv.fresnel[u];
+      set_bounce_weights(m, bn);
+      bn.mirror = Vec3(lv.mx[u], lv.my[u], lv.mz[u]);
+      bn.refracted = Vec3(lv.tx[u], lv.ty[u], lv.tz[u]);
       lv.kr[u] = bn.kr;
       lv.kt[u] = bn.kt;
       const double weight = rays.weight[u];

@@ -273,4 +273,52 @@ void light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const Light
   }
 }
 
+void bounce(const BounceIn& in, int lanes, const BounceOut& out) {
+  const V zero = _mm256_setzero_pd(), one = splat(1);
+  const auto clamp_unit = [&](V x) {  // x > 1 ? 1 : (x < -1 ? -1 : x)
+    return pick(gt(x, one), one, pick(lt(x, negate(one)), negate(one), x));
+  };
+  for (int i = 0; i < lanes; i += 4) {
+    if ((in.active[i] | in.active[i + 1] | in.active[i + 2] | in.active[i + 3]) == 0) continue;
+    const V dx = load(in.dx + i), dy = load(in.dy + i), dz = load(in.dz + i);
+    const V nx = load(in.nx + i), ny = load(in.ny + i), nz = load(in.nz + i);
+    const V ior = load(in.ior + i);
+    const V entering = gt(_mm256_set_pd(in.entering[i + 3], in.entering[i + 2], in.entering[i + 1], in.entering[i]), zero);
+    const V d_dot_n = dot(dx, dy, dz, nx, ny, nz);
+    const V cos_i = clamp_unit(negate(d_dot_n));
+    const V eta = pick(entering, one / ior, ior);
+    const V sin2_t = (eta * eta) * (one - cos_i * cos_i);
+    const V k = one - sin2_t;
+    const V tir = lt(k, zero);
+    // fresnel_exact(cos_i, eta): its clamp leaves a clamped cos_i as it is.
+    const V cos_t = sqrt(one - sin2_t);
+    const V eta_cos_i = eta * cos_i, eta_cos_t = eta * cos_t;
+    const V rs = (eta_cos_i - cos_t) / (eta_cos_i + cos_t);
+    const V rp = (cos_i - eta_cos_t) / (cos_i + eta_cos_t);
+    const V f = splat(0.5) * (rs * rs + rp * rp);
+    const V f_clamped = pick(gt(f, one), one, pick(lt(f, zero), zero, f));
+    const V fresnel = pick(either(tir, ge(sin2_t, one)), one, f_clamped);
+    // reflect_dir(D, N) = normalize(D - (2 D.N / N.N) N); a zero N leaves D.
+    const V nn = dot(nx, ny, nz, nx, ny, nz);
+    const V kr = pick(gt(nn, zero), splat(2.0) * d_dot_n / nn, zero);
+    const V rx = dx - kr * nx, ry = dy - kr * ny, rz = dz - kr * nz;
+    const V r_inv = one / sqrt(dot(rx, ry, rz, rx, ry, rz));
+    const V mx = rx * r_inv, my = ry * r_inv, mz = rz * r_inv;
+    // normalize(eta D + (eta cos_i - sqrt(k)) N), or the mirror direction under TIR.
+    const V c = eta_cos_i - sqrt(k);
+    const V ux = eta * dx + c * nx, uy = eta * dy + c * ny, uz = eta * dz + c * nz;
+    const V u_inv = one / sqrt(dot(ux, uy, uz, ux, uy, uz));
+    store(out.eta + i, eta);
+    store(out.fresnel + i, fresnel);
+    store(out.mx + i, mx);
+    store(out.my + i, my);
+    store(out.mz + i, mz);
+    store(out.tx + i, pick(tir, mx, ux * u_inv));
+    store(out.ty + i, pick(tir, my, uy * u_inv));
+    store(out.tz + i, pick(tir, mz, uz * u_inv));
+    const int tir_bits = lanes_set(tir);
+    for (int j = 0; j < 4; ++j) out.tir[i + j] = (tir_bits >> j) & 1;
+  }
+}
+
 }  // namespace phonglab::packet

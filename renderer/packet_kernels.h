@@ -99,4 +99,22 @@ struct LightOut {
 };
 void light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
 
+// bounce() at a batch of mirror and glass hits: the geometry of the children and the exact
+// Fresnel reflectance (the weights kr', kt' are left to the caller).
+struct BounceIn {
+  const double *dx, *dy, *dz;  // the incoming ray's direction D
+  const double *nx, *ny, *nz;  // N, facing D
+  const double* ior;           // the material's index of refraction
+  const std::uint8_t* entering;
+  const std::uint8_t* active;  // lanes to compute (others' outputs are left as they are)
+};
+struct BounceOut {
+  double* eta;        // n_incident / n_transmitted
+  double* fresnel;    // fresnel_exact(cos_i, eta), 1 under total internal reflection
+  std::uint8_t* tir;  // total internal reflection
+  double *mx, *my, *mz;  // reflected direction
+  double *tx, *ty, *tz;  // transmitted direction (the reflected one under TIR)
+};
+void bounce(const BounceIn& in, int lanes, const BounceOut& out);
+
 }  // namespace phonglab::packet

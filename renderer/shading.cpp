@@ -28,18 +28,15 @@ double fresnel_exact(double cos_i, double eta) {
 Bounce bounce(const Scene& scene, const Material& m, const Vec3& d, const Vec3& n, bool entering,
               bool force_refraction) {
   Bounce b;
-  b.kr = m.kr;
-  b.kt = m.kt;
   const double cos_i = clamp_unit(-glm::dot(d, n));
   b.eta = entering ? 1.0 / m.ior : m.ior;
   const double k = 1 - b.eta * b.eta * (1 - cos_i * cos_i);
   b.tir = k < 0;
-  if (m.fresnel && !is_zero(m.kt)) {
+  if (uses_fresnel(m)) {
     b.fresnel = b.tir ? 1.0
                       : (scene.numerics.schlick_fresnel ? fresnel_schlick(cos_i, b.eta) : fresnel_exact(cos_i, b.eta));
-    b.kr = m.kr + m.kt * b.fresnel;
-    b.kt = m.kt * (1 - b.fresnel);
   }
+  set_bounce_weights(m, b);
   b.mirror = reflect_dir(d, n);
   if (!is_zero(b.kt) || force_refraction) {
     b.refracted = b.tir ? b.mirror : glm::normalize(b.eta * d + (b.eta * cos_i - std::sqrt(k)) * n);

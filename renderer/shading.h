@@ -77,6 +77,18 @@ struct Bounce {
   Vec3 refracted{0};     // transmitted direction (the mirror one under TIR); set when kt' != 0
                          // or `force_refraction`
 };
+// Whether m's kr and kt are weighted by the Fresnel reflectance.
+inline bool uses_fresnel(const Material& m) { return m.fresnel && !is_zero(m.kt); }
+// kr' and kt' of b from m and b.fresnel.
+inline void set_bounce_weights(const Material& m, Bounce& b) {
+  if (uses_fresnel(m)) {
+    b.kr = m.kr + m.kt * b.fresnel;
+    b.kt = m.kt * (1 - b.fresnel);
+  } else {
+    b.kr = m.kr;
+    b.kt = m.kt;
+  }
+}
 // For a ray with direction d meeting material m with facing normal n.
 Bounce bounce(const Scene& scene, const Material& m, const Vec3& d, const Vec3& n, bool entering,
               bool force_refraction = false);

@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/packet.h"
 #include "renderer/image_io.h"
+#include "renderer/packet.h"
 
 namespace fs = std::filesystem;
 using phonglab::Image;
