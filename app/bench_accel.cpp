@@ -90,31 +90,14 @@ struct PrimaryCast {
   std::uint64_t hits = 0;
 };
 
-// The pixel-centre primary rays of a w x h frame through intersect() (the scene's accelerator),
-// 4x4 pixel blocks handed out as the packet caster does, so only the query differs.
-PrimaryCast cast_primary(const Scene& scene, int w, int h, int threads) {
-  const CameraFrame frame = make_camera_frame(scene.camera, w, h);
-  constexpr int kSide = 4;
-  constexpr int kBlocksPerTask = 16;
-  const int blocks_x = (w + kSide - 1) / kSide;
-  const int blocks = blocks_x * ((h + kSide - 1) / kSide);
-  std::atomic<int> next{0};
+// Runs cast(rays, hits) on `threads` threads (the caller's among them), each adding its own
+// counts, and times the whole.
+template <class Cast>
+PrimaryCast timed_cast(int threads, const Cast& cast) {
   std::atomic<std::uint64_t> rays{0}, hits{0};
   const auto worker = [&] {
     std::uint64_t my_rays = 0, my_hits = 0;
-    for (;;) {
-      const int first = next.fetch_add(kBlocksPerTask, std::memory_order_relaxed);
-      if (first >= blocks) break;
-      for (int blk = first; blk < std::min(blocks, first + kBlocksPerTask); ++blk) {
-        const int x0 = (blk % blocks_x) * kSide, y0 = (blk / blocks_x) * kSide;
-        for (int k = 0; k < kSide * kSide; ++k) {
-          const int x = x0 + k % kSide, y = y0 + k / kSide;
-          if (x >= w || y >= h) continue;
-          ++my_rays;
-          if (intersect(scene, camera_ray(frame, x, y, 0.5, 0.5))) ++my_hits;
-        }
-      }
-    }
+    cast(my_rays, my_hits);
     rays += my_rays;
     hits += my_hits;
   };
@@ -126,6 +109,32 @@ PrimaryCast cast_primary(const Scene& scene, int w, int h, int threads) {
   return PrimaryCast{seconds_since(t0), rays.load(), hits.load()};
 }
 
+// The pixel-centre primary rays of a w x h frame through intersect() (the scene's accelerator),
+// 4x4 pixel blocks handed out as the packet caster does, so only the query differs.
+PrimaryCast cast_primary(const Scene& scene, int w, int h, int threads) {
+  const CameraFrame frame = make_camera_frame(scene.camera, w, h);
+  constexpr int kSide = 4;
+  constexpr int kBlocksPerTask = 16;
+  const int blocks_x = (w + kSide - 1) / kSide;
+  const int blocks = blocks_x * ((h + kSide - 1) / kSide);
+  std::atomic<int> next{0};
+  return timed_cast(threads, [&](std::uint64_t& rays, std::uint64_t& hits) {
+    for (;;) {
+      const int first = next.fetch_add(kBlocksPerTask, std::memory_order_relaxed);
+      if (first >= blocks) break;
+      for (int blk = first; blk < std::min(blocks, first + kBlocksPerTask); ++blk) {
+        const int x0 = (blk % blocks_x) * kSide, y0 = (blk / blocks_x) * kSide;
+        for (int k = 0; k < kSide * kSide; ++k) {
+          const int x = x0 + k % kSide, y = y0 + k / kSide;
+          if (x >= w || y >= h) continue;
+          ++rays;
+          if (intersect(scene, camera_ray(frame, x, y, 0.5, 0.5))) ++hits;
+        }
+      }
+    }
+  });
+}
+
 // The same rays through the packet tracer's kernels (camera rays and nearest hits, four lanes
 // wide), in its own 16x16-pixel tiles.
 PrimaryCast cast_primary_packets(const Scene& scene, int w, int h, int threads) {
@@ -134,25 +143,15 @@ PrimaryCast cast_primary_packets(const Scene& scene, int w, int h, int threads) 
   const int tiles_x = (w + kTile - 1) / kTile;
   const int tiles = tiles_x * ((h + kTile - 1) / kTile);
   std::atomic<int> next{0};
-  std::atomic<std::uint64_t> rays{0}, hits{0};
-  const auto worker = [&] {
+  return timed_cast(threads, [&](std::uint64_t& rays, std::uint64_t& hits) {
     PacketTracer tracer(scene);
-    std::uint64_t my_rays = 0, my_hits = 0;
     for (int t = next.fetch_add(1); t < tiles; t = next.fetch_add(1)) {
       const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
       const int x1 = std::min(w, x0 + kTile), y1 = std::min(h, y0 + kTile);
-      my_rays += static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
-      my_hits += static_cast<std::uint64_t>(tracer.cast_primary(frame, x0, y0, x1, y1));
+      rays += static_cast<std::uint64_t>((x1 - x0) * (y1 - y0));
+      hits += static_cast<std::uint64_t>(tracer.cast_primary(frame, x0, y0, x1, y1));
     }
-    rays += my_rays;
-    hits += my_hits;
-  };
-  const auto t0 = Clock::now();
-  std::vector<std::thread> pool;
-  for (int i = 1; i < std::max(1, threads); ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  return PrimaryCast{seconds_since(t0), rays.load(), hits.load()};
+  });
 }
 
 Scene load_prepared(std::string_view name) {

@@ -138,11 +138,7 @@ Render render(const Scene& scene, int w, int h, int spp, int threads, std::uint3
   opt.seed = seed;
   opt.packets = packets;
   const auto t0 = Clock::now();
-  for (int i = 0; i < spp; ++i) {
-    const PassStats st = render_pass(scene, opt, r.accum);
-    r.stats.rays += st.rays;
-    r.stats.nan_count += st.nan_count;
-  }
+  r.stats = render_passes(scene, opt, r.accum, spp);
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return r;
 }

@@ -174,14 +174,8 @@ int cmd_render(Args& args) {
 
   Accumulator accum;
   accum.reset(scene->width, scene->height);
-  PassStats total;
   const auto t_render = Clock::now();
-  for (int s = 0; s < spp.value_or(1); ++s) {
-    const PassStats pass = render_pass(*scene, options, accum);
-    total.rays += pass.rays;
-    total.nan_count += pass.nan_count;
-    total.packets = pass.packets;
-  }
+  const PassStats total = render_passes(*scene, options, accum, spp.value_or(1));
   const double render_ms = ms_since(t_render);
 
   Image image = mean_image(accum);

@@ -178,6 +178,18 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
   return total;
 }
 
+PassStats render_passes(const Scene& scene, const RenderOptions& options, Accumulator& accum, int passes) {
+  PassStats total;
+  for (int i = 0; i < passes; ++i) {
+    const PassStats pass = render_pass(scene, options, accum);
+    total.rays += pass.rays;
+    total.nan_count += pass.nan_count;
+    total.seconds += pass.seconds;
+    total.packets = pass.packets;
+  }
+  return total;
+}
+
 }  // namespace phonglab
 
 namespace phonglab {

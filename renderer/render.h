@@ -74,6 +74,9 @@ Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int
 PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumulator& accum,
                       const std::atomic<bool>* cancel = nullptr);
 
+// `passes` passes in a row (no cancel); their statistics summed (rays, NaNs, seconds).
+PassStats render_passes(const Scene& scene, const RenderOptions& options, Accumulator& accum, int passes);
+
 // Number of threads a pass uses for `requested` (0 = all hardware threads).
 int resolve_thread_count(int requested);
 

@@ -31,11 +31,9 @@ Frame render(const Scene& scene, int w, int h, int passes, bool packets, int thr
   opt.packets = packets;
   opt.threads = threads;
   opt.seed = seed;
-  for (int i = 0; i < passes; ++i) {
-    const PassStats st = render_pass(scene, opt, f.accum);
-    f.rays += st.rays;
-    f.nan_count += st.nan_count;
-  }
+  const PassStats st = render_passes(scene, opt, f.accum, passes);
+  f.rays = st.rays;
+  f.nan_count = st.nan_count;
   return f;
 }
 
