@@ -127,6 +127,7 @@ struct MaterialInfo {
   bool specular = false;  // ks non-zero
   bool bounces = false;   // kr or kt non-zero: children may follow
   double n = 0;
+  double ior = 1;
   Color ambient{0};       // ka * Ia, as shade() computes it
 };
 
@@ -180,6 +181,7 @@ struct PacketTracer::Impl {
       mi.lit = !is_zero(m.kd) || mi.specular;
       mi.bounces = !is_zero(m.kr) || !is_zero(m.kt);
       mi.n = m.n;
+      mi.ior = m.ior;
       mi.ambient = m.ka * scene.ambient;
       info.push_back(mi);
     }
@@ -289,7 +291,7 @@ struct PacketTracer::Impl {
 
   // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
   void test_shadows(Level& lv, int lanes, const packet::Spheres& tested) {
-    for (int h = 0; h < padded(lanes); ++h) lv.blocked[at(h)] = 0;
+    std::fill_n(lv.blocked.begin(), padded(lanes), std::uint8_t{0});
     const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
     packet::occluded(tested, planes, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
     if (scene.triangles.empty()) return;
@@ -404,7 +406,7 @@ struct PacketTracer::Impl {
     const int lanes = rays.n;
     packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
                         padded(lanes), lv.records());
-    bool any_hit = false;
+    bool any_hit = false, any_bounce = false;
     Vec3 lo(kInf), hi(-kInf);
     double max_offset = 0;
     for (int i = 0; i < lanes; ++i) {
@@ -412,39 +414,42 @@ struct PacketTracer::Impl {
       const std::int32_t id = lv.id[u];
       if (id < 0) {
         out[i] = scene.background;
-        lv.lit[u] = 0;
+        lv.lit[u] = lv.bounces[u] = 0;
         continue;
       }
       any_hit = true;
       const int material = prim_material[at(id)];
+      const MaterialInfo& mi = info[at(material)];
       lv.material[u] = material;
-      lv.lit[u] = info[at(material)].lit;
+      lv.lit[u] = mi.lit;
+      lv.bounces[u] = mi.bounces;
+      lv.ior[u] = mi.ior;
+      any_bounce |= mi.bounces;
       Terms& t = lv.terms[u];
       t = Terms{};
-      t.ambient = info[at(material)].ambient;
+      t.ambient = mi.ambient;
       if (id >= spheres.count + planes.count) record_triangle_hit(lv, rays, i);
       const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
       max_offset = std::max(max_offset, lv.offset[u]);
     }
-    for (int i = lanes; i < padded(lanes); ++i) lv.lit[at(i)] = 0;
+    for (int i = lanes; i < padded(lanes); ++i) lv.lit[at(i)] = lv.bounces[at(i)] = 0;
     if (!any_hit) return;
     lv.lo = lo;
     lv.hi = hi;
     lv.max_offset = max_offset;
     shade_lights(lv, lanes, counts);
 
-    const bool children = depth < limits.max_depth && send_children(lv, rays, lanes, depth, counts);
+    const bool children = any_bounce && depth < limits.max_depth;
+    if (children) send_children(lv, rays, lanes, depth, counts);
     for (int i = 0; i < lanes; ++i) {
       const std::size_t u = at(i);
       if (lv.id[u] < 0) continue;
       Terms& t = lv.terms[u];
-      if (children && lv.reflected_index[u] >= 0) {
-        t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
-      }
-      if (children && lv.refracted_index[u] >= 0) {
-        t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
+      if (children && lv.bounces[u]) {
+        if (lv.reflected_index[u] >= 0) t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
+        if (lv.refracted_index[u] >= 0) t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
       }
       out[i] = t.sum();
     }
@@ -465,21 +470,11 @@ struct PacketTracer::Impl {
   }
 
   // Reflected and refracted rays of the level's mirror and glass hits, traced as the next
-  // level's two batches (shade()'s recursion, with its path-weight pruning). False when no hit
-  // sends any.
-  bool send_children(Level& lv, const RayBatch& rays, int lanes, int depth, RayCounts& counts) {
+  // level's two batches (shade()'s recursion, with its path-weight pruning), for the lanes marked
+  // in `bounces`.
+  void send_children(Level& lv, const RayBatch& rays, int lanes, int depth, RayCounts& counts) {
     lv.reflected.n = 0;
     lv.refracted.n = 0;
-    bool any = false;
-    for (int k = 0; k < padded(lanes); ++k) {
-      const std::size_t u = at(k);
-      lv.reflected_index[u] = lv.refracted_index[u] = -1;
-      const bool b = k < lanes && lv.id[u] >= 0 && info[at(lv.material[u])].bounces;
-      lv.bounces[u] = b;
-      if (b) lv.ior[u] = scene.materials[at(lv.material[u])].ior;
-      any |= b;
-    }
-    if (!any) return false;
     packet::bounce({rays.dx.data(), rays.dy.data(), rays.dz.data(), lv.nx.data(), lv.ny.data(), lv.nz.data(),
                     lv.ior.data(), lv.entering.data(), lv.bounces.data()},
                    padded(lanes),
@@ -490,6 +485,7 @@ struct PacketTracer::Impl {
     for (int k = 0; k < lanes; ++k) {
       const std::size_t u = at(k);
       if (!lv.bounces[u]) continue;
+      lv.reflected_index[u] = lv.refracted_index[u] = -1;
       const Material& m = scene.materials[at(lv.material[u])];
       const Vec3 ng(lv.gx[u], lv.gy[u], lv.gz[u]);
       const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
@@ -520,7 +516,6 @@ struct PacketTracer::Impl {
     fit(lv.refracted_radiance, lv.refracted.n);
     if (lv.reflected.n > 0) trace_level(depth + 1, lv.reflected, lv.reflected_radiance.data(), counts);
     if (lv.refracted.n > 0) trace_level(depth + 1, lv.refracted, lv.refracted_radiance.data(), counts);
-    return true;
   }
 };
 
