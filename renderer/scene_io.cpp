@@ -674,6 +674,11 @@ std::optional<std::string> read_text_file(const std::string& path, std::size_t l
     return std::nullopt;
   }
   std::string text;
+  // Room for the whole file up front (when its size is known and within the limit): a 55 MB
+  // mesh grown by doubling is copied about twice over, and each copy touches fresh pages.
+  std::error_code size_ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, size_ec);
+  if (!size_ec && size <= limit) text.reserve(static_cast<std::size_t>(size) + 1);
   std::array<char, 1 << 16> buffer;
   bool too_large = false;
   int read_error = 0;
