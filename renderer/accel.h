@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -24,6 +25,12 @@ struct MeshGeometry {
 
 // Builds a mesh's BVH and puts its triangles in leaf order. `source_face[i]` names triangle i.
 std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::vector<Triangle> triangles,
+                                                       std::vector<int> source_face);
+
+// The same for triangles made on demand: `make(i)` gives triangle i (it is called from two
+// threads at once for large meshes, and twice for each triangle: for its box, then in its leaf
+// slot), `source_face[i]` names it. No array of the triangles in any other order is made.
+std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::size_t count, const std::function<Triangle(std::size_t)>& make,
                                                        std::vector<int> source_face);
 
 // The default accelerator: top-level BVH over spheres, triangles and meshes; null (brute force)

@@ -1,8 +1,10 @@
 #include "renderer/obj_io.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <istream>
@@ -254,9 +256,9 @@ std::string index_error(const char* what, const char* plural, int index, std::si
 
 }  // namespace
 
-ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
-                 NsMapping ns) {
-  ObjMesh out;
+ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
+                                NsMapping ns) {
+  ObjIndexedMesh out;
   // The prescan and tinyobjloader read the same text and nothing else: on two threads at once.
   // A file the prescan rejects is parsed for nothing, but it is then reported as before, with
   // the prescan's errors only.
@@ -325,12 +327,16 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
 
   const std::size_t vertex_count = attrib.vertices.size() / 3;
   const std::size_t normal_count = attrib.normals.size() / 3;
-  const auto vertex = [&](std::size_t i) {
-    return Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-  };
-  const auto normal = [&](std::size_t i) {
-    return Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
-  };
+  out.vertices.resize(vertex_count);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    out.vertices[i] = Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+  }
+  out.normals.resize(normal_count);
+  for (std::size_t i = 0; i < normal_count; ++i) {
+    out.normals[i] = Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+  }
+  attrib = {};
+  const std::vector<Vec3>& vertex = out.vertices;
   std::size_t total_faces = 0;
   for (const tinyobj::shape_t& s : shapes) total_faces += s.mesh.num_face_vertices.size();
   // Our count of face lines matches tinyobjloader's faces unless the file uses a syntax we
@@ -345,7 +351,6 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
     for (const unsigned char n : s.mesh.num_face_vertices) triangle_count += n >= 3 ? n - 2u : 0u;
   }
   out.triangles.reserve(triangle_count);
-  out.source_face.reserve(triangle_count);
   int face = 0;
   for (const tinyobj::shape_t& s : shapes) {
     std::size_t offset = 0;
@@ -392,28 +397,26 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
       for (std::size_t k = 1; k + 1 < n; ++k) {
         const tinyobj::index_t i1 = s.mesh.indices[offset + k];
         const tinyobj::index_t i2 = s.mesh.indices[offset + k + 1];
-        Triangle tri;
-        tri.v0 = vertex(static_cast<std::size_t>(i0.vertex_index));
-        tri.v1 = vertex(static_cast<std::size_t>(i1.vertex_index));
-        tri.v2 = vertex(static_cast<std::size_t>(i2.vertex_index));
+        ObjIndexedTriangle tri;
+        tri.v = {static_cast<std::uint32_t>(i0.vertex_index), static_cast<std::uint32_t>(i1.vertex_index),
+                 static_cast<std::uint32_t>(i2.vertex_index)};
+        tri.n = smooth ? std::array<std::int32_t, 3>{i0.normal_index, i1.normal_index, i2.normal_index}
+                       : std::array<std::int32_t, 3>{-1, -1, -1};
         tri.material = material;
-        const Vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+        tri.face = face;
+        const Vec3& v0 = vertex[tri.v[0]];
+        const Vec3& v1 = vertex[tri.v[1]];
+        const Vec3& v2 = vertex[tri.v[2]];
+        const Vec3 cross = glm::cross(v1 - v0, v2 - v0);
         const double area2 = glm::length(cross);
         if (!(area2 > 0) || !std::isfinite(area2)) {
           ++out.skipped_degenerate;
           continue;
         }
-        if (smooth) {
-          tri.has_vertex_normals = true;
-          tri.n0 = normal(static_cast<std::size_t>(i0.normal_index));
-          tri.n1 = normal(static_cast<std::size_t>(i1.normal_index));
-          tri.n2 = normal(static_cast<std::size_t>(i2.normal_index));
-        }
         const auto m = static_cast<std::size_t>(material);
         emitter_area[m] += area2;
-        emitter_sum[m] += area2 * (tri.v0 + tri.v1 + tri.v2) / 3.0;
+        emitter_sum[m] += area2 * (v0 + v1 + v2) / 3.0;
         out.triangles.push_back(tri);
-        out.source_face.push_back(face);
       }
       const auto m = static_cast<std::size_t>(material);
       ++emitter_faces[m];
@@ -434,6 +437,39 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
     e.faces = emitter_faces[i];
     out.emitters.push_back(e);
   }
+  return out;
+}
+
+Triangle ObjIndexedMesh::triangle(std::size_t i) const {
+  const ObjIndexedTriangle& t = triangles[i];
+  Triangle tri;
+  tri.v0 = vertices[t.v[0]];
+  tri.v1 = vertices[t.v[1]];
+  tri.v2 = vertices[t.v[2]];
+  tri.material = t.material;
+  if (t.n[0] >= 0) {
+    tri.has_vertex_normals = true;
+    tri.n0 = normals[static_cast<std::size_t>(t.n[0])];
+    tri.n1 = normals[static_cast<std::size_t>(t.n[1])];
+    tri.n2 = normals[static_cast<std::size_t>(t.n[2])];
+  }
+  return tri;
+}
+
+ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl, NsMapping ns) {
+  ObjIndexedMesh indexed = load_obj_indexed(obj_text, obj_name, read_mtl, ns);
+  ObjMesh out;
+  out.triangles.reserve(indexed.triangles.size());
+  out.source_face.reserve(indexed.triangles.size());
+  for (std::size_t i = 0; i < indexed.triangles.size(); ++i) {
+    out.triangles.push_back(indexed.triangle(i));
+    out.source_face.push_back(indexed.triangles[i].face);
+  }
+  out.materials = std::move(indexed.materials);
+  out.emitters = std::move(indexed.emitters);
+  out.skipped_degenerate = indexed.skipped_degenerate;
+  out.warnings = std::move(indexed.warnings);
+  out.errors = std::move(indexed.errors);
   return out;
 }
 
