@@ -1,6 +1,8 @@
 #include "renderer/accel.h"
 
 #include <chrono>
+#include <exception>
+#include <thread>
 #include <utility>
 
 namespace phonglab {
@@ -12,6 +14,9 @@ std::size_t MeshGeometry::memory_bytes() const {
 }
 
 namespace {
+
+// Meshes of fewer triangles than this are put in leaf order on one thread.
+constexpr std::size_t kParallelFill = std::size_t{1} << 16;
 
 // Rearranges `v` and `w` alike so that slot i holds what slot order[i] held, in place by following
 // the permutation's cycles; `order` is used up (each slot, once filled, points at itself). No
@@ -87,14 +92,44 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::vector<Triangle> tri
 }
 
 std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::size_t count, const std::function<Triangle(std::size_t)>& make,
-                                                       std::vector<int> source_face) {
+                                                       std::vector<int> source_face, std::vector<Triangle> room) {
   const auto start = std::chrono::steady_clock::now();
   auto geometry = std::make_shared<MeshGeometry>();
   geometry->bvh = build_bvh(count, [&](std::size_t i) { return triangle_bounds(make(i)); }, 4);
   if (!geometry->bvh.nodes.empty()) geometry->bounds = geometry->bvh.nodes[0].box;
   const std::vector<std::uint32_t>& order = geometry->bvh.order;
-  geometry->triangles.reserve(count);
-  for (const std::uint32_t i : order) geometry->triangles.push_back(make(i));
+  if (room.size() >= count) {
+    // Slots of an array that exists already: two threads fill halves of it.
+    const auto fill = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t slot = begin; slot < end; ++slot) room[slot] = make(order[slot]);
+    };
+    if (count >= kParallelFill) {
+      std::exception_ptr upper_error;
+      std::thread upper([&] {
+        try {
+          fill(count / 2, count);
+        } catch (...) {
+          upper_error = std::current_exception();  // from `make`: rethrown below
+        }
+      });
+      try {
+        fill(0, count / 2);
+      } catch (...) {
+        upper.join();
+        throw;
+      }
+      upper.join();
+      if (upper_error) std::rethrow_exception(upper_error);
+    } else {
+      fill(0, count);
+    }
+    room.resize(count);
+    if (room.capacity() > count) room.shrink_to_fit();  // some faces were left out: no spare slots kept
+    geometry->triangles = std::move(room);
+  } else {
+    geometry->triangles.reserve(count);
+    for (const std::uint32_t i : order) geometry->triangles.push_back(make(i));
+  }
   geometry->source_face.resize(count);
   for (std::size_t slot = 0; slot < count; ++slot) {
     geometry->source_face[slot] = source_face.size() == count ? source_face[order[slot]] : static_cast<int>(order[slot]);

@@ -48,6 +48,7 @@ bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 struct Prescan {
   std::vector<int> face_lines;  // line of each face with 3 or more vertices, in file order
   std::vector<double> vertices;  // x, y, z of each `v`, correctly rounded (std::from_chars)
+  std::size_t max_triangles = 0;  // of the fans of those faces
   std::vector<ObjProblem> errors;
 };
 
@@ -111,7 +112,10 @@ Prescan prescan(std::string_view text, const std::string& name) {
         if (problem.empty()) problem = check_face_vertex(l.substr(begin, j - begin), read);
       }
       if (!problem.empty()) out.errors.push_back({name, line, problem});
-      if (vertices >= 3) out.face_lines.push_back(line);
+      if (vertices >= 3) {
+        out.face_lines.push_back(line);
+        out.max_triangles += static_cast<std::size_t>(vertices - 2);
+      }
     } else if (l[i] == 'v') {
       ++read[0];
       // Three coordinates (std::from_chars: correctly rounded, and several times faster than strtod).
@@ -257,7 +261,7 @@ std::string index_error(const char* what, const char* plural, int index, std::si
 }  // namespace
 
 ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
-                                NsMapping ns) {
+                                NsMapping ns, const TriangleCountHook& on_prescan) {
   ObjIndexedMesh out;
   // The prescan and tinyobjloader read the same text and nothing else: on two threads at once.
   // A file the prescan rejects is parsed for nothing, but it is then reported as before, with
@@ -267,6 +271,7 @@ ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& 
   std::thread prescan_thread([&] {
     try {
       pre = prescan(obj_text, obj_name);
+      if (pre.errors.empty() && on_prescan) on_prescan(pre.max_triangles);
     } catch (...) {
       prescan_error = std::current_exception();  // out of memory, say: rethrown below
     }

@@ -71,9 +71,14 @@ struct ObjIndexedMesh {
 // negative (relative) indices are honoured, faces without normals are flat.
 ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
                  NsMapping ns = NsMapping::kAsIs);
+// Called on the prescan's thread, while tinyobjloader still parses the file on the caller's, with
+// the most triangles its faces can give (a fan for every face of 3 or more vertices; none when
+// the prescan finds errors): callers can make room for them there, off the parse's path.
+using TriangleCountHook = std::function<void(std::size_t max_triangles)>;
+
 // The same, indexed: load_obj spells out these triangles, in this order.
 ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
-                                NsMapping ns = NsMapping::kAsIs);
+                                NsMapping ns = NsMapping::kAsIs, const TriangleCountHook& on_prescan = {});
 
 // The material MTL-less faces get: a neutral grey (ka 0.1, kd 0.7, ks 0.2, n 32).
 Material default_mesh_material();

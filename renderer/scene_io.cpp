@@ -777,7 +777,10 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   const FileReader read_mtl = [&](const std::string& mtl, std::string& err) {
     return files.read(obj_dir.empty() ? mtl : obj_dir + "/" + mtl, err);
   };
-  ObjIndexedMesh obj = load_obj_indexed(*text, file, read_mtl, ns);
+  // The room for the mesh's Triangles is allocated and first touched (0.15 s for 1.3M of them)
+  // on the prescan's thread, which finishes well before tinyobjloader's parse on this one.
+  std::vector<Triangle> room;
+  ObjIndexedMesh obj = load_obj_indexed(*text, file, read_mtl, ns, [&](std::size_t n) { room.resize(n); });
   for (const ObjProblem& w : obj.warnings) out.warnings.push_back(w.to_string());
   for (const ObjProblem& e : obj.errors) out.errors.push_back(e.to_string());
   if (!out.errors.empty()) return out;
@@ -854,7 +857,7 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
     t.material = override_material >= 0 ? override_material : material_base + t.material;
     return t;
   };
-  out.geometry = make_mesh_geometry(placed.size(), make, std::move(faces));
+  out.geometry = make_mesh_geometry(placed.size(), make, std::move(faces), std::move(room));
   return out;
 }
 

@@ -235,7 +235,7 @@ TEST(SceneBvh, AParallelBuildOfALargeMeshKeepsEveryTriangleOnceAndEqualsBruteFor
 }
 
 // The two ways to make a mesh's geometry, from stored triangles (permuted in place) and from
-// triangles made on demand (made in their leaf slots), give the same nodes and the same
+// triangles made on demand (made in their leaf slots, into room made ahead or not), give the same nodes and the same
 // triangles in the same slots, bit for bit, on a mesh large enough for the parallel root passes.
 TEST(SceneBvh, MeshGeometryFromTrianglesMadeOnDemandEqualsTheStoredOnes) {
   std::mt19937 rng(20261124);
@@ -256,6 +256,19 @@ TEST(SceneBvh, MeshGeometryFromTrianglesMadeOnDemandEqualsTheStoredOnes) {
   for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = static_cast<int>(i / 2);
   const auto stored = make_mesh_geometry(tris, faces);
   const auto made = make_mesh_geometry(tris.size(), [&](std::size_t i) { return tris[i]; }, faces);
+  // Into room made ahead (filled by two threads), with spare slots as when faces are left out.
+  const auto in_room = make_mesh_geometry(tris.size(), [&](std::size_t i) { return tris[i]; }, faces,
+                                          std::vector<Triangle>(tris.size() + 5));
+  ASSERT_EQ(in_room->triangles.size(), tris.size());
+  EXPECT_EQ(in_room->triangles.capacity(), tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const Triangle& a = made->triangles[i];
+    const Triangle& b = in_room->triangles[i];
+    ASSERT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2 && a.material == b.material &&
+                a.has_vertex_normals == b.has_vertex_normals && a.n0 == b.n0 && a.n1 == b.n1 && a.n2 == b.n2)
+        << "slot " << i;
+  }
+  EXPECT_EQ(in_room->source_face, made->source_face);
   ASSERT_EQ(stored->bvh.nodes.size(), made->bvh.nodes.size());
   EXPECT_EQ(stored->bvh.depth, made->bvh.depth);
   for (std::size_t i = 0; i < stored->bvh.nodes.size(); ++i) {
