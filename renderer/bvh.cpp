@@ -213,15 +213,14 @@ class Builder {
     out[index].count = 0;
     int left_depth = 0, right_depth = 0;
     if (parallel) {
-      // The two halves into their own arrays at once, then appended with indices shifted.
-      // A subtree over m primitives has at most 2m - 1 nodes: reserved so that no array
-      // grows by copying (only the pages written become memory).
-      std::vector<BvhNode> left_nodes, right_nodes;
-      left_nodes.reserve(2 * std::size_t{mid - begin} - 1);
+      // Both halves at once: the left one on a thread of its own, straight into `out` (which
+      // this thread leaves alone until that is done), the right one into an array of its own,
+      // appended after it with its indices shifted. An array over m primitives gets at most
+      // 2m - 1 nodes and is reserved for them, so none grows by copying.
+      std::vector<BvhNode> right_nodes;
       right_nodes.reserve(2 * std::size_t{end - mid} - 1);
-      in_parallel([&] { left_depth = build(left_nodes, begin, mid, left, level + 1); },
+      in_parallel([&] { left_depth = build(out, begin, mid, left, level + 1); },
                   [&] { right_depth = build(right_nodes, mid, end, right, level + 1); });
-      append(out, left_nodes);
       out[index].first = static_cast<std::uint32_t>(out.size());
       append(out, right_nodes);
     } else {
@@ -289,9 +288,9 @@ class Builder {
   // Appends a subtree built in its own array; its inner nodes' child indices move with it.
   static void append(std::vector<BvhNode>& out, const std::vector<BvhNode>& sub) {
     const auto shift = static_cast<std::uint32_t>(out.size());
-    for (BvhNode node : sub) {
-      if (node.count == 0) node.first += shift;
-      out.push_back(node);
+    out.insert(out.end(), sub.begin(), sub.end());
+    for (std::size_t i = shift; i < out.size(); ++i) {
+      if (out[i].count == 0) out[i].first += shift;
     }
   }
 
