@@ -92,10 +92,15 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::vector<Triangle> tri
 }
 
 std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::size_t count, const std::function<Triangle(std::size_t)>& make,
-                                                       std::vector<int> source_face, std::vector<Triangle> room) {
+                                                       std::vector<int> source_face, std::vector<Triangle> room,
+                                                       const std::function<Aabb(std::size_t)>& box_of) {
   const auto start = std::chrono::steady_clock::now();
   auto geometry = std::make_shared<MeshGeometry>();
-  geometry->bvh = build_bvh(count, [&](std::size_t i) { return triangle_bounds(make(i)); }, 4);
+  if (box_of) {
+    geometry->bvh = build_bvh(count, box_of, 4);
+  } else {
+    geometry->bvh = build_bvh(count, [&](std::size_t i) { return triangle_bounds(make(i)); }, 4);
+  }
   if (!geometry->bvh.nodes.empty()) geometry->bounds = geometry->bvh.nodes[0].box;
   const std::vector<std::uint32_t>& order = geometry->bvh.order;
   if (room.size() >= count) {

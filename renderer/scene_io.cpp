@@ -857,7 +857,16 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
     t.material = override_material >= 0 ? override_material : material_base + t.material;
     return t;
   };
-  out.geometry = make_mesh_geometry(placed.size(), make, std::move(faces), std::move(room));
+  // triangle_bounds(make(i)) without making the Triangle: its corners grown in the same order.
+  const auto box_of = [&](std::size_t i) {
+    const ObjIndexedTriangle& t = placed[i];
+    Aabb b;
+    b.grow(obj.vertices[t.v[0]]);
+    b.grow(obj.vertices[t.v[mirrored ? 2 : 1]]);
+    b.grow(obj.vertices[t.v[mirrored ? 1 : 2]]);
+    return b;
+  };
+  out.geometry = make_mesh_geometry(placed.size(), make, std::move(faces), std::move(room), box_of);
   return out;
 }
 
