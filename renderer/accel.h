@@ -28,8 +28,8 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::vector<Triangle> tri
                                                        std::vector<int> source_face);
 
 // The same for triangles made on demand: `make(i)` gives triangle i (it is called from two
-// threads at once for large meshes, and twice for each triangle: for its box, then in its leaf
-// slot), `source_face[i]` names it. No array of the triangles in any other order is made.
+// threads at once for large meshes, in its leaf slot, and for its box unless `box_of` gives
+// that), `source_face[i]` names it. No array of the triangles in any other order is made.
 // `room`, when it holds `count` triangles or more, becomes the array of triangles (so that it can
 // be allocated and first touched ahead, on another thread: 0.15 s for 1.3M triangles).
 // `box_of(i)`, when given, must equal triangle_bounds(make(i)) bit for bit, cheaper.

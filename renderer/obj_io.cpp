@@ -14,7 +14,7 @@
 #include <string_view>
 #include <thread>
 
-#include <tiny_obj_loader.h>
+#include <tiny_obj_loader.h>  // double precision: the target defines TINYOBJLOADER_USE_DOUBLE
 
 namespace phonglab {
 

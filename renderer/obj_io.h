@@ -71,6 +71,7 @@ struct ObjIndexedMesh {
 // negative (relative) indices are honoured, faces without normals are flat.
 ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
                  NsMapping ns = NsMapping::kAsIs);
+
 // Called on the prescan's thread, while tinyobjloader still parses the file on the caller's, with
 // the most triangles its faces can give (a fan for every face of 3 or more vertices; none when
 // the prescan finds errors): callers can make room for them there, off the parse's path.
