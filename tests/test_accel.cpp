@@ -321,6 +321,22 @@ TEST(MeshObjLoad, ThePrescanThreadBesideTinyobjloaderGivesTheFileAndItsErrors) {
   EXPECT_EQ(mesh.triangles[0].v0, Vec3(0, 0, 0));
   EXPECT_EQ(mesh.triangles[0].v1, Vec3(0.25, 0, 0));
   EXPECT_EQ(mesh.source_face.back(), (kSide - 1) * (kSide - 1) - 1);
+  // As scene loading does it: room for the triangles made by the prescan's thread, then filled.
+  std::vector<Triangle> room;
+  const ObjIndexedMesh indexed = load_obj_indexed(obj.str(), "grid.obj", nullptr, NsMapping::kAsIs,
+                                                  [&](std::size_t n) { room.resize(n); });
+  ASSERT_EQ(room.size(), mesh.triangles.size());
+  std::vector<int> faces;
+  for (const ObjIndexedTriangle& t : indexed.triangles) faces.push_back(t.face);
+  const auto geometry = make_mesh_geometry(indexed.triangles.size(), [&](std::size_t i) { return indexed.triangle(i); },
+                                           faces, std::move(room));
+  const auto reference = make_mesh_geometry(mesh.triangles, mesh.source_face);
+  ASSERT_EQ(geometry->triangles.size(), reference->triangles.size());
+  for (std::size_t i = 0; i < geometry->triangles.size(); ++i) {
+    ASSERT_EQ(geometry->triangles[i].v0, reference->triangles[i].v0) << "slot " << i;
+    ASSERT_EQ(geometry->triangles[i].v2, reference->triangles[i].v2) << "slot " << i;
+  }
+  EXPECT_EQ(geometry->source_face, reference->source_face);
   const ObjMesh bad = load_obj(obj.str() + "f 1 2 0\n", "grid.obj", nullptr);
   ASSERT_EQ(bad.errors.size(), 1u);
   EXPECT_EQ(bad.errors[0].line, kSide * kSide + (kSide - 1) * (kSide - 1) + 1);
