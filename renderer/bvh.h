@@ -3,7 +3,9 @@
 // boxes hold: callers test the primitives of each leaf themselves.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -55,6 +57,9 @@ struct Bvh {
 // Binned SAH build (16 bins per axis over the centroids' extent). Leaves hold at most
 // `max_leaf` primitives, fewer when the SAH finds a split cheaper than testing them all.
 Bvh build_bvh(const std::vector<Aabb>& boxes, int max_leaf = 4);
+// The same over `count` boxes given one at a time, so no array of them sits beside the build's
+// own. `box_of` is called from two threads at once (for 2^16 boxes and more).
+Bvh build_bvh(std::size_t count, const std::function<Aabb(std::size_t)>& box_of, int max_leaf = 4);
 
 // A ray prepared for box tests: reciprocal direction (+-inf for a zero component).
 struct BoxRay {

@@ -1,12 +1,18 @@
 #include "renderer/obj_io.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <exception>
+#include <istream>
 #include <map>
 #include <sstream>
+#include <streambuf>
 #include <string_view>
+#include <thread>
 
 #include <tiny_obj_loader.h>  // double precision: the target defines TINYOBJLOADER_USE_DOUBLE
 
@@ -42,6 +48,7 @@ bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 struct Prescan {
   std::vector<int> face_lines;  // line of each face with 3 or more vertices, in file order
   std::vector<double> vertices;  // x, y, z of each `v`, correctly rounded (std::from_chars)
+  std::size_t max_triangles = 0;  // of the fans of those faces
   std::vector<ObjProblem> errors;
 };
 
@@ -55,13 +62,21 @@ std::string check_face_vertex(std::string_view token, const long read[3]) {
   for (int kind = 0; kind < 3 && start <= token.size(); ++kind) {
     std::size_t slash = token.find('/', start);
     if (slash == std::string_view::npos) slash = token.size();
-    const std::string part(token.substr(start, slash - start));
+    const std::string_view digits = token.substr(start, slash - start);
     start = slash + 1;
-    if (part.empty() && kind > 0) continue;  // "v//n" has no texture index
-    char* after = nullptr;
-    const long index = std::strtol(part.c_str(), &after, 10);
-    if (part.empty() || *after != '\0') {
-      return "face vertex '" + std::string(token) + "' is not made of integer indices";
+    if (digits.empty() && kind > 0) continue;  // "v//n" has no texture index
+    // std::from_chars where it reads the whole part (plain decimal, in range: what files hold), and
+    // strtol's verdict on anything else, which it alone decides ("+5", overflow): the same answers
+    // as strtol throughout, without a string made for every index of a 1.3M-face file.
+    long index = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size()) {
+      const std::string part(digits);
+      char* after = nullptr;
+      index = std::strtol(part.c_str(), &after, 10);
+      if (part.empty() || *after != '\0') {
+        return "face vertex '" + std::string(token) + "' is not made of integer indices";
+      }
     }
     if (index == 0) {
       return "face vertex '" + std::string(token) + "': index 0 (OBJ indices start at 1; negative ones count back)";
@@ -105,7 +120,10 @@ Prescan prescan(std::string_view text, const std::string& name) {
         if (problem.empty()) problem = check_face_vertex(l.substr(begin, j - begin), read);
       }
       if (!problem.empty()) out.errors.push_back({name, line, problem});
-      if (vertices >= 3) out.face_lines.push_back(line);
+      if (vertices >= 3) {
+        out.face_lines.push_back(line);
+        out.max_triangles += static_cast<std::size_t>(vertices - 2);
+      }
     } else if (l[i] == 'v') {
       ++read[0];
       // Three coordinates (std::from_chars: correctly rounded, and several times faster than strtod).
@@ -133,6 +151,16 @@ Prescan prescan(std::string_view text, const std::string& name) {
   }
   return out;
 }
+
+// The OBJ text as a stream for tinyobjloader, read in place (std::istringstream would copy it:
+// 55 MB for a 1.3M-triangle mesh). Only the get area is used, so the text is never written.
+class TextStreamBuf final : public std::streambuf {
+ public:
+  explicit TextStreamBuf(const std::string& text) {
+    char* begin = const_cast<char*>(text.data());
+    setg(begin, begin, begin + text.size());
+  }
+};
 
 // tinyobjloader's messages end in "(line N.)", "line N.)" or "line: N"; split them into our
 // problems, with N as their line.
@@ -240,22 +268,44 @@ std::string index_error(const char* what, const char* plural, int index, std::si
 
 }  // namespace
 
-ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
-                 NsMapping ns) {
-  ObjMesh out;
-  Prescan pre = prescan(obj_text, obj_name);
-  if (!pre.errors.empty()) {
-    out.errors = std::move(pre.errors);
-    return out;
-  }
+ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
+                                NsMapping ns, const TriangleCountHook& on_prescan) {
+  ObjIndexedMesh out;
+  // The prescan and tinyobjloader read the same text and nothing else: on two threads at once.
+  // A file the prescan rejects is parsed for nothing, but it is then reported as before, with
+  // the prescan's errors only.
+  Prescan pre;
+  std::exception_ptr prescan_error;
+  std::thread prescan_thread([&] {
+    try {
+      pre = prescan(obj_text, obj_name);
+      if (pre.errors.empty() && on_prescan) on_prescan(pre.max_triangles);
+    } catch (...) {
+      prescan_error = std::current_exception();  // out of memory, say: rethrown below
+    }
+  });
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> mtl;
   std::string warn, err;
-  std::istringstream stream(obj_text);
-  MtlReader reader(read_mtl, out.warnings, obj_name);
-  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtl, &warn, &err, &stream, &reader,
-                                   /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  bool ok = false;
+  try {
+    TextStreamBuf buffer(obj_text);
+    std::istream stream(&buffer);
+    MtlReader reader(read_mtl, out.warnings, obj_name);
+    ok = tinyobj::LoadObj(&attrib, &shapes, &mtl, &warn, &err, &stream, &reader,
+                          /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  } catch (...) {
+    prescan_thread.join();
+    throw;
+  }
+  prescan_thread.join();
+  if (prescan_error) std::rethrow_exception(prescan_error);
+  if (!pre.errors.empty()) {
+    out.warnings.clear();  // the MTL's: only the errors of a file the prescan rejects
+    out.errors = std::move(pre.errors);
+    return out;
+  }
   if (!ok) {
     add_messages(err.empty() ? "cannot parse the file" : err, obj_name, out.errors);
     return out;
@@ -290,12 +340,16 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
 
   const std::size_t vertex_count = attrib.vertices.size() / 3;
   const std::size_t normal_count = attrib.normals.size() / 3;
-  const auto vertex = [&](std::size_t i) {
-    return Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-  };
-  const auto normal = [&](std::size_t i) {
-    return Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
-  };
+  out.vertices.resize(vertex_count);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    out.vertices[i] = Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+  }
+  out.normals.resize(normal_count);
+  for (std::size_t i = 0; i < normal_count; ++i) {
+    out.normals[i] = Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+  }
+  attrib = {};
+  const std::vector<Vec3>& vertex = out.vertices;
   std::size_t total_faces = 0;
   for (const tinyobj::shape_t& s : shapes) total_faces += s.mesh.num_face_vertices.size();
   // Our count of face lines matches tinyobjloader's faces unless the file uses a syntax we
@@ -310,7 +364,6 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
     for (const unsigned char n : s.mesh.num_face_vertices) triangle_count += n >= 3 ? n - 2u : 0u;
   }
   out.triangles.reserve(triangle_count);
-  out.source_face.reserve(triangle_count);
   int face = 0;
   for (const tinyobj::shape_t& s : shapes) {
     std::size_t offset = 0;
@@ -357,28 +410,26 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
       for (std::size_t k = 1; k + 1 < n; ++k) {
         const tinyobj::index_t i1 = s.mesh.indices[offset + k];
         const tinyobj::index_t i2 = s.mesh.indices[offset + k + 1];
-        Triangle tri;
-        tri.v0 = vertex(static_cast<std::size_t>(i0.vertex_index));
-        tri.v1 = vertex(static_cast<std::size_t>(i1.vertex_index));
-        tri.v2 = vertex(static_cast<std::size_t>(i2.vertex_index));
+        ObjIndexedTriangle tri;
+        tri.v = {static_cast<std::uint32_t>(i0.vertex_index), static_cast<std::uint32_t>(i1.vertex_index),
+                 static_cast<std::uint32_t>(i2.vertex_index)};
+        tri.n = smooth ? std::array<std::int32_t, 3>{i0.normal_index, i1.normal_index, i2.normal_index}
+                       : std::array<std::int32_t, 3>{-1, -1, -1};
         tri.material = material;
-        const Vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+        tri.face = face;
+        const Vec3& v0 = vertex[tri.v[0]];
+        const Vec3& v1 = vertex[tri.v[1]];
+        const Vec3& v2 = vertex[tri.v[2]];
+        const Vec3 cross = glm::cross(v1 - v0, v2 - v0);
         const double area2 = glm::length(cross);
         if (!(area2 > 0) || !std::isfinite(area2)) {
           ++out.skipped_degenerate;
           continue;
         }
-        if (smooth) {
-          tri.has_vertex_normals = true;
-          tri.n0 = normal(static_cast<std::size_t>(i0.normal_index));
-          tri.n1 = normal(static_cast<std::size_t>(i1.normal_index));
-          tri.n2 = normal(static_cast<std::size_t>(i2.normal_index));
-        }
         const auto m = static_cast<std::size_t>(material);
         emitter_area[m] += area2;
-        emitter_sum[m] += area2 * (tri.v0 + tri.v1 + tri.v2) / 3.0;
+        emitter_sum[m] += area2 * (v0 + v1 + v2) / 3.0;
         out.triangles.push_back(tri);
-        out.source_face.push_back(face);
       }
       const auto m = static_cast<std::size_t>(material);
       ++emitter_faces[m];
@@ -399,6 +450,39 @@ ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const
     e.faces = emitter_faces[i];
     out.emitters.push_back(e);
   }
+  return out;
+}
+
+Triangle ObjIndexedMesh::triangle(std::size_t i) const {
+  const ObjIndexedTriangle& t = triangles[i];
+  Triangle tri;
+  tri.v0 = vertices[t.v[0]];
+  tri.v1 = vertices[t.v[1]];
+  tri.v2 = vertices[t.v[2]];
+  tri.material = t.material;
+  if (t.n[0] >= 0) {
+    tri.has_vertex_normals = true;
+    tri.n0 = normals[static_cast<std::size_t>(t.n[0])];
+    tri.n1 = normals[static_cast<std::size_t>(t.n[1])];
+    tri.n2 = normals[static_cast<std::size_t>(t.n[2])];
+  }
+  return tri;
+}
+
+ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl, NsMapping ns) {
+  ObjIndexedMesh indexed = load_obj_indexed(obj_text, obj_name, read_mtl, ns);
+  ObjMesh out;
+  out.triangles.reserve(indexed.triangles.size());
+  out.source_face.reserve(indexed.triangles.size());
+  for (std::size_t i = 0; i < indexed.triangles.size(); ++i) {
+    out.triangles.push_back(indexed.triangle(i));
+    out.source_face.push_back(indexed.triangles[i].face);
+  }
+  out.materials = std::move(indexed.materials);
+  out.emitters = std::move(indexed.emitters);
+  out.skipped_degenerate = indexed.skipped_degenerate;
+  out.warnings = std::move(indexed.warnings);
+  out.errors = std::move(indexed.errors);
   return out;
 }
 

@@ -16,6 +16,7 @@
 #include "renderer/accel.h"
 #include "renderer/bvh.h"
 #include "renderer/geometry.h"
+#include "renderer/obj_io.h"
 #include "renderer/scene.h"
 #include "renderer/shading.h"
 
@@ -231,6 +232,116 @@ TEST(SceneBvh, AParallelBuildOfALargeMeshKeepsEveryTriangleOnceAndEqualsBruteFor
       EXPECT_EQ(fast->object.prim, slow->object.prim) << "seed " << seed << ", ray " << i;
     }
   }
+}
+
+// The two ways to make a mesh's geometry, from stored triangles (permuted in place) and from
+// triangles made on demand (made in their leaf slots, into room made ahead or not), give the same nodes and the same
+// triangles in the same slots, bit for bit, on a mesh large enough for the parallel root passes.
+TEST(SceneBvh, MeshGeometryFromTrianglesMadeOnDemandEqualsTheStoredOnes) {
+  std::mt19937 rng(20261124);
+  std::uniform_real_distribution<double> pos(-10, 10), step(-0.2, 0.2);
+  std::vector<Triangle> tris;
+  for (int i = 0; i < 80000; ++i) {
+    const Vec3 a(pos(rng), pos(rng), pos(rng));
+    Triangle t{a, a + Vec3(step(rng), step(rng), step(rng)), a + Vec3(step(rng), step(rng), step(rng)), i % 3};
+    if (i % 2 == 0) {
+      t.has_vertex_normals = true;
+      t.n0 = Vec3(0, 0, 1);
+      t.n1 = Vec3(0, 1, 0);
+      t.n2 = Vec3(1, 0, 0);
+    }
+    tris.push_back(t);
+  }
+  std::vector<int> faces(tris.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = static_cast<int>(i / 2);
+  const auto stored = make_mesh_geometry(tris, faces);
+  const auto made = make_mesh_geometry(tris.size(), [&](std::size_t i) { return tris[i]; }, faces);
+  // Into room made ahead (filled by two threads), with spare slots as when faces are left out.
+  const auto in_room = make_mesh_geometry(tris.size(), [&](std::size_t i) { return tris[i]; }, faces,
+                                          std::vector<Triangle>(tris.size() + 5));
+  ASSERT_EQ(in_room->triangles.size(), tris.size());
+  EXPECT_EQ(in_room->triangles.capacity(), tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const Triangle& a = made->triangles[i];
+    const Triangle& b = in_room->triangles[i];
+    ASSERT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2 && a.material == b.material &&
+                a.has_vertex_normals == b.has_vertex_normals && a.n0 == b.n0 && a.n1 == b.n1 && a.n2 == b.n2)
+        << "slot " << i;
+  }
+  EXPECT_EQ(in_room->source_face, made->source_face);
+  ASSERT_EQ(stored->bvh.nodes.size(), made->bvh.nodes.size());
+  EXPECT_EQ(stored->bvh.depth, made->bvh.depth);
+  for (std::size_t i = 0; i < stored->bvh.nodes.size(); ++i) {
+    const BvhNode& a = stored->bvh.nodes[i];
+    const BvhNode& b = made->bvh.nodes[i];
+    ASSERT_TRUE(a.box.lo == b.box.lo && a.box.hi == b.box.hi && a.first == b.first && a.count == b.count &&
+                a.axis == b.axis)
+        << "node " << i;
+  }
+  ASSERT_EQ(stored->triangles.size(), made->triangles.size());
+  for (std::size_t i = 0; i < stored->triangles.size(); ++i) {
+    const Triangle& a = stored->triangles[i];
+    const Triangle& b = made->triangles[i];
+    ASSERT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2 && a.material == b.material &&
+                a.has_vertex_normals == b.has_vertex_normals && a.n0 == b.n0 && a.n1 == b.n1 && a.n2 == b.n2)
+        << "slot " << i;
+    ASSERT_EQ(stored->source_face[i], made->source_face[i]) << "slot " << i;
+  }
+  EXPECT_TRUE(stored->bounds.lo == made->bounds.lo && stored->bounds.hi == made->bounds.hi);
+  // Every node's box holds its subtree's triangles (the leaves' boxes are exact).
+  const auto& nodes = made->bvh.nodes;
+  for (const BvhNode& node : nodes) {
+    if (node.count == 0) continue;
+    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+      const Aabb b = triangle_bounds(made->triangles[i]);
+      ASSERT_TRUE(node.box.lo.x <= b.lo.x && node.box.lo.y <= b.lo.y && node.box.lo.z <= b.lo.z &&
+                  b.hi.x <= node.box.hi.x && b.hi.y <= node.box.hi.y && b.hi.z <= node.box.hi.z);
+    }
+  }
+}
+
+// An OBJ's prescan runs on a thread of its own beside tinyobjloader: a large file loads into the
+// same triangles as its faces say, and a file the prescan rejects reports its errors only. Also
+// run under ThreadSanitizer.
+TEST(MeshObjLoad, ThePrescanThreadBesideTinyobjloaderGivesTheFileAndItsErrors) {
+  std::ostringstream obj;
+  constexpr int kSide = 120;
+  for (int j = 0; j < kSide; ++j) {
+    for (int i = 0; i < kSide; ++i) obj << "v " << i * 0.25 << " " << j * 0.5 << " " << (i * j) % 7 * 0.125 << "\n";
+  }
+  for (int j = 0; j + 1 < kSide; ++j) {
+    for (int i = 0; i + 1 < kSide; ++i) {
+      const int a = j * kSide + i + 1;
+      obj << "f " << a << " " << a + 1 << " " << a + kSide + 1 << " " << a + kSide << "\n";
+    }
+  }
+  const ObjMesh mesh = load_obj(obj.str(), "grid.obj", nullptr);
+  ASSERT_TRUE(mesh.errors.empty());
+  ASSERT_EQ(mesh.triangles.size(), std::size_t{2} * (kSide - 1) * (kSide - 1));
+  EXPECT_EQ(mesh.triangles[0].v0, Vec3(0, 0, 0));
+  EXPECT_EQ(mesh.triangles[0].v1, Vec3(0.25, 0, 0));
+  EXPECT_EQ(mesh.source_face.back(), (kSide - 1) * (kSide - 1) - 1);
+  // As scene loading does it: room for the triangles made by the prescan's thread, then filled.
+  std::vector<Triangle> room;
+  const ObjIndexedMesh indexed = load_obj_indexed(obj.str(), "grid.obj", nullptr, NsMapping::kAsIs,
+                                                  [&](std::size_t n) { room.resize(n); });
+  ASSERT_EQ(room.size(), mesh.triangles.size());
+  std::vector<int> faces;
+  for (const ObjIndexedTriangle& t : indexed.triangles) faces.push_back(t.face);
+  const auto geometry = make_mesh_geometry(indexed.triangles.size(), [&](std::size_t i) { return indexed.triangle(i); },
+                                           faces, std::move(room));
+  const auto reference = make_mesh_geometry(mesh.triangles, mesh.source_face);
+  ASSERT_EQ(geometry->triangles.size(), reference->triangles.size());
+  for (std::size_t i = 0; i < geometry->triangles.size(); ++i) {
+    ASSERT_EQ(geometry->triangles[i].v0, reference->triangles[i].v0) << "slot " << i;
+    ASSERT_EQ(geometry->triangles[i].v2, reference->triangles[i].v2) << "slot " << i;
+  }
+  EXPECT_EQ(geometry->source_face, reference->source_face);
+  const ObjMesh bad = load_obj(obj.str() + "f 1 2 0\n", "grid.obj", nullptr);
+  ASSERT_EQ(bad.errors.size(), 1u);
+  EXPECT_EQ(bad.errors[0].line, kSide * kSide + (kSide - 1) * (kSide - 1) + 1);
+  EXPECT_TRUE(bad.warnings.empty());
+  EXPECT_TRUE(bad.triangles.empty());
 }
 
 #ifdef PHONGLAB_HAVE_EMBREE
