@@ -186,14 +186,24 @@ SceneRun run_frames(const std::string& scene_name, const std::vector<Contender>&
     images[i] = std::move(f.image);
   }
   for (std::size_t i = 0; i < n; ++i) run.diff[i] = image_difference(images[i], images[0]);
+  // The 1-thread and the multi-thread frames alternate too, so the scaling figure is not the
+  // ratio of two stretches of time under different load (this virtual machine's share of the
+  // host drifts over seconds).
   const int counts[2] = {1, threads};
   const int frames[2] = {frames_single, frames_multi};
-  for (int k = 0; k < 2; ++k) {
-    std::vector<std::vector<double>> ms(n);
-    for (int f = 0; f < frames[k]; ++f) {
-      for (std::size_t i = 0; i < n; ++i) ms[i].push_back(render_frame(cs[i].scene, w, h, counts[k], cs[i].packets).ms);
+  std::vector<std::vector<double>> ms[2];
+  ms[0].resize(n);
+  ms[1].resize(n);
+  for (int f = 0; f < std::max(frames[0], frames[1]); ++f) {
+    for (int k = 0; k < 2; ++k) {
+      if (f >= frames[k]) continue;
+      for (std::size_t i = 0; i < n; ++i) {
+        ms[k][i].push_back(render_frame(cs[i].scene, w, h, counts[k], cs[i].packets).ms);
+      }
     }
-    for (std::size_t i = 0; i < n; ++i) run.ms[k].push_back(median(ms[i]));
+  }
+  for (int k = 0; k < 2; ++k) {
+    for (std::size_t i = 0; i < n; ++i) run.ms[k].push_back(median(ms[k][i]));
   }
   return run;
 }
@@ -406,7 +416,7 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   std::ostringstream md;
   md << "\n## Acceleration\n\nThe Whitted frame at " << w << "x" << h << ", 1 spp, median of " << frames_multi
      << " frames with " << threads << " threads and " << frames_single
-     << " with 1 thread, the contenders alternating frame by frame: the project's default path (prepare_scene:"
+     << " with 1 thread, the contenders and the thread counts alternating frame by frame: the project's default path (prepare_scene:"
         " brute force for a few spheres and triangles, traced by the packet tracer where the CPU has AVX2, else its"
         " BVH), the scalar renderer where the default is the packet tracer (the same image, ray by ray), its BVH"
         " forced on every scene, and "
