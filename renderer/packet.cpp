@@ -20,10 +20,7 @@ bool packet_cpu_supported() {
 }
 
 bool packet_tracing_applies(const Scene& scene) {
-  const NumericsVariant& v = scene.numerics;
-  const bool production = !v.geometry() && !v.occlusion() && !v.shadow_rays_behind && !v.refraction_for_opaque &&
-                          !v.schlick_fresnel && !(v.fixed_offset > 0);
-  return production && !scene.accel && scene.meshes.empty() && packet_cpu_supported();
+  return scene.numerics.production() && !scene.accel && scene.meshes.empty() && packet_cpu_supported();
 }
 
 namespace {
@@ -141,7 +138,6 @@ struct PacketTracer::Impl {
   std::vector<double> plx, ply, plz, pnx, pny, pnz, plane_size;
   std::vector<int> prim_material;  // by kernel id (spheres, then planes, then triangles)
   std::vector<std::int32_t> every_sphere, primary_tested, shadow_tested;
-  packet::Spheres primary_view{};  // the current tile's primary rays
   packet::Spheres spheres{};
   packet::Planes planes{};
   std::vector<MaterialInfo> info;
@@ -366,9 +362,9 @@ struct PacketTracer::Impl {
     }
   }
 
-  // The primary rays of pixels [x0, x1) x [y0, y1) (sample `sample_index`), row by row, and the
-  // spheres they can meet.
-  void primary_rays(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
+  // The primary rays of pixels [x0, x1) x [y0, y1) (sample `sample_index`), row by row; returns
+  // the spheres they can meet.
+  packet::Spheres primary_rays(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                     std::uint32_t seed) {
     const int w = x1 - x0;
     const int n = w * (y1 - y0);
@@ -396,13 +392,14 @@ struct PacketTracer::Impl {
       primary.oz[at(k)] = frame.origin.z;
       primary.weight[at(k)] = 1.0;
     }
-    primary_view = primary_spheres(frame, x0, y0, x1, y1);
+    return primary_spheres(frame, x0, y0, x1, y1);
   }
 
-  // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n).
-  void trace_level(int depth, const RayBatch& rays, Color* out, RayCounts& counts) {
+  // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n); `tested`:
+  // the spheres those rays can meet.
+  void trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts) {
     Level& lv = levels[at(depth)];
-    find_hits(lv, rays, depth == 0 ? primary_view : spheres);
+    find_hits(lv, rays, tested);
     const int lanes = rays.n;
     packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
                         padded(lanes), lv.records());
@@ -514,8 +511,8 @@ struct PacketTracer::Impl {
     }
     fit(lv.reflected_radiance, lv.reflected.n);
     fit(lv.refracted_radiance, lv.refracted.n);
-    if (lv.reflected.n > 0) trace_level(depth + 1, lv.reflected, lv.reflected_radiance.data(), counts);
-    if (lv.refracted.n > 0) trace_level(depth + 1, lv.refracted, lv.refracted_radiance.data(), counts);
+    if (lv.reflected.n > 0) trace_level(depth + 1, lv.reflected, spheres, lv.reflected_radiance.data(), counts);
+    if (lv.refracted.n > 0) trace_level(depth + 1, lv.refracted, spheres, lv.refracted_radiance.data(), counts);
   }
 };
 
@@ -525,16 +522,16 @@ PacketTracer::~PacketTracer() = default;
 void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                                std::uint32_t seed, Color* out, RayCounts& counts) {
   Impl& im = *impl_;
-  im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
+  const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
   counts.primary += static_cast<std::uint64_t>(im.primary.n);
-  im.trace_level(0, im.primary, out, counts);
+  im.trace_level(0, im.primary, tested, out, counts);
 }
 
 int PacketTracer::cast_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1) {
   Impl& im = *impl_;
-  im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
+  const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
   Level& lv = im.levels[0];
-  im.find_hits(lv, im.primary, im.primary_view);
+  im.find_hits(lv, im.primary, tested);
   int hits = 0;
   for (int i = 0; i < im.primary.n; ++i) hits += lv.id[at(i)] >= 0;
   return hits;

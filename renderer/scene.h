@@ -122,6 +122,11 @@ struct NumericsVariant {
   // Bitwise, not ||: one test of adjacent bytes at the top of every query, no extra branches.
   bool geometry() const { return float_geometry | textbook_sphere; }
   bool occlusion() const { return float_geometry | textbook_sphere | nearest_hit_shadows; }
+  // Every switch off: the production renderer (the packet tracer serves only this).
+  bool production() const {
+    return !geometry() && !occlusion() && !shadow_rays_behind && !refraction_for_opaque && !schlick_fresnel &&
+           !(fixed_offset > 0);
+  }
 };
 
 struct Scene {
