@@ -122,6 +122,16 @@ static_assert(std::is_standard_layout_v<SphereQuery>, "the context must sit at t
 
 SphereQuery& query_of(RTCIntersectContext* context) { return *reinterpret_cast<SphereQuery*>(context); }
 
+// A query context for `ray` over `spheres`, with no sphere hit before t_max.
+SphereQuery make_sphere_query(const Ray& ray, const Sphere* spheres, double t_max) {
+  SphereQuery q;
+  rtcInitIntersectContext(&q.context);
+  q.ray = &ray;
+  q.spheres = spheres;
+  q.t_max = t_max;
+  return q;
+}
+
 void sphere_bounds_fn(const RTCBoundsFunctionArguments* args) {
   const auto* spheres = static_cast<const Sphere*>(args->geometryUserPtr);
   const Aabb b = sphere_bounds(spheres[args->primID]);
@@ -209,11 +219,7 @@ class EmbreeAccel final : public Accelerator {
         obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
       }
     }
-    SphereQuery q;
-    rtcInitIntersectContext(&q.context);
-    q.ray = &ray;
-    q.spheres = spheres_.data();
-    q.t_max = best;
+    SphereQuery q = make_sphere_query(ray, spheres_.data(), best);
     RTCRayHit rh = make_rtc_ray_hit(ray, best);
     rtcIntersect1(embree_.scene(), &q.context, &rh);
     double b1 = 0, b2 = 0;
@@ -240,11 +246,7 @@ class EmbreeAccel final : public Accelerator {
     for (const Plane& pl : scene.planes) {
       if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
     }
-    SphereQuery q;
-    rtcInitIntersectContext(&q.context);
-    q.ray = &ray;
-    q.spheres = spheres_.data();
-    q.t_max = t_max;
+    SphereQuery q = make_sphere_query(ray, spheres_.data(), t_max);
     RTCRayHit rh = make_rtc_ray_hit(ray, t_max);
     rh.ray.tfar = round_down(t_max);  // never an occluder at or beyond the end of the segment
     rtcOccluded1(embree_.scene(), &q.context, &rh.ray);
