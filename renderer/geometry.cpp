@@ -42,6 +42,28 @@ std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, do
   return intersect_triangle(tri, ray, make_shear(ray.dir), b1, b2, t_min);
 }
 
+int nearest_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double& best,
+                     double& b1, double& b2) {
+  int nearest = -1;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    double u = 0, v = 0;
+    if (auto t = intersect_triangle(tris[i], ray, shear, &u, &v); t && *t < best) {
+      best = *t;
+      b1 = u;
+      b2 = v;
+      nearest = static_cast<int>(i);
+    }
+  }
+  return nearest;
+}
+
+bool any_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double t_max) {
+  for (const Triangle& tri : tris) {
+    if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < t_max) return true;
+  }
+  return false;
+}
+
 std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
   if (scene.numerics.geometry()) [[unlikely]] return intersect_variant(scene, ray, t_max);  // bench only
   if (scene.accel) return scene.accel->intersect(scene, ray, t_max);
@@ -76,15 +98,8 @@ std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray, double t_ma
   }
   const TriangleShear shear = make_shear(ray.dir);
   const auto test_triangles = [&](const std::vector<Triangle>& tris, ObjectRef::Kind kind, int index) {
-    for (std::size_t i = 0; i < tris.size(); ++i) {
-      double b1 = 0, b2 = 0;
-      if (auto t = intersect_triangle(tris[i], ray, shear, &b1, &b2); t && *t < best) {
-        best = *t;
-        best_b1 = b1;
-        best_b2 = b2;
-        obj = kind == ObjectRef::Kind::kMesh ? ObjectRef{kind, index, static_cast<int>(i)}
-                                             : ObjectRef{kind, static_cast<int>(i)};
-      }
+    if (const int i = nearest_triangle(tris, ray, shear, best, best_b1, best_b2); i >= 0) {
+      obj = kind == ObjectRef::Kind::kMesh ? ObjectRef{kind, index, i} : ObjectRef{kind, i};
     }
   };
   test_triangles(scene.triangles, ObjectRef::Kind::kTriangle, -1);
@@ -104,15 +119,9 @@ bool occluded_all(const Scene& scene, const Ray& ray, double t_max) {
   }
   if (scene.triangles.empty() && scene.meshes.empty()) return false;
   const TriangleShear shear = make_shear(ray.dir);
-  const auto any = [&](const std::vector<Triangle>& tris) {
-    for (const Triangle& tri : tris) {
-      if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < t_max) return true;
-    }
-    return false;
-  };
-  if (any(scene.triangles)) return true;
+  if (any_triangle(scene.triangles, ray, shear, t_max)) return true;
   for (const Mesh& mesh : scene.meshes) {
-    if (any(mesh.geometry->triangles)) return true;
+    if (any_triangle(mesh.geometry->triangles, ray, shear, t_max)) return true;
   }
   return false;
 }

@@ -103,6 +103,13 @@ inline double sphere_root(const Sphere& s, const Vec3& o, const Vec3& d, double 
   return 0;
 }
 
+// The nearest of `tris` with t in (0, best), the first in order on a tie: its index, with best
+// and the barycentric weights b1, b2 updated; -1 (nothing changed) when none is nearer.
+int nearest_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double& best,
+                     double& b1, double& b2);
+// Whether any of `tris` lies on the ray with t in (0, t_max).
+bool any_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double t_max);
+
 // Nearest-hit and any-hit queries over a prepared scene (built by prepare_scene, or by a
 // benchmark that compares acceleration structures). Answers must equal the brute-force ones.
 class Accelerator {

@@ -272,15 +272,9 @@ struct PacketTracer::Impl {
     for (int i = 0; i < rays.n; ++i) {
       const std::size_t u = at(i);
       const Ray ray = make_ray(rays.origin(i), rays.dir(i));
-      const TriangleShear shear = make_shear(ray.dir);
-      for (std::size_t k = 0; k < scene.triangles.size(); ++k) {
-        double b1 = 0, b2 = 0;
-        if (auto t = intersect_triangle(scene.triangles[k], ray, shear, &b1, &b2); t && *t < lv.t[u]) {
-          lv.t[u] = *t;
-          lv.id[u] = first + static_cast<std::int32_t>(k);
-          lv.b1[u] = b1;
-          lv.b2[u] = b2;
-        }
+      if (const int k = nearest_triangle(scene.triangles, ray, make_shear(ray.dir), lv.t[u], lv.b1[u], lv.b2[u]);
+          k >= 0) {
+        lv.id[u] = first + k;
       }
     }
   }
@@ -295,13 +289,7 @@ struct PacketTracer::Impl {
       const std::size_t u = at(h);
       if (lv.shadow[u] != Shadow::kTest || lv.blocked[u]) continue;
       const Ray ray = make_ray(Vec3(lv.sox[u], lv.soy[u], lv.soz[u]), Vec3(lv.sdx[u], lv.sdy[u], lv.sdz[u]));
-      const TriangleShear shear = make_shear(ray.dir);
-      for (const Triangle& tri : scene.triangles) {
-        if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < lv.st_max[u]) {
-          lv.blocked[u] = 1;
-          break;
-        }
-      }
+      if (any_triangle(scene.triangles, ray, make_shear(ray.dir), lv.st_max[u])) lv.blocked[u] = 1;
     }
   }
 
