@@ -144,164 +144,144 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::size_t count, const 
   return geometry;
 }
 
-namespace {
-
-// A top-level primitive: what kind it is and its index in the scene's vector of that kind.
-struct TopPrim {
-  ObjectRef::Kind kind;
-  int index;
-};
-
-class SceneBvh final : public Accelerator {
- public:
-  explicit SceneBvh(const Scene& scene) : boxes_(top_level_boxes(scene)) {
-    std::vector<Aabb> boxes;
-    std::vector<TopPrim> prims;
-    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
-      boxes.push_back(sphere_bounds(scene.spheres[i]));
-      prims.push_back({ObjectRef::Kind::kSphere, static_cast<int>(i)});
-    }
-    for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
-      boxes.push_back(triangle_bounds(scene.triangles[i]));
-      prims.push_back({ObjectRef::Kind::kTriangle, static_cast<int>(i)});
-    }
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-      const MeshGeometry& g = *scene.meshes[i].geometry;
-      meshes_.push_back(&g);
-      if (g.triangles.empty()) continue;
-      boxes.push_back(g.bounds);
-      prims.push_back({ObjectRef::Kind::kMesh, static_cast<int>(i)});
-    }
-    has_triangles_ = !scene.triangles.empty() || !scene.meshes.empty();
-    top_ = build_bvh(boxes, 2);
-    prims_.reserve(prims.size());
-    for (const std::uint32_t i : top_.order) prims_.push_back(prims[i]);
-    top_.order = {};
+SceneBvh::SceneBvh(const Scene& scene) : boxes_(top_level_boxes(scene)) {
+  std::vector<Aabb> boxes;
+  std::vector<TopPrim> prims;
+  for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+    boxes.push_back(sphere_bounds(scene.spheres[i]));
+    prims.push_back({ObjectRef::Kind::kSphere, static_cast<int>(i)});
   }
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    boxes.push_back(triangle_bounds(scene.triangles[i]));
+    prims.push_back({ObjectRef::Kind::kTriangle, static_cast<int>(i)});
+  }
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshGeometry& g = *scene.meshes[i].geometry;
+    meshes_.push_back(&g);
+    if (g.triangles.empty()) continue;
+    boxes.push_back(g.bounds);
+    prims.push_back({ObjectRef::Kind::kMesh, static_cast<int>(i)});
+  }
+  has_triangles_ = !scene.triangles.empty() || !scene.meshes.empty();
+  top_ = build_bvh(boxes, 2);
+  prims_.reserve(prims.size());
+  for (const std::uint32_t i : top_.order) prims_.push_back(prims[i]);
+  top_.order = {};
+}
 
-  std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) const override {
-    double best = t_max;
-    ObjectRef obj;
-    double best_b1 = 0, best_b2 = 0;
-    for (std::size_t i = 0; i < scene.planes.size(); ++i) {
-      if (auto t = intersect_plane(scene.planes[i], ray); t && *t < best) {
-        best = *t;
-        obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
-      }
+std::optional<Hit> SceneBvh::intersect(const Scene& scene, const Ray& ray, double t_max) const {
+  double best = t_max;
+  ObjectRef obj;
+  double best_b1 = 0, best_b2 = 0;
+  for (std::size_t i = 0; i < scene.planes.size(); ++i) {
+    if (auto t = intersect_plane(scene.planes[i], ray); t && *t < best) {
+      best = *t;
+      obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
     }
-    const BoxRay box_ray(ray);
-    const TriangleShear shear = has_triangles_ ? make_shear(ray.dir) : TriangleShear{};
-    const auto test_triangle = [&](const Triangle& tri, ObjectRef ref) {
-      double b1 = 0, b2 = 0;
-      if (auto t = intersect_triangle(tri, ray, shear, &b1, &b2); t && *t < best) {
-        best = *t;
-        best_b1 = b1;
-        best_b2 = b2;
-        obj = ref;
-      }
-    };
-    traverse(top_, box_ray, best, [&](std::uint32_t first, std::uint32_t count) {
-      for (std::uint32_t slot = first; slot < first + count; ++slot) {
-        const TopPrim p = prims_[slot];
-        switch (p.kind) {
-          case ObjectRef::Kind::kSphere:
-            if (const double t = sphere_root(scene.spheres[p.index], ray.origin, ray.dir, 0, best); t > 0) {
-              best = t;
-              obj = {ObjectRef::Kind::kSphere, p.index};
+  }
+  const BoxRay box_ray(ray);
+  const TriangleShear shear = has_triangles_ ? make_shear(ray.dir) : TriangleShear{};
+  const auto test_triangle = [&](const Triangle& tri, ObjectRef ref) {
+    double b1 = 0, b2 = 0;
+    if (auto t = intersect_triangle(tri, ray, shear, &b1, &b2); t && replaces(*t, ref, best, obj)) {
+      best = *t;
+      best_b1 = b1;
+      best_b2 = b2;
+      obj = ref;
+    }
+  };
+  traverse(top_, box_ray, best, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t slot = first; slot < first + count; ++slot) {
+      const TopPrim p = prims_[slot];
+      switch (p.kind) {
+        case ObjectRef::Kind::kSphere:
+          if (const double t = sphere_root(scene.spheres[p.index], ray.origin, ray.dir, 0, best); t > 0) {
+            best = t;
+            obj = {ObjectRef::Kind::kSphere, p.index};
+          }
+          break;
+        case ObjectRef::Kind::kTriangle:
+          test_triangle(scene.triangles[p.index], {ObjectRef::Kind::kTriangle, p.index});
+          break;
+        case ObjectRef::Kind::kMesh: {
+          const MeshGeometry& g = *scene.meshes[p.index].geometry;
+          traverse(g.bvh, box_ray, best, [&](std::uint32_t f, std::uint32_t n) {
+            for (std::uint32_t i = f; i < f + n; ++i) {
+              test_triangle(g.triangles[i], {ObjectRef::Kind::kMesh, p.index, static_cast<int>(i)});
             }
-            break;
-          case ObjectRef::Kind::kTriangle:
-            test_triangle(scene.triangles[p.index], {ObjectRef::Kind::kTriangle, p.index});
-            break;
-          case ObjectRef::Kind::kMesh: {
-            const MeshGeometry& g = *scene.meshes[p.index].geometry;
-            traverse(g.bvh, box_ray, best, [&](std::uint32_t f, std::uint32_t n) {
-              for (std::uint32_t i = f; i < f + n; ++i) {
-                test_triangle(g.triangles[i], {ObjectRef::Kind::kMesh, p.index, static_cast<int>(i)});
-              }
-              return false;
-            });
-            break;
-          }
-          default:
-            break;
+            return false;
+          });
+          break;
         }
+        default:
+          break;
       }
-      return false;
-    });
-    if (obj.kind == ObjectRef::Kind::kNone) return std::nullopt;
-    return make_hit(scene, ray, obj, best, best_b1, best_b2);
-  }
-
-  bool occluded(const Scene& scene, const Ray& ray, double t_max) const override {
-    for (const Plane& pl : scene.planes) {
-      if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
     }
-    const BoxRay box_ray(ray);
-    const TriangleShear shear = has_triangles_ ? make_shear(ray.dir) : TriangleShear{};
-    const auto blocks = [&](const Triangle& tri) {
-      const auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr);
-      return t && *t < t_max;
-    };
-    bool found = false;
-    traverse(top_, box_ray, t_max, [&](std::uint32_t first, std::uint32_t count) {
-      for (std::uint32_t slot = first; slot < first + count && !found; ++slot) {
-        const TopPrim p = prims_[slot];
-        switch (p.kind) {
-          case ObjectRef::Kind::kSphere:
-            found = sphere_root(scene.spheres[p.index], ray.origin, ray.dir, 0, t_max) > 0;
-            break;
-          case ObjectRef::Kind::kTriangle:
-            found = blocks(scene.triangles[p.index]);
-            break;
-          case ObjectRef::Kind::kMesh: {
-            const MeshGeometry& g = *scene.meshes[p.index].geometry;
-            traverse(g.bvh, box_ray, t_max, [&](std::uint32_t f, std::uint32_t n) {
-              for (std::uint32_t i = f; i < f + n && !found; ++i) found = blocks(g.triangles[i]);
-              return found;
-            });
-            break;
-          }
-          default:
-            break;
+    return false;
+  });
+  if (obj.kind == ObjectRef::Kind::kNone) return std::nullopt;
+  return make_hit(scene, ray, obj, best, best_b1, best_b2);
+}
+
+bool SceneBvh::occluded(const Scene& scene, const Ray& ray, double t_max) const {
+  for (const Plane& pl : scene.planes) {
+    if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
+  }
+  const BoxRay box_ray(ray);
+  const TriangleShear shear = has_triangles_ ? make_shear(ray.dir) : TriangleShear{};
+  const auto blocks = [&](const Triangle& tri) {
+    const auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr);
+    return t && *t < t_max;
+  };
+  bool found = false;
+  traverse(top_, box_ray, t_max, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t slot = first; slot < first + count && !found; ++slot) {
+      const TopPrim p = prims_[slot];
+      switch (p.kind) {
+        case ObjectRef::Kind::kSphere:
+          found = sphere_root(scene.spheres[p.index], ray.origin, ray.dir, 0, t_max) > 0;
+          break;
+        case ObjectRef::Kind::kTriangle:
+          found = blocks(scene.triangles[p.index]);
+          break;
+        case ObjectRef::Kind::kMesh: {
+          const MeshGeometry& g = *scene.meshes[p.index].geometry;
+          traverse(g.bvh, box_ray, t_max, [&](std::uint32_t f, std::uint32_t n) {
+            for (std::uint32_t i = f; i < f + n && !found; ++i) found = blocks(g.triangles[i]);
+            return found;
+          });
+          break;
         }
+        default:
+          break;
       }
-      return found;
-    });
+    }
     return found;
+  });
+  return found;
+}
+
+bool SceneBvh::matches(const Scene& scene) const {
+  if (scene.meshes.size() != meshes_.size()) return false;
+  for (std::size_t i = 0; i < meshes_.size(); ++i) {
+    if (scene.meshes[i].geometry.get() != meshes_[i]) return false;
   }
-
-  bool matches(const Scene& scene) const override {
-    if (scene.meshes.size() != meshes_.size()) return false;
-    for (std::size_t i = 0; i < meshes_.size(); ++i) {
-      if (scene.meshes[i].geometry.get() != meshes_[i]) return false;
-    }
-    const std::vector<Aabb> now = top_level_boxes(scene);
-    if (now.size() != boxes_.size()) return false;
-    for (std::size_t i = 0; i < now.size(); ++i) {
-      if (now[i].lo != boxes_[i].lo || now[i].hi != boxes_[i].hi) return false;
-    }
-    return true;
+  const std::vector<Aabb> now = top_level_boxes(scene);
+  if (now.size() != boxes_.size()) return false;
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    if (now[i].lo != boxes_[i].lo || now[i].hi != boxes_[i].hi) return false;
   }
+  return true;
+}
 
- private:
-  // Boxes of the spheres, then the loose triangles, as matches() compares them.
-  static std::vector<Aabb> top_level_boxes(const Scene& scene) {
-    std::vector<Aabb> boxes;
-    boxes.reserve(scene.spheres.size() + scene.triangles.size());
-    for (const Sphere& s : scene.spheres) boxes.push_back(sphere_bounds(s));
-    for (const Triangle& t : scene.triangles) boxes.push_back(triangle_bounds(t));
-    return boxes;
-  }
-
-  std::vector<Aabb> boxes_;
-  std::vector<const MeshGeometry*> meshes_;
-  Bvh top_;
-  std::vector<TopPrim> prims_;  // in leaf-slot order
-  bool has_triangles_ = false;
-};
-
-}  // namespace
+// Boxes of the spheres, then the loose triangles, as matches() compares them.
+std::vector<Aabb> SceneBvh::top_level_boxes(const Scene& scene) {
+  std::vector<Aabb> boxes;
+  boxes.reserve(scene.spheres.size() + scene.triangles.size());
+  for (const Sphere& s : scene.spheres) boxes.push_back(sphere_bounds(s));
+  for (const Triangle& t : scene.triangles) boxes.push_back(triangle_bounds(t));
+  return boxes;
+}
 
 std::shared_ptr<const Accelerator> build_scene_accel(const Scene& scene, bool force_bvh) {
   // A handful of spheres and triangles is cheaper to test in a row than through any structure

@@ -37,6 +37,36 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::size_t count, const 
                                                        std::vector<int> source_face, std::vector<Triangle> room = {},
                                                        const std::function<Aabb(std::size_t)>& box_of = {});
 
+// The default accelerator: a BVH over the spheres, the loose triangles and the meshes' boxes, whose
+// mesh leaves lead into each mesh's own BVH. Planes are tested before it, each in turn.
+class SceneBvh final : public Accelerator {
+ public:
+  // A top-level primitive: what kind it is and its index in the scene's vector of that kind.
+  struct TopPrim {
+    ObjectRef::Kind kind;
+    int index;
+  };
+
+  explicit SceneBvh(const Scene& scene);
+  std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) const override;
+  bool occluded(const Scene& scene, const Ray& ray, double t_max) const override;
+  bool matches(const Scene& scene) const override;
+
+  // The top level, for tracers that walk it themselves (the packet tracer).
+  const Bvh& top() const { return top_; }
+  const std::vector<TopPrim>& prims() const { return prims_; }  // by top-level leaf slot
+
+ private:
+  // Boxes of the spheres, then the loose triangles, as matches() compares them.
+  static std::vector<Aabb> top_level_boxes(const Scene& scene);
+
+  std::vector<Aabb> boxes_;
+  std::vector<const MeshGeometry*> meshes_;
+  Bvh top_;
+  std::vector<TopPrim> prims_;  // in leaf-slot order
+  bool has_triangles_ = false;
+};
+
 // The default accelerator: top-level BVH over spheres, triangles and meshes; null (brute force)
 // for scenes of a few spheres and triangles and no mesh, unless `force_bvh` (benchmarks).
 std::shared_ptr<const Accelerator> build_scene_accel(const Scene& scene, bool force_bvh = false);

@@ -3,6 +3,7 @@
 // boxes hold: callers test the primitives of each leaf themselves.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -61,14 +62,15 @@ Bvh build_bvh(const std::vector<Aabb>& boxes, int max_leaf = 4);
 // own. `box_of` is called from two threads at once (for 2^16 boxes and more).
 Bvh build_bvh(std::size_t count, const std::function<Aabb(std::size_t)>& box_of, int max_leaf = 4);
 
-// A ray prepared for box tests: reciprocal direction (+-inf for a zero component).
+// A ray prepared for box tests: reciprocal direction (+-inf for a zero component). A component
+// is negative by its sign bit, so that -0 (whose reciprocal is -inf) crosses slabs from above.
 struct BoxRay {
   Vec3 origin;
   Vec3 inv_dir;
   bool negative[3];
   explicit BoxRay(const Ray& ray)
       : origin(ray.origin), inv_dir(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z),
-        negative{ray.dir.x < 0, ray.dir.y < 0, ray.dir.z < 0} {}
+        negative{std::signbit(ray.dir.x), std::signbit(ray.dir.y), std::signbit(ray.dir.z)} {}
 };
 
 // Whether the ray meets the box within (0, t_max]. Conservative: the far distance is widened

@@ -110,6 +110,19 @@ int nearest_triangle(const std::vector<Triangle>& tris, const Ray& ray, const Tr
 // Whether any of `tris` lies on the ray with t in (0, t_max).
 bool any_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double t_max);
 
+// Whether a triangle hit at distance t, named `ref`, replaces the nearest hit found so far (`best`,
+// `obj`; kind kNone: none yet, `best` is the query's limit): it is nearer, or exactly as near and
+// first in the scene's order (by kind, index, triangle), as brute force, which tests in that order,
+// would keep it. So a tie (a ray through an edge two triangles share) has one answer whatever order
+// a hierarchy visits them in.
+inline bool replaces(double t, const ObjectRef& ref, double best, const ObjectRef& obj) {
+  if (t < best) return true;
+  if (!(t == best) || obj.kind == ObjectRef::Kind::kNone) return false;
+  if (ref.kind != obj.kind) return ref.kind < obj.kind;
+  if (ref.index != obj.index) return ref.index < obj.index;
+  return ref.prim < obj.prim;
+}
+
 // Nearest-hit and any-hit queries over a prepared scene (built by prepare_scene, or by a
 // benchmark that compares acceleration structures). Answers must equal the brute-force ones.
 class Accelerator {

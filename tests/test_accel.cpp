@@ -116,7 +116,8 @@ RandomRay make_random_ray(const RandomScene& r, std::mt19937& rng, bool on_faces
     // One or two direction components exactly zero: rays parallel to slab planes.
     const int zeros = 1 + static_cast<int>(rng() % 2);
     const int first = static_cast<int>(rng() % 3);
-    for (int z = 0; z < zeros; ++z) dir[(first + z) % 3] = 0;
+    // Half of them -0, as normalize gives for a negative zero: slabs crossed from above.
+    for (int z = 0; z < zeros; ++z) dir[(first + z) % 3] = rng() % 2 ? 0.0 : -0.0;
     if (zeros == 2) origin[(first + 2) % 3] = aim[(first + 2) % 3] - (rng() % 2 ? 6.0 : -6.0);
   }
   if (!(glm::dot(dir, dir) > 0)) dir = Vec3(0, 0, 1);
@@ -179,6 +180,13 @@ TEST(SceneBvh, BoxTestNeverRejectsAFlatBoxTheRayCrossesOrStartsOn) {
   EXPECT_TRUE(hits_box(flat, BoxRay(on_edge), kInf));
   const Ray beside = make_ray(Vec3(-1, 1, 1.5), Vec3(1, 0, 0));
   EXPECT_FALSE(hits_box(flat, BoxRay(beside), kInf));
+  // Direction components of -0 (normalize(-0, 0, -4) gives them): 1 / -0 is -inf, so the slab
+  // must be taken as crossed from above, or its computed entry is +inf and every box is missed.
+  const Ray negative_zero = make_ray(Vec3(1, 1, 3), Vec3(-0.0, -0.0, -1));
+  EXPECT_TRUE(hits_box(flat, BoxRay(negative_zero), kInf));
+  const Aabb cube{Vec3(0), Vec3(2)};
+  EXPECT_TRUE(hits_box(cube, BoxRay(make_ray(Vec3(1, 1, 3), Vec3(0, -0.0, -1))), kInf));
+  EXPECT_TRUE(hits_box(cube, BoxRay(make_ray(Vec3(1, 3, 1), Vec3(-0.0, -1, 0))), kInf));
 }
 
 TEST(SceneBvh, BuiltOnlyWhenAskedForAHandfulOfSpheres) {
