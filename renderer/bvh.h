@@ -79,16 +79,16 @@ struct BoxRay {
 // t_max is widened too: a primitive's computed t (rounded in its own test) may lie a few ulps
 // before the computed entry of a box that holds it, and such a box must still be visited for the
 // answer to equal brute force's (2^-32 covers tens of ulps and changes no visit in practice).
+inline constexpr double kBoxFarWiden = 1 + 2 * (3 * 0x1p-53) / (1 - 3 * 0x1p-53);
+inline constexpr double kBoxTmaxSlack = 1 + 0x1p-32;
 inline bool hits_box(const Aabb& box, const BoxRay& r, double t_max) {
-  constexpr double kWiden = 1 + 2 * (3 * 0x1p-53) / (1 - 3 * 0x1p-53);
-  constexpr double kTmaxSlack = 1 + 0x1p-32;
   double t0 = 0;
-  double t1 = t_max * kTmaxSlack;
+  double t1 = t_max * kBoxTmaxSlack;
   for (int a = 0; a < 3; ++a) {
     const double near_plane = r.negative[a] ? box.hi[a] : box.lo[a];
     const double far_plane = r.negative[a] ? box.lo[a] : box.hi[a];
     const double tn = (near_plane - r.origin[a]) * r.inv_dir[a];
-    const double tf = (far_plane - r.origin[a]) * r.inv_dir[a] * kWiden;
+    const double tf = (far_plane - r.origin[a]) * r.inv_dir[a] * kBoxFarWiden;
     t0 = tn > t0 ? tn : t0;
     t1 = tf < t1 ? tf : t1;
   }

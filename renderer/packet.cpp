@@ -2,9 +2,12 @@
 #include "renderer/packet.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
+#include "renderer/accel.h"
 #include "renderer/geometry.h"
 #include "renderer/packet_kernels.h"
 
@@ -20,10 +23,27 @@ bool packet_cpu_supported() {
 }
 
 bool packet_tracing_applies(const Scene& scene) {
-  return scene.numerics.production() && !scene.accel && scene.meshes.empty() && packet_cpu_supported();
+  const bool walkable = scene.accel ? dynamic_cast<const SceneBvh*>(scene.accel.get()) != nullptr : scene.meshes.empty();
+  return scene.numerics.production() && walkable && packet_cpu_supported();
 }
 
 namespace {
+
+// The kernels read BVH nodes and triangles in place, through plain structs of their own (the
+// AVX2 unit sees no glm): the layouts must agree.
+static_assert(std::is_standard_layout_v<BvhNode> && std::is_standard_layout_v<Aabb> && std::is_standard_layout_v<Vec3>);
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && offsetof(Aabb, lo) == 0 && offsetof(Aabb, hi) == sizeof(Vec3));
+static_assert(sizeof(BvhNode) == sizeof(packet::Node) && offsetof(BvhNode, box) == offsetof(packet::Node, lo) &&
+              offsetof(BvhNode, first) == offsetof(packet::Node, first) &&
+              offsetof(BvhNode, count) == offsetof(packet::Node, count) &&
+              offsetof(BvhNode, axis) == offsetof(packet::Node, axis));
+static_assert(std::is_standard_layout_v<Triangle> && offsetof(Triangle, v1) == offsetof(Triangle, v0) + sizeof(Vec3) &&
+              offsetof(Triangle, v2) == offsetof(Triangle, v1) + sizeof(Vec3) && sizeof(Triangle) % sizeof(double) == 0);
+
+const packet::Node* kernel_nodes(const Bvh& bvh) {
+  return bvh.nodes.empty() ? nullptr : reinterpret_cast<const packet::Node*>(bvh.nodes.data());
+}
+const double* kernel_vertices(const std::vector<Triangle>& tris) { return tris.empty() ? nullptr : &tris[0].v0.x; }
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -69,7 +89,9 @@ enum class Shadow : std::uint8_t { kNone = 0, kVisible = 1, kTest = 2 };
 struct Level {
   // Nearest hits.
   std::vector<double> t, b1, b2;
-  std::vector<std::int32_t> id;  // sphere k, spheres + plane k, spheres + planes + triangle k; -1: miss
+  std::vector<std::int32_t> id;  // sphere k, spheres + plane k, spheres + planes + triangle k,
+                                 // spheres + planes + triangles + mesh k; -1: miss
+  std::vector<std::int32_t> prim;  // a mesh's triangle
   // Shading frame at the hit.
   std::vector<int> material;
   std::vector<std::uint8_t> entering;
@@ -99,6 +121,7 @@ struct Level {
       fit(*v, size);
     }
     fit(id, size);
+    fit(prim, size);
     fit(material, size);
     fit(entering, size);
     fit(lit, size);
@@ -140,6 +163,14 @@ struct PacketTracer::Impl {
   std::vector<std::int32_t> every_sphere, primary_tested, shadow_tested;
   packet::Spheres spheres{};
   packet::Planes planes{};
+  // With a SceneBvh: the spheres, loose triangles and meshes are found through it (planes are
+  // tested before it, as SceneBvh does), and no sphere is culled.
+  bool walk_hierarchy = false;
+  packet::Hierarchy hierarchy{};
+  std::vector<std::uint8_t> top_kind;
+  std::vector<std::int32_t> top_index;
+  std::vector<packet::MeshTree> mesh_trees;
+  int mesh_id = 0;  // id of mesh 0
   std::vector<MaterialInfo> info;
   std::vector<Color> light_kd, light_ks;  // I_l * kd and I_l * ks, per light and material
   std::vector<Level> levels;
@@ -188,13 +219,50 @@ struct PacketTracer::Impl {
       }
     }
     levels.resize(at(std::max(0, limits.max_depth)) + 1);
+    mesh_id = static_cast<int>(prim_material.size());
+    if (const auto* bvh = dynamic_cast<const SceneBvh*>(scene.accel.get())) set_up_hierarchy(*bvh);
   }
 
-  ObjectRef object_of(std::int32_t id) const {
+  void set_up_hierarchy(const SceneBvh& bvh) {
+    walk_hierarchy = true;
+    for (const SceneBvh::TopPrim& p : bvh.prims()) {
+      top_kind.push_back(p.kind == ObjectRef::Kind::kSphere ? 0 : p.kind == ObjectRef::Kind::kTriangle ? 1 : 2);
+      top_index.push_back(p.index);
+    }
+    for (const Mesh& m : scene.meshes) {
+      mesh_trees.push_back({kernel_nodes(m.geometry->bvh), kernel_vertices(m.geometry->triangles)});
+    }
+    hierarchy.top = kernel_nodes(bvh.top());
+    hierarchy.prim_kind = top_kind.data();
+    hierarchy.prim_index = top_index.data();
+    hierarchy.cx = cx.data(), hierarchy.cy = cy.data(), hierarchy.cz = cz.data(), hierarchy.r = radius.data();
+    hierarchy.triangles = kernel_vertices(scene.triangles);
+    hierarchy.meshes = mesh_trees.data();
+    hierarchy.triangle_stride = static_cast<long>(sizeof(Triangle) / sizeof(double));
+    hierarchy.triangle_id = spheres.count + planes.count;
+    hierarchy.mesh_id = mesh_id;
+    hierarchy.far_widen = kBoxFarWiden;
+    hierarchy.t_max_slack = kBoxTmaxSlack;
+  }
+
+  // The spheres the brute-force kernels test themselves: none when the hierarchy holds them.
+  packet::Spheres no_spheres() const {
+    packet::Spheres view = spheres;
+    view.tested_count = 0;
+    return view;
+  }
+
+  int material_of(std::int32_t id, std::int32_t prim) const {
+    if (id < mesh_id) return prim_material[at(id)];
+    return scene.meshes[at(id - mesh_id)].geometry->triangles[at(prim)].material;
+  }
+
+  ObjectRef object_of(std::int32_t id, std::int32_t prim) const {
     const int s = spheres.count, p = planes.count;
     if (id < s) return {ObjectRef::Kind::kSphere, id};
     if (id < s + p) return {ObjectRef::Kind::kPlane, id - s};
-    return {ObjectRef::Kind::kTriangle, id - s - p};
+    if (id < mesh_id) return {ObjectRef::Kind::kTriangle, id - s - p};
+    return {ObjectRef::Kind::kMesh, id - mesh_id, prim};
   }
 
   // The spheres the primary rays of image region [x0, x1] x [y0, y1] can meet: the rays share
@@ -202,6 +270,7 @@ struct PacketTracer::Impl {
   // of angular radius alpha whose centre is more than theta + alpha off the axis meets none.
   // The margin (1e-6 rad) is far beyond rounding, so culling never changes a hit.
   packet::Spheres primary_spheres(const CameraFrame& f, int x0, int y0, int x1, int y1) {
+    if (walk_hierarchy) return no_spheres();
     Vec3 corner[4];
     Vec3 sum(0);
     for (int c = 0; c < 4; ++c) {
@@ -238,6 +307,7 @@ struct PacketTracer::Impl {
   // L for a directional one), so a sphere farther than its radius + `ball` from that segment
   // meets none. The margins dwarf rounding, so culling never changes an answer.
   packet::Spheres shadow_spheres(const Vec3& b, double ball, const Light& light, const Vec3& l) {
+    if (walk_hierarchy) return no_spheres();
     shadow_tested.clear();
     const bool point = light.type == LightType::kPoint;
     const Vec3 w = point ? light.position - b : l;
@@ -267,6 +337,11 @@ struct PacketTracer::Impl {
       lv.id[at(i)] = -1;
     }
     packet::nearest(tested, planes, rays.view(), padded(rays.n), lv.t.data(), lv.id.data());
+    if (walk_hierarchy) {
+      packet::hierarchy_nearest(hierarchy, rays.view(), rays.n,
+                                {lv.t.data(), lv.id.data(), lv.prim.data(), lv.b1.data(), lv.b2.data()});
+      return;
+    }
     if (scene.triangles.empty()) return;
     const int first = spheres.count + planes.count;
     for (int i = 0; i < rays.n; ++i) {
@@ -284,6 +359,10 @@ struct PacketTracer::Impl {
     std::fill_n(lv.blocked.begin(), padded(lanes), std::uint8_t{0});
     const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
     packet::occluded(tested, planes, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
+    if (walk_hierarchy) {
+      packet::hierarchy_occluded(hierarchy, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
+      return;
+    }
     if (scene.triangles.empty()) return;
     for (int h = 0; h < lanes; ++h) {
       const std::size_t u = at(h);
@@ -403,7 +482,7 @@ struct PacketTracer::Impl {
         continue;
       }
       any_hit = true;
-      const int material = prim_material[at(id)];
+      const int material = material_of(id, lv.prim[u]);
       const MaterialInfo& mi = info[at(material)];
       lv.material[u] = material;
       lv.lit[u] = mi.lit;
@@ -440,11 +519,12 @@ struct PacketTracer::Impl {
     }
   }
 
-  // A loose triangle's hit record, by the scalar functions (the kernel does spheres and planes).
+  // A triangle's hit record (loose or a mesh's), by the scalar functions (the kernel does spheres
+  // and planes).
   void record_triangle_hit(Level& lv, const RayBatch& rays, int i) {
     const std::size_t u = at(i);
     const Vec3 d = rays.dir(i);
-    const Hit hit = make_hit(scene, make_ray(rays.origin(i), d), object_of(lv.id[u]), lv.t[u], lv.b1[u], lv.b2[u]);
+    const Hit hit = make_hit(scene, make_ray(rays.origin(i), d), object_of(lv.id[u], lv.prim[u]), lv.t[u], lv.b1[u], lv.b2[u]);
     const HitSide side = hit_side(hit, d);
     lv.entering[u] = side.entering;
     lv.px[u] = hit.p.x, lv.py[u] = hit.p.y, lv.pz[u] = hit.p.z;

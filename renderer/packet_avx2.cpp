@@ -321,4 +321,309 @@ void bounce(const BounceIn& in, int lanes, const BounceOut& out) {
   }
 }
 
+namespace {
+
+// Four rays with what the box test (BoxRay) and the watertight triangle test (make_shear) need.
+struct Packet {
+  V o[3], d[3];
+  V inv[3];             // 1 / d
+  int octant[4];        // per lane: bit a set when d[a] has its sign bit set
+  // The shear of each lane: its axis permutation as masks, its origin permuted, sx, sy, sz.
+  V kx_is0, kx_is1, ky_is0, ky_is1, kz_is0, kz_is1;
+  V okx, oky, okz;
+  V sx, sy, sz;
+  bool uniform;         // all four lanes share one permutation, namely kx, ky, kz
+  int kx, ky, kz;
+};
+
+inline V lane_mask(int bits) {
+  return _mm256_castsi256_pd(_mm256_set_epi64x(bits & 8 ? -1 : 0, bits & 4 ? -1 : 0, bits & 2 ? -1 : 0, bits & 1 ? -1 : 0));
+}
+
+Packet make_packet(const Rays& rays, int i) {
+  Packet p;
+  const double* dirs[3] = {rays.dx + i, rays.dy + i, rays.dz + i};
+  const double* origins[3] = {rays.ox + i, rays.oy + i, rays.oz + i};
+  for (int a = 0; a < 3; ++a) {
+    p.o[a] = load(origins[a]);
+    p.d[a] = load(dirs[a]);
+    p.inv[a] = splat(1.0) / p.d[a];
+  }
+  const int sign[3] = {_mm256_movemask_pd(p.d[0]), _mm256_movemask_pd(p.d[1]), _mm256_movemask_pd(p.d[2])};
+  alignas(32) double kx0[4], kx1[4], ky0[4], ky1[4], kz0[4], kz1[4], okx[4], oky[4], okz[4], sx[4], sy[4], sz[4];
+  int perm[4][3];
+  for (int j = 0; j < 4; ++j) {
+    p.octant[j] = ((sign[0] >> j) & 1) | (((sign[1] >> j) & 1) << 1) | (((sign[2] >> j) & 1) << 2);
+    // make_shear, operation for operation.
+    const double d[3] = {dirs[0][j], dirs[1][j], dirs[2][j]};
+    const double ax = __builtin_fabs(d[0]), ay = __builtin_fabs(d[1]), az = __builtin_fabs(d[2]);
+    const int kz = (ax >= ay) ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+    int kx = (kz + 1) % 3;
+    int ky = (kx + 1) % 3;
+    if (d[kz] < 0) {
+      const int swap = kx;
+      kx = ky;
+      ky = swap;
+    }
+    const double inv_z = 1.0 / d[kz];
+    perm[j][0] = kx, perm[j][1] = ky, perm[j][2] = kz;
+    const double all = __builtin_bit_cast(double, ~0ull);
+    kx0[j] = kx == 0 ? all : 0.0, kx1[j] = kx == 1 ? all : 0.0;
+    ky0[j] = ky == 0 ? all : 0.0, ky1[j] = ky == 1 ? all : 0.0;
+    kz0[j] = kz == 0 ? all : 0.0, kz1[j] = kz == 1 ? all : 0.0;
+    okx[j] = origins[kx][j], oky[j] = origins[ky][j], okz[j] = origins[kz][j];
+    sz[j] = inv_z;
+    sx[j] = d[kx] * inv_z;
+    sy[j] = d[ky] * inv_z;
+  }
+  p.kx_is0 = _mm256_load_pd(kx0), p.kx_is1 = _mm256_load_pd(kx1);
+  p.ky_is0 = _mm256_load_pd(ky0), p.ky_is1 = _mm256_load_pd(ky1);
+  p.kz_is0 = _mm256_load_pd(kz0), p.kz_is1 = _mm256_load_pd(kz1);
+  p.okx = _mm256_load_pd(okx), p.oky = _mm256_load_pd(oky), p.okz = _mm256_load_pd(okz);
+  p.sx = _mm256_load_pd(sx), p.sy = _mm256_load_pd(sy), p.sz = _mm256_load_pd(sz);
+  p.uniform = true;
+  for (int j = 1; j < 4; ++j) {
+    p.uniform = p.uniform && perm[j][0] == perm[0][0] && perm[j][1] == perm[0][1] && perm[j][2] == perm[0][2];
+  }
+  p.kx = perm[0][0], p.ky = perm[0][1], p.kz = perm[0][2];
+  return p;
+}
+
+// hits_box for the lanes of one octant: whether each meets the box within (0, t_max].
+inline V hits_box(const Node& n, const Packet& p, int octant, V t_max, const Hierarchy& h) {
+  V t0 = _mm256_setzero_pd();
+  V t1 = t_max * splat(h.t_max_slack);
+  for (int a = 0; a < 3; ++a) {
+    const bool negative = (octant >> a) & 1;
+    const double near_plane = negative ? n.hi[a] : n.lo[a];
+    const double far_plane = negative ? n.lo[a] : n.hi[a];
+    const V tn = (splat(near_plane) - p.o[a]) * p.inv[a];
+    const V tf = (splat(far_plane) - p.o[a]) * p.inv[a] * splat(h.far_widen);
+    t0 = _mm256_max_pd(tn, t0);  // tn > t0 ? tn : t0
+    t1 = _mm256_min_pd(tf, t1);  // tf < t1 ? tf : t1
+  }
+  return _mm256_cmp_pd(t0, t1, _CMP_LE_OQ);
+}
+
+// Component k of vertex v for each lane, k being each lane's kx, ky or kz (masks is0, is1).
+inline V component(const Packet& p, const double* v, int uniform_k, V is0, V is1) {
+  if (p.uniform) return splat(v[uniform_k]);
+  return pick(is0, splat(v[0]), pick(is1, splat(v[1]), splat(v[2])));
+}
+
+// The watertight test of intersect_triangle for four rays: the lanes with a hit at t in
+// (0, inf), its t and (when asked) the barycentric weights.
+struct TriangleHit {
+  V valid, t, u, v, w, det;
+};
+inline TriangleHit triangle_hit(const Packet& p, const double* v0) {
+  const double* v1 = v0 + 3;
+  const double* v2 = v0 + 6;
+  const V zero = _mm256_setzero_pd();
+  const V a_x = component(p, v0, p.kx, p.kx_is0, p.kx_is1) - p.okx;
+  const V a_y = component(p, v0, p.ky, p.ky_is0, p.ky_is1) - p.oky;
+  const V a_z = component(p, v0, p.kz, p.kz_is0, p.kz_is1) - p.okz;
+  const V b_x = component(p, v1, p.kx, p.kx_is0, p.kx_is1) - p.okx;
+  const V b_y = component(p, v1, p.ky, p.ky_is0, p.ky_is1) - p.oky;
+  const V b_z = component(p, v1, p.kz, p.kz_is0, p.kz_is1) - p.okz;
+  const V c_x = component(p, v2, p.kx, p.kx_is0, p.kx_is1) - p.okx;
+  const V c_y = component(p, v2, p.ky, p.ky_is0, p.ky_is1) - p.oky;
+  const V c_z = component(p, v2, p.kz, p.kz_is0, p.kz_is1) - p.okz;
+  const V ax = a_x - p.sx * a_z, ay = a_y - p.sy * a_z;
+  const V bx = b_x - p.sx * b_z, by = b_y - p.sy * b_z;
+  const V cx = c_x - p.sx * c_z, cy = c_y - p.sy * c_z;
+  TriangleHit r;
+  r.u = cx * by - cy * bx;
+  r.v = ax * cy - ay * cx;
+  r.w = bx * ay - by * ax;
+  const V negative = either(either(lt(r.u, zero), lt(r.v, zero)), lt(r.w, zero));
+  const V positive = either(either(gt(r.u, zero), gt(r.v, zero)), gt(r.w, zero));
+  r.det = (r.u + r.v) + r.w;
+  const V t_scaled = (r.u * (p.sz * a_z) + r.v * (p.sz * b_z)) + r.w * (p.sz * c_z);
+  r.t = t_scaled / r.det;
+  r.valid = and_not(both(negative, positive), both(ne(r.det, zero), both(gt(r.t, zero), lt(r.t, splat(kInf)))));
+  return r;
+}
+
+// intersect_triangle's last check: a triangle of zero area (|(v1 - v0) x (v2 - v0)|^2 not > 0) is
+// never hit. glm's cross and dot, in their order.
+bool has_area(const double* v0) {
+  const double e1[3] = {v0[3] - v0[0], v0[4] - v0[1], v0[5] - v0[2]};
+  const double e2[3] = {v0[6] - v0[0], v0[7] - v0[1], v0[8] - v0[2]};
+  const double c[3] = {e1[1] * e2[2] - e2[1] * e1[2], e1[2] * e2[0] - e2[2] * e1[0], e1[0] * e2[1] - e2[0] * e1[1]};
+  return (c[0] * c[0] + c[1] * c[1]) + c[2] * c[2] > 0;
+}
+
+// What a walk keeps for four lanes. Nearest-hit: the nearest so far (t, id, prim, b1, b2).
+// Any-hit: `limit` is fixed and `blocked` grows.
+struct Walk {
+  V best, id, prim, b1, b2;
+  V blocked;
+};
+
+// Tests one triangle (id, prim) for the lanes of `m`.
+template <bool kAny>
+inline void test_triangle(const Packet& p, const double* v0, double id, double prim, V m, Walk& w) {
+  const TriangleHit hit = triangle_hit(p, v0);
+  if constexpr (kAny) {
+    const V blocks = both(both(m, hit.valid), lt(hit.t, w.best));
+    if (lanes_set(blocks) == 0 || !has_area(v0)) return;
+    w.blocked = either(w.blocked, blocks);
+  } else {
+    // replaces(): nearer, or as near and first in the scene's order (id, then prim).
+    const V cand_id = splat(id), cand_prim = splat(prim);
+    const V first = either(lt(cand_id, w.id), both(_mm256_cmp_pd(cand_id, w.id, _CMP_EQ_OQ), lt(cand_prim, w.prim)));
+    const V tie = both(both(_mm256_cmp_pd(hit.t, w.best, _CMP_EQ_OQ), ge(w.id, _mm256_setzero_pd())), first);
+    const V take = both(both(m, hit.valid), either(lt(hit.t, w.best), tie));
+    if (lanes_set(take) == 0 || !has_area(v0)) return;
+    w.best = pick(take, hit.t, w.best);
+    w.id = pick(take, cand_id, w.id);
+    w.prim = pick(take, cand_prim, w.prim);
+    w.b1 = pick(take, hit.v / hit.det, w.b1);
+    w.b2 = pick(take, hit.w / hit.det, w.b2);
+  }
+}
+
+// The lanes still walking: all of `lanes` for a nearest-hit query, the unblocked ones for any-hit.
+template <bool kAny>
+inline V walking(V lanes, const Walk& w) {
+  if constexpr (kAny) return and_not(w.blocked, lanes);
+  return lanes;
+}
+
+// traverse() over one BVH for the lanes of `lanes` (all of one octant): `leaf(first, count, m)`
+// tests a leaf's primitives for the lanes m whose own box test passed.
+template <bool kAny, class Leaf>
+inline void walk(const Node* nodes, const Packet& p, int octant, V lanes, Walk& w, const Hierarchy& h, Leaf&& leaf) {
+  std::uint32_t stack[128];
+  int top = 0;
+  std::uint32_t index = 0;
+  for (;;) {
+    const Node& node = nodes[index];
+    const V live = walking<kAny>(lanes, w);
+    if (lanes_set(live) == 0) return;
+    const V m = both(live, hits_box(node, p, octant, w.best, h));
+    if (lanes_set(m) != 0) {
+      if (node.count > 0) {
+        leaf(node.first, node.count, m);
+      } else {
+        const bool flip = (octant >> node.axis) & 1;
+        stack[top++] = flip ? index + 1 : node.first;
+        index = flip ? node.first : index + 1;
+        continue;
+      }
+    }
+    if (top == 0) return;
+    index = stack[--top];
+  }
+}
+
+// The whole hierarchy for the lanes of `lanes` (all of one octant).
+template <bool kAny>
+void walk_scene(const Hierarchy& h, const Packet& p, int octant, V lanes, Walk& w) {
+  const auto top_leaf = [&](std::uint32_t first, std::uint32_t count, V m) {
+    for (std::uint32_t slot = first; slot < first + count; ++slot) {
+      const std::int32_t k = h.prim_index[slot];
+      switch (h.prim_kind[slot]) {
+        case 0: {  // sphere
+          const V t = sphere_root(p.o[0], p.o[1], p.o[2], p.d[0], p.d[1], p.d[2], h.cx[k], h.cy[k], h.cz[k], h.r[k], w.best);
+          const V hit = both(walking<kAny>(m, w), gt(t, _mm256_setzero_pd()));
+          if constexpr (kAny) {
+            w.blocked = either(w.blocked, hit);
+          } else {
+            w.best = pick(hit, t, w.best);
+            w.id = pick(hit, splat(k), w.id);
+            w.prim = pick(hit, splat(-1), w.prim);
+          }
+          break;
+        }
+        case 1:  // loose triangle
+          test_triangle<kAny>(p, h.triangles + k * h.triangle_stride, h.triangle_id + k, -1, walking<kAny>(m, w), w);
+          break;
+        default: {  // mesh
+          const MeshTree& mesh = h.meshes[k];
+          const double id = h.mesh_id + k;
+          walk<kAny>(mesh.nodes, p, octant, m, w, h, [&](std::uint32_t f, std::uint32_t n, V mm) {
+            for (std::uint32_t i = f; i < f + n; ++i) {
+              test_triangle<kAny>(p, mesh.vertices + static_cast<long>(i) * h.triangle_stride, id, i,
+                                  walking<kAny>(mm, w), w);
+            }
+          });
+          break;
+        }
+      }
+    }
+  };
+  walk<kAny>(h.top, p, octant, lanes, w, h, top_leaf);
+}
+
+// Runs walk_scene once for each octant among the lanes of `lanes`.
+template <bool kAny>
+void walk_octants(const Hierarchy& h, const Packet& p, int lanes, Walk& w) {
+  while (lanes != 0) {
+    const int first = __builtin_ctz(static_cast<unsigned>(lanes));
+    const int octant = p.octant[first];
+    int group = 0;
+    for (int j = first; j < 4; ++j) {
+      if ((lanes >> j) & 1 && p.octant[j] == octant) group |= 1 << j;
+    }
+    walk_scene<kAny>(h, p, octant, lane_mask(group), w);
+    lanes &= ~group;
+  }
+}
+
+}  // namespace
+
+void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const NearestHits& out) {
+  if (h.top == nullptr) return;
+  for (int i = 0; i < live; i += 4) {
+    const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;
+    const Packet p = make_packet(rays, i);
+    Walk w;
+    w.best = load(out.t + i);
+    w.id = _mm256_set_pd(out.id[i + 3], out.id[i + 2], out.id[i + 1], out.id[i]);
+    w.prim = splat(-1);
+    w.b1 = w.b2 = _mm256_setzero_pd();
+    w.blocked = _mm256_setzero_pd();
+    const V id_in = w.id;
+    walk_octants<false>(h, p, lanes, w);
+    alignas(32) double t[4], id[4], prim[4], b1[4], b2[4];
+    _mm256_store_pd(t, w.best);
+    _mm256_store_pd(id, w.id);
+    _mm256_store_pd(prim, w.prim);
+    _mm256_store_pd(b1, w.b1);
+    _mm256_store_pd(b2, w.b2);
+    const int changed = lanes_set(_mm256_cmp_pd(w.id, id_in, _CMP_NEQ_UQ)) | lanes_set(lt(w.best, load(out.t + i)));
+    for (int j = 0; j < 4; ++j) {
+      if (!((lanes & changed) >> j & 1)) continue;
+      out.t[i + j] = t[j];
+      out.id[i + j] = static_cast<std::int32_t>(id[j]);
+      out.prim[i + j] = static_cast<std::int32_t>(prim[j]);
+      out.b1[i + j] = b1[j];
+      out.b2[i + j] = b2[j];
+    }
+  }
+}
+
+void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_max, int lanes, std::uint8_t* occluded_out) {
+  if (h.top == nullptr) return;
+  for (int i = 0; i < lanes; i += 4) {
+    int live = lanes_set(gt(load(t_max + i), _mm256_setzero_pd()));
+    for (int j = 0; j < 4; ++j) {
+      if (occluded_out[i + j]) live &= ~(1 << j);
+    }
+    if (live == 0) continue;
+    const Packet p = make_packet(rays, i);
+    Walk w;
+    w.best = load(t_max + i);
+    w.id = w.prim = w.b1 = w.b2 = _mm256_setzero_pd();
+    w.blocked = _mm256_setzero_pd();
+    walk_octants<true>(h, p, live, w);
+    const int bits = lanes_set(w.blocked) & live;
+    for (int j = 0; j < 4; ++j) {
+      if (bits & (1 << j)) occluded_out[i + j] = 1;
+    }
+  }
+}
+
 }  // namespace phonglab::packet

@@ -117,4 +117,48 @@ struct BounceOut {
 };
 void bounce(const BounceIn& in, int lanes, const BounceOut& out);
 
+// A bounding volume hierarchy for packets of four rays (the scene's SceneBvh, bvh.h and accel.h).
+// Node is BvhNode's layout (box lo, box hi, first, count, axis); packet.cpp checks that it is.
+struct Node {
+  double lo[3];
+  double hi[3];
+  std::uint32_t first, count, axis;
+};
+struct MeshTree {
+  const Node* nodes;       // the mesh's BVH; its leaves index `vertices` directly
+  const double* vertices;  // the first triangle's v0.x; v1 and v2 follow v0, as in Triangle
+};
+struct Hierarchy {
+  const Node* top;                  // the top level over spheres, loose triangles and meshes
+  const std::uint8_t* prim_kind;    // by top-level leaf slot: 0 sphere, 1 loose triangle, 2 mesh
+  const std::int32_t* prim_index;   // by top-level leaf slot: index among its kind
+  const double *cx, *cy, *cz, *r;   // spheres, by index
+  const double* triangles;          // the first loose triangle's v0.x
+  const MeshTree* meshes;           // by mesh index
+  long triangle_stride;             // doubles from one triangle's v0.x to the next's
+  int triangle_id;                  // id of loose triangle 0 (spheres + planes); mesh m: mesh_id + m
+  int mesh_id;
+  double far_widen, t_max_slack;    // hits_box's kBoxFarWiden and kBoxTmaxSlack
+};
+
+// SceneBvh::intersect without its planes, for lanes [0, live) (the others are skipped): each
+// lane walks the hierarchy in the order its own traversal would (near child first by its signs,
+// lanes of different signs in turn) and tests exactly the primitives it would. On entry t, id
+// hold each lane's nearest plane hit (+inf, -1 for none); on return the nearest hit (ties
+// between triangles to the first in the scene's order), with a mesh's triangle in `prim` and a
+// triangle's barycentric weights of v1 and v2 in b1, b2. Lanes whose answer is unchanged keep
+// their id and prim.
+struct NearestHits {
+  double* t;
+  std::int32_t* id;
+  std::int32_t* prim;
+  double *b1, *b2;
+};
+void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const NearestHits& out);
+
+// SceneBvh::occluded without its planes: sets occluded[i] = 1 for the lanes that anything blocks
+// within (0, t_max). Lanes whose t_max is not > 0, or that are occluded already, are skipped.
+void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_max, int lanes,
+                        std::uint8_t* occluded);
+
 }  // namespace phonglab::packet

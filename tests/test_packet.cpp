@@ -69,8 +69,74 @@ Color random_color(std::mt19937& rng, double zero_chance, double hi) {
   return Color(u(rng) * hi, u(rng) * hi, u(rng) * hi);
 }
 
-// A random scene the brute-force path traces (few spheres and triangles, no mesh).
-Scene random_scene(std::uint32_t seed) {
+// Meshes and more spheres for a SceneBvh: a height field whose first rows are flat (rays through
+// its shared edges meet two triangles at one t), sometimes with vertex normals; a closed box,
+// sometimes of glass (rays enter and leave it); and up to ten more spheres.
+void add_meshes(Scene& s, std::uint32_t seed, double scale) {
+  std::mt19937 rng(seed * 7919u + 13u);
+  std::uniform_real_distribution<double> u(0, 1), c(-3, 3);
+  const int materials = static_cast<int>(s.materials.size());
+  auto material = [&] { return std::uniform_int_distribution<int>(0, materials - 1)(rng); };
+  const auto add = [&](std::vector<Triangle> tris) {
+    Mesh mesh;
+    mesh.file = "(test)";
+    mesh.geometry = make_mesh_geometry(std::move(tris), {});
+    s.meshes.push_back(std::move(mesh));
+    s.mesh_object.push_back(static_cast<int>(s.mesh_object.size()));
+  };
+  const int n = std::uniform_int_distribution<int>(2, 24)(rng);
+  const Vec3 corner = Vec3(c(rng), u(rng) - 0.5, c(rng) - 1) * scale;
+  const double size = (1 + 3 * u(rng)) * scale;
+  const bool normals = u(rng) < 0.5;
+  const int field_material = material();
+  std::vector<Vec3> grid;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const double h = j < n / 2 ? 0.0 : 0.2 * (u(rng) - 0.5) * size;
+      grid.push_back(corner + Vec3(size * i / n, h, -size * j / n));
+    }
+  }
+  std::vector<Triangle> field;
+  const auto at_grid = [&](int i, int j) { return grid[static_cast<std::size_t>(j * (n + 1) + i)]; };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const Vec3 a = at_grid(i, j), b = at_grid(i + 1, j), cc = at_grid(i, j + 1), d = at_grid(i + 1, j + 1);
+      const int m = u(rng) < 0.1 ? material() : field_material;
+      for (Triangle t : {Triangle{a, b, d, m}, Triangle{a, d, cc, m}}) {
+        if (normals) {
+          t.has_vertex_normals = true;
+          t.n0 = glm::normalize(Vec3(c(rng) * 0.2, 1, c(rng) * 0.2));
+          t.n1 = glm::normalize(Vec3(c(rng) * 0.2, 1, c(rng) * 0.2));
+          t.n2 = glm::normalize(Vec3(c(rng) * 0.2, 1, c(rng) * 0.2));
+        }
+        field.push_back(t);
+      }
+    }
+  }
+  add(std::move(field));
+  if (u(rng) < 0.7) {  // an axis-aligned box of 12 triangles
+    const Vec3 lo = Vec3(c(rng), u(rng), c(rng)) * scale;
+    const Vec3 hi = lo + Vec3(0.2 + u(rng), 0.2 + u(rng), 0.2 + u(rng)) * scale;
+    const int m = material();
+    const auto corner_of = [&](int k) { return Vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z); };
+    const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+    std::vector<Triangle> box;
+    for (const auto& f : faces) {
+      box.push_back(Triangle{corner_of(f[0]), corner_of(f[1]), corner_of(f[2]), m});
+      box.push_back(Triangle{corner_of(f[0]), corner_of(f[2]), corner_of(f[3]), m});
+    }
+    add(std::move(box));
+  }
+  const int spheres = std::uniform_int_distribution<int>(0, 10)(rng);
+  for (int i = 0; i < spheres; ++i) {
+    s.spheres.push_back(Sphere{Vec3(c(rng), u(rng) * 2, c(rng)) * scale, (0.05 + 0.5 * u(rng)) * scale, material()});
+    s.sphere_object.push_back(static_cast<int>(s.sphere_object.size()));
+  }
+}
+
+// A random scene the brute-force path traces (few spheres and triangles, no mesh); with
+// `hierarchy`, the same one traced through a SceneBvh, with meshes and more spheres in it.
+Scene random_scene(std::uint32_t seed, bool hierarchy = false) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, 1), c(-3, 3);
   Scene s;
@@ -135,13 +201,14 @@ Scene random_scene(std::uint32_t seed) {
     l.type = LightType::kPoint;
     l.position = s.spheres[0].center + Vec3(0, s.spheres[0].radius, 0);
   }
+  if (hierarchy) add_meshes(s, seed, scale);
   prepare_scene(s);
   return s;
 }
 
 TEST(PacketTracer, EmbeddedScenesAreBitIdenticalToTheScalarRenderer) {
   REQUIRE_PACKETS();
-  for (const char* name : {"lecture", "shininess", "lights", "mirrors", "glass"}) {
+  for (const char* name : {"lecture", "shininess", "lights", "mirrors", "glass", "cornell", "cornell-sphere"}) {
     SCOPED_TRACE(name);
     const Scene scene = load_prepared(name);
     ASSERT_TRUE(packet_tracing_applies(scene));
@@ -169,6 +236,84 @@ TEST(PacketTracer, RandomScenesAreBitIdenticalToTheScalarRenderer) {
   EXPECT_GT(seen.reflection, 1000u);
   EXPECT_GT(seen.refraction, 1000u);
   EXPECT_GT(seen.shadow, 10000u);
+}
+
+// The same random scenes traced through the scene's hierarchy: its spheres and loose triangles
+// (force_bvh), then with meshes and more spheres added. Lanes of a packet that differ in the signs
+// of their directions or in the axes of their triangle shear are among them (wide fields of view,
+// tiles across the image's axes).
+TEST(PacketTracer, HierarchyScenesAreBitIdenticalToTheScalarRenderer) {
+  REQUIRE_PACKETS();
+  RayCounts seen;
+  int with_meshes = 0;
+  for (std::uint32_t seed = 1; seed <= 200; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Scene scene = random_scene(seed, seed % 4 != 0);
+    if (!scene.accel) scene.accel = build_scene_accel(scene, /*force_bvh=*/true);
+    ASSERT_TRUE(packet_tracing_applies(scene));
+    with_meshes += !scene.meshes.empty();
+    const Frame packets = render(scene, 37, 23, 2, true, 1, seed);
+    const Frame scalar = render(scene, 37, 23, 2, false, 1, seed);
+    ASSERT_TRUE(same_bits(packets, scalar));
+    seen += packets.rays;
+  }
+  EXPECT_GT(with_meshes, 100);
+  EXPECT_GT(seen.reflection, 1000u);
+  EXPECT_GT(seen.refraction, 1000u);
+  EXPECT_GT(seen.shadow, 10000u);
+}
+
+// Rays exactly through edges that two triangles share: a camera straight above a flat grid of
+// triangles in seven colours, on a grid line, so that the pixel-centre rays of the middle column
+// lie in the plane x = 0 and those of the middle row in z = 0 (the width and height are odd).
+// Where both triangles give the same t, the tie goes to the first in the scene's order, in the
+// packet walk as in the scalar one, whichever child each visits first.
+TEST(PacketTracer, RaysThroughSharedEdgesGetTheScalarRenderersTriangle) {
+  REQUIRE_PACKETS();
+  Scene s;
+  for (int k = 0; k < 7; ++k) {
+    Material m;
+    m.kd = Color(0.1 + 0.8 * (k & 1), 0.1 + 0.4 * (k & 2), 0.1 + 0.2 * (k & 4));
+    s.materials.push_back(m);
+  }
+  std::vector<Triangle> tris;
+  for (int j = -4; j < 4; ++j) {
+    for (int i = -4; i < 4; ++i) {
+      const Vec3 a(0.25 * i, 0, 0.25 * j), b(0.25 * (i + 1), 0, 0.25 * j);
+      const Vec3 c(0.25 * i, 0, 0.25 * (j + 1)), d(0.25 * (i + 1), 0, 0.25 * (j + 1));
+      const int k = static_cast<int>(tris.size());
+      tris.push_back(Triangle{a, d, b, k % 7});
+      tris.push_back(Triangle{a, c, d, (k + 1) % 7});
+    }
+  }
+  Mesh mesh;
+  mesh.geometry = make_mesh_geometry(std::move(tris), {});
+  s.meshes.push_back(std::move(mesh));
+  s.mesh_object.push_back(0);
+  s.camera.position = Vec3(0, 2, 0);
+  s.camera.look_at = Vec3(0, 0, 0);
+  s.camera.up = Vec3(0, 0, -1);
+  s.camera.fov_y_deg = 60;
+  Light sun;
+  sun.type = LightType::kDirectional;
+  sun.direction = Vec3(0.3, -1, 0.2);
+  s.lights = {sun};
+  prepare_scene(s);
+  ASSERT_TRUE(packet_tracing_applies(s));
+  for (const int size : {63, 65, 127}) {
+    SCOPED_TRACE("size " + std::to_string(size));
+    EXPECT_TRUE(same_bits(render(s, size, size, 1, true), render(s, size, size, 1, false)));
+  }
+  // The middle pixel's ray runs along the diagonal (-1, -1, -1) exactly through the vertex at the
+  // origin: all six triangles around it are met at the same t, and a walk along the negative
+  // axes visits the ones later in the scene's order first.
+  for (const Vec3& eye : {Vec3(1, 1, 1), Vec3(0.5, 1, 0.5), Vec3(-1, 1, 1)}) {
+    s.camera.position = eye;
+    s.camera.up = Vec3(0, 1, 0);
+    const Frame packets = render(s, 31, 31, 1, true);
+    const Frame scalar = render(s, 31, 31, 1, false);
+    EXPECT_TRUE(same_bits(packets, scalar));
+  }
 }
 
 // The per-tile culling (the primary rays' cone, the shadow rays' capsule) must never drop a
@@ -224,14 +369,23 @@ TEST(PacketTracer, ServesOnlyWhatItCanTraceExactly) {
   EXPECT_EQ(packet_tracing_applies(scene), packet_cpu_supported());
   Scene with_bvh = scene;
   with_bvh.accel = build_scene_accel(with_bvh, /*force_bvh=*/true);
-  EXPECT_FALSE(packet_tracing_applies(with_bvh));
+  EXPECT_EQ(packet_tracing_applies(with_bvh), packet_cpu_supported());  // it walks the SceneBvh
+  // Any other accelerator (Embree's) is queried ray by ray.
+  struct Other final : Accelerator {
+    std::optional<Hit> intersect(const Scene& s, const Ray& r, double t_max) const override { return intersect_all(s, r, t_max); }
+    bool occluded(const Scene& s, const Ray& r, double t_max) const override { return occluded_all(s, r, t_max); }
+    bool matches(const Scene&) const override { return true; }
+  };
+  Scene other = scene;
+  other.accel = std::make_shared<Other>();
+  EXPECT_FALSE(packet_tracing_applies(other));
   Scene variant = scene;
   variant.numerics.schlick_fresnel = true;
   EXPECT_FALSE(packet_tracing_applies(variant));
   variant = scene;
   variant.numerics.fixed_offset = 1e-4;
   EXPECT_FALSE(packet_tracing_applies(variant));
-  EXPECT_FALSE(packet_tracing_applies(load_prepared("cornell")));  // a mesh: the BVH serves
+  EXPECT_EQ(packet_tracing_applies(load_prepared("cornell")), packet_cpu_supported());  // a mesh, through the SceneBvh
 }
 
 }  // namespace
