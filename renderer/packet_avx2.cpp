@@ -336,56 +336,46 @@ struct Packet {
   int kx, ky, kz;
 };
 
-inline V lane_mask(int bits) {
+inline V lane_mask(int bits) {  // lane j all ones where bit j is set
   return _mm256_castsi256_pd(_mm256_set_epi64x(bits & 8 ? -1 : 0, bits & 4 ? -1 : 0, bits & 2 ? -1 : 0, bits & 1 ? -1 : 0));
 }
 
-Packet make_packet(const Rays& rays, int i) {
+// Four rays of `rays` from lane i; `live`: the lanes that matter (the shear's `uniform` looks at
+// those only).
+Packet make_packet(const Rays& rays, int i, int live) {
   Packet p;
-  const double* dirs[3] = {rays.dx + i, rays.dy + i, rays.dz + i};
-  const double* origins[3] = {rays.ox + i, rays.oy + i, rays.oz + i};
-  for (int a = 0; a < 3; ++a) {
-    p.o[a] = load(origins[a]);
-    p.d[a] = load(dirs[a]);
-    p.inv[a] = splat(1.0) / p.d[a];
-  }
-  const int sign[3] = {_mm256_movemask_pd(p.d[0]), _mm256_movemask_pd(p.d[1]), _mm256_movemask_pd(p.d[2])};
-  alignas(32) double kx0[4], kx1[4], ky0[4], ky1[4], kz0[4], kz1[4], okx[4], oky[4], okz[4], sx[4], sy[4], sz[4];
-  int perm[4][3];
+  p.o[0] = load(rays.ox + i), p.o[1] = load(rays.oy + i), p.o[2] = load(rays.oz + i);
+  p.d[0] = load(rays.dx + i), p.d[1] = load(rays.dy + i), p.d[2] = load(rays.dz + i);
+  for (int a = 0; a < 3; ++a) p.inv[a] = splat(1.0) / p.d[a];
+  const int sign[3] = {lanes_set(p.d[0]), lanes_set(p.d[1]), lanes_set(p.d[2])};
   for (int j = 0; j < 4; ++j) {
     p.octant[j] = ((sign[0] >> j) & 1) | (((sign[1] >> j) & 1) << 1) | (((sign[2] >> j) & 1) << 2);
-    // make_shear, operation for operation.
-    const double d[3] = {dirs[0][j], dirs[1][j], dirs[2][j]};
-    const double ax = __builtin_fabs(d[0]), ay = __builtin_fabs(d[1]), az = __builtin_fabs(d[2]);
-    const int kz = (ax >= ay) ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
-    int kx = (kz + 1) % 3;
-    int ky = (kx + 1) % 3;
-    if (d[kz] < 0) {
-      const int swap = kx;
-      kx = ky;
-      ky = swap;
-    }
-    const double inv_z = 1.0 / d[kz];
-    perm[j][0] = kx, perm[j][1] = ky, perm[j][2] = kz;
-    const double all = __builtin_bit_cast(double, ~0ull);
-    kx0[j] = kx == 0 ? all : 0.0, kx1[j] = kx == 1 ? all : 0.0;
-    ky0[j] = ky == 0 ? all : 0.0, ky1[j] = ky == 1 ? all : 0.0;
-    kz0[j] = kz == 0 ? all : 0.0, kz1[j] = kz == 1 ? all : 0.0;
-    okx[j] = origins[kx][j], oky[j] = origins[ky][j], okz[j] = origins[kz][j];
-    sz[j] = inv_z;
-    sx[j] = d[kx] * inv_z;
-    sy[j] = d[ky] * inv_z;
   }
-  p.kx_is0 = _mm256_load_pd(kx0), p.kx_is1 = _mm256_load_pd(kx1);
-  p.ky_is0 = _mm256_load_pd(ky0), p.ky_is1 = _mm256_load_pd(ky1);
-  p.kz_is0 = _mm256_load_pd(kz0), p.kz_is1 = _mm256_load_pd(kz1);
-  p.okx = _mm256_load_pd(okx), p.oky = _mm256_load_pd(oky), p.okz = _mm256_load_pd(okz);
-  p.sx = _mm256_load_pd(sx), p.sy = _mm256_load_pd(sy), p.sz = _mm256_load_pd(sz);
-  p.uniform = true;
-  for (int j = 1; j < 4; ++j) {
-    p.uniform = p.uniform && perm[j][0] == perm[0][0] && perm[j][1] == perm[0][1] && perm[j][2] == perm[0][2];
-  }
-  p.kx = perm[0][0], p.ky = perm[0][1], p.kz = perm[0][2];
+  // make_shear, lane by lane: kz is the axis of the largest |d| (the first of equals), kx and ky
+  // follow it cyclically, swapped when d[kz] < 0.
+  const V ax = and_not(sign_bit(), p.d[0]), ay = and_not(sign_bit(), p.d[1]), az = and_not(sign_bit(), p.d[2]);
+  const V x_ge_y = ge(ax, ay);
+  const V kz0 = both(x_ge_y, ge(ax, az));
+  const V kz1 = and_not(x_ge_y, ge(ay, az));
+  const V kz2 = and_not(either(kz0, kz1), _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
+  const V d_kz = pick(kz0, p.d[0], pick(kz1, p.d[1], p.d[2]));
+  const V swap = lt(d_kz, _mm256_setzero_pd());
+  p.kz_is0 = kz0, p.kz_is1 = kz1;
+  p.kx_is0 = pick(swap, kz1, kz2), p.kx_is1 = pick(swap, kz2, kz0);
+  p.ky_is0 = pick(swap, kz2, kz1), p.ky_is1 = pick(swap, kz0, kz2);
+  const auto select = [](V is0, V is1, const V* v) { return pick(is0, v[0], pick(is1, v[1], v[2])); };
+  p.okx = select(p.kx_is0, p.kx_is1, p.o), p.oky = select(p.ky_is0, p.ky_is1, p.o), p.okz = select(kz0, kz1, p.o);
+  p.sz = splat(1.0) / d_kz;
+  p.sx = select(p.kx_is0, p.kx_is1, p.d) * p.sz;
+  p.sy = select(p.ky_is0, p.ky_is1, p.d) * p.sz;
+  // One permutation for all live lanes: kz and the swap agree.
+  const int m0 = lanes_set(kz0) & live, m1 = lanes_set(kz1) & live, ms = lanes_set(swap) & live;
+  p.uniform = (m0 == 0 || m0 == live) && (m1 == 0 || m1 == live) && (ms == 0 || ms == live);
+  const int first = __builtin_ctz(static_cast<unsigned>(live));
+  p.kz = (m0 >> first) & 1 ? 0 : (m1 >> first) & 1 ? 1 : 2;
+  const bool swapped = (ms >> first) & 1;
+  p.kx = swapped ? (p.kz + 2) % 3 : (p.kz + 1) % 3;
+  p.ky = swapped ? (p.kz + 1) % 3 : (p.kz + 2) % 3;
   return p;
 }
 
@@ -578,7 +568,7 @@ void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const Nea
   if (h.top == nullptr) return;
   for (int i = 0; i < live; i += 4) {
     const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;
-    const Packet p = make_packet(rays, i);
+    const Packet p = make_packet(rays, i, lanes);
     Walk w;
     w.best = load(out.t + i);
     w.id = _mm256_set_pd(out.id[i + 3], out.id[i + 2], out.id[i + 1], out.id[i]);
@@ -613,7 +603,7 @@ void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_ma
       if (occluded_out[i + j]) live &= ~(1 << j);
     }
     if (live == 0) continue;
-    const Packet p = make_packet(rays, i);
+    const Packet p = make_packet(rays, i, live);
     Walk w;
     w.best = load(t_max + i);
     w.id = w.prim = w.b1 = w.b2 = _mm256_setzero_pd();

@@ -125,7 +125,7 @@ struct Node {
   std::uint32_t first, count, axis;
 };
 struct MeshTree {
-  const Node* nodes;       // the mesh's BVH; its leaves index `vertices` directly
+  const Node* nodes;       // the mesh's BVH; its leaves index its triangles directly
   const double* vertices;  // the first triangle's v0.x; v1 and v2 follow v0, as in Triangle
 };
 struct Hierarchy {
@@ -135,7 +135,7 @@ struct Hierarchy {
   const double *cx, *cy, *cz, *r;   // spheres, by index
   const double* triangles;          // the first loose triangle's v0.x
   const MeshTree* meshes;           // by mesh index
-  long triangle_stride;             // doubles from one triangle's v0.x to the next's
+  long triangle_stride;             // doubles from one Triangle's v0.x to the next's
   int triangle_id;                  // id of loose triangle 0 (spheres + planes); mesh m: mesh_id + m
   int mesh_id;
   double far_widen, t_max_slack;    // hits_box's kBoxFarWiden and kBoxTmaxSlack
