@@ -33,7 +33,7 @@ namespace {
 // AVX2 unit sees no glm): the layouts must agree.
 static_assert(std::is_standard_layout_v<BvhNode> && std::is_standard_layout_v<Aabb> && std::is_standard_layout_v<Vec3>);
 static_assert(sizeof(Vec3) == 3 * sizeof(double) && offsetof(Aabb, lo) == 0 && offsetof(Aabb, hi) == sizeof(Vec3));
-static_assert(sizeof(BvhNode) == sizeof(packet::Node) && offsetof(BvhNode, box) == offsetof(packet::Node, lo) &&
+static_assert(sizeof(BvhNode) == sizeof(packet::Node) && offsetof(BvhNode, box) == offsetof(packet::Node, box) &&
               offsetof(BvhNode, first) == offsetof(packet::Node, first) &&
               offsetof(BvhNode, count) == offsetof(packet::Node, count) &&
               offsetof(BvhNode, axis) == offsetof(packet::Node, axis));

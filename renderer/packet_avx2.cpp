@@ -327,7 +327,8 @@ namespace {
 struct Packet {
   V o[3], d[3];
   V inv[3];             // 1 / d
-  int octant[4];        // per lane: bit a set when d[a] has its sign bit set
+  int sign[3];          // bit j set when lane j's d[a] has its sign bit set
+  int octant(int j) const { return ((sign[0] >> j) & 1) | (((sign[1] >> j) & 1) << 1) | (((sign[2] >> j) & 1) << 2); }
   // The shear of each lane: its axis permutation as masks, its origin permuted, sx, sy, sz.
   V kx_is0, kx_is1, ky_is0, ky_is1, kz_is0, kz_is1;
   V okx, oky, okz;
@@ -347,10 +348,7 @@ Packet make_packet(const Rays& rays, int i, int live) {
   p.o[0] = load(rays.ox + i), p.o[1] = load(rays.oy + i), p.o[2] = load(rays.oz + i);
   p.d[0] = load(rays.dx + i), p.d[1] = load(rays.dy + i), p.d[2] = load(rays.dz + i);
   for (int a = 0; a < 3; ++a) p.inv[a] = splat(1.0) / p.d[a];
-  const int sign[3] = {lanes_set(p.d[0]), lanes_set(p.d[1]), lanes_set(p.d[2])};
-  for (int j = 0; j < 4; ++j) {
-    p.octant[j] = ((sign[0] >> j) & 1) | (((sign[1] >> j) & 1) << 1) | (((sign[2] >> j) & 1) << 2);
-  }
+  for (int a = 0; a < 3; ++a) p.sign[a] = lanes_set(p.d[a]);
   // make_shear, lane by lane: kz is the axis of the largest |d| (the first of equals), kx and ky
   // follow it cyclically, swapped when d[kz] < 0.
   const V ax = and_not(sign_bit(), p.d[0]), ay = and_not(sign_bit(), p.d[1]), az = and_not(sign_bit(), p.d[2]);
@@ -379,16 +377,27 @@ Packet make_packet(const Rays& rays, int i, int live) {
   return p;
 }
 
+// The sign octant of a walk's lanes, and where each axis's near and far slab planes sit in a
+// Node's box: the high plane comes first for a negative direction (sign bit set, -0 included).
+struct Octant {
+  int bits;  // bit a set when d[a] is negative
+  int near[3], far[3];
+  explicit Octant(int b) : bits(b) {
+    for (int a = 0; a < 3; ++a) {
+      const bool negative = (b >> a) & 1;
+      near[a] = negative ? 3 + a : a;
+      far[a] = negative ? a : 3 + a;
+    }
+  }
+};
+
 // hits_box for the lanes of one octant: whether each meets the box within (0, t_max].
-inline V hits_box(const Node& n, const Packet& p, int octant, V t_max, const Hierarchy& h) {
+inline V hits_box(const Node& n, const Packet& p, const Octant& o, V t_max, const Hierarchy& h) {
   V t0 = _mm256_setzero_pd();
   V t1 = t_max * splat(h.t_max_slack);
   for (int a = 0; a < 3; ++a) {
-    const bool negative = (octant >> a) & 1;
-    const double near_plane = negative ? n.hi[a] : n.lo[a];
-    const double far_plane = negative ? n.lo[a] : n.hi[a];
-    const V tn = (splat(near_plane) - p.o[a]) * p.inv[a];
-    const V tf = (splat(far_plane) - p.o[a]) * p.inv[a] * splat(h.far_widen);
+    const V tn = (splat(n.box[o.near[a]]) - p.o[a]) * p.inv[a];
+    const V tf = (splat(n.box[o.far[a]]) - p.o[a]) * p.inv[a] * splat(h.far_widen);
     t0 = _mm256_max_pd(tn, t0);  // tn > t0 ? tn : t0
     t1 = _mm256_min_pd(tf, t1);  // tf < t1 ? tf : t1
   }
@@ -484,7 +493,7 @@ inline V walking(V lanes, const Walk& w) {
 // traverse() over one BVH for the lanes of `lanes` (all of one octant): `leaf(first, count, m)`
 // tests a leaf's primitives for the lanes m whose own box test passed.
 template <bool kAny, class Leaf>
-inline void walk(const Node* nodes, const Packet& p, int octant, V lanes, Walk& w, const Hierarchy& h, Leaf&& leaf) {
+inline void walk(const Node* nodes, const Packet& p, const Octant& octant, V lanes, Walk& w, const Hierarchy& h, Leaf&& leaf) {
   std::uint32_t stack[128];
   int top = 0;
   std::uint32_t index = 0;
@@ -497,7 +506,7 @@ inline void walk(const Node* nodes, const Packet& p, int octant, V lanes, Walk& 
       if (node.count > 0) {
         leaf(node.first, node.count, m);
       } else {
-        const bool flip = (octant >> node.axis) & 1;
+        const bool flip = (octant.bits >> node.axis) & 1;
         stack[top++] = flip ? index + 1 : node.first;
         index = flip ? node.first : index + 1;
         continue;
@@ -510,7 +519,7 @@ inline void walk(const Node* nodes, const Packet& p, int octant, V lanes, Walk& 
 
 // The whole hierarchy for the lanes of `lanes` (all of one octant).
 template <bool kAny>
-void walk_scene(const Hierarchy& h, const Packet& p, int octant, V lanes, Walk& w) {
+void walk_scene(const Hierarchy& h, const Packet& p, const Octant& octant, V lanes, Walk& w) {
   const auto top_leaf = [&](std::uint32_t first, std::uint32_t count, V m) {
     for (std::uint32_t slot = first; slot < first + count; ++slot) {
       const std::int32_t k = h.prim_index[slot];
@@ -547,17 +556,24 @@ void walk_scene(const Hierarchy& h, const Packet& p, int octant, V lanes, Walk& 
   walk<kAny>(h.top, p, octant, lanes, w, h, top_leaf);
 }
 
-// Runs walk_scene once for each octant among the lanes of `lanes`.
+// Runs walk_scene once for each octant among the lanes of `lanes` (usually one).
 template <bool kAny>
 void walk_octants(const Hierarchy& h, const Packet& p, int lanes, Walk& w) {
+  bool one = true;
+  for (int a = 0; a < 3; ++a) one = one && ((p.sign[a] & lanes) == 0 || (p.sign[a] & lanes) == lanes);
+  if (one) {
+    const int first = __builtin_ctz(static_cast<unsigned>(lanes));
+    walk_scene<kAny>(h, p, Octant(p.octant(first)), lane_mask(lanes), w);
+    return;
+  }
   while (lanes != 0) {
     const int first = __builtin_ctz(static_cast<unsigned>(lanes));
-    const int octant = p.octant[first];
+    const int octant = p.octant(first);
     int group = 0;
     for (int j = first; j < 4; ++j) {
-      if ((lanes >> j) & 1 && p.octant[j] == octant) group |= 1 << j;
+      if ((lanes >> j) & 1 && p.octant(j) == octant) group |= 1 << j;
     }
-    walk_scene<kAny>(h, p, octant, lane_mask(group), w);
+    walk_scene<kAny>(h, p, Octant(octant), lane_mask(group), w);
     lanes &= ~group;
   }
 }

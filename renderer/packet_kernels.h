@@ -120,8 +120,7 @@ void bounce(const BounceIn& in, int lanes, const BounceOut& out);
 // A bounding volume hierarchy for packets of four rays (the scene's SceneBvh, bvh.h and accel.h).
 // Node is BvhNode's layout (box lo, box hi, first, count, axis); packet.cpp checks that it is.
 struct Node {
-  double lo[3];
-  double hi[3];
+  double box[6];  // lo x, y, z, then hi x, y, z
   std::uint32_t first, count, axis;
 };
 struct MeshTree {
