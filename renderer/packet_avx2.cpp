@@ -500,7 +500,9 @@ inline void walk(const Node* nodes, const Packet& p, const Octant& octant, V lan
   for (;;) {
     const Node& node = nodes[index];
     const V live = walking<kAny>(lanes, w);
-    if (lanes_set(live) == 0) return;
+    if constexpr (kAny) {
+      if (lanes_set(live) == 0) return;  // every lane blocked
+    }
     const V m = both(live, hits_box(node, p, octant, w.best, h));
     if (lanes_set(m) != 0) {
       if (node.count > 0) {
