@@ -8,8 +8,10 @@
 // pixel (tests/test_packet.cpp), so the packet tracer is purely a matter of speed.
 //
 // It serves the full image of scenes traced by brute force (no acceleration structure: a few
-// spheres and triangles, any planes, no mesh) with the production numerics, on CPUs with AVX2;
-// render_pass falls back to the scalar renderer for everything else.
+// spheres and triangles, any planes, no mesh) and of scenes with the project's own SceneBvh
+// (meshes, larger scenes: walked four rays at a time), with the production numerics, on CPUs
+// with AVX2; render_pass falls back to the scalar renderer for everything else (another
+// accelerator, the numerics variants, the term and debug views).
 #pragma once
 
 #include <cstdint>
