@@ -176,6 +176,9 @@ struct PacketTracer::Impl {
   std::vector<Level> levels;
   RayBatch primary;
   std::vector<double> x_plus_u, y_plus_v;
+  // What the primary hits give (render_tile's term) and the eye V points to there (null: -D).
+  Term primary_term = Term::kFull;
+  const Vec3* shading_eye = nullptr;
 
   explicit Impl(const Scene& s) : scene(s), limits{s.max_depth, s.min_weight} {
     for (const Sphere& sp : scene.spheres) {
@@ -477,7 +480,7 @@ struct PacketTracer::Impl {
       const std::size_t u = at(i);
       const std::int32_t id = lv.id[u];
       if (id < 0) {
-        out[i] = scene.background;
+        out[i] = depth == 0 && primary_term != Term::kFull ? Color(0) : scene.background;
         lv.lit[u] = lv.bounces[u] = 0;
         continue;
       }
@@ -493,6 +496,7 @@ struct PacketTracer::Impl {
       t = Terms{};
       t.ambient = mi.ambient;
       if (id >= spheres.count + planes.count) record_triangle_hit(lv, rays, i);
+      if (depth == 0 && shading_eye) look_from_eye(lv, i);
       const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
@@ -515,7 +519,30 @@ struct PacketTracer::Impl {
         if (lv.reflected_index[u] >= 0) t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
         if (lv.refracted_index[u] >= 0) t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
       }
-      out[i] = t.sum();
+      out[i] = depth == 0 ? primary_value(t) : t.sum();
+    }
+  }
+
+  // shade()'s V at a primary hit when the eye has moved ("move your head"): towards the eye; an
+  // eye exactly at P has no direction and keeps -D.
+  void look_from_eye(Level& lv, int i) const {
+    const std::size_t u = at(i);
+    const Vec3 to_eye = *shading_eye - Vec3(lv.px[u], lv.py[u], lv.pz[u]);
+    const double len = glm::length(to_eye);
+    if (!(len > 0)) return;
+    const Vec3 v = to_eye / len;
+    lv.vx[u] = v.x, lv.vy[u] = v.y, lv.vz[u] = v.z;
+  }
+
+  // What a primary hit gives: render_sample's switch over the terms.
+  Color primary_value(const Terms& t) const {
+    switch (primary_term) {
+      case Term::kAmbient: return t.ambient;
+      case Term::kDiffuse: return t.diffuse;
+      case Term::kSpecular: return t.specular;
+      case Term::kReflection: return t.reflection;
+      case Term::kRefraction: return t.refraction;
+      default: return t.sum();
     }
   }
 
@@ -587,9 +614,25 @@ struct PacketTracer::Impl {
 PacketTracer::PacketTracer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 PacketTracer::~PacketTracer() = default;
 
+bool PacketTracer::draws(Term term) {
+  switch (term) {
+    case Term::kFull:
+    case Term::kAmbient:
+    case Term::kDiffuse:
+    case Term::kSpecular:
+    case Term::kReflection:
+    case Term::kRefraction:
+      return true;
+    default:
+      return false;
+  }
+}
+
 void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
-                               std::uint32_t seed, Color* out, RayCounts& counts) {
+                               std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye) {
   Impl& im = *impl_;
+  im.primary_term = term;
+  im.shading_eye = shading_eye;
   const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
   counts.primary += static_cast<std::uint64_t>(im.primary.n);
   im.trace_level(0, im.primary, tested, out, counts);

@@ -7,17 +7,19 @@
 // scalar renderer's own functions. The image is bit-identical to render_sample's, pixel by
 // pixel (tests/test_packet.cpp), so the packet tracer is purely a matter of speed.
 //
-// It serves the full image of scenes traced by brute force (no acceleration structure: a few
-// spheres and triangles, any planes, no mesh) and of scenes with the project's own SceneBvh
-// (meshes, larger scenes: walked four rays at a time), with the production numerics, on CPUs
-// with AVX2; render_pass falls back to the scalar renderer for everything else (another
-// accelerator, the numerics variants, the term and debug views).
+// It serves the full image and the five term images ("move your head" included) of scenes
+// traced by brute force (no acceleration structure: a few spheres and triangles, any planes, no
+// mesh) and of scenes with the project's own SceneBvh (meshes, larger scenes: walked four rays
+// at a time), with the production numerics, on CPUs with AVX2; render_pass falls back to the
+// scalar renderer for everything else (another accelerator, the numerics variants, the debug
+// views).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
 #include "renderer/camera.h"
+#include "renderer/render.h"
 #include "renderer/scene.h"
 #include "renderer/shading.h"
 
@@ -37,10 +39,15 @@ class PacketTracer {
   PacketTracer(const PacketTracer&) = delete;
   PacketTracer& operator=(const PacketTracer&) = delete;
 
+  // Whether render_tile draws `term`: the full image and its five terms (not the debug views).
+  static bool draws(Term term);
+
   // Sample `sample_index` of pixels [x0, x1) x [y0, y1), row by row into `out`
-  // ((x1 - x0) * (y1 - y0) colours): the value render_sample(Term::kFull) gives each pixel.
+  // ((x1 - x0) * (y1 - y0) colours): the value render_sample(term, ..., shading_eye) gives each
+  // pixel, for a term that draws() accepts.
   void render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
-                   std::uint32_t seed, Color* out, RayCounts& counts);
+                   std::uint32_t seed, Color* out, RayCounts& counts, Term term = Term::kFull,
+                   const Vec3* shading_eye = nullptr);
 
   // The nearest hits of the pixel-centre rays of pixels [x0, x1) x [y0, y1), without shading
   // (the benchmark of primary rays alone). Returns how many rays hit something.

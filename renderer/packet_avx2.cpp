@@ -454,7 +454,7 @@ bool has_area(const double* v0) {
 }
 
 // What a walk keeps for four lanes. Nearest-hit: the nearest so far (t, id, prim, b1, b2).
-// Any-hit: `limit` is fixed and `blocked` grows.
+// Any-hit: `best` holds each lane's fixed t_max, and `blocked` grows.
 struct Walk {
   V best, id, prim, b1, b2;
   V blocked;

@@ -111,7 +111,7 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
 
   // Each tile is written by exactly one thread and each pixel's value depends only on
   // (x, y, sample_index), so the image is the same for any thread count or tile order.
-  const bool packets = options.packets && options.term == Term::kFull && !shading_eye && packet_tracing_applies(scene);
+  const bool packets = options.packets && PacketTracer::draws(options.term) && packet_tracing_applies(scene);
   auto worker = [&](PassStats& stats) {
     std::optional<PacketTracer> tracer;
     std::vector<Color> tile_radiance;
@@ -138,7 +138,8 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
       const int x1 = std::min(x0 + tile, accum.width);
       const int y1 = std::min(y0 + tile, accum.height);
       if (tracer) {
-        tracer->render_tile(frame, x0, y0, x1, y1, sample_index, options.seed, tile_radiance.data(), stats.rays);
+        tracer->render_tile(frame, x0, y0, x1, y1, sample_index, options.seed, tile_radiance.data(), stats.rays,
+                            options.term, shading_eye);
         const Color* c = tile_radiance.data();
         for (int y = y0; y < y1; ++y) {
           Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;

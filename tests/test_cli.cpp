@@ -159,7 +159,13 @@ TEST_F(CliTest, WidthHeightOverridesAndStatsFile) {
                 .exit_code,
             0);
   std::ifstream term_in(path("stats_term.json"));
-  EXPECT_EQ(nlohmann::json::parse(term_in)["tracer"], "scalar");  // term views are traced ray by ray
+  EXPECT_EQ(nlohmann::json::parse(term_in)["tracer"], phonglab::packet_cpu_supported() ? "packet" : "scalar");
+  ASSERT_EQ(run_cli("render lecture -o " + path("n.pfm") + " --width 8 --height 8 --term normal --stats " +
+                    path("stats_normal.json"))
+                .exit_code,
+            0);
+  std::ifstream normal_in(path("stats_normal.json"));
+  EXPECT_EQ(nlohmann::json::parse(normal_in)["tracer"], "scalar");  // debug views are traced ray by ray
 }
 
 TEST_F(CliTest, ProbeTotalEqualsRenderedPixel) {

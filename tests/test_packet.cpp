@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -24,14 +25,18 @@ struct Frame {
   std::uint64_t nan_count = 0;
 };
 
-Frame render(const Scene& scene, int w, int h, int passes, bool packets, int threads = 1, std::uint32_t seed = 0) {
+Frame render(const Scene& scene, int w, int h, int passes, bool packets, int threads = 1, std::uint32_t seed = 0,
+             Term term = Term::kFull, std::optional<Vec3> eye = std::nullopt) {
   Frame f;
   f.accum.reset(w, h);
   RenderOptions opt;
   opt.packets = packets;
   opt.threads = threads;
   opt.seed = seed;
+  opt.term = term;
+  opt.shading_eye = eye;
   const PassStats st = render_passes(scene, opt, f.accum, passes);
+  EXPECT_EQ(st.packets, packets && packet_tracing_applies(scene) && PacketTracer::draws(term));
   f.rays = st.rays;
   f.nan_count = st.nan_count;
   return f;
@@ -316,6 +321,33 @@ TEST(PacketTracer, RaysThroughSharedEdgesGetTheScalarRenderersTriangle) {
   }
 }
 
+// The five term images and "move your head" (V towards a moved eye at the primary hit) are the
+// scalar renderer's too, through brute force and through the hierarchy.
+TEST(PacketTracer, TermImagesAndAMovedEyeAreBitIdenticalToTheScalarRenderer) {
+  REQUIRE_PACKETS();
+  std::vector<std::pair<std::string, Scene>> scenes;
+  for (const char* name : {"lecture", "glass", "cornell-sphere"}) scenes.emplace_back(name, load_prepared(name));
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    scenes.emplace_back("seed " + std::to_string(seed), random_scene(seed, seed % 2 == 0));
+  }
+  const Term terms[] = {Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
+                        Term::kRefraction};
+  for (const auto& [name, scene] : scenes) {
+    SCOPED_TRACE(name);
+    const Camera& c = scene.camera;
+    const double reach = glm::length(c.position - c.look_at);
+    const std::optional<Vec3> eyes[] = {std::nullopt, c.position + reach * Vec3(0.4, 0.3, -0.1),
+                                        c.look_at + reach * Vec3(-0.5, 0.2, 0.6)};
+    for (const Term term : terms) {
+      for (const std::optional<Vec3>& eye : eyes) {
+        SCOPED_TRACE("term " + std::string(term_name(term)) + (eye ? ", moved eye" : ""));
+        ASSERT_TRUE(same_bits(render(scene, 33, 19, 2, true, 1, 7, term, eye),
+                              render(scene, 33, 19, 2, false, 1, 7, term, eye)));
+      }
+    }
+  }
+}
+
 // The per-tile culling (the primary rays' cone, the shadow rays' capsule) must never drop a
 // sphere a ray meets: many small spheres whose outlines cross tile edges and shadow volumes,
 // at several scales and far from the origin, rendered over many tiles.
@@ -366,6 +398,11 @@ TEST(PacketTracer, TheImageDoesNotDependOnTheThreadCount) {
 
 TEST(PacketTracer, ServesOnlyWhatItCanTraceExactly) {
   Scene scene = load_prepared("lecture");
+  // The debug views stay with the scalar renderer (render() checks PassStats::packets).
+  EXPECT_FALSE(PacketTracer::draws(Term::kNormal));
+  EXPECT_FALSE(PacketTracer::draws(Term::kDepth));
+  EXPECT_FALSE(PacketTracer::draws(Term::kRays));
+  render(scene, 8, 8, 1, true, 1, 0, Term::kRays);
   EXPECT_EQ(packet_tracing_applies(scene), packet_cpu_supported());
   Scene with_bvh = scene;
   with_bvh.accel = build_scene_accel(with_bvh, /*force_bvh=*/true);
