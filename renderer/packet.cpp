@@ -519,7 +519,7 @@ struct PacketTracer::Impl {
         if (lv.reflected_index[u] >= 0) t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
         if (lv.refracted_index[u] >= 0) t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
       }
-      out[i] = depth == 0 ? primary_value(t) : t.sum();
+      out[i] = depth == 0 ? term_value(t, primary_term) : t.sum();
     }
   }
 
@@ -532,18 +532,6 @@ struct PacketTracer::Impl {
     if (!(len > 0)) return;
     const Vec3 v = to_eye / len;
     lv.vx[u] = v.x, lv.vy[u] = v.y, lv.vz[u] = v.z;
-  }
-
-  // What a primary hit gives: render_sample's switch over the terms.
-  Color primary_value(const Terms& t) const {
-    switch (primary_term) {
-      case Term::kAmbient: return t.ambient;
-      case Term::kDiffuse: return t.diffuse;
-      case Term::kSpecular: return t.specular;
-      case Term::kReflection: return t.reflection;
-      case Term::kRefraction: return t.refraction;
-      default: return t.sum();
-    }
   }
 
   // A triangle's hit record (loose or a mesh's), by the scalar functions (the kernel does spheres

@@ -67,7 +67,10 @@ Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int
     default:
       break;
   }
-  const Terms t = shade(scene, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye);
+  return term_value(shade(scene, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye), term);
+}
+
+Color term_value(const Terms& t, Term term) {
   switch (term) {
     case Term::kAmbient: return t.ambient;
     case Term::kDiffuse: return t.diffuse;

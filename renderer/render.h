@@ -28,6 +28,9 @@ enum class Term : std::uint8_t {
   kRays,    // rays cast for the sample, all kinds (a heat map input)
 };
 
+// The value a shaded primary hit gives for `term`: one of its five terms, else their sum.
+Color term_value(const Terms& terms, Term term);
+
 // Parses "full", "ambient", ... ; nullopt for an unknown name.
 std::optional<Term> term_from_name(std::string_view name);
 std::string_view term_name(Term term);
