@@ -64,6 +64,13 @@ Frame render(const Scene& scene, int w, int h, int passes, bool packets, int thr
   return ::testing::AssertionSuccess();
 }
 
+// The random cases did reach the recursion and the lights.
+void expect_every_ray_kind(const RayCounts& seen) {
+  EXPECT_GT(seen.reflection, 1000u);
+  EXPECT_GT(seen.refraction, 1000u);
+  EXPECT_GT(seen.shadow, 10000u);
+}
+
 #define REQUIRE_PACKETS()                                                     \
   if (!packet_cpu_supported()) GTEST_SKIP() << "this CPU has no AVX2: the scalar renderer serves"
 
@@ -237,10 +244,7 @@ TEST(PacketTracer, RandomScenesAreBitIdenticalToTheScalarRenderer) {
     ASSERT_TRUE(same_bits(packets, scalar));
     seen += packets.rays;
   }
-  // The cases did reach the recursion.
-  EXPECT_GT(seen.reflection, 1000u);
-  EXPECT_GT(seen.refraction, 1000u);
-  EXPECT_GT(seen.shadow, 10000u);
+  expect_every_ray_kind(seen);
 }
 
 // The same random scenes traced through the scene's hierarchy: its spheres and loose triangles
@@ -263,9 +267,7 @@ TEST(PacketTracer, HierarchyScenesAreBitIdenticalToTheScalarRenderer) {
     seen += packets.rays;
   }
   EXPECT_GT(with_meshes, 100);
-  EXPECT_GT(seen.reflection, 1000u);
-  EXPECT_GT(seen.refraction, 1000u);
-  EXPECT_GT(seen.shadow, 10000u);
+  expect_every_ray_kind(seen);
 }
 
 // Rays exactly through edges that two triangles share: a camera straight above a flat grid of
