@@ -176,8 +176,10 @@ struct PacketTracer::Impl {
   std::vector<Level> levels;
   RayBatch primary;
   std::vector<double> x_plus_u, y_plus_v;
-  // What the primary hits give (render_tile's term) and the eye V points to there (null: -D).
+  // What the primary hits give (render_tile's term), what they must compute for it, and the eye
+  // V points to there (null: -D).
   Term primary_term = Term::kFull;
+  TermsWanted primary_wanted;
   const Vec3* shading_eye = nullptr;
 
   explicit Impl(const Scene& s) : scene(s), limits{s.max_depth, s.min_weight} {
@@ -507,10 +509,11 @@ struct PacketTracer::Impl {
     lv.lo = lo;
     lv.hi = hi;
     lv.max_offset = max_offset;
-    shade_lights(lv, lanes, counts);
+    const TermsWanted wanted = depth == 0 ? primary_wanted : TermsWanted{};
+    if (wanted.lights) shade_lights(lv, lanes, counts);
 
     const bool children = any_bounce && depth < limits.max_depth;
-    if (children) send_children(lv, rays, lanes, depth, counts);
+    if (children) send_children(lv, rays, lanes, depth, wanted, counts);
     for (int i = 0; i < lanes; ++i) {
       const std::size_t u = at(i);
       if (lv.id[u] < 0) continue;
@@ -551,8 +554,9 @@ struct PacketTracer::Impl {
 
   // Reflected and refracted rays of the level's mirror and glass hits, traced as the next
   // level's two batches (shade()'s recursion, with its path-weight pruning), for the lanes marked
-  // in `bounces`.
-  void send_children(Level& lv, const RayBatch& rays, int lanes, int depth, RayCounts& counts) {
+  // in `bounces` (at the primary hits, only the children whose terms are `wanted`).
+  void send_children(Level& lv, const RayBatch& rays, int lanes, int depth, const TermsWanted& wanted,
+                     RayCounts& counts) {
     lv.reflected.n = 0;
     lv.refracted.n = 0;
     packet::bounce({rays.dx.data(), rays.dy.data(), rays.dz.data(), lv.nx.data(), lv.ny.data(), lv.nz.data(),
@@ -589,8 +593,10 @@ struct PacketTracer::Impl {
         index = batch.n;
         batch.push(offset_origin(p, ng, dir, offset), dir, w);
       };
-      send(bn.kr, bn.mirror, lv.reflected, lv.reflected_index[u], counts.reflection);
-      if (!is_zero(bn.kt)) send(bn.kt, bn.refracted, lv.refracted, lv.refracted_index[u], counts.refraction);
+      if (wanted.reflection) send(bn.kr, bn.mirror, lv.reflected, lv.reflected_index[u], counts.reflection);
+      if (wanted.refraction && !is_zero(bn.kt)) {
+        send(bn.kt, bn.refracted, lv.refracted, lv.refracted_index[u], counts.refraction);
+      }
     }
     fit(lv.reflected_radiance, lv.reflected.n);
     fit(lv.refracted_radiance, lv.refracted.n);
@@ -620,6 +626,7 @@ void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1,
                                std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye) {
   Impl& im = *impl_;
   im.primary_term = term;
+  im.primary_wanted = terms_wanted(term);
   im.shading_eye = shading_eye;
   const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
   counts.primary += static_cast<std::uint64_t>(im.primary.n);

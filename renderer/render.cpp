@@ -67,7 +67,18 @@ Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int
     default:
       break;
   }
-  return term_value(shade(scene, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye), term);
+  return term_value(shade(scene, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, terms_wanted(term)), term);
+}
+
+TermsWanted terms_wanted(Term term) {
+  switch (term) {
+    case Term::kAmbient: return {false, false, false};
+    case Term::kDiffuse:
+    case Term::kSpecular: return {true, false, false};
+    case Term::kReflection: return {false, true, false};
+    case Term::kRefraction: return {false, false, true};
+    default: return {};
+  }
 }
 
 Color term_value(const Terms& t, Term term) {

@@ -30,6 +30,8 @@ enum class Term : std::uint8_t {
 
 // The value a shaded primary hit gives for `term`: one of its five terms, else their sum.
 Color term_value(const Terms& terms, Term term);
+// What shading a primary hit must compute for `term`: a term image needs only its own term.
+TermsWanted terms_wanted(Term term);
 
 // Parses "full", "ambient", ... ; nullopt for an unknown name.
 std::optional<Term> term_from_name(std::string_view name);

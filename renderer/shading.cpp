@@ -84,7 +84,8 @@ Occluder find_occluder(const Scene& scene, const Ray& ray, double t_max, const V
 }  // namespace
 
 Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
-            double weight, RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye) {
+            double weight, RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye,
+            const TermsWanted& wanted) {
   const Material& m = scene.materials[hit.material];
   const Vec3& d = ray.dir;
   const HitSide side = hit_side(hit, d);
@@ -119,7 +120,7 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
   // Local term: lights are skipped where no term can come back (kd = ks = 0, N.L <= 0).
   const bool has_diffuse = !is_zero(m.kd);
   const bool has_specular = !is_zero(m.ks);
-  if (has_diffuse || has_specular || probe) {
+  if (wanted.lights && (has_diffuse || has_specular || probe)) {
     for (std::size_t li = 0; li < scene.lights.size(); ++li) {
       const Light& light = scene.lights[li];
       if (!light.enabled) continue;
@@ -216,8 +217,8 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
       return kw * trace(scene, limits, ray_out, depth + 1, w, counts, probe_child.get());
     };
     std::unique_ptr<ProbeNode> no_probe;
-    terms.reflection = child(kr, bn.mirror, counts.reflection, probe ? probe->reflection : no_probe);
-    if (!is_zero(kt) || force_refraction) {
+    if (wanted.reflection) terms.reflection = child(kr, bn.mirror, counts.reflection, probe ? probe->reflection : no_probe);
+    if (wanted.refraction && (!is_zero(kt) || force_refraction)) {
       const Vec3& dir = bn.refracted;
       if (!is_zero(kt)) {
         terms.refraction = child(kt, dir, counts.refraction, probe ? probe->refraction : no_probe);

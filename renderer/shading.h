@@ -131,6 +131,15 @@ struct ProbeNode {
   std::unique_ptr<ProbeNode> reflection, refraction;  // children actually traced
 };
 
+// Which terms of a hit its caller keeps: all of them for the full image, one for a term image.
+// What feeds only terms nobody keeps is not computed: the light loop (diffuse and specular, with
+// their shadow rays) and each child ray. The kept terms' values are the same either way.
+struct TermsWanted {
+  bool lights = true;
+  bool reflection = true;
+  bool refraction = true;
+};
+
 // Limits of the recursion.
 struct TraceLimits {
   int max_depth = 5;
@@ -144,8 +153,10 @@ struct TraceLimits {
 Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
             RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
 
-// Shading of a known hit, term by term (`shading_eye` as for trace: V at this hit only).
+// Shading of a known hit, term by term (`shading_eye` as for trace: V at this hit only). Terms
+// that `wanted` leaves out are 0.
 Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
-            double weight, RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
+            double weight, RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr,
+            const TermsWanted& wanted = {});
 
 }  // namespace phonglab

@@ -98,6 +98,66 @@ TEST(TermImages, FiveTermsAddUpToTheFullImage) {
   EXPECT_GT(misses, 10);
 }
 
+// A term image computes only what its term needs (no shadow rays for the ambient image, no
+// children for diffuse and specular, only the reflected or the refracted child at the primary
+// hit for those), and each pixel is still that term of the fully shaded hit, bit for bit; by
+// either tracer.
+TEST(TermImages, EachCastsOnlyTheRaysItsTermNeedsAndKeepsItsValue) {
+  const Scene s = busy_scene();
+  const int w = 48, h = 32;
+  const CameraFrame frame = make_camera_frame(s.camera, w, h);
+  const TraceLimits limits{s.max_depth, s.min_weight};
+  for (const bool packets : {false, true}) {
+    SCOPED_TRACE(packets ? "packet tracer" : "scalar renderer");
+    RayCounts full_rays;
+    for (const Term t : {Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
+                         Term::kRefraction}) {
+      SCOPED_TRACE(std::string(term_name(t)));
+      Accumulator acc;
+      acc.reset(w, h);
+      RenderOptions opt;
+      opt.term = t;
+      opt.packets = packets;
+      const RayCounts rays = render_pass(s, opt, acc).rays;
+      if (t == Term::kFull) full_rays = rays;
+      EXPECT_EQ(rays.primary, static_cast<std::uint64_t>(w * h));
+      switch (t) {
+        case Term::kAmbient:
+          EXPECT_EQ(rays.total(), rays.primary);
+          break;
+        case Term::kDiffuse:
+        case Term::kSpecular:
+          EXPECT_GT(rays.shadow, 0u);
+          EXPECT_EQ(rays.reflection + rays.refraction, 0u);
+          break;
+        case Term::kReflection:
+          EXPECT_GT(rays.reflection, 0u);
+          EXPECT_LT(rays.total(), full_rays.total());
+          break;
+        case Term::kRefraction:
+          EXPECT_GT(rays.refraction, 0u);
+          EXPECT_LT(rays.total(), full_rays.total());
+          break;
+        default:
+          break;
+      }
+      int hits = 0;
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          const Ray ray = camera_ray(frame, x, y, 0.5, 0.5);
+          const std::optional<Hit> hit = intersect(s, ray);
+          if (!hit) continue;
+          ++hits;
+          RayCounts counts;
+          const Color want = term_value(shade(s, limits, ray, *hit, 0, 1.0, counts), t);
+          ASSERT_EQ(acc.mean(x, y), want) << x << "," << y;
+        }
+      }
+      EXPECT_GT(hits, 500);
+    }
+  }
+}
+
 TEST(TermImages, EveryTermIsNonZeroSomewhereInTheBusyScene) {
   const Scene s = busy_scene();
   for (Term t : {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection, Term::kRefraction}) {
