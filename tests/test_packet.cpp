@@ -146,6 +146,25 @@ void add_meshes(Scene& s, std::uint32_t seed, double scale) {
   }
 }
 
+// A copy of a prepared scene moved by `shift`, meshes included, prepared again.
+Scene moved(const Scene& s, const Vec3& shift) {
+  Scene m = s;
+  m.camera.position += shift;
+  m.camera.look_at += shift;
+  for (Sphere& sp : m.spheres) sp.center += shift;
+  for (Plane& pl : m.planes) pl.point += shift;
+  for (Light& l : m.lights) l.position += shift;
+  for (Triangle& t : m.triangles) t.v0 += shift, t.v1 += shift, t.v2 += shift;
+  for (Mesh& mesh : m.meshes) {
+    std::vector<Triangle> tris = mesh.geometry->triangles;
+    for (Triangle& t : tris) t.v0 += shift, t.v1 += shift, t.v2 += shift;
+    mesh.geometry = make_mesh_geometry(std::move(tris), {});
+  }
+  m.accel = nullptr;
+  prepare_scene(m);
+  return m;
+}
+
 // A random scene the brute-force path traces (few spheres and triangles, no mesh); with
 // `hierarchy`, the same one traced through a SceneBvh, with meshes and more spheres in it.
 Scene random_scene(std::uint32_t seed, bool hierarchy = false) {
@@ -248,16 +267,19 @@ TEST(PacketTracer, RandomScenesAreBitIdenticalToTheScalarRenderer) {
 }
 
 // The same random scenes traced through the scene's hierarchy: its spheres and loose triangles
-// (force_bvh), then with meshes and more spheres added. Lanes of a packet that differ in the signs
-// of their directions or in the axes of their triangle shear are among them (wide fields of view,
-// tiles across the image's axes).
+// (force_bvh), then with meshes and more spheres added, some far from the origin. Lanes of a
+// packet that differ in the signs of their directions or in the axes of their triangle shear are
+// among them (wide fields of view, tiles across the image's axes).
 TEST(PacketTracer, HierarchyScenesAreBitIdenticalToTheScalarRenderer) {
   REQUIRE_PACKETS();
   RayCounts seen;
   int with_meshes = 0;
+  std::uint64_t far_shadow = 0;
   for (std::uint32_t seed = 1; seed <= 200; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     Scene scene = random_scene(seed, seed % 4 != 0);
+    // Every fifth scene far from the origin (HARDCASES O5): coordinates 1e5 times its size.
+    if (seed % 5 == 0) scene = moved(scene, Vec3(1e5, -4e4, 3e4) * glm::length(scene.camera.position));
     if (!scene.accel) scene.accel = build_scene_accel(scene, /*force_bvh=*/true);
     ASSERT_TRUE(packet_tracing_applies(scene));
     with_meshes += !scene.meshes.empty();
@@ -265,8 +287,10 @@ TEST(PacketTracer, HierarchyScenesAreBitIdenticalToTheScalarRenderer) {
     const Frame scalar = render(scene, 37, 23, 2, false, 1, seed);
     ASSERT_TRUE(same_bits(packets, scalar));
     seen += packets.rays;
+    if (seed % 5 == 0) far_shadow += packets.rays.shadow;
   }
   EXPECT_GT(with_meshes, 100);
+  EXPECT_GT(far_shadow, 10000u);  // the moved scenes are lit and seen, not lost to rounding
   expect_every_ray_kind(seen);
 }
 
