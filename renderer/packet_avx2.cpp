@@ -561,13 +561,6 @@ void walk_scene(const Hierarchy& h, const Packet& p, const Octant& octant, V lan
 // Runs walk_scene once for each octant among the lanes of `lanes` (usually one).
 template <bool kAny>
 void walk_octants(const Hierarchy& h, const Packet& p, int lanes, Walk& w) {
-  bool one = true;
-  for (int a = 0; a < 3; ++a) one = one && ((p.sign[a] & lanes) == 0 || (p.sign[a] & lanes) == lanes);
-  if (one) {
-    const int first = __builtin_ctz(static_cast<unsigned>(lanes));
-    walk_scene<kAny>(h, p, Octant(p.octant(first)), lane_mask(lanes), w);
-    return;
-  }
   while (lanes != 0) {
     const int first = __builtin_ctz(static_cast<unsigned>(lanes));
     const int octant = p.octant(first);
@@ -593,7 +586,6 @@ void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const Nea
     w.prim = splat(-1);
     w.b1 = w.b2 = _mm256_setzero_pd();
     w.blocked = _mm256_setzero_pd();
-    const V id_in = w.id;
     walk_octants<false>(h, p, lanes, w);
     alignas(32) double t[4], id[4], prim[4], b1[4], b2[4];
     _mm256_store_pd(t, w.best);
@@ -601,7 +593,9 @@ void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const Nea
     _mm256_store_pd(prim, w.prim);
     _mm256_store_pd(b1, w.b1);
     _mm256_store_pd(b2, w.b2);
-    const int changed = lanes_set(_mm256_cmp_pd(w.id, id_in, _CMP_NEQ_UQ)) | lanes_set(lt(w.best, load(out.t + i)));
+    // Whatever the hierarchy finds is nearer than the lane's plane hit (a tie goes to the plane,
+    // first in the scene's order), so a nearer t is the mark of a new answer.
+    const int changed = lanes_set(lt(w.best, load(out.t + i)));
     for (int j = 0; j < 4; ++j) {
       if (!((lanes & changed) >> j & 1)) continue;
       out.t[i + j] = t[j];
