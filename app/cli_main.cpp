@@ -36,8 +36,10 @@ constexpr const char* kUsage = R"(usage: phonglab-cli <command> [options]
 
 commands:
   render [SCENE] -o OUT [--width W] [--height H] [--spp N] [--term T]
-         [--max-depth D] [--threads N] [--stats FILE.json]
+         [--max-depth D] [--fov-y DEG] [--threads N] [--stats FILE.json]
       Render to OUT (.pfm: linear float32, unclamped; .png: 8-bit sRGB).
+      --fov-y: the camera's vertical field of view instead of the scene's
+         (the previewer's dump_state camera_fov, to match a narrow view).
       T: full (default), ambient, diffuse, specular, reflection, refraction,
          or the debug views normal, depth, rays. A .png of rays is a heat map
          (0 black .. the image's maximum pale yellow; the maximum is printed).
@@ -111,6 +113,19 @@ class Args {
     return static_cast<int>(x);
   }
 
+  // A number strictly between lo and hi.
+  std::optional<double> take_open_range(const std::string& name, double lo, double hi) {
+    auto v = take_value(name);
+    if (!v) return std::nullopt;
+    char* end = nullptr;
+    const double x = std::strtod(v->c_str(), &end);
+    if (v->empty() || *end != '\0' || !(x > lo && x < hi)) {
+      throw UsageError{name + " must be a number in (" + std::to_string(static_cast<int>(lo)) + ", " +
+                       std::to_string(static_cast<int>(hi)) + ") (got '" + *v + "')"};
+    }
+    return x;
+  }
+
   // The optional positional SCENE; anything else left over is an error.
   std::optional<std::string> take_positional() {
     std::optional<std::string> pos;
@@ -146,6 +161,7 @@ int cmd_render(Args& args) {
   const auto height = args.take_int("--height", 1, 16384);
   const auto spp = args.take_int("--spp", 1, 1 << 20);
   const auto max_depth = args.take_int("--max-depth", 0, 100);
+  const auto fov_y = args.take_open_range("--fov-y", 0, 180);
   const auto threads = args.take_int("--threads", 0, 1024);
   const auto term_arg = args.take_value("--term");
   const auto stats_path = args.take_value("--stats");
@@ -169,6 +185,7 @@ int cmd_render(Args& args) {
   if (width) scene->width = *width;
   if (height) scene->height = *height;
   if (max_depth) scene->max_depth = *max_depth;
+  if (fov_y) scene->camera.fov_y_deg = *fov_y;
   prepare_scene(*scene);
   const double build_ms = ms_since(t_build);
 

@@ -19,6 +19,9 @@ target_link_libraries(phonglab_glad PUBLIC ${CMAKE_DL_LIBS})
 add_executable(phonglab
   previewer_main.cpp
   viewer_app.cpp
+  viewer_files.cpp
+  viewer_overlays.cpp
+  viewer_sidebar.cpp
   viewer_document.cpp
   viewer_gl.cpp
   viewer_platform.cpp

@@ -223,6 +223,11 @@ class Viewer {
   std::vector<ScreenSegment> tree_segments_;  // the overlay as drawn this frame (image coordinates)
   double heat_max_ = 0;                // top of the heat map's scale in the image on screen
   static constexpr int kTermCells = 5;  // the small multiples besides the full image
+  static constexpr int kMultiplesColumns = 3;  // small multiples: 3 x 2 cells, the full image last
+  static constexpr int kMultiplesRows = 2;
+  // The small multiples' cells in reading order (the full image is the main renderer's).
+  static constexpr std::array<Term, kTermCells> kCellTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular,
+                                                              Term::kReflection, Term::kRefraction};
   std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> term_renderers_;  // ambient .. refraction
   std::array<ProgressiveFrame, kTermCells> term_frames_;  // their newest images
   std::array<bool, kTermCells> term_upload_pending_{};   // term_frames_[i] is newer than its texture

@@ -19,6 +19,10 @@ constexpr double kPoleMargin = 0.01;
 // Smallest allowed camera-to-look_at distance relative to the scene's coordinates: far above
 // double rounding, so normalize(look_at - position) stays accurate.
 constexpr double kMinRelativeDistance = 1e-9;
+// Widest vertical field of view fitting may give: a 1-pixel-wide window stays a usable camera.
+constexpr double kMaxFittedFovDeg = 170;
+// How far the wheel may take the eye: this many times the scene's size (or the file's distance).
+constexpr double kDollyLimitFactor = 20;
 
 // Rodrigues' rotation of v about the unit axis k by `angle` radians.
 Vec3 rotate_about(const Vec3& v, const Vec3& k, double angle) {
@@ -52,18 +56,22 @@ void orbit(Camera& camera, double yaw_rad, double pitch_rad) {
   // Polar angle of the camera measured from up; pitching towards up makes it smaller.
   const double polar = std::acos(clamp_unit(glm::dot(offset / distance, up)));
   const double new_polar = std::clamp(polar - pitch_rad, kPoleMargin, glm::pi<double>() - kPoleMargin);
+  // Rotating about up x offset by a positive angle moves the eye away from up: turn by the
+  // growth of the polar angle, so the clamp above is what the eye does.
   const Vec3 right = glm::normalize(glm::cross(up, offset));
-  offset = rotate_about(offset, right, polar - new_polar);
+  offset = rotate_about(offset, right, new_polar - polar);
   Camera moved = camera;
   moved.position = camera.look_at + offset;
   if (camera_is_valid(moved)) camera = moved;
 }
 
-void dolly(Camera& camera, double factor) {
+void dolly(Camera& camera, double factor, double max_distance) {
   if (!(factor > 0) || !std::isfinite(factor)) return;
   const Vec3 offset = camera.position - camera.look_at;
   const double distance = glm::length(offset);
-  const double new_distance = std::max(distance * factor, 2 * min_distance(camera));
+  // A camera already beyond the limit may come closer but not go further.
+  const double far = std::max(max_distance, distance);
+  const double new_distance = std::clamp(distance * factor, 2 * min_distance(camera), far);
   Camera moved = camera;
   moved.position = camera.look_at + offset * (new_distance / distance);
   if (camera_is_valid(moved)) camera = moved;
@@ -98,6 +106,21 @@ bool frame_scene(Camera& camera, const Scene& scene, double aspect) {
   if (!camera_is_valid(framed)) return false;
   camera = framed;
   return true;
+}
+
+Camera fit_to_view(const Camera& camera, double framed_aspect, double view_aspect) {
+  if (!(framed_aspect > 0) || !(view_aspect > 0) || view_aspect >= framed_aspect) return camera;
+  Camera fitted = camera;
+  const double half = std::tan(glm::radians(camera.fov_y_deg) / 2) * framed_aspect / view_aspect;
+  fitted.fov_y_deg = std::min(glm::degrees(2 * std::atan(half)), kMaxFittedFovDeg);
+  return fitted;
+}
+
+double dolly_limit(const Scene& scene, const Camera& loaded) {
+  const Aabb bounds = scene_bounds(scene);
+  const double radius = bounds.empty() ? 0 : 0.5 * glm::length(bounds.hi - bounds.lo);
+  const double start = glm::length(loaded.position - loaded.look_at);
+  return kDollyLimitFactor * std::max({radius, start, 1e-300});
 }
 
 Vec3 head_eye(const Camera& camera, const Vec3& pivot, double angle_deg) {

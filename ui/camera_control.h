@@ -3,6 +3,7 @@
 // the scene's Camera; no ImGui, no GL.
 #pragma once
 
+#include <limits>
 #include <optional>
 
 #include "renderer/scene.h"
@@ -17,8 +18,18 @@ bool camera_is_valid(const Camera& camera);
 // (positive looks more from above); stops short of the poles so up never aligns with the view.
 void orbit(Camera& camera, double yaw_rad, double pitch_rad);
 
-// Scales the distance from look_at by `factor` (< 1 moves closer), never reaching look_at.
-void dolly(Camera& camera, double factor);
+// Scales the distance from look_at by `factor` (< 1 moves closer), never reaching look_at and
+// never beyond `max_distance` (a camera already beyond it may only come closer).
+void dolly(Camera& camera, double factor, double max_distance = std::numeric_limits<double>::infinity());
+
+// The dolly's far limit for a scene: 20 times the larger of its finite objects' bounding radius and
+// the distance of the camera it was loaded with.
+double dolly_limit(const Scene& scene, const Camera& loaded);
+
+// The camera a view of `view_aspect` (width / height) renders with: `camera` itself when the view
+// is at least as wide as `framed_aspect` (the scene file's image), else with its vertical field of
+// view widened so that the horizontal extent of the framed image stays in view.
+Camera fit_to_view(const Camera& camera, double framed_aspect, double view_aspect);
 
 // Slides position and look_at in the view plane so the point under the cursor follows a
 // drag of (dx_px, dy_px) in a viewport `viewport_height_px` pixels tall.

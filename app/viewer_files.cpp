@@ -1,0 +1,191 @@
+// The previewer's file actions: open, reload, save (with the unsaved-changes guard and the check for changes made on disk), and screenshots.
+#include "app/viewer_app.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <backends/imgui_impl_opengl3.h>
+
+#include "renderer/camera.h"
+#include "renderer/figure.h"
+#include "renderer/geometry.h"
+#include "renderer/heat_map.h"
+#include "renderer/image_io.h"
+#include "renderer/probe_report.h"
+#include "renderer/ray_tree_view.h"
+#include "renderer/shading.h"
+#include "ui/camera_control.h"
+
+
+namespace phonglab {
+
+namespace {
+
+// Inverse of the sRGB transfer curve, so that writing through image_io's sRGB encoder gives
+// back the 8-bit value shown on screen.
+double srgb_to_linear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+}  // namespace
+
+void Viewer::request(PendingAction action) {
+  if (!doc_.dirty()) {
+    perform(action);
+    return;
+  }
+  pending_ = std::move(action);
+  open_guard_ = true;
+}
+
+void Viewer::perform(const PendingAction& action) {
+  switch (action.kind) {
+    case PendingAction::Kind::kQuit: quit_ = true; break;
+    case PendingAction::Kind::kOpen: open_scene(action.arg); break;
+    case PendingAction::Kind::kReload: reload_scene(false); break;
+    case PendingAction::Kind::kNone: break;
+  }
+}
+
+void Viewer::handle_guard_modal() {
+  std::string action = "quit";
+  if (pending_.kind == PendingAction::Kind::kOpen) action = "open " + pending_.arg;
+  if (pending_.kind == PendingAction::Kind::kReload) action = "reload the file";
+  const ui::GuardChoice choice =
+      ui::unsaved_changes_modal(open_guard_, action, !doc_.file_path().empty(), scripted_choice_);
+  if (open_guard_) guard_visible_ = true;
+  open_guard_ = false;
+  scripted_choice_ = ui::GuardChoice::kNone;
+  if (choice == ui::GuardChoice::kNone) return;
+  guard_visible_ = false;
+  const PendingAction pending = std::move(pending_);
+  pending_ = PendingAction{};
+  if (choice == ui::GuardChoice::kSave) {
+    save_scene(false);
+    if (!doc_.dirty()) perform(pending);
+  } else if (choice == ui::GuardChoice::kDiscard) {
+    perform(pending);
+  }
+}
+
+void Viewer::open_scene(const std::string& scene_arg) {
+  if (scene_arg.empty()) {
+    file_state_.error_text = "Open: type a scene file path or an embedded scene name into the path field";
+    return;
+  }
+  if (!doc_.open(scene_arg)) {
+    file_state_.error_text = doc_.error_text();  // the old scene stays
+    return;
+  }
+  file_state_.error_text.clear();
+  file_state_.status = doc_.status();
+  file_state_.changed_on_disk = false;
+  file_state_.path_field = doc_.file_path().empty() ? scene_arg : doc_.file_path();
+  selected_material_ = 0;
+  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
+  picked_text_.clear();
+  probe_.reset();
+  drag_ = Drag{};
+  scene_replaced_ = true;
+}
+
+void Viewer::reload_scene(bool keep_view) {
+  if (!doc_.reload(keep_view)) {
+    file_state_.error_text = doc_.error_text();
+    return;
+  }
+  file_state_.error_text.clear();
+  file_state_.status = doc_.status();
+  file_state_.changed_on_disk = false;
+  const int materials = static_cast<int>(doc_.scene().materials.size());
+  selected_material_ = std::clamp(selected_material_, 0, std::max(materials - 1, 0));
+  if (selected_light_ >= static_cast<int>(doc_.scene().lights.size())) selected_light_ = -1;
+  drag_ = Drag{};
+  scene_replaced_ = true;
+}
+
+void Viewer::save_scene(bool as) {
+  const bool ok = as ? doc_.save_as(file_state_.path_field) : doc_.save();
+  if (ok) {
+    file_state_.error_text.clear();
+    file_state_.status = doc_.status();
+    file_state_.changed_on_disk = false;
+  } else {
+    file_state_.error_text = doc_.error_text();
+  }
+}
+
+void Viewer::save_png(const std::string& path) {
+  if (shown_.pixels.empty()) {
+    screenshot_state_.status = "no image yet";
+    return;
+  }
+  Image image;
+  image.width = shown_.width;
+  image.height = shown_.height;
+  image.pixels.reserve(shown_.pixels.size());
+  // The heat map is written as shown: its colours, without exposure.
+  const bool heat = heat_shown();
+  const std::vector<glm::vec3> source = heat ? display_pixels() : shown_.pixels;
+  const float exposure = heat ? 1.0f : std::exp2(display_.exposure_ev);
+  for (const glm::vec3& p : source) {
+    glm::vec3 v = glm::clamp(p * exposure, 0.0f, 1.0f);
+    // Linear display shows the values themselves as 8-bit codes: pre-decode them so the
+    // sRGB encoder of write_image gives those codes back.
+    if (!display_.srgb) {
+      for (int c = 0; c < 3; ++c) v[c] = static_cast<float>(srgb_to_linear(v[c]));
+    }
+    image.pixels.push_back(v);
+  }
+  write_screenshot(path, image, "");
+}
+
+void Viewer::save_pfm(const std::string& path) {
+  if (shown_.pixels.empty()) {
+    screenshot_state_.status = "no image yet";
+    return;
+  }
+  Image image;
+  image.width = shown_.width;
+  image.height = shown_.height;
+  image.pixels = shown_.pixels;
+  write_screenshot(path, image, "linear, ");
+}
+
+void Viewer::write_screenshot(const std::string& path, const Image& image, const char* kind) {
+  const std::string error = write_image(path, image);
+  std::ostringstream status;
+  if (error.empty()) {
+    status << "saved " << path << " (" << kind << image.width << "x" << image.height << ", " << shown_.spp << " spp)";
+  } else {
+    status << error;
+  }
+  screenshot_state_.status = status.str();
+}
+
+void Viewer::save_window_screenshot(const std::string& path, int fb_width, int fb_height) {
+  const std::vector<unsigned char> rgb = read_framebuffer_rgb8(fb_width, fb_height);
+  Image image;
+  image.width = fb_width;
+  image.height = fb_height;
+  image.pixels.resize(static_cast<std::size_t>(fb_width) * static_cast<std::size_t>(fb_height));
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      image.pixels[i][c] = static_cast<float>(srgb_to_linear(rgb[i * 3 + static_cast<std::size_t>(c)] / 255.0));
+    }
+  }
+  const std::string error = write_image(path, image);
+  if (!error.empty()) {
+    std::cerr << "phonglab: screenshot: " << error << "\n";
+    script_failed_ = true;
+    quit_ = true;
+  }
+}
+
+}  // namespace phonglab
