@@ -62,6 +62,10 @@ const char* object_kind_name(ObjectRef::Kind kind) {
   return "object";
 }
 
+bool same_camera(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.look_at == b.look_at && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
+}
+
 double mean(const std::vector<double>& v) {
   double sum = 0;
   for (const double x : v) sum += x;
@@ -107,6 +111,7 @@ Viewer::Viewer(Platform& platform, const ViewerOptions& options)
 Viewer::~Viewer() = default;
 
 std::string Viewer::init() {
+  ImGui::GetIO().UserData = &item_locations_;
   std::string error = image_view_.init();
   if (!error.empty()) return error;
   for (ImageView& view : term_views_) {
@@ -250,29 +255,27 @@ void Viewer::handle_viewport_input() {
   ImGuiIO& io = ImGui::GetIO();
   Scene& scene = doc_.scene();
   Camera& camera = scene.camera;
+  const Camera view = view_camera();
   const ImVec2 mouse = io.MousePos;
   const bool over_viewport = ImGui::IsMousePosValid(&mouse) && mouse.x >= viewport_.x &&
                              mouse.x < viewport_.x + viewport_.width && mouse.y >= viewport_.y &&
                              mouse.y < viewport_.y + viewport_.height;
-  const bool mouse_is_ours = over_viewport && !io.WantCaptureMouse;
+  const bool mouse_is_ours = over_viewport && !io.WantCaptureMouse && !help_visible_;
   const int view_w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
   const int view_h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
 
-  // The point light under the mouse, if any.
+  // The point light whose marker is under the mouse, where it was drawn last frame (an arrow at
+  // the edge for a light out of view): what the user sees is what the user grabs.
   hovered_light_ = -1;
   if (drag_.mode == DragMode::kNone && mouse_is_ours) {
     const float grab = ui::light_marker_radius(platform_.ui_scale()) * kMarkerGrabFactor;
     float best = grab * grab;
-    for (int i = 0; i < static_cast<int>(scene.lights.size()); ++i) {
-      const Light& light = scene.lights[static_cast<std::size_t>(i)];
-      if (light.type != LightType::kPoint) continue;
-      const auto p = ui::project(camera, light.position, view_w, view_h);
-      if (!p) continue;
-      const float dx = static_cast<float>(p->x) + viewport_.x - mouse.x;
-      const float dy = static_cast<float>(p->y) + viewport_.y - mouse.y;
+    for (const ui::LightMarker& marker : markers_) {
+      const float dx = marker.pos.x - mouse.x;
+      const float dy = marker.pos.y - mouse.y;
       if (dx * dx + dy * dy <= best) {
         best = dx * dx + dy * dy;
-        hovered_light_ = i;
+        hovered_light_ = marker.index;
       }
     }
   }
@@ -284,10 +287,11 @@ void Viewer::handle_viewport_input() {
         drag_ = Drag{};
         drag_.button = button;
         drag_.start = mouse;
-        if (button == ImGuiMouseButton_Left && hovered_light_ >= 0) {
+        if (button == ImGuiMouseButton_Left && hovered_light_ >= 0 &&
+            hovered_light_ < static_cast<int>(scene.lights.size())) {
           drag_.mode = DragMode::kLight;
           drag_.light = hovered_light_;
-          drag_.light_depth = ui::view_depth(camera, scene.lights[static_cast<std::size_t>(hovered_light_)].position);
+          drag_.light_depth = ui::view_depth(view, scene.lights[static_cast<std::size_t>(hovered_light_)].position);
           selected_light_ = hovered_light_;
         } else if (button == ImGuiMouseButton_Left) {
           drag_.mode = io.KeyShift ? DragMode::kPan : DragMode::kOrbit;
@@ -297,41 +301,17 @@ void Viewer::handle_viewport_input() {
         break;
       }
       if (io.MouseWheel != 0) {
-        ui::dolly(camera, std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel)));
+        ui::dolly(camera, std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel)), dolly_limit_);
         camera_changed_ = true;
       }
     }
   } else if (ImGui::IsMouseDown(drag_.button)) {
     if (!drag_.moved && ImGui::IsMouseDragging(drag_.button, kDragThreshold)) drag_.moved = true;
     const ImVec2 d = io.MouseDelta;
-    if (drag_.moved && (d.x != 0 || d.y != 0)) {
-      const double per_px = kOrbitRadPerPixel / platform_.ui_scale();
-      switch (drag_.mode) {
-        case DragMode::kOrbit:
-          // Drag right: the scene turns right; drag down: look more from above.
-          ui::orbit(camera, -d.x * per_px, d.y * per_px);
-          camera_changed_ = true;
-          break;
-        case DragMode::kPan:
-          ui::pan(camera, d.x, d.y, viewport_.height);
-          camera_changed_ = true;
-          break;
-        case DragMode::kDolly:
-          ui::dolly(camera, std::exp(d.y * kDollyPerPixel / platform_.ui_scale()));
-          camera_changed_ = true;
-          break;
-        case DragMode::kLight:
-          if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size())) {
-            const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
-            scene.lights[static_cast<std::size_t>(drag_.light)].position =
-                ui::unproject(camera, at, drag_.light_depth, view_w, view_h);
-            scene_edited_ = true;
-          }
-          break;
-        case DragMode::kNone:
-          break;
-      }
-    }
+    // A grabbed light follows the pointer from the first pixel (an arrow at the edge brings the
+    // light into view at once); the camera waits for the drag threshold, so a click stays a click.
+    const bool moving = (drag_.moved || drag_.mode == DragMode::kLight) && (d.x != 0 || d.y != 0);
+    if (moving) drag_viewport(mouse, d, view, view_w, view_h);
   } else {
     if (drag_.mode == DragMode::kOrbit && !drag_.moved) {
       // Plain click selects a material (as before); Ctrl+click, or any click in probe mode, probes.
@@ -340,21 +320,115 @@ void Viewer::handle_viewport_input() {
     }
     drag_ = Drag{};
   }
-  interacting_ = drag_.mode != DragMode::kNone && drag_.moved;
+  interacting_ = drag_.mode != DragMode::kNone && (drag_.moved || drag_.mode == DragMode::kLight);
+  handle_keys();
+}
 
-  if (!io.WantCaptureKeyboard) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) frame_requested_ = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) reset_requested_ = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) sidebar_visible_ = !sidebar_visible_;
-  }
-  // Ctrl+Z is also a text field's own undo: only take it when no field has the keyboard.
-  if (!io.WantTextInput && io.KeyCtrl) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_Z, false)) {
-      if (io.KeyShift) redo();
-      else undo();
+void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int view_w, int view_h) {
+  Scene& scene = doc_.scene();
+  Camera& camera = scene.camera;
+  const double per_px = kOrbitRadPerPixel / platform_.ui_scale();
+  switch (drag_.mode) {
+    case DragMode::kOrbit:
+      // The scene follows the hand: drag right, it turns right; drag down, it is seen from higher up.
+      ui::orbit(camera, -delta.x * per_px, delta.y * per_px);
+      camera_changed_ = true;
+      break;
+    case DragMode::kPan: {
+      Camera moved = view;  // the fitted field of view sets how far a pixel goes
+      ui::pan(moved, delta.x, delta.y, viewport_.height);
+      camera.position = moved.position;
+      camera.look_at = moved.look_at;
+      camera_changed_ = true;
+      break;
     }
-    if (ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo();
+    case DragMode::kDolly:
+      ui::dolly(camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
+      camera_changed_ = true;
+      break;
+    case DragMode::kLight:
+      if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size()) && drag_.light_depth > 0) {
+        const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
+        scene.lights[static_cast<std::size_t>(drag_.light)].position =
+            ui::unproject(view, at, drag_.light_depth, view_w, view_h);
+        scene_edited_ = true;
+      }
+      break;
+    case DragMode::kNone:
+      break;
   }
+}
+
+void Viewer::handle_keys() {
+  const ImGuiIO& io = ImGui::GetIO();
+  // Presses come from GLFW's key events, not from the key state once per frame: a tap shorter
+  // than a frame still counts. A text field being edited keeps its keys.
+  for (const KeyPress& press : platform_.take_key_presses()) {
+    if (io.WantTextInput) continue;
+    const bool ctrl = (press.mods & GLFW_MOD_CONTROL) != 0;
+    const bool shift = (press.mods & GLFW_MOD_SHIFT) != 0;
+    if (ctrl) {
+      // Ctrl+Z is also a text field's own undo: taken only when no field has the keyboard.
+      if (press.key == GLFW_KEY_Z) shift ? redo() : undo();
+      if (press.key == GLFW_KEY_Y) redo();
+      continue;
+    }
+    if (press.key == GLFW_KEY_F1 || (press.key == GLFW_KEY_SLASH && shift)) {
+      help_visible_ = !help_visible_;
+      continue;
+    }
+    if (press.key == GLFW_KEY_ESCAPE && help_visible_) {
+      help_visible_ = false;
+      continue;
+    }
+    if (io.WantCaptureKeyboard && !help_visible_) continue;  // a widget is active
+    shortcut(press.key, shift);
+  }
+}
+
+void Viewer::shortcut(int key, bool shift) {
+  Scene& scene = doc_.scene();
+  if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
+    const int digit = key - GLFW_KEY_1;  // 0 for the key 1
+    if (shift) {
+      // Shift+1..9: solo light L0..L8 (again: end the solo).
+      if (digit < static_cast<int>(scene.lights.size())) {
+        ui::toggle_solo(scene.lights, solo_, digit);
+        selected_light_ = digit;
+        scene_edited_ = true;
+      }
+    } else if (digit < static_cast<int>(kShortcutTerms.size())) {
+      // 1 the full image, 2..6 its terms in the order of the equation.
+      if (render_settings_.term != kShortcutTerms[static_cast<std::size_t>(digit)]) {
+        render_settings_.term = kShortcutTerms[static_cast<std::size_t>(digit)];
+        settings_changed_ = true;
+      }
+    }
+    return;
+  }
+  switch (key) {
+    case GLFW_KEY_F: frame_requested_ = true; break;
+    case GLFW_KEY_R: reset_requested_ = true; break;
+    case GLFW_KEY_H: sidebar_visible_ = !sidebar_visible_; ++sidebar_toggles_; break;
+    case GLFW_KEY_M:
+      instruments_.small_multiples = !instruments_.small_multiples;
+      settings_changed_ = true;
+      break;
+    default: break;
+  }
+}
+
+double Viewer::view_aspect() const {
+  if (!(viewport_.width >= 1 && viewport_.height >= 1)) return 0;
+  const int columns = instruments_.small_multiples ? kMultiplesColumns : 1;
+  const int rows = instruments_.small_multiples ? kMultiplesRows : 1;
+  return (static_cast<double>(viewport_.width) / columns) / (static_cast<double>(viewport_.height) / rows);
+}
+
+Camera Viewer::view_camera() const {
+  const Scene& scene = doc_.scene();
+  const double framed = scene.height > 0 ? static_cast<double>(scene.width) / scene.height : 0;
+  return ui::fit_to_view(scene.camera, framed, view_aspect());
 }
 
 void Viewer::pick(ImVec2 mouse) {
@@ -366,7 +440,7 @@ void Viewer::pick(ImVec2 mouse) {
   const int px = std::clamp(static_cast<int>(std::floor(x)), 0, w - 1);
   const int py = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
   // The same camera formula as the renderer, through the clicked point of the pixel.
-  const CameraFrame frame = make_camera_frame(doc_.scene().camera, w, h);
+  const CameraFrame frame = make_camera_frame(view_camera(), w, h);
   const Ray ray = camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0));
   const std::optional<Hit> hit = intersect(*snapshot_, ray);
   if (!hit) {
@@ -399,15 +473,18 @@ void Viewer::apply_edits(double frame_start) {
   Scene& scene = doc_.scene();
   const ImGuiIO& io = ImGui::GetIO();
   if (frame_requested_ && viewport_.height > 0) {
-    if (ui::frame_scene(scene.camera, scene, viewport_.width / viewport_.height)) camera_changed_ = true;
+    // Framed for the scene's own image: the view's fitting keeps that in any window.
+    const double framed = scene.height > 0 ? static_cast<double>(scene.width) / scene.height : 1;
+    if (ui::frame_scene(scene.camera, scene, framed)) camera_changed_ = true;
   }
   if (reset_requested_) {
     scene.camera = doc_.loaded_camera();
     camera_changed_ = true;
   }
   frame_requested_ = reset_requested_ = false;
-  if (scene_edited_) doc_.mark_dirty();
+  if (scene_edited_) doc_.update_dirty();
   if (scene_replaced_) {
+    dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());
     history_.reset(scene);
     commit_pending_ = false;
     solo_ = ui::LightSolo{};
@@ -451,6 +528,8 @@ void Viewer::apply_edits(double frame_start) {
     width = height = 0;  // nothing visible: the renderer idles
   }
   const bool resized = width != render_width_ || height != render_height_;
+  // A new window aspect may widen or narrow the fitted field of view: a new camera.
+  if (snapshot_ && !same_camera(view_camera(), snapshot_->camera)) camera_changed_ = true;
   const bool edited = scene_edited_ || camera_changed_ || scene_replaced_ || view_changed_ || !snapshot_;
   if (edited && !change_deferred_) deferred_since_ = frame_start;
   const bool scene_changed = edited || change_deferred_;
@@ -465,6 +544,7 @@ void Viewer::apply_edits(double frame_start) {
   if ((scene_changed && !defer) || resized) {
     if (scene_changed) {
       auto snapshot = std::make_shared<Scene>(scene);
+      snapshot->camera = view_camera();
       // The depth cut changes what is rendered, never the scene: history and file keep max_depth.
       apply_depth_cut(*snapshot, ui::depth_cut_of(rays_));
       prepare_scene(*snapshot);
@@ -485,6 +565,7 @@ void Viewer::apply_edits(double frame_start) {
     if (term_renderer) term_renderer->set_interacting(interacting_ || edited_while_active_);
   }
   scene_edited_ = camera_changed_ = scene_replaced_ = settings_changed_ = view_changed_ = false;
+  take_a_when_final();
   update_title();
 }
 
@@ -639,7 +720,7 @@ void Viewer::refresh_probe() {
   probe_y_ = std::clamp(probe_y_, 0, render_height_ - 1);
   // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
   probe_ = probe_pixel(*snapshot_, render_width_, render_height_, probe_x_, probe_y_, shading_eye_);
-  probe_report_ = probe_to_text(*snapshot_, *probe_);
+  probe_report_ = probe_to_text(*snapshot_, *probe_, probe_precision_ ? 17 : 4);
   probe_occluders_.clear();
   for (const ProbeLight& light : probe_->root.lights) probe_occluders_.push_back(object_name(*snapshot_, light.occluder));
 }
@@ -664,10 +745,58 @@ void Viewer::restore(std::optional<Scene> step) {
 }
 
 void Viewer::snapshot_a() {
-  if (shown_.pixels.empty()) return;
-  image_a_ = shown_;
+  // A is the finished image of what is on screen now, never a half-converged one (its noise
+  // would show in |live - A| as if something had changed). Until it is done, A waits; an edit
+  // before then means the image asked for no longer exists.
+  a_requested_ = true;
+  a_generation_ = renderer_.status().generation;
+  a_dropped_ = false;
   if (instruments_.compare == 0) instruments_.compare = 1;
+  take_a_when_final();
+}
+
+void Viewer::take_a_when_final() {
+  if (!a_requested_) return;
+  if (renderer_.status().generation != a_generation_) {
+    a_requested_ = false;
+    a_dropped_ = true;
+    return;
+  }
+  if (!image_is_final() || shown_.pixels.empty()) return;
+  image_a_ = shown_;
+  a_requested_ = false;
   upload_pending_ = true;
+}
+
+bool Viewer::a_comparable() const {
+  if (image_a_.pixels.empty() || image_a_.width != shown_.width || image_a_.height != shown_.height ||
+      image_a_.divisor != shown_.divisor || image_a_.pixels.size() != shown_.pixels.size()) {
+    return false;
+  }
+  // The difference compares like with like: the same samples, so only a change shows.
+  return instruments_.compare != 2 || image_a_.spp == shown_.spp;
+}
+
+std::string Viewer::compare_caption() const {
+  char text[160];
+  if (a_requested_) {
+    std::snprintf(text, sizeof text, "A is taken when the image is done (%u of %d spp)", shown_.spp,
+                  render_settings_.target_spp);
+  } else if (image_a_.pixels.empty()) {
+    std::snprintf(text, sizeof text, "%s", a_dropped_ ? "A was not taken: the view changed before the image was done"
+                                                      : "no A yet: Snapshot A keeps the finished image");
+  } else if (image_a_.width != shown_.width || image_a_.height != shown_.height) {
+    std::snprintf(text, sizeof text, "A is %dx%d, the view is now %dx%d: take A again to compare", image_a_.width,
+                  image_a_.height, shown_.width, shown_.height);
+  } else if (!a_comparable()) {
+    std::snprintf(text, sizeof text, "|live - A| shows when live has A's %u spp (now %u)", image_a_.spp, shown_.spp);
+  } else if (instruments_.compare == 1) {
+    std::snprintf(text, sizeof text, "wipe: A (%u spp) left of the line, live right", image_a_.spp);
+  } else {
+    std::snprintf(text, sizeof text, "|live - A| \xC3\x97 %.0f (%u spp each)", static_cast<double>(instruments_.difference_gain),
+                  image_a_.spp);
+  }
+  return text;
 }
 
 bool Viewer::heat_shown() const { return render_settings_.term == Term::kRays && instruments_.compare == 0; }
@@ -690,9 +819,7 @@ std::vector<glm::vec3> Viewer::display_pixels() const {
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(heat_ramp_srgb(max > 0 ? shown_.pixels[i].x / max : 0));
     return out;
   }
-  const bool comparable = instruments_.compare != 0 && image_a_.width == shown_.width &&
-                          image_a_.height == shown_.height && image_a_.pixels.size() == shown_.pixels.size();
-  if (!comparable) return shown_.pixels;
+  if (instruments_.compare == 0 || !a_comparable()) return shown_.pixels;
   std::vector<glm::vec3> out(shown_.pixels.size());
   const int wipe_x = static_cast<int>(std::lround(instruments_.wipe * static_cast<float>(shown_.width)));
   for (int y = 0; y < shown_.height; ++y) {

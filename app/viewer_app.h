@@ -103,12 +103,31 @@ class Viewer {
   void poll_scene_file(double now);        // twice a second: reload a changed file (or flag it)
   void layout();                           // the viewport rectangle beside the panels
   void handle_viewport_input();            // drags, wheel, clicks and keys over the image
+  void drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int view_w, int view_h);  // one drag step
+  void handle_keys();                      // this frame's key presses (GLFW events, none lost)
+  void shortcut(int key, bool shift);      // what a plain (or shifted) key does over the view
   void draw_sidebar();                     // the panels; edits set the flags below
-  void draw_overlays();                    // light markers and the stats overlay
+  // The sidebar's panels (viewer_sidebar.cpp).
+  void sidebar_show();
+  void sidebar_materials();
+  void sidebar_lights();
+  void sidebar_probe();
+  void sidebar_instruments();
+  void sidebar_rays();
+  void sidebar_camera();
+  void sidebar_file();
+  void sidebar_render();
+  void draw_overlays();                    // boxes, captions, markers and labels over the image, apart
   void handle_guard_modal();               // the unsaved-changes dialog and its answer
+  void handle_conflict_modal();            // the changed-on-disk dialog (from Save) and its answer
   void apply_edits(double frame_start);    // at most one restart for everything this frame changed
   void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
   void after_swap();                       // edit-to-image latency of a first image just shown
+
+  // The camera the image is rendered with: the scene's, its field of view widened for a view
+  // narrower than the image the scene was framed for (see ui::fit_to_view).
+  Camera view_camera() const;
+  double view_aspect() const;                    // width / height of one rendered image (a cell)
 
   // Actions.
   void pick(ImVec2 mouse);                       // selects the material under a click
@@ -117,7 +136,9 @@ class Viewer {
   void undo();                                   // Ctrl+Z: the scene before the last edit
   void redo();                                   // Ctrl+Shift+Z
   void restore(std::optional<Scene> step);       // makes an undo/redo step the scene, if any
-  void snapshot_a();                             // keeps the image shown as A
+  void snapshot_a();                             // asks for A: the image shown, once it is done
+  void take_a_when_final();                      // takes the asked-for A when the image is done
+  bool a_comparable() const;                     // A and the live image can be compared as the view asks
   void save_figure(const std::string& path);     // the slide figure of the current snapshot
   std::optional<Vec3> head_eye() const;          // "move your head": the shading eye, nullopt when off
   Vec3 head_pivot() const;                       // the point the head turns about: the probed hit or look-at
@@ -126,14 +147,22 @@ class Viewer {
   std::vector<glm::vec3> display_pixels() const; // shown_, its heat map, or its wipe / difference against A
   bool heat_shown() const;                       // the rays view is on screen as a heat map
   void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
-  void draw_ray_tree_overlay(float cell_x, float cell_y, float cell_w, float cell_h);  // the probed tree over a cell
+  // Overlay parts (viewer_overlays.cpp).
+  std::vector<std::string> captions() const;     // what the top-centre captions say, top first
+  std::string compare_caption() const;           // what the compare view shows, or why it cannot
+  void draw_stats();                             // the stats box's contents
+  void draw_head_plot();                         // the "move your head" plot's contents
+  void draw_cell_labels_and_probe_ring();        // small multiples' labels, the probed pixel's ring
+  void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
+  void draw_ray_tree_lines();                    // the probed tree over the full image's cell
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
   std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
   void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
   void perform(const PendingAction& action);     // runs it
   void open_scene(const std::string& scene_arg);
   void reload_scene(bool keep_view);
-  void save_scene(bool as);                      // Save (false) or Save as the path field (true)
+  void save_scene(bool as);                      // Save (false) or Save as the path field (true), then after_save_
+  bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
   void save_png(const std::string& path);        // what is shown, exposure and curve applied
   void save_pfm(const std::string& path);        // the linear image
   // Writes a screenshot and reports it in the Screenshot panel; `kind` prefixes the size.
@@ -151,6 +180,7 @@ class Viewer {
   void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
   void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
   void write_state(const std::string& path) const;                    // `dump_state`
+  std::string depth_cut_label() const;                                // the depth-cut slider's text
   void write_stats_summary(const std::string& label);                 // percentiles into the stats log
 
   Platform& platform_;
@@ -188,9 +218,14 @@ class Viewer {
   ui::DisplaySettings display_;
   ui::InstrumentSettings instruments_;
   ui::LightSolo solo_;
+  ui::ItemLocations item_locations_;  // named widgets' rectangles (io.UserData), for test scripts
   int selected_material_ = 0;
   int selected_light_ = -1;
   int hovered_light_ = -1;
+  std::vector<ui::LightMarker> markers_;  // the light markers as drawn last frame (for grabbing)
+  double dolly_limit_ = 1e300;       // farthest the wheel takes the eye from look_at (ui::dolly_limit)
+  bool help_visible_ = false;        // the keys overlay (F1 or ?)
+  int sidebar_toggles_ = 0;          // H presses handled (the tests count lost taps)
   std::string picked_text_;          // what the last viewport click hit
   bool open_materials_ = false;      // a click picked a material: unfold its panel
   bool sidebar_visible_ = true;
@@ -200,6 +235,9 @@ class Viewer {
   PendingAction pending_;
   bool open_guard_ = false;          // open the modal this frame
   bool guard_visible_ = false;       // the modal is up
+  bool open_conflict_ = false;       // open the changed-on-disk dialog this frame
+  bool conflict_visible_ = false;    // it is up
+  PendingAction after_save_;         // what runs once a save (through the dialogs) succeeds
   ui::GuardChoice scripted_choice_ = ui::GuardChoice::kNone;
   bool quit_ = false;
   double next_file_poll_ = 0;        // glfwGetTime() of the next mtime check
@@ -213,8 +251,13 @@ class Viewer {
   int probe_x_ = 0;                    // the probed render pixel
   int probe_y_ = 0;
   std::string probe_report_;           // probe_to_text of probe_
+  bool probe_precision_ = false;       // the probe panel shows every digit (else four significant)
+  std::string camera_notice_;          // why the last typed camera value was refused
   std::vector<std::string> probe_occluders_;  // object_name of each primary-hit light's occluder
   ProgressiveFrame image_a_;           // snapshot A (pixels empty: none)
+  bool a_requested_ = false;           // Snapshot A was pressed; A is taken when the image is done
+  std::uint64_t a_generation_ = 0;     // the renderer generation A was asked of
+  bool a_dropped_ = false;             // an edit came before that image was done: no A
   std::string figure_path_ = "phonglab-figure.png";
   std::string figure_status_;
   std::optional<Vec3> shading_eye_;    // the head-moved eye the renderers and the probe use now
@@ -223,6 +266,9 @@ class Viewer {
   std::vector<ScreenSegment> tree_segments_;  // the overlay as drawn this frame (image coordinates)
   double heat_max_ = 0;                // top of the heat map's scale in the image on screen
   static constexpr int kTermCells = 5;  // the small multiples besides the full image
+  // Keys 1..6: the full image, then the terms in the order of the equation.
+  static constexpr std::array<Term, 6> kShortcutTerms = {Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular,
+                                                         Term::kReflection, Term::kRefraction};
   static constexpr int kMultiplesColumns = 3;  // small multiples: 3 x 2 cells, the full image last
   static constexpr int kMultiplesRows = 2;
   // The small multiples' cells in reading order (the full image is the main renderer's).

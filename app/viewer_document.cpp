@@ -24,6 +24,19 @@ std::optional<std::filesystem::file_time_type> SceneDocument::current_mtime() co
   return t;
 }
 
+std::string SceneDocument::content(const Scene& scene) const {
+  Scene copy = scene;
+  copy.camera = Camera{};  // navigation is not an edit
+  return scene_to_json(copy, ".");
+}
+
+void SceneDocument::mark_saved() {
+  saved_content_ = content(scene_);
+  dirty_ = false;
+}
+
+void SceneDocument::update_dirty() { dirty_ = content(scene_) != saved_content_; }
+
 bool SceneDocument::open(const std::string& scene_arg) {
   LoadResult result = load_scene_arg(scene_arg);
   if (!result.ok()) {
@@ -40,7 +53,7 @@ bool SceneDocument::open(const std::string& scene_arg) {
     source_ = scene_arg;
   }
   mtime_ = current_mtime();
-  dirty_ = false;
+  mark_saved();
   loaded_ = true;
   error_text_.clear();
   status_ = "opened " + source_;
@@ -67,7 +80,7 @@ bool SceneDocument::reload(bool keep_view) {
   scene_ = std::move(*result.scene);
   loaded_camera_ = scene_.camera;
   if (keep_view && file_kept_its_camera) scene_.camera = view;
-  dirty_ = false;
+  mark_saved();
   error_text_.clear();
   status_ = "reloaded " + file_path_;
   return true;
@@ -81,24 +94,25 @@ bool SceneDocument::write(const std::string& path) {
     return false;
   }
   error_text_.clear();
-  dirty_ = false;
-  status_ = "saved " + path;
+  mark_saved();
+  status_ = "saved " + std::filesystem::absolute(path).lexically_normal().string();
   return true;
 }
 
-bool SceneDocument::save() {
+SceneDocument::SaveResult SceneDocument::save(bool overwrite_outside_change) {
   if (file_path_.empty()) {
     error_text_ = "an embedded scene has no file: use Save as";
-    return false;
+    return SaveResult::kFailed;
   }
   if (opened_mesh()) {
     error_text_ = "this scene was opened from an OBJ file, which Save must not overwrite: use Save as (.json)";
-    return false;
+    return SaveResult::kFailed;
   }
-  if (!write(file_path_)) return false;
+  if (changed_on_disk() && !overwrite_outside_change) return SaveResult::kChangedOnDisk;
+  if (!write(file_path_)) return SaveResult::kFailed;
   loaded_camera_ = scene_.camera;
   mtime_ = current_mtime();  // our own write is not a change on disk
-  return true;
+  return SaveResult::kSaved;
 }
 
 bool SceneDocument::save_as(const std::string& path) {

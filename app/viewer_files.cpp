@@ -36,6 +36,7 @@ double srgb_to_linear(double c) {
 }  // namespace
 
 void Viewer::request(PendingAction action) {
+  doc_.update_dirty();  // edits made earlier in this frame count
   if (!doc_.dirty()) {
     perform(action);
     return;
@@ -54,23 +55,45 @@ void Viewer::perform(const PendingAction& action) {
 }
 
 void Viewer::handle_guard_modal() {
-  std::string action = "quit";
-  if (pending_.kind == PendingAction::Kind::kOpen) action = "open " + pending_.arg;
-  if (pending_.kind == PendingAction::Kind::kReload) action = "reload the file";
-  const ui::GuardChoice choice =
-      ui::unsaved_changes_modal(open_guard_, action, !doc_.file_path().empty(), scripted_choice_);
+  ui::GuardView view;
+  view.action = "quit";
+  if (pending_.kind == PendingAction::Kind::kOpen) view.action = "open " + pending_.arg;
+  if (pending_.kind == PendingAction::Kind::kReload) view.action = "reload the file";
+  view.can_save = !doc_.file_path().empty() && !doc_.opened_mesh();
+  view.changed_on_disk = !doc_.file_path().empty() && doc_.changed_on_disk();
+  const ui::GuardChoice choice = ui::unsaved_changes_modal(open_guard_, view, file_state_.path_field, scripted_choice_);
   if (open_guard_) guard_visible_ = true;
   open_guard_ = false;
-  scripted_choice_ = ui::GuardChoice::kNone;
+  if (guard_visible_) scripted_choice_ = ui::GuardChoice::kNone;
+  if (choice != ui::GuardChoice::kNone) {
+    guard_visible_ = false;
+    PendingAction pending = std::move(pending_);
+    pending_ = PendingAction{};
+    if (choice == ui::GuardChoice::kSave || choice == ui::GuardChoice::kSaveAs) {
+      // A save that meets an outside change asks first; the action waits for that answer.
+      after_save_ = std::move(pending);
+      save_scene(choice == ui::GuardChoice::kSaveAs);
+    } else if (choice == ui::GuardChoice::kDiscard) {
+      perform(pending);
+    }
+  }
+  handle_conflict_modal();
+}
+
+void Viewer::handle_conflict_modal() {
+  const ui::GuardChoice choice = ui::changed_on_disk_modal(open_conflict_, doc_.file_path(), scripted_choice_);
+  if (open_conflict_) conflict_visible_ = true;
+  open_conflict_ = false;
+  if (conflict_visible_) scripted_choice_ = ui::GuardChoice::kNone;
   if (choice == ui::GuardChoice::kNone) return;
-  guard_visible_ = false;
-  const PendingAction pending = std::move(pending_);
-  pending_ = PendingAction{};
-  if (choice == ui::GuardChoice::kSave) {
-    save_scene(false);
-    if (!doc_.dirty()) perform(pending);
-  } else if (choice == ui::GuardChoice::kDiscard) {
-    perform(pending);
+  conflict_visible_ = false;
+  PendingAction after = std::move(after_save_);
+  after_save_ = PendingAction{};
+  if (choice == ui::GuardChoice::kOverwrite) {
+    if (finish_save(doc_.save(true))) perform(after);
+  } else if (choice == ui::GuardChoice::kReload) {
+    reload_scene(false);  // the edits go, the file's version comes
+    if (after.kind != PendingAction::Kind::kReload) perform(after);
   }
 }
 
@@ -111,14 +134,32 @@ void Viewer::reload_scene(bool keep_view) {
 }
 
 void Viewer::save_scene(bool as) {
-  const bool ok = as ? doc_.save_as(file_state_.path_field) : doc_.save();
-  if (ok) {
-    file_state_.error_text.clear();
-    file_state_.status = doc_.status();
-    file_state_.changed_on_disk = false;
-  } else {
-    file_state_.error_text = doc_.error_text();
+  if (as) {
+    const bool ok = doc_.save_as(file_state_.path_field);
+    if (finish_save(ok ? SceneDocument::SaveResult::kSaved : SceneDocument::SaveResult::kFailed)) {
+      perform(after_save_);
+    }
+    after_save_ = PendingAction{};
+    return;
   }
+  const SceneDocument::SaveResult result = doc_.save();
+  if (result == SceneDocument::SaveResult::kChangedOnDisk) {
+    open_conflict_ = true;  // the answer decides; after_save_ waits for it
+    return;
+  }
+  if (finish_save(result)) perform(after_save_);
+  after_save_ = PendingAction{};
+}
+
+bool Viewer::finish_save(SceneDocument::SaveResult result) {
+  if (result != SceneDocument::SaveResult::kSaved) {
+    file_state_.error_text = doc_.error_text();
+    return false;
+  }
+  file_state_.error_text.clear();
+  file_state_.status = doc_.status();
+  file_state_.changed_on_disk = false;
+  return true;
 }
 
 void Viewer::save_png(const std::string& path) {

@@ -1,55 +1,243 @@
-// What the previewer draws over the image: light markers, captions, the probe ring, the ray tree, legends and the stats line, laid out so that none covers another.
+// What the previewer draws over the image: the stats line, legends, captions, the probe ring,
+// the ray tree and the light markers. Boxes are laid out first; captions, arrows and labels then
+// take places that no box holds, so nothing covers anything else, and every text sits on a dark
+// plate so it reads on any image.
 #include "app/viewer_app.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iostream>
-#include <sstream>
-#include <thread>
-
-#include <backends/imgui_impl_opengl3.h>
+#include <string>
+#include <vector>
 
 #include "renderer/camera.h"
 #include "renderer/figure.h"
-#include "renderer/geometry.h"
-#include "renderer/heat_map.h"
-#include "renderer/image_io.h"
-#include "renderer/probe_report.h"
 #include "renderer/ray_tree_view.h"
-#include "renderer/shading.h"
 #include "ui/camera_control.h"
-
 
 namespace phonglab {
 
+namespace {
+
+constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                           ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                           ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
+constexpr float kOverlayAlpha = 0.72f;  // boxes over the image: readable, the image still shows through
+
+bool overlaps(const ui::ScreenRect& a, const ui::ScreenRect& b) {
+  return a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y;
+}
+
+// The lowest bottom of the boxes `r` overlaps, or nothing.
+std::optional<float> blocked_until(const ui::ScreenRect& r, const std::vector<ui::ScreenRect>& taken) {
+  std::optional<float> bottom;
+  for (const ui::ScreenRect& t : taken) {
+    if (overlaps(r, t)) bottom = std::max(bottom.value_or(t.max.y), t.max.y);
+  }
+  return bottom;
+}
+
+// A small overlay window at `pos` (anchored at `pivot`); returns where it was drawn.
+template <typename Contents>
+ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, Contents contents) {
+  ImGui::SetNextWindowPos(pos, ImGuiCond_Always, pivot);
+  ImGui::SetNextWindowBgAlpha(kOverlayAlpha);
+  ui::ScreenRect rect;
+  if (ImGui::Begin(id, nullptr, kOverlayFlags)) {
+    contents();
+    rect.min = ImGui::GetWindowPos();
+    const ImVec2 size = ImGui::GetWindowSize();
+    rect.max = ImVec2(rect.min.x + size.x, rect.min.y + size.y);
+  }
+  ImGui::End();
+  return rect;
+}
+
+}  // namespace
+
 void Viewer::draw_overlays() {
+  markers_.clear();
   if (viewport_.width < 1 || viewport_.height < 1) return;
-  const Scene& scene = doc_.scene();
   const float scale = platform_.ui_scale();
+  const float margin = 8 * scale;
+  std::vector<ui::ScreenRect> taken;  // boxes and captions placed so far
+  const ImVec2 top_left(viewport_.x + margin, viewport_.y + margin);
+  const ImVec2 top_right(viewport_.x + viewport_.width - margin, viewport_.y + margin);
+  const ImVec2 bottom_left(viewport_.x + margin, viewport_.y + viewport_.height - margin);
+  const ImVec2 bottom_right(viewport_.x + viewport_.width - margin, viewport_.y + viewport_.height - margin);
+
+  // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left, the
+  // heat scale bottom right.
+  if (display_.show_stats) taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), [&] { draw_stats(); }));
+  draw_ray_tree_lines();
+  if (probe_ && rays_.overlay && rays_.legend && !tree_segments_.empty()) {
+    const bool blinn = snapshot_ && snapshot_->specular_model == SpecularModel::kBlinn;
+    taken.push_back(overlay_window("##ray_tree_legend", top_right, ImVec2(1, 0),
+                                   [&] { ui::ray_tree_legend(tree_segments_, blinn); }));
+  }
+  if (instruments_.move_head && snapshot_) {
+    taken.push_back(overlay_window("##head_plot", bottom_left, ImVec2(0, 1), [&] { draw_head_plot(); }));
+  }
+  if (heat_shown() && heat_max_ > 0) {
+    taken.push_back(
+        overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), [&] { ui::heat_legend(heat_max_, 220 * scale); }));
+  }
+
+  // Captions at the top centre, each below whatever box it would overlap.
+  float y = viewport_.y + margin;
+  for (const std::string& text : captions()) {
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    const float pad = 5 * scale;
+    ui::ScreenRect r{ImVec2(viewport_.x + (viewport_.width - size.x) / 2 - pad, y),
+                     ImVec2(viewport_.x + (viewport_.width + size.x) / 2 + pad, y + size.y + 2 * pad)};
+    while (const std::optional<float> bottom = blocked_until(r, taken)) {
+      const float shift = *bottom + 4 * scale - r.min.y;
+      r.min.y += shift;
+      r.max.y += shift;
+    }
+    ui::text_on_plate(ImGui::GetBackgroundDrawList(), ImVec2(r.min.x + pad, r.min.y + pad), text.c_str(), scale);
+    taken.push_back(r);
+    y = r.max.y + 4 * scale;
+  }
+  draw_cell_labels_and_probe_ring();
+  draw_light_markers(taken);
+  if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  if (shown_.pixels.empty()) {
+    const char* text = "rendering...";
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    ui::text_on_plate(draw, ImVec2(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + (viewport_.height - size.y) / 2),
+                      text, scale);
+  }
+  if (!sidebar_visible_) {
+    // With the panels hidden, say how to get them back (bottom centre, clear of the corner boxes).
+    const char* text = "H shows the panels  \xC2\xB7  F1 keys";
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    ui::text_on_plate(draw, ImVec2(viewport_.x + (viewport_.width - size.x) / 2, bottom_left.y - size.y - 4 * scale),
+                      text, scale, 0.55f);
+  }
+  if (help_visible_) {
+    overlay_window("##keys", ImVec2(viewport_.x + viewport_.width / 2, viewport_.y + viewport_.height / 2),
+                   ImVec2(0.5f, 0.5f), [] { ui::keys_help(); });
+  }
+}
+
+std::vector<std::string> Viewer::captions() const {
+  std::vector<std::string> lines;
+  const bool blinn = doc_.scene().specular_model == SpecularModel::kBlinn;
+  // What is on screen, when it is not the whole image: a projected slide must say so.
+  if (!instruments_.small_multiples && render_settings_.term != Term::kFull && !heat_shown()) {
+    lines.push_back(ui::term_caption(render_settings_.term, blinn));
+  }
+  if (snapshot_ && rays_.depth_cut) {
+    char caption[96];
+    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", snapshot_->max_depth,
+                  doc_.scene().max_depth);
+    lines.emplace_back(caption);
+  }
+  if (instruments_.compare != 0) lines.push_back(compare_caption());
+  return lines;
+}
+
+void Viewer::draw_stats() {
+  const ProgressiveStatus status = renderer_.status();
+  ui::StatsView stats;
+  double sum = 0, slowest = 0;
+  for (const auto& [start, seconds] : frame_times_) {
+    sum += seconds;
+    slowest = std::max(slowest, seconds);
+  }
+  stats.ui_frame_ms = frame_times_.empty() ? -1 : sum / static_cast<double>(frame_times_.size()) * 1e3;
+  stats.ui_frame_max_ms = slowest * 1e3;
+  stats.edit_to_image_ms = last_latency_ms_;
+  stats.have_frame = !shown_.pixels.empty();
+  stats.level_divisor = shown_.divisor;
+  stats.image_width = shown_.width;
+  stats.image_height = shown_.height;
+  stats.spp = shown_.spp;
+  stats.target_spp = render_settings_.target_spp;
+  stats.frame = shown_.stats;
+  stats.idle = status.idle;
+  stats.interacting = interacting_ || edited_while_active_;
+  stats.scene_error = file_state_.error_text;
+  stats.details = display_.stats_details;
+  ui::stats_overlay(stats);
+}
+
+void Viewer::draw_head_plot() {
+  // "Move your head": the highlight against the head angle.
+  ui::HeadPlotView plot;
+  plot.hit = probe_ ? &probe_->root : nullptr;
+  plot.eye_at_zero = snapshot_->camera.position;
+  plot.axis = glm::normalize(make_camera_frame(snapshot_->camera, 1, 1).up);
+  if (probe_ && probe_->root.hit && probe_->root.material >= 0 &&
+      probe_->root.material < static_cast<int>(snapshot_->materials.size())) {
+    plot.shininess = snapshot_->materials[static_cast<std::size_t>(probe_->root.material)].n;
+  }
+  plot.blinn = snapshot_->specular_model == SpecularModel::kBlinn;
+  plot.angle_deg = instruments_.head_angle_deg;
+  plot.width = 340 * platform_.ui_scale();
+  ui::head_plot(plot);
+}
+
+void Viewer::draw_cell_labels_and_probe_ring() {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const float scale = platform_.ui_scale();
+  const bool multiples = instruments_.small_multiples;
+  const int columns = multiples ? kMultiplesColumns : 1;
+  const int rows = multiples ? kMultiplesRows : 1;
+  const float cell_w = viewport_.width / static_cast<float>(columns);
+  const float cell_h = viewport_.height / static_cast<float>(rows);
+  if (multiples) {
+    const bool blinn = doc_.scene().specular_model == SpecularModel::kBlinn;
+    for (int cell = 0; cell < columns * rows; ++cell) {
+      const Term term = cell < kTermCells ? kCellTerms[static_cast<std::size_t>(cell)] : Term::kFull;
+      const std::string label = ui::term_caption(term, blinn);
+      const ImVec2 at(viewport_.x + static_cast<float>(cell % columns) * cell_w + 6 * scale,
+                      viewport_.y + static_cast<float>(cell / columns + 1) * cell_h - ImGui::GetFontSize() - 8 * scale);
+      ui::text_on_plate(draw, at, label.c_str(), scale);
+    }
+  }
+  // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
+  if (!probe_ || render_width_ <= 0 || render_height_ <= 0) return;
+  for (int cell = 0; cell < columns * rows; ++cell) {
+    const float x = viewport_.x + static_cast<float>(cell % columns) * cell_w +
+                    (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(render_width_) * cell_w;
+    const float y = viewport_.y + static_cast<float>(cell / columns) * cell_h +
+                    (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(render_height_) * cell_h;
+    ui::draw_probe_ring(draw, ImVec2(x, y), scale);
+  }
+}
+
+void Viewer::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
+  const Scene& scene = doc_.scene();
+  const Camera view = view_camera();
+  const float scale = platform_.ui_scale();
+  const float radius = ui::light_marker_radius(scale);
   const int view_w = static_cast<int>(std::lround(viewport_.width));
   const int view_h = static_cast<int>(std::lround(viewport_.height));
-
-  std::vector<ui::LightMarker> markers;
+  const ImVec2 lo(viewport_.x, viewport_.y);
+  const ImVec2 hi(viewport_.x + viewport_.width, viewport_.y + viewport_.height);
+  std::vector<ui::ScreenRect> occupied = taken;
   for (int i = 0; i < static_cast<int>(scene.lights.size()); ++i) {
     const Light& light = scene.lights[static_cast<std::size_t>(i)];
     if (light.type != LightType::kPoint) continue;
-    const auto p = ui::project(scene.camera, light.position, view_w, view_h);
+    const auto p = ui::project(view, light.position, view_w, view_h);
     if (!p) continue;  // behind the camera
     ui::LightMarker marker;
-    const ImVec2 at(static_cast<float>(p->x), static_cast<float>(p->y));
-    const float inset = 2.5f * ui::light_marker_radius(scale);
-    const ImVec2 clamped(std::clamp(at.x, inset, std::max(inset, viewport_.width - inset)),
-                         std::clamp(at.y, inset, std::max(inset, viewport_.height - inset)));
-    if (clamped.x != at.x || clamped.y != at.y) {
-      const float dx = at.x - clamped.x, dy = at.y - clamped.y;
+    const ImVec2 at(viewport_.x + static_cast<float>(p->x), viewport_.y + static_cast<float>(p->y));
+    const float inset = 2.5f * radius;
+    marker.pos = ImVec2(std::clamp(at.x, lo.x + inset, std::max(lo.x + inset, hi.x - inset)),
+                        std::clamp(at.y, lo.y + inset, std::max(lo.y + inset, hi.y - inset)));
+    if (marker.pos.x != at.x || marker.pos.y != at.y) {
+      const float dx = at.x - marker.pos.x, dy = at.y - marker.pos.y;
       const float length = std::sqrt(dx * dx + dy * dy);
       marker.offscreen = true;
       marker.toward = ImVec2(dx / length, dy / length);
+      // An arrow at the edge that a box covers slides along the edge until it is clear.
+      marker.pos = ui::slide_clear(marker.pos, inset, occupied, lo, hi);
     }
-    marker.pos = ImVec2(viewport_.x + clamped.x, viewport_.y + clamped.y);
     const double m = std::max(max_channel(light.intensity), 1e-9);
     marker.color = ImVec4(static_cast<float>(light.intensity.x / m), static_cast<float>(light.intensity.y / m),
                           static_cast<float>(light.intensity.z / m), 1.0f);
@@ -57,132 +245,30 @@ void Viewer::draw_overlays() {
     marker.selected = i == selected_light_;
     marker.hovered = i == hovered_light_ || (drag_.mode == DragMode::kLight && drag_.light == i);
     marker.index = i;
-    markers.push_back(marker);
+    occupied.push_back(ui::ScreenRect{ImVec2(marker.pos.x - inset, marker.pos.y - inset),
+                                      ImVec2(marker.pos.x + inset, marker.pos.y + inset)});
+    markers_.push_back(marker);
   }
-  ui::draw_light_markers(markers, ui::light_marker_radius(scale));
-  if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+  // Labels last: each at the first place beside its marker that no box, marker or label holds.
+  for (ui::LightMarker& marker : markers_) {
+    marker.label_pos = ui::place_label(marker, radius, occupied, lo, hi);
+    const ImVec2 size = ImGui::CalcTextSize("L00");
+    occupied.push_back(ui::ScreenRect{marker.label_pos, ImVec2(marker.label_pos.x + size.x, marker.label_pos.y + size.y)});
+  }
+  ui::draw_light_markers(markers_, radius, scale);
+}
 
-  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+void Viewer::draw_ray_tree_lines() {
+  // The ray tree over the full image: the only cell, or the last of the small multiples.
+  tree_segments_.clear();
+  if (!probe_ || !rays_.overlay || !snapshot_ || render_width_ <= 0 || render_height_ <= 0) return;
   const bool multiples = instruments_.small_multiples;
   const int columns = multiples ? kMultiplesColumns : 1;
   const int rows = multiples ? kMultiplesRows : 1;
   const float cell_w = viewport_.width / static_cast<float>(columns);
   const float cell_h = viewport_.height / static_cast<float>(rows);
-  if (multiples) {
-    for (int cell = 0; cell < columns * rows; ++cell) {
-      const ImVec2 at(viewport_.x + static_cast<float>(cell % columns) * cell_w + 4 * scale,
-                      viewport_.y + static_cast<float>(cell / columns) * cell_h + cell_h - ImGui::GetFontSize() - 4 * scale);
-      const std::string_view label = figure_label(cell < kTermCells ? kCellTerms[static_cast<std::size_t>(cell)] : Term::kFull);
-      draw->AddText(at, IM_COL32(255, 255, 255, 230), label.data(), label.data() + label.size());
-    }
-  }
-  // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
-  if (probe_ && render_width_ > 0 && render_height_ > 0) {
-    for (int cell = 0; cell < columns * rows; ++cell) {
-      const float x = viewport_.x + static_cast<float>(cell % columns) * cell_w +
-                      (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(render_width_) * cell_w;
-      const float y = viewport_.y + static_cast<float>(cell / columns) * cell_h +
-                      (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(render_height_) * cell_h;
-      const float r = 6 * scale;
-      draw->AddCircle(ImVec2(x, y), r, IM_COL32(0, 0, 0, 255), 20, 3 * scale);
-      draw->AddCircle(ImVec2(x, y), r, IM_COL32(255, 230, 0, 255), 20, 1.5f * scale);
-      draw->AddLine(ImVec2(x - 2.2f * r, y), ImVec2(x - r, y), IM_COL32(255, 230, 0, 255), 1.5f * scale);
-      draw->AddLine(ImVec2(x + r, y), ImVec2(x + 2.2f * r, y), IM_COL32(255, 230, 0, 255), 1.5f * scale);
-      draw->AddLine(ImVec2(x, y - 2.2f * r), ImVec2(x, y - r), IM_COL32(255, 230, 0, 255), 1.5f * scale);
-      draw->AddLine(ImVec2(x, y + r), ImVec2(x, y + 2.2f * r), IM_COL32(255, 230, 0, 255), 1.5f * scale);
-    }
-  }
-  // The depth cut is a way of looking: say so on the image, at the top centre.
-  if (snapshot_ && rays_.depth_cut) {
-    char caption[96];
-    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", snapshot_->max_depth,
-                  doc_.scene().max_depth);
-    const ImVec2 size = ImGui::CalcTextSize(caption);
-    const ImVec2 at(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + 8 * scale);
-    draw->AddRectFilled(ImVec2(at.x - 6 * scale, at.y - 3 * scale), ImVec2(at.x + size.x + 6 * scale, at.y + size.y + 3 * scale),
-                        IM_COL32(0, 0, 0, 170), 4 * scale);
-    draw->AddText(at, IM_COL32(255, 255, 255, 240), caption);
-  }
-  // The ray tree over the full image: the only cell, or the last of the small multiples.
-  tree_segments_.clear();
-  const int full_cell = columns * rows - 1;
-  draw_ray_tree_overlay(viewport_.x + static_cast<float>(full_cell % columns) * cell_w,
-                        viewport_.y + static_cast<float>(full_cell / columns) * cell_h, cell_w, cell_h);
-  if (heat_shown() && heat_max_ > 0) {
-    ImGui::SetNextWindowPos(ImVec2(viewport_.x + viewport_.width - 8 * scale, viewport_.y + viewport_.height - 8 * scale),
-                            ImGuiCond_Always, ImVec2(1, 1));
-    ImGui::SetNextWindowBgAlpha(0.75f);
-    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-    if (ImGui::Begin("##heat_legend", nullptr, flags)) ui::heat_legend(heat_max_, 220 * scale);
-    ImGui::End();
-  }
-  if (instruments_.compare == 1 && !image_a_.pixels.empty()) {
-    const float x = viewport_.x + instruments_.wipe * cell_w + static_cast<float>(columns - 1) * cell_w;
-    const float y0 = viewport_.y + static_cast<float>(rows - 1) * cell_h;
-    draw->AddLine(ImVec2(x, y0), ImVec2(x, y0 + cell_h), IM_COL32(255, 255, 255, 200), 2 * scale);
-    draw->AddText(ImVec2(x - ImGui::CalcTextSize("A ").x, y0 + cell_h / 2), IM_COL32(255, 255, 255, 230), "A");
-  }
-
-  // "Move your head": the highlight against the head angle, in a small window at the
-  // viewport's bottom-left (visible however the panels are scrolled).
-  if (instruments_.move_head && snapshot_) {
-    ui::HeadPlotView plot;
-    plot.hit = probe_ ? &probe_->root : nullptr;
-    plot.eye_at_zero = snapshot_->camera.position;
-    plot.axis = glm::normalize(make_camera_frame(snapshot_->camera, 1, 1).up);
-    if (probe_ && probe_->root.hit && probe_->root.material >= 0 &&
-        probe_->root.material < static_cast<int>(snapshot_->materials.size())) {
-      plot.shininess = snapshot_->materials[static_cast<std::size_t>(probe_->root.material)].n;
-    }
-    plot.blinn = snapshot_->specular_model == SpecularModel::kBlinn;
-    plot.angle_deg = instruments_.head_angle_deg;
-    plot.width = 340 * scale;
-    ImGui::SetNextWindowPos(ImVec2(viewport_.x + 8 * scale, viewport_.y + viewport_.height - 8 * scale), ImGuiCond_Always,
-                            ImVec2(0, 1));
-    ImGui::SetNextWindowBgAlpha(0.75f);
-    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-    if (ImGui::Begin("##head_plot", nullptr, flags)) ui::head_plot(plot);
-    ImGui::End();
-  }
-
-  if (display_.show_stats) {
-    const ProgressiveStatus status = renderer_.status();
-    ui::StatsView stats;
-    double sum = 0, slowest = 0;
-    for (const auto& [start, seconds] : frame_times_) {
-      sum += seconds;
-      slowest = std::max(slowest, seconds);
-    }
-    stats.ui_frame_ms = frame_times_.empty() ? 0 : sum / static_cast<double>(frame_times_.size()) * 1e3;
-    stats.ui_frame_max_ms = slowest * 1e3;
-    stats.edit_to_image_ms = last_latency_ms_;
-    stats.have_frame = !shown_.pixels.empty();
-    stats.level_divisor = shown_.divisor;
-    stats.image_width = shown_.width;
-    stats.image_height = shown_.height;
-    stats.spp = shown_.spp;
-    stats.target_spp = render_settings_.target_spp;
-    stats.frame = shown_.stats;
-    stats.idle = status.idle;
-    stats.interacting = interacting_ || edited_while_active_;
-    stats.scene_error = file_state_.error_text;
-    ui::stats_overlay(stats, ImVec2(viewport_.x + 8 * scale, viewport_.y + 8 * scale));
-  }
-  if (shown_.pixels.empty()) {
-    const char* text = "rendering...";
-    const ImVec2 size = ImGui::CalcTextSize(text);
-    ImGui::GetBackgroundDrawList()->AddText(
-        ImVec2(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + (viewport_.height - size.y) / 2),
-        IM_COL32(200, 200, 200, 255), text);
-  }
-}
-
-void Viewer::draw_ray_tree_overlay(float cell_x, float cell_y, float cell_w, float cell_h) {
-  if (!probe_ || !rays_.overlay || !snapshot_ || render_width_ <= 0 || render_height_ <= 0) return;
+  const float cell_x = viewport_.x + static_cast<float>(columns - 1) * cell_w;
+  const float cell_y = viewport_.y + static_cast<float>(rows - 1) * cell_h;
   RayTreeViewOptions options;
   options.shadow_rays = rays_.shadow_rays;
   options.secondary_rays = rays_.secondary_rays;
@@ -193,20 +279,10 @@ void Viewer::draw_ray_tree_overlay(float cell_x, float cell_y, float cell_w, flo
                                     ray_tree_near(*snapshot_, probe_->root));
   int lit_lights = 0;
   for (const ProbeLight& light : probe_->root.lights) lit_lights += light.lit_side ? 1 : 0;
-  const float scale = platform_.ui_scale();
   const ui::ImageRect rect{ImVec2(cell_x, cell_y), ImVec2(cell_w / static_cast<float>(render_width_),
                                                           cell_h / static_cast<float>(render_height_))};
   const bool blinn = snapshot_->specular_model == SpecularModel::kBlinn;
-  ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), tree_segments_, rect, scale, blinn, lit_lights);
-  if (!rays_.legend) return;
-  ImGui::SetNextWindowPos(ImVec2(viewport_.x + viewport_.width - 8 * scale, viewport_.y + 8 * scale), ImGuiCond_Always,
-                          ImVec2(1, 0));
-  ImGui::SetNextWindowBgAlpha(0.75f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-  if (ImGui::Begin("##ray_tree_legend", nullptr, flags)) ui::ray_tree_legend(tree_segments_, blinn);
-  ImGui::End();
+  ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), tree_segments_, rect, platform_.ui_scale(), blinn, lit_lights);
 }
 
 }  // namespace phonglab

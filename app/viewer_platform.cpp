@@ -19,8 +19,10 @@ constexpr std::array<const char*, 3> kFontCandidates = {
     "/usr/share/fonts/TTF/DejaVuSans.ttf",
     "/usr/share/fonts/dejavu/DejaVuSans.ttf",
 };
-// Latin-1, Greek and Coptic, arrows, mathematical operators; zero-terminated as ImGui wants.
-constexpr std::array<ImWchar, 9> kGlyphRanges = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+// Latin-1, Greek and Coptic, super- and subscripts (the a of I_a, the l of I_l), arrows,
+// mathematical operators; zero-terminated as ImGui wants.
+constexpr std::array<ImWchar, 11> kGlyphRanges = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2070, 0x209F,
+                                                  0x2190, 0x21FF, 0x2200, 0x22FF, 0};
 constexpr float kFontPixels = 15.0f;  // at scale 1
 
 std::string glfw_error_text() {
@@ -49,7 +51,13 @@ void install_activity_callbacks(Platform* platform) {
   glfwSetCursorPosCallback(w, [](GLFWwindow* win, double, double) { note(win); });
   glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int, int, int) { note(win); });
   glfwSetScrollCallback(w, [](GLFWwindow* win, double, double) { note(win); });
-  glfwSetKeyCallback(w, [](GLFWwindow* win, int, int, int, int) { note(win); });
+  glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int mods) {
+    note(win);
+    auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win));
+    if (p != nullptr && key != GLFW_KEY_UNKNOWN && (action == GLFW_PRESS || action == GLFW_REPEAT)) {
+      p->push_key_press(KeyPress{key, mods});
+    }
+  });
   glfwSetCharCallback(w, [](GLFWwindow* win, unsigned int) { note(win); });
   glfwSetWindowSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
   glfwSetFramebufferSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
@@ -63,6 +71,18 @@ void install_activity_callbacks(Platform* platform) {
 }  // namespace
 
 void Platform::note_event() { last_event_time_ = glfwGetTime(); }
+
+std::vector<KeyPress> Platform::take_key_presses() {
+  std::vector<KeyPress> presses;
+  presses.swap(key_presses_);
+  return presses;
+}
+
+void Platform::push_key_press(KeyPress press) {
+  constexpr std::size_t kMaxQueued = 256;  // a frame that never comes (minimised) keeps the newest
+  if (key_presses_.size() >= kMaxQueued) key_presses_.erase(key_presses_.begin());
+  key_presses_.push_back(press);
+}
 
 std::unique_ptr<Platform> Platform::create(const PlatformOptions& options, std::string& error) {
   std::unique_ptr<Platform> p(new Platform());

@@ -4,11 +4,18 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
 
 namespace phonglab {
+
+// A key press as GLFW reported it (repeats included), kept until the frame takes it.
+struct KeyPress {
+  int key = 0;   // GLFW_KEY_*
+  int mods = 0;  // GLFW_MOD_* bits held
+};
 
 struct PlatformOptions {
   int width = 1280;          // window size in screen coordinates
@@ -40,6 +47,10 @@ class Platform {
   double last_event_time() const { return last_event_time_; }
   // Records an event now (GLFW callbacks, and script input that bypasses GLFW).
   void note_event();
+  // Key presses since the last call, in order: a tap shorter than a frame is still one press.
+  std::vector<KeyPress> take_key_presses();
+  // Queues a press as the key callback does (GLFW, and test scripts).
+  void push_key_press(KeyPress press);
 
  private:
   Platform() = default;
@@ -52,6 +63,7 @@ class Platform {
   float user_scale_ = 1;
   bool fonts_built_ = false;  // apply_scale ran before: the font texture exists
   double last_event_time_ = 0;
+  std::vector<KeyPress> key_presses_;  // from the key callback, taken once per frame
 };
 
 }  // namespace phonglab

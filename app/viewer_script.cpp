@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <cstdio>
 
 #include "app/viewer_app.h"
 #include "ui/camera_control.h"
@@ -50,8 +52,10 @@ bool parse_vec3(const std::vector<std::string>& words, std::size_t first, bool g
   return true;
 }
 
-// GLFW key code of a key name: one letter or digit, or ESCAPE.
+// GLFW key code of a key name: one letter or digit, ESCAPE, F1 or SLASH.
 int key_code(const std::string& name) {
+  if (name == "F1") return GLFW_KEY_F1;
+  if (name == "SLASH") return GLFW_KEY_SLASH;
   if (name.size() == 1) {
     const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
     if (c >= 'A' && c <= 'Z') return GLFW_KEY_A + (c - 'A');
@@ -243,11 +247,11 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
         index < 0 || index >= static_cast<int>(lights.size())) {
       return fail("usage: drag_light I DX DY");
     }
-    const auto p = ui::project(doc_.scene().camera, lights[static_cast<std::size_t>(index)].position,
-                               static_cast<int>(std::lround(viewport_.width)),
-                               static_cast<int>(std::lround(viewport_.height)));
-    if (!p) return fail("the light is behind the camera");
-    const ImVec2 from(viewport_.x + static_cast<float>(p->x), viewport_.y + static_cast<float>(p->y));
+    // Where its marker (or its arrow at the edge) was drawn last frame: what a user would grab.
+    const auto marker = std::find_if(markers_.begin(), markers_.end(),
+                                     [&](const ui::LightMarker& m) { return m.index == index; });
+    if (marker == markers_.end()) return fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
+    const ImVec2 from = marker->pos;
     push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), 10, false);
     return wait_for(ScriptWait::kInput, 99);
   }
@@ -283,6 +287,9 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     release.key_down = false;
     input_steps_.push_back(press);
     input_steps_.push_back(release);
+    // The press also arrives as a key event, as GLFW's callback delivers it (the viewer's
+    // shortcuts read events; ImGui's widgets read the key state above).
+    platform_.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
     return wait_for(ScriptWait::kInput, 99);
   }
   if (name == "probe" || name == "ctrl_click") {
@@ -377,13 +384,51 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     return true;
   }
   if (name == "modal") {
-    if (w.size() != 2) return fail("usage: modal save|discard|cancel");
-    if (!guard_visible_) return fail("no unsaved-changes dialog is open");
+    constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload";
+    if (w.size() != 2) return fail(kUsage);
+    if (!guard_visible_ && !conflict_visible_) return fail("no unsaved-changes or changed-on-disk dialog is open");
     if (w[1] == "save") scripted_choice_ = ui::GuardChoice::kSave;
+    else if (w[1] == "save_as") scripted_choice_ = ui::GuardChoice::kSaveAs;
     else if (w[1] == "discard") scripted_choice_ = ui::GuardChoice::kDiscard;
     else if (w[1] == "cancel") scripted_choice_ = ui::GuardChoice::kCancel;
-    else return fail("usage: modal save|discard|cancel");
+    else if (w[1] == "overwrite") scripted_choice_ = ui::GuardChoice::kOverwrite;
+    else if (w[1] == "reload") scripted_choice_ = ui::GuardChoice::kReload;
+    else return fail(kUsage);
     return true;
+  }
+  if (name == "save") {
+    // The Save button, through the same checks: a file changed on disk opens its dialog, a
+    // refusal (an embedded scene, an OBJ) shows in the Scene panel and in dump_state's error.
+    if (w.size() != 1) return fail("usage: save");
+    save_scene(false);
+    return true;
+  }
+  if (name == "drag_item" || name == "click_item") {
+    // drag_item NAME DX DY [STEPS] | click_item NAME: real (injected) mouse input on a widget
+    // located by name in the last frame (docs/previewer.md lists the names).
+    int steps = 10;
+    double dx = 0, dy = 0;
+    const bool drag = name == "drag_item";
+    if (drag ? (w.size() < 4 || w.size() > 5 || !parse_double(w[2], dx) || !parse_double(w[3], dy) ||
+                (w.size() == 5 && !parse_int(w[4], steps)) || steps < 1)
+             : w.size() != 2) {
+      return fail("usage: drag_item NAME DX DY [STEPS] | click_item NAME");
+    }
+    const auto it = item_locations_.rects.find(w[1]);
+    if (it == item_locations_.rects.end()) return fail("no widget named '" + w[1] + "' was drawn (is its panel open?)");
+    const ImVec2 at((it->second.min.x + it->second.max.x) / 2, (it->second.min.y + it->second.max.y) / 2);
+    if (drag) {
+      push_drag(0, at, ImVec2(at.x + static_cast<float>(dx), at.y + static_cast<float>(dy)), steps, false);
+    } else {
+      InputStep hover;
+      hover.pos = at;
+      input_steps_.push_back(hover);
+      InputStep act = hover;
+      act.buttons[0] = true;
+      input_steps_.push_back(act);
+      input_steps_.push_back(hover);
+    }
+    return wait_for(ScriptWait::kInput, 99);
   }
   if (name == "dump_state") {
     if (w.size() != 2) return fail("usage: dump_state FILE");
@@ -549,6 +594,7 @@ bool Viewer::script_set(const std::vector<std::string>& w) {
     if (w[2] == "exposure") display_.exposure_ev = static_cast<float>(v);
     else if (w[2] == "srgb") display_.srgb = v != 0;
     else if (w[2] == "stats") display_.show_stats = v != 0;
+    else if (w[2] == "stats_details") display_.stats_details = v != 0;
     else if (w[2] == "sidebar") sidebar_visible_ = v != 0;
     else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) {
       display_.ui_size = static_cast<float>(v);
@@ -558,6 +604,14 @@ bool Viewer::script_set(const std::vector<std::string>& w) {
     return true;
   }
   return false;
+}
+
+std::string Viewer::depth_cut_label() const {
+  // The depth-cut slider's text, as the Rays panel shows it.
+  const int top = std::max(doc_.scene().max_depth, 0);
+  char text[80];
+  std::snprintf(text, sizeof text, ui::depth_cut_format(top).c_str(), std::clamp(rays_.cut_depth, 0, top));
+  return text;
 }
 
 void Viewer::write_state(const std::string& path) const {
@@ -578,6 +632,7 @@ void Viewer::write_state(const std::string& path) const {
       << "file=" << doc_.file_path() << "\n"
       << "dirty=" << (doc_.dirty() ? 1 : 0) << "\n"
       << "modal=" << (guard_visible_ ? 1 : 0) << "\n"
+      << "conflict=" << (conflict_visible_ ? 1 : 0) << "\n"
       << "error=" << first_error_line << "\n"
       << "picked=" << picked_text_ << "\n"
       << "selected_material=" << (have_material ? scene.materials[static_cast<std::size_t>(selected_material_)].name : "") << "\n"
@@ -585,6 +640,9 @@ void Viewer::write_state(const std::string& path) const {
       << "lights=" << scene.lights.size() << "\n"
       << "camera_position=" << vec(scene.camera.position) << "\n"
       << "camera_look_at=" << vec(scene.camera.look_at) << "\n"
+      << "camera_up=" << vec(scene.camera.up) << "\n"
+      << "camera_fov=" << std::setprecision(17) << (snapshot_ ? snapshot_->camera.fov_y_deg : view_camera().fov_y_deg)
+      << std::setprecision(6) << "\n"
       << "generation=" << status.generation << "\n"
       << "drawn_generation=" << drawn_generation_ << "\n"
       << "spp=" << shown_.spp << "\n"
@@ -596,9 +654,22 @@ void Viewer::write_state(const std::string& path) const {
       << "nan_count=" << shown_.stats.nan_count << "\n"
       << "status=" << file_state_.status << "\n"
       << "changed_on_disk=" << (file_state_.changed_on_disk ? 1 : 0) << "\n"
-      << "sidebar=" << (sidebar_visible_ ? 1 : 0) << "\n";
+      << "sidebar=" << (sidebar_visible_ ? 1 : 0) << "\n"
+      << "sidebar_toggles=" << sidebar_toggles_ << "\n"
+      << "help=" << (help_visible_ ? 1 : 0) << "\n"
+      << "ui_size=" << display_.ui_size << "\n"
+      << "stats_details=" << (display_.stats_details ? 1 : 0) << "\n"
+      << "camera_notice=" << camera_notice_ << "\n";
+  // Where the named widgets were drawn last frame: x y width height.
+  for (const auto& [item, rect] : item_locations_.rects) {
+    out << "item_" << item << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
+        << rect.max.y - rect.min.y << "\n";
+  }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) out << "light" << i << "_position=" << vec(scene.lights[i].position) << "\n";
-  for (const Material& m : scene.materials) out << "material_" << m.name << "_kd=" << vec(m.kd) << "\n";
+  for (const Material& m : scene.materials) {
+    out << "material_" << m.name << "_kd=" << vec(m.kd) << "\n"
+        << "material_" << m.name << "_n=" << m.n << "\n";
+  }
   std::string enabled;
   for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';
   out << "lights_enabled=" << enabled << "\n"
@@ -623,6 +694,7 @@ void Viewer::write_state(const std::string& path) const {
       << "tree_blocked=" << tree_blocked << "\n"
       << "tree_deepest=" << tree_deepest << "\n"
       << "depth_cut=" << (rays_.depth_cut ? rays_.cut_depth : -1) << "\n"
+      << "depth_cut_label=" << depth_cut_label() << "\n"
       << "scene_max_depth=" << scene.max_depth << "\n"
       << "render_max_depth=" << (snapshot_ ? snapshot_->max_depth : -1) << "\n"
       << "heat=" << (heat_shown() ? 1 : 0) << "\n"

@@ -246,14 +246,14 @@ Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<Ob
   const bool reflective = illum >= 3 && illum <= 7;
   const bool refractive = illum == 4 || illum == 6 || illum == 7;
   if (reflective) out.kr = out.ks;
+  // Tf as 3ds Max writes it and as the Cornell boxes' author reads it (G3D's ParseMTL): 1 - the
+  // transmitted fraction, so Tf 1 (or none) is opaque; the Wavefront spec calls it the transmitted
+  // fraction itself, but the files met in practice follow Max. d is the opaque fraction (coverage):
+  // light passes where neither blocks it, kt = 1 - d*Tf, for glass illums and for d below 1.
   const Color tf = mtl_color(m.transmittance, "Tf", m.name, warnings);
   const double dissolve = std::isfinite(m.dissolve) ? std::clamp(m.dissolve, 0.0, 1.0) : 1.0;
-  const Color filter = is_zero(tf) ? Color(1) : tf;
-  if (dissolve < 1) {
-    out.kt = (1 - dissolve) * filter;  // d (or 1 - Tr) below 1: see-through
-  } else if (refractive) {
-    out.kt = tf;  // glass illum with an opaque d: Tf alone says how much passes
-  }
+  const Color blocked = is_zero(tf) ? Color(1) : glm::min(tf, Color(1));  // tinyobjloader's 0 0 0: no Tf
+  if (dissolve < 1 || refractive) out.kt = Color(1) - dissolve * blocked;
   out.fresnel = illum == 5 || illum == 7;
   return out;
 }

@@ -114,11 +114,18 @@ std::string fmt(const char* format, ...) {
   return buf;
 }
 
-std::string rgb(const Vec3& c) { return fmt("(%.6g, %.6g, %.6g)", c.x, c.y, c.z); }
+// Significant digits: of scalars (t, dot products, F) and of vectors and colours.
+struct Digits {
+  int scalar = 9;
+  int vector = 6;
+};
 
-void node_text(const Scene& scene, const ProbeNode& node, const std::string& label, std::string& out) {
+std::string rgb(const Vec3& c, const Digits& d) { return fmt("(%.*g, %.*g, %.*g)", d.vector, c.x, d.vector, c.y, d.vector, c.z); }
+
+void node_text(const Scene& scene, const ProbeNode& node, const std::string& label, const Digits& d, std::string& out) {
+  const auto rgb = [&](const Vec3& c) { return phonglab::rgb(c, d); };
   const std::string pad(static_cast<std::size_t>(node.depth) * 4, ' ');
-  out += pad + label + fmt(" ray, depth %d, path weight %.6g\n", node.depth, node.weight);
+  out += pad + label + fmt(" ray, depth %d, path weight %.*g\n", node.depth, d.vector, node.weight);
   out += pad + "  O = " + rgb(node.origin) + "  D = " + rgb(node.dir) + "\n";
   if (!node.hit) {
     out += pad + "  misses everything: background " + rgb(node.total) + "\n";
@@ -126,20 +133,20 @@ void node_text(const Scene& scene, const ProbeNode& node, const std::string& lab
   }
   const Material& m = scene.materials[static_cast<std::size_t>(node.material)];
   const bool blinn = scene.specular_model == SpecularModel::kBlinn;
-  out += pad + fmt("  hits %s (material \"%s\") at t = %.9g, %s\n", object_name(scene, node.object).c_str(),
-                   m.name.c_str(), node.t, node.entering ? "from outside" : "from inside");
+  out += pad + fmt("  hits %s (material \"%s\") at t = %.*g, %s\n", object_name(scene, node.object).c_str(),
+                   m.name.c_str(), d.scalar, node.t, node.entering ? "from outside" : "from inside");
   out += pad + "  P = " + rgb(node.p) + "\n";
   out += pad + "  N = " + rgb(node.n) + "  V = " + rgb(node.v) + "\n";
   out += pad + "  ambient   ka*Ia = " + rgb(m.ka) + " * " + rgb(scene.ambient) + " = " + rgb(node.terms.ambient) + "\n";
   for (const ProbeLight& pl : node.lights) {
-    out += pad + fmt("  light %d: L = ", pl.index) + rgb(pl.l) + fmt("  N.L = %.9g", pl.n_dot_l);
+    out += pad + fmt("  light %d: L = ", pl.index) + rgb(pl.l) + fmt("  N.L = %.*g", d.scalar, pl.n_dot_l);
     if (!pl.lit_side) {
       out += " <= 0: behind the surface, adds nothing\n";
       continue;
     }
     out += fmt("\n%s    %s = ", pad.c_str(), blinn ? "H" : "R") + rgb(pl.r) +
-           fmt("  %s = %.9g  max(0, %s)^n = %.9g (n = %g)\n", blinn ? "N.H" : "R.V", pl.r_dot_v,
-               blinn ? "N.H" : "R.V", pl.spec_factor, m.n);
+           fmt("  %s = %.*g  max(0, %s)^n = %.*g (n = %g)\n", blinn ? "N.H" : "R.V", d.scalar, pl.r_dot_v,
+               blinn ? "N.H" : "R.V", d.scalar, pl.spec_factor, m.n);
     if (pl.visible) {
       out += pad + "    visible: diffuse I*kd*N.L = " + rgb(pl.diffuse) + "  specular I*ks*spec = " + rgb(pl.specular) + "\n";
     } else {
@@ -150,15 +157,15 @@ void node_text(const Scene& scene, const ProbeNode& node, const std::string& lab
   out += pad + "  specular   = " + rgb(node.terms.specular) + "\n";
   if (!is_zero(m.kr) || !is_zero(m.kt)) {
     out += pad + "  kr' = " + rgb(node.kr_eff) + "  kt' = " + rgb(node.kt_eff);
-    if (m.fresnel) out += fmt("  Fresnel F = %.9g", node.fresnel);
+    if (m.fresnel) out += fmt("  Fresnel F = %.*g", d.scalar, node.fresnel);
     if (node.tir) out += "  total internal reflection";
     out += "\n";
   }
   out += pad + "  reflection = " + rgb(node.terms.reflection) + "\n";
   out += pad + "  refraction = " + rgb(node.terms.refraction) + "\n";
   out += pad + "  I = ambient + diffuse + specular + reflection + refraction = " + rgb(node.total) + "\n";
-  if (node.reflection) node_text(scene, *node.reflection, "reflection", out);
-  if (node.refraction) node_text(scene, *node.refraction, node.tir ? "refraction (TIR, mirror direction)" : "refraction", out);
+  if (node.reflection) node_text(scene, *node.reflection, "reflection", d, out);
+  if (node.refraction) node_text(scene, *node.refraction, node.tir ? "refraction (TIR, mirror direction)" : "refraction", d, out);
 }
 
 }  // namespace
@@ -182,12 +189,13 @@ std::string probe_to_json(const Scene& scene, const PixelProbe& probe) {
   return out.dump(2) + "\n";
 }
 
-std::string probe_to_text(const Scene& scene, const PixelProbe& probe) {
+std::string probe_to_text(const Scene& scene, const PixelProbe& probe, int digits) {
+  const Digits d = digits > 0 ? Digits{digits, digits} : Digits{};
   std::string out = fmt("pixel (%d, %d), centre ray\n", probe.x, probe.y);
   out += "I = ka*Ia + sum_l vis_l*I_l*(kd*max(0,N.L) + ks*spec) + kr'*I_reflected + kt'*I_refracted\n";
-  node_text(scene, probe.root, "primary", out);
+  node_text(scene, probe.root, "primary", d, out);
   const Color& t = probe.root.total;
-  out += "pixel value (linear) = " + rgb(t) +
+  out += "pixel value (linear) = " + rgb(t, d) +
          fmt("  displayed sRGB8 = (%d, %d, %d)\n", linear_to_srgb8(t.x), linear_to_srgb8(t.y), linear_to_srgb8(t.z));
   return out;
 }

@@ -1636,6 +1636,12 @@ LoadResult load_scene_text(const std::string& text, const std::string& file_name
 }
 
 LoadResult load_scene_file(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = to_lower(c);
+  if (ext == ".mtl") {
+    return fail(path, "a material library (MTL) holds an OBJ mesh's materials and is not a scene: open the .obj "
+                      "file that names it (its mtllib line), or a scene .json with a mesh object");
+  }
   if (is_obj_path(path)) {
     try {
       return load_obj_scene(path);

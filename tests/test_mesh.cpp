@@ -189,8 +189,9 @@ TEST(MeshCornell, SphereBoxMapsTheMirrorAndGlassSpheresAndSkipsTheMtlsStrayVerte
   EXPECT_TRUE(left->fresnel);
   EXPECT_EQ(left->n, 1000);
   expect_color(left->kd, 0.01, 0.01, 0.01, "leftSphere.kd");
-  // rightSphere: illum 7 = glass with Fresnel; kt = Tf, ior = Ni, kr = Ks.
-  expect_color(right->kt, 0.1, 0.1, 0.1, "rightSphere.kt");
+  // rightSphere: illum 7 = glass with Fresnel; Tf 0.1 as its author (and 3ds Max) means it: 1 - the
+  // transmitted fraction, so kt = 0.9, a clear glass; ior = Ni, kr = Ks.
+  expect_color(right->kt, 0.9, 0.9, 0.9, "rightSphere.kt");
   expect_color(right->kr, 0.3, 0.3, 0.3, "rightSphere.kr");
   EXPECT_EQ(right->ior, 2.5);
   EXPECT_TRUE(right->fresnel);
@@ -628,21 +629,21 @@ TEST(MeshMaterials, MtlMapsOntoTheLecturesCoefficientsAsTheDocsTableSays) {
   expect_color(mat("mirror3").kr, 0.5, 0.5, 0.5, "illum 3: kr = Ks");
   EXPECT_FALSE(mat("mirror3").fresnel);
   expect_color(mat("glass4").kr, 0.1, 0.1, 0.1, "illum 4: kr = Ks");
-  expect_color(mat("glass4").kt, 0.8, 0.9, 1, "illum 4: kt = Tf");
+  expect_color(mat("glass4").kt, 1 - 0.8, 1 - 0.9, 0, "illum 4: kt = 1 - Tf");
   EXPECT_DOUBLE_EQ(mat("glass4").ior, 1.33);
   EXPECT_FALSE(mat("glass4").fresnel);
   expect_color(mat("mirror5").kr, 1, 1, 1, "illum 5: kr = Ks");
   expect_color(mat("mirror5").kt, 0, 0, 0, "illum 5: opaque");
   EXPECT_TRUE(mat("mirror5").fresnel);
-  expect_color(mat("glass6").kt, 0.5, 0.5, 0.5, "illum 6: kt = Tf");
+  expect_color(mat("glass6").kt, 0.5, 0.5, 0.5, "illum 6: kt = 1 - Tf");
   EXPECT_FALSE(mat("glass6").fresnel);
   expect_color(mat("glass7").kr, 0.3, 0.3, 0.3, "illum 7: kr = Ks");
-  expect_color(mat("glass7").kt, 0.1, 0.1, 0.1, "illum 7: kt = Tf");
+  expect_color(mat("glass7").kt, 1 - 0.1, 1 - 0.1, 1 - 0.1, "illum 7: kt = 1 - Tf");
   EXPECT_EQ(mat("glass7").ior, 2.5);
   EXPECT_TRUE(mat("glass7").fresnel);
-  // d < 1: kt = (1 - d) times Tf, or times 1 without a Tf; Tr is 1 - d.
+  // d < 1: kt = 1 - d*Tf (Tf 1 without one); Tr is 1 - d.
   expect_color(mat("dissolve").kt, 0.75, 0.75, 0.75, "d 0.25");
-  expect_color(mat("dissolve_tf").kt, 0.1, 0.2, 0.3, "d 0.5, Tf");
+  expect_color(mat("dissolve_tf").kt, 1 - 0.5 * 0.2, 1 - 0.5 * 0.4, 1 - 0.5 * 0.6, "d 0.5, Tf");
   expect_color(mat("dissolve_tf").kr, 0, 0, 0, "illum 1");
   expect_color(mat("tr").kt, 0.25, 0.25, 0.25, "Tr 0.25");
   // What tinyobjloader fills in for absent keys: Ns 1, Ni 1, colours 0.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include <glm/gtc/constants.hpp>
 
@@ -37,16 +38,28 @@ double min_distance(const Camera& camera) {
 
 }  // namespace
 
-bool camera_is_valid(const Camera& camera) {
-  if (!all_finite(camera.position) || !all_finite(camera.look_at) || !all_finite(camera.up)) return false;
-  if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) return false;
+std::string camera_problem(const Camera& camera) {
+  if (!all_finite(camera.position) || !all_finite(camera.look_at) || !all_finite(camera.up)) {
+    return "every coordinate must be a finite number";
+  }
+  if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) {
+    std::ostringstream text;
+    text << "fov y must be between 0 and 180 degrees (got " << camera.fov_y_deg << ")";
+    return text.str();
+  }
   const Vec3 view = camera.look_at - camera.position;
   const double distance = glm::length(view);
+  if (!(distance > min_distance(camera))) return "look at must differ from the position";
   const double up_length = glm::length(camera.up);
-  if (!(distance > min_distance(camera)) || !(up_length > 0)) return false;
+  if (!(up_length > 0)) return "up must not be the zero vector";
   // sin of the angle between view and up; 1e-6 is far below any deliberate setting.
-  return glm::length(glm::cross(view / distance, camera.up / up_length)) > 1e-6;
+  if (!(glm::length(glm::cross(view / distance, camera.up / up_length)) > 1e-6)) {
+    return "up must not point along the view direction";
+  }
+  return {};
 }
+
+bool camera_is_valid(const Camera& camera) { return camera_problem(camera).empty(); }
 
 void orbit(Camera& camera, double yaw_rad, double pitch_rad) {
   const Vec3 up = glm::normalize(camera.up);

@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "renderer/scene.h"
 
@@ -13,6 +14,9 @@ namespace phonglab::ui {
 // Whether the renderer can use the camera: position apart from look_at, up not parallel to
 // the view direction, fov_y in (0, 180). Edits that would break it are refused.
 bool camera_is_valid(const Camera& camera);
+// Why the renderer cannot use the camera ("fov y must be between 0 and 180 degrees (got 0)"), or
+// empty when it can: one rule with camera_is_valid.
+std::string camera_problem(const Camera& camera);
 
 // Turns the camera about look_at: `yaw_rad` about the up vector, `pitch_rad` towards up
 // (positive looks more from above); stops short of the poles so up never aligns with the view.

@@ -9,6 +9,7 @@
 
 #include "renderer/embedded_scenes.h"
 #include "ui/camera_control.h"
+#include "ui/overlay.h"
 #include "ui/widgets.h"
 
 namespace phonglab::ui {
@@ -21,6 +22,10 @@ const ImVec4 kWarningColor{1.0f, 0.8f, 0.3f, 1.0f};
 
 // Whether the current font can draw `c` (the built-in font lacks Greek and maths symbols).
 bool font_has(ImWchar c) { return ImGui::GetFont()->FindGlyphNoFallback(c) != nullptr; }
+
+// I with a subscript a and l: "Ia" in a sans-serif font reads as "la".
+std::string i_a() { return font_has(0x2090) ? "I\xE2\x82\x90" : "I_a"; }
+std::string i_l() { return font_has(0x2097) ? "I\xE2\x82\x97" : "I_l"; }
 
 // One row of the coefficient list: the widget takes the width left of the term text, which
 // names the coefficient's place in the equation.
@@ -50,25 +55,32 @@ ImVec4 display_color(const Color& c) {
 
 }  // namespace
 
-bool camera_panel(Camera& camera, CameraActions& actions) {
+bool camera_panel(Camera& camera, CameraActions& actions, std::string& notice) {
   bool edited = false;
   // Edit a copy and keep it only if the renderer can use it (no zero view vector, no up
-  // along the view).
+  // along the view); say why when it is refused.
   Camera edit = camera;
   bool changed = false;
   changed |= drag_vec3("position", edit.position, 0.02f);
   changed |= drag_vec3("look at", edit.look_at, 0.02f);
   changed |= drag_vec3("up", edit.up, 0.01f);
   changed |= slider_double("fov y (deg)", edit.fov_y_deg, 5.0, 150.0, "%.1f");
-  if (changed && camera_is_valid(edit)) {
-    camera = edit;
-    edited = true;
+  if (changed) {
+    notice = camera_problem(edit);
+    if (notice.empty()) {
+      camera = edit;
+      edited = true;
+    }
+  }
+  if (!notice.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+    ImGui::TextWrapped("Refused: %s. The camera keeps its last good value.", notice.c_str());
+    ImGui::PopStyleColor();
   }
   if (ImGui::Button("Frame (F)")) actions.frame_scene = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset (R)")) actions.reset = true;
-  ImGui::TextDisabled("Left-drag orbit, right-drag/wheel dolly,");
-  ImGui::TextDisabled("middle- or Shift+left-drag pan, click selects.");
+  ImGui::TextDisabled("Left-drag orbit, right-drag/wheel dolly, middle- or Shift+left-drag pan, click selects.");
   return edited;
 }
 
@@ -101,9 +113,9 @@ bool materials_panel(std::vector<Material>& materials, int& selected, SpecularMo
   const char* sum = greek ? "\xCE\xA3" : "sum";  // capital sigma
   const char* spec = model == SpecularModel::kBlinn ? "max(0,N\xC2\xB7H)^n" : "max(0,R\xC2\xB7V)^n";
   ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextDisabled("I = ka\xC2\xB7Ia + %s vis\xC2\xB7I_l\xC2\xB7(kd\xC2\xB7max(0,N\xC2\xB7L) + ks\xC2\xB7%s)"
+  ImGui::TextDisabled("I = ka\xC2\xB7%s + %s vis\xC2\xB7%s\xC2\xB7(kd\xC2\xB7max(0,N\xC2\xB7L) + ks\xC2\xB7%s)"
                       " + kr\xC2\xB7trace(R) + kt\xC2\xB7trace(T)",
-                      sum, spec);
+                      i_a().c_str(), sum, i_l().c_str(), spec);
   ImGui::PopTextWrapPos();
 
   Material& m = materials[static_cast<std::size_t>(selected)];
@@ -111,18 +123,22 @@ bool materials_panel(std::vector<Material>& materials, int& selected, SpecularMo
   const float term_width = ImGui::GetFontSize() * 9.0f;
   widget_before_term(term_width);
   edited |= color_strength_edit("##ka", m.ka, 1.0f);
-  term_text("ka\xC2\xB7Ia");
+  locate("material.ka");
+  term_text(("ka\xC2\xB7" + i_a()).c_str());
   widget_before_term(term_width);
   edited |= color_strength_edit("##kd", m.kd, 1.0f);
+  locate("material.kd");
   term_text("kd\xC2\xB7max(0,N\xC2\xB7L)");
   widget_before_term(term_width);
   edited |= color_strength_edit("##ks", m.ks, 1.0f);
+  locate("material.ks");
   term_text(model == SpecularModel::kBlinn ? "ks\xC2\xB7(N\xC2\xB7H)^n" : "ks\xC2\xB7(R\xC2\xB7V)^n");
   widget_before_term(term_width);
   if (slider_double("##n", m.n, 0.0, 2000.0, "%.1f", true)) {
     m.n = std::max(m.n, 0.0);
     edited = true;
   }
+  locate("material.n");
   term_text("n: shininess");
   widget_before_term(term_width);
   edited |= color_strength_edit("##kr", m.kr, 1.0f);
@@ -254,24 +270,48 @@ bool shading_settings_panel(Scene& scene) {
     scene.specular_model = model == 0 ? SpecularModel::kPhong : SpecularModel::kBlinn;
     edited = true;
   }
+  // N.H is closer to 1 than R.V (the half-angle is half the angle): the same highlight needs an
+  // exponent about four times larger. Offered, never done behind the user's back.
+  const bool blinn = scene.specular_model == SpecularModel::kBlinn;
+  ImGui::TextDisabled(blinn ? "Blinn-Phong: n about 4\xC3\x97 Phong's gives the same highlight."
+                            : "Phong: n about \xC2\xBC of Blinn-Phong's gives the same highlight.");
+  if (ImGui::SmallButton(blinn ? "every material's n \xC3\x97 4" : "every material's n \xC3\xB7 4")) {
+    for (Material& m : scene.materials) m.n = blinn ? m.n * 4 : m.n / 4;
+    edited = true;
+  }
   return edited;
+}
+
+void show_panel(Term& term, bool& small_multiples, bool blinn) {
+  // The lecture's terms as buttons, in the order of the equation: one click, and the caption on
+  // the image says what is shown.
+  static constexpr std::array<Term, 6> kTerms = {Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular,
+                                                 Term::kReflection, Term::kRefraction};
+  static constexpr std::array<const char*, 6> kLabels = {"1 image", "2 ambient", "3 diffuse", "4 specular",
+                                                         "5 reflection", "6 refraction"};
+  for (std::size_t i = 0; i < kTerms.size(); ++i) {
+    if (i % 3 != 0) ImGui::SameLine();
+    const bool on = term == kTerms[i] && !small_multiples;
+    if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    if (ImGui::Button(kLabels[i], ImVec2(ImGui::GetContentRegionAvail().x / static_cast<float>(3 - i % 3) -
+                                             (i % 3 == 2 ? 0 : ImGui::GetStyle().ItemSpacing.x * 0.67f),
+                                         0))) {
+      term = kTerms[i];
+      small_multiples = false;
+    }
+    if (on) ImGui::PopStyleColor();
+    locate(std::string("show.") + std::string(term_name(kTerms[i])));
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", term_caption(kTerms[i], blinn).c_str());
+  }
+  ImGui::Checkbox("all five and their sum side by side (M)", &small_multiples);
+  int debug = term == Term::kNormal ? 1 : term == Term::kDepth ? 2 : term == Term::kRays ? 3 : 0;
+  if (ImGui::Combo("debug view", &debug, "none\0normal\0depth\0rays per pixel\0")) {
+    term = debug == 1 ? Term::kNormal : debug == 2 ? Term::kDepth : debug == 3 ? Term::kRays : Term::kFull;
+  }
 }
 
 bool render_settings_panel(RenderSettings& settings, int hardware_threads) {
   bool edited = false;
-  int term = static_cast<int>(settings.term);
-  const char* current = term_name(settings.term).data();  // the names are string literals
-  if (ImGui::BeginCombo("show", current)) {
-    for (int i = 0; i <= static_cast<int>(Term::kRays); ++i) {
-      ImGui::PushID(i);
-      if (ImGui::Selectable(term_name(static_cast<Term>(i)).data(), i == term)) {
-        settings.term = static_cast<Term>(i);
-        edited = true;
-      }
-      ImGui::PopID();
-    }
-    ImGui::EndCombo();
-  }
   edited |= ImGui::SliderInt("target spp", &settings.target_spp, 1, 4096, "%d",
                              ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   edited |= ImGui::SliderFloat("resolution", &settings.resolution_scale, 0.125f, 1.0f, "%.3f x",
@@ -294,14 +334,20 @@ bool display_panel(DisplaySettings& display) {
   }
   edited |= ImGui::Checkbox("sRGB display", &display.srgb);
   help_marker("Off shows the linear values unencoded (too dark): the reason images are sRGB-encoded.");
-  edited |= ImGui::Checkbox("stats overlay", &display.show_stats);
-  // Applied on release: the panels would otherwise resize under the mouse while it drags.
-  float size = display.ui_size;
+  edited |= ImGui::Checkbox("stats line", &display.show_stats);
+  ImGui::SameLine();
+  edited |= ImGui::Checkbox("details", &display.stats_details);
+  // Applied on release: the panels would otherwise resize under the mouse while it drags. The
+  // value being dragged is kept between frames, so the release applies what the slider showed.
+  float size = display.ui_size_dragged > 0 ? display.ui_size_dragged : display.ui_size;
   ImGui::SliderFloat("UI size", &size, 0.75f, 2.5f, "%.2f x", ImGuiSliderFlags_AlwaysClamp);
+  locate("display.ui_size");
+  if (ImGui::IsItemActive()) display.ui_size_dragged = size;
   if (ImGui::IsItemDeactivatedAfterEdit()) {
     display.ui_size = size;
     edited = true;
   }
+  if (!ImGui::IsItemActive()) display.ui_size_dragged = -1;
   return edited;
 }
 
@@ -311,9 +357,11 @@ bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions,
   bool edited = false;
   edited |= ImGui::Checkbox("probe mode", &settings.probe_mode);
   help_marker("On: a click in the view probes that pixel. Off: Ctrl+click probes, a click selects a material.");
-  edited |= ImGui::Checkbox("small multiples", &settings.small_multiples);
-  help_marker("The five terms of the equation and their sum side by side, live while editing.");
+  // Every row is always drawn (disabled when it does not apply), so nothing moves under the
+  // pointer when A is taken or a mode is switched on.
   if (ImGui::Button("Snapshot A")) actions.snapshot_a = true;
+  locate("instruments.snapshot_a");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keeps the finished image as A (taken when the image is done).");
   ImGui::SameLine();
   ImGui::BeginDisabled(!have_a);
   edited |= ImGui::RadioButton("live", &settings.compare, 0);
@@ -321,10 +369,14 @@ bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions,
   edited |= ImGui::RadioButton("wipe", &settings.compare, 1);
   ImGui::SameLine();
   edited |= ImGui::RadioButton("|live - A|", &settings.compare, 2);
-  if (settings.compare == 1) edited |= ImGui::SliderFloat("wipe", &settings.wipe, 0.0f, 1.0f, "A | live at %.2f");
+  ImGui::EndDisabled();
+  ImGui::BeginDisabled(!have_a || settings.compare == 0);
   if (settings.compare == 2) {
-    edited |= ImGui::SliderFloat("gain", &settings.difference_gain, 1.0f, 64.0f, "x%.0f", ImGuiSliderFlags_Logarithmic);
+    edited |= ImGui::SliderFloat("gain", &settings.difference_gain, 1.0f, 64.0f, "\xC3\x97%.0f", ImGuiSliderFlags_Logarithmic);
+  } else {
+    edited |= ImGui::SliderFloat("wipe", &settings.wipe, 0.0f, 1.0f, "A | live at %.2f");
   }
+  locate("instruments.wipe");
   ImGui::EndDisabled();
   char label[48];
   std::snprintf(label, sizeof label, "Undo (%zu)", undo_count);
@@ -342,28 +394,28 @@ bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions,
   edited |= ImGui::Checkbox("move your head", &settings.move_head);
   help_marker("Shades with the eye turned about the probed point (or the look-at point): only V changes, "
               "the view stays. Diffuse and ambient stay the same; specular (and reflection) change.");
-  if (settings.move_head) {
-    edited |= ImGui::SliderFloat("head angle", &settings.head_angle_deg, -90.0f, 90.0f, "%.0f deg");
-    if (ImGui::Button("Eye A = this eye, show |live - A|")) actions.head_reference = true;
-    help_marker("Keeps the image now as A; move the head: the difference has no diffuse term left.");
-  }
+  ImGui::BeginDisabled(!settings.move_head);
+  edited |= ImGui::SliderFloat("head angle", &settings.head_angle_deg, -90.0f, 90.0f, "%.0f deg");
+  if (ImGui::Button("Eye A = this eye, then show |live - A|")) actions.head_reference = true;
+  help_marker("Keeps the finished image as A; move the head: the difference has no diffuse term left.");
+  ImGui::EndDisabled();
   ImGui::Separator();
-  input_text("##figure", figure_path);
-  ImGui::SameLine();
   if (ImGui::Button("Figure for slides")) actions.save_figure = true;
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-FLT_MIN);
+  input_text("##figure", figure_path);
   if (!figure_status.empty()) ImGui::TextWrapped("%s", figure_status.c_str());
   return edited;
 }
 
 namespace {
 
-void rgb_text(const char* label, const Color& c) {
-  ImGui::Text("%-11s (%.4f, %.4f, %.4f)", label, c.x, c.y, c.z);
+// Probe numbers: `digits` significant digits (4 by default, 17 with "all digits").
+void rgb_text(const char* label, const Color& c, int digits) {
+  ImGui::Text("%-11s (%.*g, %.*g, %.*g)", label, digits, c.x, digits, c.y, digits, c.z);
 }
 
-void vec_text(const char* label, const Vec3& v) {
-  ImGui::Text("%-11s (%+.3f, %+.3f, %+.3f)", label, v.x, v.y, v.z);
-}
+void vec_text(const char* label, const Vec3& v, int digits) { rgb_text(label, v, digits); }
 
 }  // namespace
 
@@ -408,49 +460,76 @@ void head_plot(const HeadPlotView& view) {
   char overlay[64];
   std::snprintf(overlay, sizeof overlay, "%s^n = %.4g at %.0f deg (L%d)", view.blinn ? "N\xC2\xB7H" : "R\xC2\xB7V",
                 current, static_cast<double>(view.angle_deg), light->index);
-  ImGui::PlotLines("##head", values.data(), kSamples, 0, overlay, 0.0f, 1.0f,
-                   ImVec2(view.width, 90 * ImGui::GetFontSize() / 13));
-  // The current angle: a vertical line and a dot on the curve.
+  // The title above the plot (not inside it, where the dot would cover it), the curve, then
+  // ticks: 0 and 1 on the left, -90, 0 and +90 degrees below.
+  ImGui::TextUnformatted(overlay);
+  const float tick_w = ImGui::CalcTextSize("1.0 ").x;
+  ImGui::Dummy(ImVec2(tick_w, 0));
+  ImGui::SameLine(0, 0);
+  ImGui::PlotLines("##head", values.data(), kSamples, 0, nullptr, 0.0f, 1.0f,
+                   ImVec2(view.width - tick_w, 90 * ImGui::GetFontSize() / 13));
   const ImVec2 lo = ImGui::GetItemRectMin();
   const ImVec2 hi = ImGui::GetItemRectMax();
   const ImVec2 pad = ImGui::GetStyle().FramePadding;
-  const float x = lo.x + pad.x + (view.angle_deg + 90.0f) / 180.0f * (hi.x - lo.x - 2 * pad.x);
-  const float y = hi.y - pad.y - static_cast<float>(current) * (hi.y - lo.y - 2 * pad.y);
+  const float x0 = lo.x + pad.x, x1 = hi.x - pad.x, y0 = hi.y - pad.y, y1 = lo.y + pad.y;
+  const float x = x0 + (view.angle_deg + 90.0f) / 180.0f * (x1 - x0);
+  const float y = y0 - static_cast<float>(current) * (y0 - y1);
   ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImU32 tick = IM_COL32(200, 200, 200, 255);
+  const float h = ImGui::GetTextLineHeight();
+  draw->AddText(ImVec2(lo.x - tick_w, y1 - h / 2), tick, "1");
+  draw->AddText(ImVec2(lo.x - tick_w, y0 - h / 2), tick, "0");
+  // The current angle: a vertical line and a dot on the curve.
   draw->AddLine(ImVec2(x, lo.y), ImVec2(x, hi.y), IM_COL32(255, 230, 0, 160), 1.0f);
   draw->AddCircleFilled(ImVec2(x, y), 4.0f, IM_COL32(255, 230, 0, 255));
-  ImGui::TextDisabled("head angle -90..+90 deg about the camera's up; probed point %s", "P");
+  ImGui::Dummy(ImVec2(tick_w, h));
+  for (const int deg : {-90, 0, 90}) {
+    char label[8];
+    std::snprintf(label, sizeof label, deg > 0 ? "+%d" : "%d", deg);
+    const float tx = x0 + static_cast<float>(deg + 90) / 180.0f * (x1 - x0);
+    draw->AddLine(ImVec2(tx, hi.y), ImVec2(tx, hi.y + 4), tick, 1.0f);
+    const float w = ImGui::CalcTextSize(label).x;
+    draw->AddText(ImVec2(std::clamp(tx - w / 2, lo.x, hi.x - w), hi.y + 4), tick, label);
+  }
+  ImGui::TextDisabled("head angle (degrees) about the camera's up, around the probed point P");
 }
 
-void probe_panel(const ProbeView& view) {
+void probe_panel(const ProbeView& view, bool& all_digits) {
   if (view.probe == nullptr || view.scene == nullptr) {
-    ImGui::TextDisabled("Ctrl+click a pixel (or turn on probe mode and click) to probe it.");
+    ImGui::TextDisabled("Ctrl+click a pixel (or turn on probe mode and click) to probe it: its equation, term by "
+                        "term and light by light, appears here.");
     return;
   }
+  // Numbers never wrap inside themselves: this panel scrolls sideways instead.
+  ImGui::PushTextWrapPos(-1.0f);
+  const int d = all_digits ? 17 : 4;
   const PixelProbe& probe = *view.probe;
   const ProbeNode& root = probe.root;
   const bool blinn = view.scene->specular_model == SpecularModel::kBlinn;
   ImGui::Text("pixel (%d, %d) of %dx%d, centre ray", probe.x, probe.y, view.image_width, view.image_height);
-  rgb_text("linear", root.total);
+  ImGui::SameLine();
+  ImGui::Checkbox("all digits", &all_digits);
+  rgb_text("linear", root.total, d);
   ImGui::Text("%-11s (%d, %d, %d) at %+.1f EV", "displayed", view.srgb[0], view.srgb[1], view.srgb[2],
               static_cast<double>(view.exposure_ev));
   if (!root.hit) {
     ImGui::TextDisabled("The ray misses: the pixel is the background.");
+    ImGui::PopTextWrapPos();
     return;
   }
-  vec_text("P", root.p);
-  vec_text("N", root.n);
-  vec_text("V", root.v);
+  vec_text("P", root.p, d);
+  vec_text("N", root.n, d);
+  vec_text("V", root.v, d);
   ImGui::Separator();
-  rgb_text("ka\xC2\xB7Ia", root.terms.ambient);
-  rgb_text("diffuse", root.terms.diffuse);
-  rgb_text("specular", root.terms.specular);
-  rgb_text("reflection", root.terms.reflection);
-  rgb_text("refraction", root.terms.refraction);
-  rgb_text("= total", root.terms.sum());
-  ImGui::Text("kr' = (%.3f, %.3f, %.3f)  kt' = (%.3f, %.3f, %.3f)", root.kr_eff.x, root.kr_eff.y, root.kr_eff.z,
-              root.kt_eff.x, root.kt_eff.y, root.kt_eff.z);
-  ImGui::Text("F = %.4f  TIR: %s  entering: %s", root.fresnel, root.tir ? "yes" : "no", root.entering ? "yes" : "no");
+  rgb_text(("ka\xC2\xB7" + i_a()).c_str(), root.terms.ambient, d);
+  rgb_text("diffuse", root.terms.diffuse, d);
+  rgb_text("specular", root.terms.specular, d);
+  rgb_text("reflection", root.terms.reflection, d);
+  rgb_text("refraction", root.terms.refraction, d);
+  rgb_text("= total", root.terms.sum(), d);
+  rgb_text("kr'", root.kr_eff, d);
+  rgb_text("kt'", root.kt_eff, d);
+  ImGui::Text("F = %.*g  TIR: %s  entering: %s", d, root.fresnel, root.tir ? "yes" : "no", root.entering ? "yes" : "no");
   for (std::size_t i = 0; i < root.lights.size(); ++i) {
     const ProbeLight& light = root.lights[i];
     ImGui::PushID(static_cast<int>(i));
@@ -463,21 +542,20 @@ void probe_panel(const ProbeView& view) {
       ImGui::SameLine();
       ImGui::Text("(blocked by %s)", view.occluders[i].c_str());
     }
-    vec_text("L", light.l);
-    vec_text(blinn ? "H" : "R", light.r);
-    ImGui::Text("N\xC2\xB7L = %.4f   %s = %.4f   ^n = %.4g", light.n_dot_l, blinn ? "N\xC2\xB7H" : "R\xC2\xB7V",
-                light.r_dot_v, light.spec_factor);
-    rgb_text("diffuse", light.diffuse);
-    rgb_text("specular", light.specular);
+    vec_text("L", light.l, d);
+    vec_text(blinn ? "H" : "R", light.r, d);
+    ImGui::Text("N\xC2\xB7L = %.*g   %s = %.*g   ^n = %.*g", d, light.n_dot_l, blinn ? "N\xC2\xB7H" : "R\xC2\xB7V", d,
+                light.r_dot_v, d, light.spec_factor);
+    rgb_text("diffuse", light.diffuse, d);
+    rgb_text("specular", light.specular, d);
     ImGui::PopID();
   }
   ImGui::Separator();
   if (ImGui::TreeNodeEx("The equation with the numbers (and the children)", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::PushTextWrapPos(0.0f);
     ImGui::TextUnformatted(view.report.c_str());
-    ImGui::PopTextWrapPos();
     ImGui::TreePop();
   }
+  ImGui::PopTextWrapPos();
 }
 
 void scene_file_panel(SceneFileState& state, SceneFileActions& actions) {
@@ -485,9 +563,15 @@ void scene_file_panel(SceneFileState& state, SceneFileActions& actions) {
   input_text("path", state.path_field);
   if (ImGui::Button("Open")) actions.open = true;
   ImGui::SameLine();
-  ImGui::BeginDisabled(state.file_path.empty());
+  // Save writes the document's own JSON file: not an embedded scene's, not over an OBJ.
+  const bool can_save = !state.file_path.empty() && !state.opened_mesh;
+  ImGui::BeginDisabled(!can_save);
   if (ImGui::Button("Save")) actions.save = true;
   ImGui::EndDisabled();
+  if (!can_save && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip(state.opened_mesh ? "Opened from an OBJ file: Save as writes a scene .json that uses it."
+                                        : "An embedded scene has no file: Save as writes one.");
+  }
   ImGui::SameLine();
   if (ImGui::Button("Save as")) actions.save_as = true;
   ImGui::SameLine();
@@ -535,63 +619,59 @@ void screenshot_panel(ScreenshotState& state, ScreenshotActions& actions) {
   if (!state.status.empty()) ImGui::TextWrapped("%s", state.status.c_str());
 }
 
-void stats_overlay(const StatsView& stats, ImVec2 pos) {
-  ImGui::SetNextWindowPos(pos);
-  ImGui::SetNextWindowBgAlpha(0.6f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
-  if (ImGui::Begin("##stats", nullptr, flags)) {
-    if (ImGui::BeginTable("##figures", 2, ImGuiTableFlags_SizingFixedFit)) {
-      const auto row = [](const char* label) {
-        ImGui::TableNextRow();
-        ImGui::TableSetColumnIndex(0);
-        ImGui::TextDisabled("%s", label);
-        ImGui::TableSetColumnIndex(1);
-      };
-      row("UI frame");
-      ImGui::Text("%.1f ms (max %.1f)", stats.ui_frame_ms, stats.ui_frame_max_ms);
-      row(font_has(0x2192) ? "edit \xE2\x86\x92 image" : "edit -> image");
-      if (stats.edit_to_image_ms >= 0) ImGui::Text("%.1f ms", stats.edit_to_image_ms);
-      else ImGui::TextUnformatted("-");
-      if (stats.have_frame) {
-        const FrameStats& f = stats.frame;
-        row("image");
-        if (stats.level_divisor > 1) {
-          ImGui::Text("%d\xC3\x97%d (1/%d)", stats.image_width, stats.image_height, stats.level_divisor);
-        } else {
-          ImGui::Text("%d\xC3\x97%d", stats.image_width, stats.image_height);
-        }
-        row("spp");
-        ImGui::Text("%u / %d", stats.spp, stats.target_spp);
-        row("pass");
-        ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
-        row("tracer");
-        ImGui::TextUnformatted(f.packets ? "packets, 4 rays wide (AVX2)" : "scalar, ray by ray");
-        char primary[16], shadow[16], reflection[16], refraction[16];
-        format_count(primary, sizeof primary, f.pass_rays.primary);
-        format_count(shadow, sizeof shadow, f.pass_rays.shadow);
-        format_count(reflection, sizeof reflection, f.pass_rays.reflection);
-        format_count(refraction, sizeof refraction, f.pass_rays.refraction);
-        row("rays/pass");
-        ImGui::Text("primary %s, shadow %s", primary, shadow);
-        row("");
-        ImGui::Text("reflection %s, refraction %s", reflection, refraction);
-        row("NaN/Inf");
-        if (f.nan_count > 0) ImGui::TextColored(kErrorColor, "%" PRIu64, f.nan_count);
-        else ImGui::TextUnformatted("0");
-      }
-      ImGui::EndTable();
-    }
-    if (!stats.have_frame) ImGui::TextDisabled("waiting for the first image");
-    const char* state = stats.interacting ? "interacting: coarse levels" : (stats.idle ? "idle: target reached" : "rendering");
-    ImGui::TextDisabled("%s", state);
-    if (!stats.scene_error.empty()) ImGui::TextColored(kErrorColor, "scene file error: see the Scene panel");
+void stats_overlay(const StatsView& stats) {
+  // One line by default: what the image is and whether it is done.
+  const char* state = stats.interacting ? "interacting" : (stats.idle ? "done" : "rendering");
+  if (stats.have_frame) {
+    char level[16] = "";
+    if (stats.level_divisor > 1) std::snprintf(level, sizeof level, " (1/%d)", stats.level_divisor);
+    ImGui::Text("%d\xC3\x97%d%s  %u/%d spp  %.1f ms/pass  %s", stats.image_width, stats.image_height, level, stats.spp,
+                stats.target_spp, stats.frame.pass_ms, state);
+  } else {
+    ImGui::TextDisabled("waiting for the first image");
   }
-  ImGui::End();
+  if (!stats.scene_error.empty()) ImGui::TextColored(kErrorColor, "scene file error: see the Scene panel");
+  if (stats.frame.nan_count > 0) ImGui::TextColored(kErrorColor, "%" PRIu64 " NaN/Inf samples", stats.frame.nan_count);
+  if (!stats.details) return;
+  ImGui::Separator();
+  if (ImGui::BeginTable("##figures", 2, ImGuiTableFlags_SizingFixedFit)) {
+    const auto row = [](const char* label) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextDisabled("%s", label);
+      ImGui::TableSetColumnIndex(1);
+    };
+    row("UI frame");
+    // Frames after an idle sleep are not counted: idle, there is nothing to show.
+    if (stats.ui_frame_ms >= 0) ImGui::Text("%.1f ms (max %.1f)", stats.ui_frame_ms, stats.ui_frame_max_ms);
+    else ImGui::TextUnformatted("- (idle)");
+    row(font_has(0x2192) ? "edit \xE2\x86\x92 image" : "edit -> image");
+    if (stats.edit_to_image_ms >= 0) ImGui::Text("%.1f ms", stats.edit_to_image_ms);
+    else ImGui::TextUnformatted("-");
+    if (stats.have_frame) {
+      const FrameStats& f = stats.frame;
+      row("pass");
+      ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
+      row("tracer");
+      ImGui::TextUnformatted(f.packets ? "packets, 4 rays wide (AVX2)" : "scalar, ray by ray");
+      char primary[16], shadow[16], reflection[16], refraction[16];
+      format_count(primary, sizeof primary, f.pass_rays.primary);
+      format_count(shadow, sizeof shadow, f.pass_rays.shadow);
+      format_count(reflection, sizeof reflection, f.pass_rays.reflection);
+      format_count(refraction, sizeof refraction, f.pass_rays.refraction);
+      row("rays/pass");
+      ImGui::Text("primary %s, shadow %s", primary, shadow);
+      row("");
+      ImGui::Text("reflection %s, refraction %s", reflection, refraction);
+      row("NaN/Inf");
+      if (f.nan_count > 0) ImGui::TextColored(kErrorColor, "%" PRIu64, f.nan_count);
+      else ImGui::TextUnformatted("0");
+    }
+    ImGui::EndTable();
+  }
 }
 
-GuardChoice unsaved_changes_modal(bool open_now, const std::string& action, bool can_save,
+GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
                                   GuardChoice scripted) {
   constexpr const char* kTitle = "Unsaved changes";
   if (open_now) ImGui::OpenPopup(kTitle);
@@ -600,13 +680,21 @@ GuardChoice unsaved_changes_modal(bool open_now, const std::string& action, bool
   GuardChoice choice = GuardChoice::kNone;
   if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::Text("The scene has unsaved changes.");
-    ImGui::Text("Save them before you %s?", action.c_str());
-    if (!can_save) ImGui::TextDisabled("(an embedded scene: use Save as first)");
+    ImGui::Text("Save them before you %s?", view.action.c_str());
+    if (view.changed_on_disk) {
+      ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+      ImGui::Text("The file also changed on disk since it was opened: Save would overwrite that change.");
+      ImGui::PopStyleColor();
+    }
     ImGui::Spacing();
-    ImGui::BeginDisabled(!can_save);
+    ImGui::BeginDisabled(!view.can_save);
     if (ImGui::Button("Save")) choice = GuardChoice::kSave;
     ImGui::EndDisabled();
     ImGui::SameLine();
+    if (ImGui::Button("Save as")) choice = GuardChoice::kSaveAs;
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 16);
+    input_text("##save_as", save_as_path);
     if (ImGui::Button("Discard")) choice = GuardChoice::kDiscard;
     ImGui::SameLine();
     if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
@@ -617,41 +705,26 @@ GuardChoice unsaved_changes_modal(bool open_now, const std::string& action, bool
   return choice;
 }
 
-void draw_light_markers(std::span<const LightMarker> markers, float radius) {
-  ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  const ImU32 outline = IM_COL32(0, 0, 0, 200);
-  for (const LightMarker& m : markers) {
-    const ImU32 fill = ImGui::ColorConvertFloat4ToU32(m.enabled ? m.color : ImVec4(0.4f, 0.4f, 0.4f, 0.8f));
-    char label[16];
-    std::snprintf(label, sizeof label, "L%d", m.index);
-    if (m.offscreen) {
-      // An arrowhead at the edge of the view pointing at the light.
-      const ImVec2 d = m.toward;
-      const ImVec2 n(-d.y, d.x);
-      const ImVec2 tip(m.pos.x + d.x * radius * 1.5f, m.pos.y + d.y * radius * 1.5f);
-      const ImVec2 left(m.pos.x + n.x * radius, m.pos.y + n.y * radius);
-      const ImVec2 right(m.pos.x - n.x * radius, m.pos.y - n.y * radius);
-      draw->AddTriangleFilled(tip, left, right, fill);
-      draw->AddTriangle(tip, left, right, outline, 1.5f);
-      const ImVec2 text_size = ImGui::CalcTextSize(label);
-      draw->AddText(ImVec2(m.pos.x - d.x * radius * 1.5f - text_size.x / 2, m.pos.y - d.y * radius * 1.5f - text_size.y / 2),
-                    IM_COL32(255, 255, 255, 230), label);
-      continue;
-    }
-    // Short rays around the disc read as "a light", not as a scene object.
-    for (int k = 0; k < 8; ++k) {
-      const float a = static_cast<float>(k) * 0.785398f;  // 45 degrees apart
-      const ImVec2 dir(std::cos(a), std::sin(a));
-      draw->AddLine(ImVec2(m.pos.x + dir.x * radius * 1.3f, m.pos.y + dir.y * radius * 1.3f),
-                    ImVec2(m.pos.x + dir.x * radius * 1.9f, m.pos.y + dir.y * radius * 1.9f), fill, 2.0f);
-    }
-    if (m.enabled) draw->AddCircleFilled(m.pos, radius, fill);
-    draw->AddCircle(m.pos, radius, m.enabled ? outline : fill, 0, 2.0f);
-    if (m.selected || m.hovered) {
-      draw->AddCircle(m.pos, radius * 2.3f, m.selected ? IM_COL32(255, 210, 60, 255) : IM_COL32(255, 255, 255, 160), 0, 2.0f);
-    }
-    draw->AddText(ImVec2(m.pos.x + radius * 2.0f, m.pos.y - radius * 2.6f), IM_COL32(255, 255, 255, 230), label);
+GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted) {
+  constexpr const char* kTitle = "The file changed on disk";
+  if (open_now) ImGui::OpenPopup(kTitle);
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  GuardChoice choice = GuardChoice::kNone;
+  if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s changed on disk since it was opened or saved here.", file.c_str());
+    ImGui::Text("Saving now would overwrite that change with your version.");
+    ImGui::Spacing();
+    if (ImGui::Button("Overwrite")) choice = GuardChoice::kOverwrite;
+    ImGui::SameLine();
+    if (ImGui::Button("Reload from disk (lose my edits)")) choice = GuardChoice::kReload;
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
+    if (scripted != GuardChoice::kNone) choice = scripted;
+    if (choice != GuardChoice::kNone) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
   }
+  return choice;
 }
 
 }  // namespace phonglab::ui

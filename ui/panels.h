@@ -15,6 +15,7 @@
 #include "renderer/scene.h"
 #include "renderer/shading.h"
 #include "ui/history.h"
+#include "ui/overlay.h"
 
 namespace phonglab::ui {
 
@@ -24,8 +25,13 @@ struct CameraActions {
   bool reset = false;        // "Reset (R)": back to the camera of the scene file
 };
 
-// Position, look-at, up and vertical field of view. Returns true when the camera changed.
-bool camera_panel(Camera& camera, CameraActions& actions);
+// Position, look-at, up and vertical field of view. Returns true when the camera changed. A
+// value the renderer cannot use is refused and `notice` says why (shown until the next edit).
+bool camera_panel(Camera& camera, CameraActions& actions, std::string& notice);
+
+// The term buttons (the full image, then each term of the equation), the side-by-side switch and
+// the debug views. Edits `term` and `small_multiples` directly.
+void show_panel(Term& term, bool& small_multiples, bool blinn);
 
 // A list of the materials to pick from and the lecture's coefficients of the selected one,
 // each beside the term of the equation it scales. `selected` may change without an edit.
@@ -98,14 +104,17 @@ struct ProbeView {
   float exposure_ev = 0;
 };
 // The probed pixel: P, N, V, per light L, R (or H), N.L, R.V (or N.H), the powered factor,
-// visibility, each term's RGB, the children and the totals. Nothing to edit.
-void probe_panel(const ProbeView& view);
+// visibility, each term's RGB, the children and the totals, to four significant digits (every
+// digit with `all_digits`, which the panel's box switches).
+void probe_panel(const ProbeView& view, bool& all_digits);
 
 // Display-time transform of the linear image (a shader uniform: never restarts rendering).
 struct DisplaySettings {
   float exposure_ev = 0;  // stops: pixels are scaled by 2^exposure_ev
   bool srgb = true;       // sRGB transfer curve (true) or raw linear values (false)
-  bool show_stats = true; // the stats overlay over the viewport
+  bool show_stats = true; // the stats overlay over the viewport (one summary line)
+  bool stats_details = false;  // the overlay's full table (frame times, rays, tracer)
+  float ui_size_dragged = -1;  // the UI size slider's value while it is held (applied on release); <0: not held
   float ui_size = 1;      // panel and text size on top of the monitor's scale (projectors)
 };
 bool display_panel(DisplaySettings& display);
@@ -116,6 +125,7 @@ struct SceneFileState {
   std::string file_path;     // where Save writes; empty for embedded scenes (use Save as)
   std::string path_field;    // the Open / Save-as text field
   bool dirty = false;        // edits not saved
+  bool opened_mesh = false;  // the document is an OBJ opened alone: Save would overwrite a mesh
   bool auto_reload = true;   // reload by itself when the file changes on disk
   bool changed_on_disk = false;  // the file changed while there were unsaved edits
   std::string error_text;    // diagnostics of the last failed open, reload or save
@@ -159,34 +169,29 @@ struct StatsView {
   bool idle = false;              // renderer reached its target (or is capped while dragging)
   bool interacting = false;       // a drag is in progress
   std::string scene_error;        // non-empty: the last load failed (the old scene stays)
+  bool details = false;           // the full table, not only the summary line
 };
-// A small translucent window at `pos` (screen coordinates) over the viewport.
-void stats_overlay(const StatsView& stats, ImVec2 pos);
+// The stats overlay's contents, drawn into the current window: one summary line, and with
+// `details` the frame times, latency, pass figures, tracer and rays.
+void stats_overlay(const StatsView& stats);
 
-// Answer of the unsaved-changes modal.
-enum class GuardChoice : std::uint8_t { kNone, kSave, kDiscard, kCancel };
-// Call every frame. `open_now` opens it (on the frame the guarded action is asked for);
-// `action` names what would lose the edits ("quit", "open other.json"); without `can_save`
-// (an embedded scene without a file) Save is disabled. kNone while undecided or closed.
-// `scripted`, when not kNone, answers for the user (test scripts).
-GuardChoice unsaved_changes_modal(bool open_now, const std::string& action, bool can_save,
+// Answer of the unsaved-changes and the changed-on-disk dialogs.
+enum class GuardChoice : std::uint8_t { kNone, kSave, kSaveAs, kDiscard, kCancel, kOverwrite, kReload };
+
+// What the unsaved-changes dialog knows.
+struct GuardView {
+  std::string action;             // what would lose the edits: "quit", "open other.json"
+  bool can_save = false;          // Save writes the document's own file (not embedded, not an OBJ)
+  bool changed_on_disk = false;   // the file changed outside since it was read: Save would overwrite that
+};
+// Call every frame. `open_now` opens it (on the frame the guarded action is asked for). Save is
+// offered when the document has a file; Save as (to `save_as_path`, edited in the dialog) always.
+// kNone while undecided or closed. `scripted`, when not kNone, answers for the user (test scripts).
+GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
                                   GuardChoice scripted = GuardChoice::kNone);
 
-// A light drawn in the viewport.
-struct LightMarker {
-  ImVec2 pos;            // screen position of the light
-  ImVec4 color;          // its intensity as a display colour
-  bool enabled = true;   // a disabled light is drawn hollow and dim
-  bool selected = false; // drawn with a highlight ring
-  bool hovered = false;  // under the mouse: grab cursor hint
-  bool offscreen = false;  // outside the view: drawn as an arrow at the edge, pointing at it
-  ImVec2 toward;         // offscreen: unit screen direction from `pos` towards the light
-  int index = 0;         // into Scene::lights (the label)
-};
-// Markers on the background draw list: over the rendered image, under the panels.
-void draw_light_markers(std::span<const LightMarker> markers, float radius);
-
-// Radius of a light marker in screen pixels for a UI scale.
-inline float light_marker_radius(float ui_scale) { return 7.0f * ui_scale; }
+// Call every frame. Opens (with `open_now`) when Save finds that `file` changed on disk since it
+// was read or written: Overwrite, Reload from disk (losing the edits) or Cancel.
+GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted = GuardChoice::kNone);
 
 }  // namespace phonglab::ui

@@ -120,6 +120,11 @@ ImU32 segment_color(TreeSegmentKind kind, int depth) {
   return IM_COL32(255, 255, 255, 255);
 }
 
+std::string depth_cut_format(int scene_max_depth) {
+  if (scene_max_depth <= 0) return "%d: the scene's max depth is 0";
+  return "%d of " + std::to_string(scene_max_depth);
+}
+
 bool rays_panel(RayTreeSettings& s, const RayTreeSummary& summary) {
   bool edited = false;
   edited |= ImGui::Checkbox("ray tree of the probed pixel", &s.overlay);
@@ -153,11 +158,12 @@ bool rays_panel(RayTreeSettings& s, const RayTreeSummary& summary) {
   edited |= ImGui::Checkbox("cut recursion at depth", &s.depth_cut);
   help_marker("Shows the image with max depth = min(the scene's, this): 0 is local shading only, 1 adds one "
               "bounce, ... A way of looking, not an edit: no undo step, nothing to save.");
-  ImGui::BeginDisabled(!s.depth_cut);
-  const int top = std::max(summary.scene_max_depth, 1);
-  char format[48];
-  std::snprintf(format, sizeof format, "%%d of %d", summary.scene_max_depth);
-  edited |= ImGui::SliderInt("depth", &s.cut_depth, 0, top, format, ImGuiSliderFlags_AlwaysClamp);
+  // The cut goes from 0 (local shading) to the scene's own depth; a scene of depth 0 has nothing to cut.
+  const int top = std::max(summary.scene_max_depth, 0);
+  ImGui::BeginDisabled(!s.depth_cut || top == 0);
+  if (s.depth_cut) s.cut_depth = std::clamp(s.cut_depth, 0, top);
+  const std::string format = depth_cut_format(top);
+  edited |= ImGui::SliderInt("depth", &s.cut_depth, 0, top, format.c_str(), ImGuiSliderFlags_AlwaysClamp);
   ImGui::EndDisabled();
   ImGui::Separator();
   edited |= ImGui::Checkbox("heat map: rays per pixel", &s.heat_map);

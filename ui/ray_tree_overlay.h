@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <span>
+#include <string>
 
 #include <imgui.h>
 
@@ -36,6 +37,10 @@ struct RayTreeSummary {
   int scene_max_depth = 5;            // the scene's own limit (the cut slider's top)
   double heat_max = 0;                // top of the heat map's scale (rays per pixel)
 };
+
+// The depth-cut slider's printf format for a scene's max depth: "%d of 5", or for a scene of depth 0
+// "%d: the scene's max depth is 0" (never "1 of 0").
+std::string depth_cut_format(int scene_max_depth);
 
 // The overlay's switches, the depth cut and the heat map switch, with what the probed tree
 // holds (rays by kind, blocked shadow rays, the deepest ray). Returns "edited".

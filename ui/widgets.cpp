@@ -1,10 +1,36 @@
 #include "ui/widgets.h"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
 namespace phonglab::ui {
+
+void locate(const std::string& name) {
+  auto* locations = static_cast<ItemLocations*>(ImGui::GetIO().UserData);
+  if (locations != nullptr) locations->rects[name] = ScreenRect{ImGui::GetItemRectMin(), ImGui::GetItemRectMax()};
+}
+
+double tidy_float(double value) {
+  const auto f = static_cast<float>(value);
+  if (!std::isfinite(f)) return value;
+  std::array<char, 32> text{};
+  const auto result = std::to_chars(text.data(), text.data() + text.size(), f);  // shortest round trip
+  double tidy = value;
+  std::from_chars(text.data(), result.ptr, tidy);
+  return tidy;
+}
+
+namespace {
+
+Color tidy(const Color& c) { return Color(tidy_float(c.x), tidy_float(c.y), tidy_float(c.z)); }
+
+}  // namespace
 
 bool input_text(const char* label, std::string& text, ImGuiInputTextFlags flags) {
   // ImGui edits a fixed char buffer; give it generous room beyond the current text and copy
@@ -21,7 +47,7 @@ bool color_edit(const char* label, Color& color) {
   float rgb[3] = {static_cast<float>(color.x), static_cast<float>(color.y), static_cast<float>(color.z)};
   // Written back only when edited: a float round trip must not change untouched values.
   if (!ImGui::ColorEdit3(label, rgb, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) return false;
-  color = Color(std::max(rgb[0], 0.0f), std::max(rgb[1], 0.0f), std::max(rgb[2], 0.0f));
+  color = Color(tidy_float(std::max(rgb[0], 0.0f)), tidy_float(std::max(rgb[1], 0.0f)), tidy_float(std::max(rgb[2], 0.0f)));
   return true;
 }
 
@@ -36,7 +62,7 @@ bool color_strength_edit(const char* label, Color& color, float max_strength) {
   float hue_rgb[3] = {static_cast<float>(hue.x), static_cast<float>(hue.y), static_cast<float>(hue.z)};
   if (ImGui::ColorEdit3("##hue", hue_rgb, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel |
                                                ImGuiColorEditFlags_Float)) {
-    color = Color(hue_rgb[0], hue_rgb[1], hue_rgb[2]) * strength;
+    color = tidy(Color(hue_rgb[0], hue_rgb[1], hue_rgb[2]) * strength);
     edited = true;
   }
   if (ImGui::IsItemHovered()) {
@@ -47,8 +73,12 @@ bool color_strength_edit(const char* label, Color& color, float max_strength) {
   ImGui::SetNextItemWidth(std::max(width - ImGui::GetFrameHeight() - ImGui::GetStyle().ItemInnerSpacing.x, 1.0f));
   float new_strength = static_cast<float>(strength);
   if (ImGui::SliderFloat(label, &new_strength, 0.0f, max_strength, "%.3f")) {
-    new_strength = std::max(new_strength, 0.0f);
-    color = strength > 0 ? color * (new_strength / strength) : Color(new_strength);
+    // The largest channel becomes exactly what the slider shows; the others keep their ratio to it.
+    const double target = tidy_float(std::max(new_strength, 0.0f));
+    color = strength > 0 ? tidy(color * (target / strength)) : Color(target);
+    for (int c = 0; c < 3; ++c) {
+      if (strength > 0 && color[c] != 0 && hue[c] == 1) color[c] = target;
+    }
     edited = true;
   }
   ImGui::PopID();
@@ -62,7 +92,15 @@ bool drag_vec3(const char* label, Vec3& v, float speed, const char* format) {
 bool slider_double(const char* label, double& value, double min, double max, const char* format,
                    bool logarithmic) {
   const ImGuiSliderFlags flags = logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
-  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags);
+  if (!ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags)) return false;
+  // A drag lands on any double; keep what the slider's text shows (its format's digits).
+  std::array<char, 64> shown{};
+  std::snprintf(shown.data(), shown.size(), format, value);
+  double parsed = 0;
+  const char* start = shown.data();
+  while (*start != '\0' && !(std::isdigit(static_cast<unsigned char>(*start)) || *start == '-' || *start == '.')) ++start;
+  if (std::sscanf(start, "%lf", &parsed) == 1 && std::isfinite(parsed)) value = parsed;
+  return true;
 }
 
 void help_marker(const char* text) {

@@ -1,6 +1,7 @@
 // Small ImGui widgets over the renderer's double-precision types. Each returns "edited".
 #pragma once
 
+#include <map>
 #include <string>
 
 #include <imgui.h>
@@ -8,6 +9,25 @@
 #include "renderer/math.h"
 
 namespace phonglab::ui {
+
+// A screen rectangle, min inclusive, max exclusive.
+struct ScreenRect {
+  ImVec2 min;
+  ImVec2 max;
+};
+
+// Where named widgets were drawn in the last frame, so test scripts can drive them by name with
+// real (injected) mouse input. The app owns it and points ImGui's io.UserData at it; without
+// one, locate() does nothing.
+struct ItemLocations {
+  std::map<std::string, ScreenRect> rects;
+};
+// Records the last item's rectangle under `name`.
+void locate(const std::string& name);
+
+// The double nearest to the shortest decimal that reads back as `value` in float: what a float
+// slider or colour picker meant (0.366, not 0.3659999966621399), so saved files carry no noise.
+double tidy_float(double value);
 
 // A text field editing a std::string in place (grows the string as the user types).
 bool input_text(const char* label, std::string& text, ImGuiInputTextFlags flags = 0);

@@ -86,7 +86,7 @@ dump_state $dir/s01.txt
 set render resolution_scale 0.5
 wait_idle 120
 screenshot $dir/02_half.png
-drag left 440 520 580 480 12
+drag left 440 480 580 520 12
 wait_idle 120
 screenshot $dir/03_orbit.png
 dump_state $dir/s03.txt
@@ -159,7 +159,7 @@ EOF
     touch "$dir/xdotool_done"
   fi
   if wait_for_file "$dir/pick_ready" 120 "$pid"; then
-    xdotool mousemove --window "$win" 315 380
+    xdotool mousemove --window "$win" 354 374
     sleep 0.2
     xdotool click 1
     sleep 0.2
@@ -306,14 +306,14 @@ session_instruments() {
   cat >"$dir/script.txt" <<EOF
 set render target_spp 1
 wait_idle 120
-probe 440 420
+probe 440 401
 wait_frames 2
 dump_state $dir/i01.txt
 screenshot $dir/i01_probe.png
-ctrl_click 250 560
+ctrl_click 309 497
 dump_state $dir/i02.txt
 set instruments probe_mode 1
-click 600 560
+click 550 497
 wait_frames 2
 dump_state $dir/i03.txt
 set instruments probe_mode 0
@@ -342,7 +342,7 @@ screenshot $dir/i09_wipe.png
 set instruments compare 0
 set instruments multiples 1
 wait_idle 120
-probe 440 420
+probe 440 401
 wait_frames 2
 screenshot $dir/i10_multiples.png
 dump_state $dir/i10.txt
@@ -371,7 +371,7 @@ screenshot $dir/h02_head_specular_difference.png
 set render term full
 set instruments compare 0
 set display stats 1
-probe 315 328
+probe 354 338
 set instruments head_angle 15
 wait_idle 120
 dump_state $dir/h03.txt
@@ -429,19 +429,19 @@ set render target_spp 1
 set display stats 0
 wait_idle 120
 # The red sphere's highlight, with the probe panel scrolled into view.
-probe 340 330
+probe 371 339
 wait_frames 3
 scroll 1080 400 -16
 wait_frames 5
 screenshot $dir/r00_probe_panel.png
 scroll 1080 400 4
 # The glass sphere: reflected and refracted rays to several depths, blocked shadow rays inside.
-probe 590 440
+probe 543 415
 wait_frames 3
 screenshot $dir/r01_tree_glass.png
 dump_state $dir/r01.txt
 # The floor in the red sphere's shadow.
-probe 260 480
+probe 316 442
 wait_frames 3
 screenshot $dir/r02_tree_shadow.png
 dump_state $dir/r02.txt
@@ -451,7 +451,7 @@ screenshot $dir/r03_no_tree.png
 dump_state $dir/r03.txt
 set instruments ray_tree 1
 # The mirror sphere, then the image with recursion cut at depth 0, 1, 2.
-probe 770 330
+probe 667 339
 set instruments depth_cut 0
 wait_idle 120
 screenshot $dir/r04_cut0.png
@@ -504,18 +504,23 @@ check_rays() {
     test "$(state "$dir/r04.txt" tree_deepest)" = 0 -a "$(state "$dir/r05.txt" tree_deepest)" = 1
   size=$(state "$dir/r04.txt" render)
   w=${size%x*} h=${size#*x}
-  "$cli" render lecture --width "$w" --height "$h" --spp 1 --max-depth 0 -o "$dir/cli_cut0.pfm" >/dev/null
-  "$cli" render lecture --width "$w" --height "$h" --spp 1 --max-depth 1 -o "$dir/cli_cut1.pfm" >/dev/null
-  "$cli" render lecture --width "$w" --height "$h" --spp 1 -o "$dir/cli_full.pfm" >/dev/null
+  # The 880x720 view is narrower than the scene's 16:9 image: the previewer widens the field of
+  # view (dump_state's camera_fov, every digit) and the CLI renders with the same one.
+  local fov
+  fov=$(state "$dir/r04.txt" camera_fov)
+  check "the narrow view renders with a widened field of view ($fov > 40)" greater "$fov" 40
+  "$cli" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 --max-depth 0 -o "$dir/cli_cut0.pfm" >/dev/null
+  "$cli" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 --max-depth 1 -o "$dir/cli_cut1.pfm" >/dev/null
+  "$cli" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 -o "$dir/cli_full.pfm" >/dev/null
   check "the image cut at depth 0 is phonglab-cli's --max-depth 0 render, bit for bit" cmp -s "$dir/cut0.pfm" "$dir/cli_cut0.pfm"
   check "the image cut at depth 1 is phonglab-cli's --max-depth 1 render, bit for bit" cmp -s "$dir/cut1.pfm" "$dir/cli_cut1.pfm"
   check "ending the cut gives the scene's own image back" cmp -s "$dir/cut_off.pfm" "$dir/cli_full.pfm"
   check "cut 0 and cut 1 look different" greater "$(rmse "$dir/r04_cut0.png" "$dir/r05_cut1.png" $SCENE_REGION)" 0.01
   check "cut 1 and cut 2 look different" greater "$(rmse "$dir/r05_cut1.png" "$dir/r06_cut2.png" $SCENE_REGION)" 0.001
   local cli_max
-  cli_max=$("$cli" render lecture --width "$w" --height "$h" --spp 1 --term rays -o "$dir/cli_heat.png" |
+  cli_max=$("$cli" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 --term rays -o "$dir/cli_heat.png" |
     sed -n 's/^heat map: 0 (black) \.\. \([0-9.e+]*\) (pale yellow).*/\1/p')
-  "$cli" render lecture --width "$w" --height "$h" --spp 1 --term rays -o "$dir/cli_rays.pfm" >/dev/null
+  "$cli" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 --term rays -o "$dir/cli_rays.pfm" >/dev/null
   check "the heat map shows the rays view ($(state "$dir/r08.txt" term), heat=$(state "$dir/r08.txt" heat))" \
     test "$(state "$dir/r08.txt" term)" = rays -a "$(state "$dir/r08.txt" heat)" = 1
   check "its scale tops at the image's maximum, as phonglab-cli's ($(state "$dir/r08.txt" heat_max) = $cli_max)" \

@@ -1,0 +1,181 @@
+#include "ui/overlay.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+namespace phonglab::ui {
+
+namespace {
+
+constexpr ImU32 kLabelText = IM_COL32(255, 255, 255, 240);
+constexpr ImU32 kOutline = IM_COL32(0, 0, 0, 200);
+constexpr ImU32 kProbeYellow = IM_COL32(255, 230, 0, 255);
+
+bool overlaps(const ScreenRect& a, const ScreenRect& b) {
+  return a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y;
+}
+
+bool free_of(const ScreenRect& r, const std::vector<ScreenRect>& taken) {
+  return std::none_of(taken.begin(), taken.end(), [&](const ScreenRect& t) { return overlaps(r, t); });
+}
+
+bool inside(const ScreenRect& r, ImVec2 lo, ImVec2 hi) {
+  return r.min.x >= lo.x && r.min.y >= lo.y && r.max.x <= hi.x && r.max.y <= hi.y;
+}
+
+bool font_has(ImWchar c) { return ImGui::GetFont()->FindGlyphNoFallback(c) != nullptr; }
+
+}  // namespace
+
+void text_on_plate(ImDrawList* draw, ImVec2 at, const char* text, float ui_scale, float alpha) {
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  const float pad = 4 * ui_scale;
+  draw->AddRectFilled(ImVec2(at.x - pad, at.y - pad * 0.6f), ImVec2(at.x + size.x + pad, at.y + size.y + pad * 0.6f),
+                      IM_COL32(0, 0, 0, static_cast<int>(255 * alpha)), 3 * ui_scale);
+  draw->AddText(at, kLabelText, text);
+}
+
+void draw_probe_ring(ImDrawList* draw, ImVec2 c, float ui_scale) {
+  const float r = 6 * ui_scale;
+  const float w = 1.5f * ui_scale;
+  draw->AddCircle(c, r, IM_COL32(0, 0, 0, 255), 20, 2 * w);
+  draw->AddCircle(c, r, kProbeYellow, 20, w);
+  draw->AddLine(ImVec2(c.x - 2.2f * r, c.y), ImVec2(c.x - r, c.y), kProbeYellow, w);
+  draw->AddLine(ImVec2(c.x + r, c.y), ImVec2(c.x + 2.2f * r, c.y), kProbeYellow, w);
+  draw->AddLine(ImVec2(c.x, c.y - 2.2f * r), ImVec2(c.x, c.y - r), kProbeYellow, w);
+  draw->AddLine(ImVec2(c.x, c.y + r), ImVec2(c.x, c.y + 2.2f * r), kProbeYellow, w);
+}
+
+ImVec2 slide_clear(ImVec2 pos, float half, const std::vector<ScreenRect>& taken, ImVec2 lo, ImVec2 hi) {
+  const auto box = [&](ImVec2 p) { return ScreenRect{ImVec2(p.x - half, p.y - half), ImVec2(p.x + half, p.y + half)}; };
+  if (free_of(box(pos), taken)) return pos;
+  // On a left or right edge the marker slides vertically, on the top or bottom edge horizontally;
+  // the nearest free place wins, searched outwards in steps of a marker.
+  const bool vertical_edge = pos.x <= lo.x + half * 1.01f || pos.x >= hi.x - half * 1.01f;
+  const float step = half;
+  for (int k = 1; k < 400; ++k) {
+    for (const float sign : {1.0f, -1.0f}) {
+      ImVec2 p = pos;
+      (vertical_edge ? p.y : p.x) += sign * step * static_cast<float>(k);
+      if (p.x < lo.x + half || p.x > hi.x - half || p.y < lo.y + half || p.y > hi.y - half) continue;
+      if (free_of(box(p), taken)) return p;
+    }
+  }
+  return pos;
+}
+
+ImVec2 place_label(const LightMarker& marker, float radius, const std::vector<ScreenRect>& taken, ImVec2 lo, ImVec2 hi) {
+  char label[16];
+  std::snprintf(label, sizeof label, "L%d", marker.index);
+  const ImVec2 size = ImGui::CalcTextSize(label);
+  const float gap = 2.2f * radius;
+  const ImVec2 p = marker.pos;
+  const std::array<ImVec2, 8> candidates = {
+      ImVec2(p.x + gap, p.y - gap - size.y * 0.5f), ImVec2(p.x + gap, p.y + gap - size.y * 0.5f),
+      ImVec2(p.x - gap - size.x, p.y - gap - size.y * 0.5f), ImVec2(p.x - gap - size.x, p.y + gap - size.y * 0.5f),
+      ImVec2(p.x - size.x * 0.5f, p.y + gap), ImVec2(p.x - size.x * 0.5f, p.y - gap - size.y),
+      ImVec2(p.x + gap, p.y - size.y * 0.5f), ImVec2(p.x - gap - size.x, p.y - size.y * 0.5f)};
+  for (const ImVec2& c : candidates) {
+    const ScreenRect r{c, ImVec2(c.x + size.x, c.y + size.y)};
+    if (inside(r, lo, hi) && free_of(r, taken)) return c;
+  }
+  for (const ImVec2& c : candidates) {
+    if (inside(ScreenRect{c, ImVec2(c.x + size.x, c.y + size.y)}, lo, hi)) return c;
+  }
+  return candidates[0];
+}
+
+void draw_light_markers(std::span<const LightMarker> markers, float radius, float ui_scale) {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  for (const LightMarker& m : markers) {
+    const ImU32 fill = ImGui::ColorConvertFloat4ToU32(m.enabled ? m.color : ImVec4(0.4f, 0.4f, 0.4f, 0.8f));
+    if (m.offscreen) {
+      // An arrowhead at the edge of the view pointing at the light.
+      const ImVec2 d = m.toward;
+      const ImVec2 n(-d.y, d.x);
+      const ImVec2 tip(m.pos.x + d.x * radius * 1.5f, m.pos.y + d.y * radius * 1.5f);
+      const ImVec2 left(m.pos.x + n.x * radius, m.pos.y + n.y * radius);
+      const ImVec2 right(m.pos.x - n.x * radius, m.pos.y - n.y * radius);
+      draw->AddTriangleFilled(tip, left, right, fill);
+      draw->AddTriangle(tip, left, right, kOutline, 1.5f);
+    } else {
+      // Short rays around the disc read as "a light", not as a scene object.
+      for (int k = 0; k < 8; ++k) {
+        const float a = static_cast<float>(k) * 0.785398f;  // 45 degrees apart
+        const ImVec2 dir(std::cos(a), std::sin(a));
+        const ImVec2 from(m.pos.x + dir.x * radius * 1.3f, m.pos.y + dir.y * radius * 1.3f);
+        const ImVec2 to(m.pos.x + dir.x * radius * 1.9f, m.pos.y + dir.y * radius * 1.9f);
+        draw->AddLine(from, to, kOutline, 4.0f);
+        draw->AddLine(from, to, fill, 2.0f);
+      }
+      if (m.enabled) draw->AddCircleFilled(m.pos, radius, fill);
+      draw->AddCircle(m.pos, radius, m.enabled ? kOutline : fill, 0, 2.0f);
+    }
+    if (m.selected || m.hovered) {
+      draw->AddCircle(m.pos, radius * 2.3f, m.selected ? IM_COL32(255, 210, 60, 255) : IM_COL32(255, 255, 255, 160), 0,
+                      2.0f);
+    }
+    char label[16];
+    std::snprintf(label, sizeof label, "L%d", m.index);
+    text_on_plate(draw, m.label_pos, label, ui_scale, 0.6f);
+  }
+}
+
+std::string term_caption(Term term, bool blinn) {
+  const bool greek = font_has(0x03A3) && font_has(0x00B7);
+  const std::string sum = greek ? "\xCE\xA3 " : "sum ";
+  const std::string dot = greek ? "\xC2\xB7" : "*";
+  const std::string ia = font_has(0x2090) ? "I\xE2\x82\x90" : "I_a";   // I with a subscript a (not "la")
+  const std::string il = font_has(0x2097) ? "I\xE2\x82\x97" : "I_l";   // I with a subscript l
+  const std::string spec = blinn ? "max(0, N" + dot + "H)^n" : "max(0, R" + dot + "V)^n";
+  switch (term) {
+    case Term::kFull: return "the full image: I = the sum of the five terms";
+    case Term::kAmbient: return "ambient only: ka" + dot + ia;
+    case Term::kDiffuse: return "diffuse only: " + sum + "vis" + dot + il + dot + "kd" + dot + "max(0, N" + dot + "L)";
+    case Term::kSpecular: return "specular only: " + sum + "vis" + dot + il + dot + "ks" + dot + spec;
+    case Term::kReflection: return "reflection only: kr'" + dot + "I_reflected";
+    case Term::kRefraction: return "refraction only: kt'" + dot + "I_refracted";
+    case Term::kNormal: return "debug view: the shading normal N as a colour";
+    case Term::kDepth: return "debug view: distance to the primary hit";
+    case Term::kRays: return "debug view: rays cast per pixel";
+  }
+  return "";
+}
+
+void keys_help() {
+  static constexpr std::array<std::array<const char*, 2>, 17> kRows = {{
+      {"left-drag", "orbit: the scene follows the hand"},
+      {"right-drag, wheel", "dolly"},
+      {"middle-drag, Shift+left-drag", "pan"},
+      {"click", "select the clicked object's material"},
+      {"Ctrl+click", "probe the pixel (its equation, its ray tree)"},
+      {"drag a light marker or arrow", "move that light"},
+      {"1", "the full image"},
+      {"2 3 4 5 6", "ambient, diffuse, specular, reflection, refraction alone"},
+      {"M", "the five terms and their sum side by side"},
+      {"Shift+1..9", "solo light L0..L8 (again: every light back)"},
+      {"F", "frame the scene"},
+      {"R", "reset the camera to the file's"},
+      {"H", "hide or show the panels"},
+      {"Ctrl+Z", "undo"},
+      {"Ctrl+Shift+Z, Ctrl+Y", "redo"},
+      {"F1, ?", "this help"},
+      {"Esc", "close it"},
+  }};
+  ImGui::TextUnformatted("Keys and mouse");
+  ImGui::Separator();
+  if (ImGui::BeginTable("##keys", 2, ImGuiTableFlags_SizingFixedFit)) {
+    for (const auto& row : kRows) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextUnformatted(row[0]);
+      ImGui::TableSetColumnIndex(1);
+      ImGui::TextDisabled("%s", row[1]);
+    }
+    ImGui::EndTable();
+  }
+}
+
+}  // namespace phonglab::ui
