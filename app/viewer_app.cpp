@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -20,6 +21,7 @@
 #include "renderer/ray_tree_view.h"
 #include "renderer/shading.h"
 #include "ui/camera_control.h"
+#include "ui/widgets.h"
 
 namespace phonglab {
 
@@ -256,7 +258,21 @@ void Viewer::handle_viewport_input() {
   Scene& scene = doc_.scene();
   Camera& camera = scene.camera;
   const Camera view = view_camera();
-  const ImVec2 mouse = io.MousePos;
+  // Where each button went down, from GLFW's event: ImGui 1.86 polls the cursor once a frame, so
+  // a press followed by a quick move in the same frame would otherwise start where the pointer
+  // already moved to (and miss the light marker it was pressed on).
+  const std::vector<MousePress> presses = platform_.take_mouse_presses();
+  const auto pressed_at = [&](int button) {
+    ImVec2 at = io.MousePos;
+    for (const MousePress& p : presses) {
+      if (p.button == button) at = ImVec2(static_cast<float>(p.x), static_cast<float>(p.y));
+    }
+    return at;
+  };
+  ImVec2 mouse = io.MousePos;
+  for (int button = 0; button < 3; ++button) {
+    if (ImGui::IsMouseClicked(button)) mouse = pressed_at(button);
+  }
   const bool over_viewport = ImGui::IsMousePosValid(&mouse) && mouse.x >= viewport_.x &&
                              mouse.x < viewport_.x + viewport_.width && mouse.y >= viewport_.y &&
                              mouse.y < viewport_.y + viewport_.height;
@@ -349,8 +365,11 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
     case DragMode::kLight:
       if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size()) && drag_.light_depth > 0) {
         const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
+        // Kept to float precision, as every value the panels edit: a saved file reads 1.8074448,
+        // not 1.8074447666598992.
+        const Vec3 p = ui::unproject(view, at, drag_.light_depth, view_w, view_h);
         scene.lights[static_cast<std::size_t>(drag_.light)].position =
-            ui::unproject(view, at, drag_.light_depth, view_w, view_h);
+            Vec3(ui::tidy_float(p.x), ui::tidy_float(p.y), ui::tidy_float(p.z));
         scene_edited_ = true;
       }
       break;
@@ -852,7 +871,7 @@ void Viewer::save_figure(const std::string& path) {
   options.cell_width = std::max(1, static_cast<int>(std::lround(kFigureCellHeight * viewport_.width / viewport_.height)));
   options.threads = render_settings_.threads;
   const std::string error = write_figure(path, *snapshot_, options);
-  figure_status_ = error.empty() ? "saved " + path : error;
+  figure_status_ = error.empty() ? "saved " + std::filesystem::absolute(path).lexically_normal().string() : error;
 }
 
 void Viewer::write_stats_summary(const std::string& label) {

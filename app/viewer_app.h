@@ -46,6 +46,7 @@ struct InputStep {
   int key = -1;                // GLFW key code to press or release in this frame, -1 for none
   bool key_down = false;       // press (true) or release (false) `key`
   float wheel = 0;             // wheel clicks, positive away from the user
+  std::string text;            // characters typed in this frame (into the active text field)
 };
 
 // One line of a test script: the words, and where it came from.
@@ -95,7 +96,17 @@ class Viewer {
     float height = 0;
   };
   // What the script is waiting for before its next command.
-  enum class ScriptWait : std::uint8_t { kNone, kFrames, kIdle, kImage, kFile, kInput, kBench };
+  enum class ScriptWait : std::uint8_t { kNone, kFrames, kIdle, kImage, kFile, kInput, kBench, kItem };
+  // A scripted click, drag or typed value on a widget found by name (click_item and friends).
+  struct ItemAction {
+    enum class Kind : std::uint8_t { kClick, kDrag, kType };
+    Kind kind = Kind::kClick;
+    std::string name;     // as ui::locate recorded it
+    double dx = 0;        // kDrag: how far, window pixels
+    double dy = 0;
+    int steps = 10;       // kDrag: mouse moves on the way
+    std::string text;     // kType: what is typed
+  };
 
   // Frame phases, in order.
   void wait_for_next_frame();              // 60 Hz pacing, early for a new edit's first image, sleep when idle
@@ -179,6 +190,7 @@ class Viewer {
   bool script_set(const std::vector<std::string>& words);             // the `set` command
   void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
   void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
+  bool push_item_input();                        // queues item_action_'s input; false: no such widget
   void write_state(const std::string& path) const;                    // `dump_state`
   std::string depth_cut_label() const;                                // the depth-cut slider's text
   void write_stats_summary(const std::string& label);                 // percentiles into the stats log
@@ -301,6 +313,7 @@ class Viewer {
   double wait_deadline_ = 0;
   std::string wait_file_;
   std::deque<InputStep> input_steps_;
+  ItemAction item_action_;           // the widget action waiting for its widget to scroll into view
   bool script_failed_ = false;
   std::string screenshot_request_;   // window screenshot to take after drawing this frame
   int bench_left_ = 0;               // bench_edits: edits still to make

@@ -45,11 +45,29 @@ void note(GLFWwindow* window) {
   if (auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window))) p->note_event();
 }
 
+}  // namespace
+
+void record_mouse_press(GLFWwindow* window, int button, int action) {
+  auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window));
+  if (p == nullptr || action != GLFW_PRESS || button < 0 || button > 2) return;
+  MousePress press;
+  press.button = button;
+  glfwGetCursorPos(window, &press.x, &press.y);
+  constexpr std::size_t kMaxQueued = 64;
+  if (p->mouse_presses_.size() >= kMaxQueued) p->mouse_presses_.erase(p->mouse_presses_.begin());
+  p->mouse_presses_.push_back(press);
+}
+
+namespace {
+
 void install_activity_callbacks(Platform* platform) {
   GLFWwindow* w = platform->window();
   glfwSetWindowUserPointer(w, platform);
   glfwSetCursorPosCallback(w, [](GLFWwindow* win, double, double) { note(win); });
-  glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int, int, int) { note(win); });
+  glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) {
+    note(win);
+    record_mouse_press(win, button, action);
+  });
   glfwSetScrollCallback(w, [](GLFWwindow* win, double, double) { note(win); });
   glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int mods) {
     note(win);
@@ -75,6 +93,12 @@ void Platform::note_event() { last_event_time_ = glfwGetTime(); }
 std::vector<KeyPress> Platform::take_key_presses() {
   std::vector<KeyPress> presses;
   presses.swap(key_presses_);
+  return presses;
+}
+
+std::vector<MousePress> Platform::take_mouse_presses() {
+  std::vector<MousePress> presses;
+  presses.swap(mouse_presses_);
   return presses;
 }
 
@@ -169,6 +193,10 @@ void Platform::apply_scale(float scale) {
   style.FramePadding = ImVec2(6, 4);
   style.ItemSpacing = ImVec2(8, 6);
   style.Colors[ImGuiCol_WindowBg].w = 0.97f;
+  // A thin, half-transparent slider grab: the value's digits stay readable under it.
+  style.GrabMinSize = 4;
+  style.Colors[ImGuiCol_SliderGrab].w = 0.55f;
+  style.Colors[ImGuiCol_SliderGrabActive].w = 0.75f;
   style.ScaleAllSizes(scale);
   ImGui::GetStyle() = style;
 }

@@ -17,6 +17,13 @@ struct KeyPress {
   int mods = 0;  // GLFW_MOD_* bits held
 };
 
+// A mouse button press as GLFW reported it, with the cursor where it was at that moment.
+struct MousePress {
+  int button = 0;  // 0 left, 1 right, 2 middle (GLFW's and ImGui's numbering)
+  double x = 0;    // window coordinates
+  double y = 0;
+};
+
 struct PlatformOptions {
   int width = 1280;          // window size in screen coordinates
   int height = 720;
@@ -51,6 +58,8 @@ class Platform {
   std::vector<KeyPress> take_key_presses();
   // Queues a press as the key callback does (GLFW, and test scripts).
   void push_key_press(KeyPress press);
+  // Mouse button presses since the last call, where the cursor was when each happened.
+  std::vector<MousePress> take_mouse_presses();
 
  private:
   Platform() = default;
@@ -64,6 +73,9 @@ class Platform {
   bool fonts_built_ = false;  // apply_scale ran before: the font texture exists
   double last_event_time_ = 0;
   std::vector<KeyPress> key_presses_;  // from the key callback, taken once per frame
+  std::vector<MousePress> mouse_presses_;  // from the mouse button callback, likewise
+
+  friend void record_mouse_press(GLFWwindow* window, int button, int action);
 };
 
 }  // namespace phonglab

@@ -118,6 +118,42 @@ void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift
   input_steps_.push_back(release);
 }
 
+bool Viewer::push_item_input() {
+  const auto it = item_locations_.rects.find(item_action_.name);
+  if (it == item_locations_.rects.end()) return false;
+  const ImVec2 at((it->second.min.x + it->second.max.x) / 2, (it->second.min.y + it->second.max.y) / 2);
+  if (item_action_.kind == ItemAction::Kind::kDrag) {
+    push_drag(0, at, ImVec2(at.x + static_cast<float>(item_action_.dx), at.y + static_cast<float>(item_action_.dy)),
+              item_action_.steps, false);
+    return true;
+  }
+  InputStep hover;
+  hover.pos = at;
+  hover.ctrl = item_action_.kind == ItemAction::Kind::kType;
+  input_steps_.push_back(hover);
+  InputStep press = hover;
+  press.buttons[0] = true;
+  input_steps_.push_back(press);
+  input_steps_.push_back(hover);
+  if (item_action_.kind == ItemAction::Kind::kType) {
+    InputStep typed;
+    typed.pos = at;
+    typed.text = item_action_.text;
+    input_steps_.push_back(typed);
+    InputStep enter;
+    enter.pos = at;
+    enter.key = GLFW_KEY_ENTER;
+    enter.key_down = true;
+    input_steps_.push_back(enter);
+    enter.key_down = false;
+    input_steps_.push_back(enter);
+  }
+  InputStep after;
+  after.pos = at;
+  input_steps_.push_back(after);
+  return true;
+}
+
 void Viewer::step_script(double now) {
   ImGuiIO& io = ImGui::GetIO();
   if (!input_steps_.empty()) {
@@ -129,6 +165,7 @@ void Viewer::step_script(double now) {
     io.KeyCtrl = step.ctrl;
     io.MouseWheel += step.wheel;
     if (step.key >= 0) io.KeysDown[step.key] = step.key_down;
+    for (const char c : step.text) io.AddInputCharacter(static_cast<unsigned char>(c));
     platform_.note_event();
   }
   if (script_failed_ || (script_index_ >= script_.size() && script_wait_ == ScriptWait::kNone)) return;
@@ -162,6 +199,14 @@ bool Viewer::script_wait_done(double now) {
       break;
     }
     case ScriptWait::kInput: done = input_steps_.empty(); break;
+    case ScriptWait::kItem:
+      if (--wait_frames_left_ > 0) break;
+      if (!push_item_input()) {
+        fail_script(script_[script_index_ - 1], "no widget named '" + item_action_.name + "' was drawn (is its panel open?)");
+        return false;
+      }
+      script_wait_ = ScriptWait::kInput;  // now wait for the injected input to be used
+      return false;
     case ScriptWait::kBench:
       if (bench_waiting_image_) {
         if (!bench_expect_restart_ && drawn_generation_ >= bench_generation_ && !upload_pending_) {
@@ -403,32 +448,28 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     save_scene(false);
     return true;
   }
-  if (name == "drag_item" || name == "click_item") {
-    // drag_item NAME DX DY [STEPS] | click_item NAME: real (injected) mouse input on a widget
-    // located by name in the last frame (docs/previewer.md lists the names).
-    int steps = 10;
-    double dx = 0, dy = 0;
-    const bool drag = name == "drag_item";
-    if (drag ? (w.size() < 4 || w.size() > 5 || !parse_double(w[2], dx) || !parse_double(w[3], dy) ||
-                (w.size() == 5 && !parse_int(w[4], steps)) || steps < 1)
-             : w.size() != 2) {
-      return fail("usage: drag_item NAME DX DY [STEPS] | click_item NAME");
+  if (name == "click_item" || name == "drag_item" || name == "type_item") {
+    // Real (injected) mouse input on a widget found by name (docs/previewer.md lists the names):
+    // click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT (Ctrl+click, which turns
+    // a slider or drag field into a text field with its text selected, then TEXT and Enter).
+    // The sidebar first scrolls the widget into view, as a user would.
+    ItemAction action;
+    action.name = w.size() > 1 ? w[1] : "";
+    bool ok = w.size() == 2 && name == "click_item";
+    if (name == "drag_item") {
+      action.kind = ItemAction::Kind::kDrag;
+      ok = (w.size() == 4 || w.size() == 5) && parse_double(w[2], action.dx) && parse_double(w[3], action.dy) &&
+           (w.size() == 4 || parse_int(w[4], action.steps)) && action.steps >= 1;
+    } else if (name == "type_item") {
+      action.kind = ItemAction::Kind::kType;
+      ok = w.size() == 3;
+      if (ok) action.text = w[2];
     }
-    const auto it = item_locations_.rects.find(w[1]);
-    if (it == item_locations_.rects.end()) return fail("no widget named '" + w[1] + "' was drawn (is its panel open?)");
-    const ImVec2 at((it->second.min.x + it->second.max.x) / 2, (it->second.min.y + it->second.max.y) / 2);
-    if (drag) {
-      push_drag(0, at, ImVec2(at.x + static_cast<float>(dx), at.y + static_cast<float>(dy)), steps, false);
-    } else {
-      InputStep hover;
-      hover.pos = at;
-      input_steps_.push_back(hover);
-      InputStep act = hover;
-      act.buttons[0] = true;
-      input_steps_.push_back(act);
-      input_steps_.push_back(hover);
-    }
-    return wait_for(ScriptWait::kInput, 99);
+    if (!ok) return fail("usage: click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT");
+    item_action_ = action;
+    item_locations_.scroll_to = action.name;
+    wait_frames_left_ = 3;  // the scroll lands, the widget is drawn where it will be clicked
+    return wait_for(ScriptWait::kItem, 99);
   }
   if (name == "dump_state") {
     if (w.size() != 2) return fail("usage: dump_state FILE");
@@ -637,6 +678,7 @@ void Viewer::write_state(const std::string& path) const {
       << "picked=" << picked_text_ << "\n"
       << "selected_material=" << (have_material ? scene.materials[static_cast<std::size_t>(selected_material_)].name : "") << "\n"
       << "selected_light=" << selected_light_ << "\n"
+      << "hovered_light=" << hovered_light_ << "\n"
       << "lights=" << scene.lights.size() << "\n"
       << "camera_position=" << vec(scene.camera.position) << "\n"
       << "camera_look_at=" << vec(scene.camera.look_at) << "\n"
@@ -659,13 +701,26 @@ void Viewer::write_state(const std::string& path) const {
       << "help=" << (help_visible_ ? 1 : 0) << "\n"
       << "ui_size=" << display_.ui_size << "\n"
       << "stats_details=" << (display_.stats_details ? 1 : 0) << "\n"
-      << "camera_notice=" << camera_notice_ << "\n";
+      << "camera_notice=" << camera_notice_ << "\n"
+      << "camera_distance=" << glm::length(scene.camera.position - scene.camera.look_at) << "\n"
+      << "can_save=" << (!doc_.file_path().empty() && !doc_.opened_mesh() ? 1 : 0) << "\n"
+      << "figure_status=" << figure_status_ << "\n"
+      << "compare_caption=" << (instruments_.compare != 0 ? compare_caption() : "") << "\n"
+      << "captions=" << captions().size() << "\n";
+  const std::vector<std::string> caption_lines = captions();
+  for (std::size_t i = 0; i < caption_lines.size(); ++i) out << "caption" << i << "=" << caption_lines[i] << "\n";
   // Where the named widgets were drawn last frame: x y width height.
   for (const auto& [item, rect] : item_locations_.rects) {
     out << "item_" << item << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
         << rect.max.y - rect.min.y << "\n";
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) out << "light" << i << "_position=" << vec(scene.lights[i].position) << "\n";
+  // Where each point light's marker was drawn (window coordinates) and whether it is an arrow at
+  // the edge (the light out of view).
+  for (const ui::LightMarker& m : markers_) {
+    out << "light" << m.index << "_marker=" << m.pos.x << " " << m.pos.y << "\n"
+        << "light" << m.index << "_offscreen=" << (m.offscreen ? 1 : 0) << "\n";
+  }
   for (const Material& m : scene.materials) {
     out << "material_" << m.name << "_kd=" << vec(m.kd) << "\n"
         << "material_" << m.name << "_n=" << m.n << "\n";

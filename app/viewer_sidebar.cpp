@@ -30,7 +30,10 @@ namespace {
 // A panel header that tests can find by name ("panel.Lights") and click.
 bool header(const char* title, bool open_by_default) {
   const bool open = ImGui::CollapsingHeader(title, open_by_default ? ImGuiTreeNodeFlags_DefaultOpen : 0);
-  ui::locate(std::string("panel.") + title);
+  std::string name = std::string("panel.") + title;
+  std::replace(name.begin(), name.end(), ' ', '_');  // one word for scripts: panel.Render_settings
+  name = name.substr(0, name.find(':'));             // panel.Rays
+  ui::locate(name);
   return open;
 }
 

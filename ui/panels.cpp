@@ -65,6 +65,7 @@ bool camera_panel(Camera& camera, CameraActions& actions, std::string& notice) {
   changed |= drag_vec3("look at", edit.look_at, 0.02f);
   changed |= drag_vec3("up", edit.up, 0.01f);
   changed |= slider_double("fov y (deg)", edit.fov_y_deg, 5.0, 150.0, "%.1f");
+  locate("camera.fov");
   if (changed) {
     notice = camera_problem(edit);
     if (notice.empty()) {
@@ -191,7 +192,9 @@ bool lights_panel(std::vector<Light>& lights, int& selected, LightSolo& solo) {
     if (ImGui::Selectable(label, selected == i)) selected = i;
     ImGui::PopID();
   }
-  if (ImGui::Button("Add point")) {
+  const bool add_point = ImGui::Button("Add point");
+  locate("lights.add_point");
+  if (add_point) {
     Light light;
     light.position = Vec3(2, 5, 3);
     light.intensity = Color(0.5);
@@ -264,8 +267,10 @@ bool shading_settings_panel(Scene& scene) {
   help_marker("Child rays whose path weight falls below this are not traced.");
   int model = scene.specular_model == SpecularModel::kPhong ? 0 : 1;
   bool model_changed = ImGui::RadioButton("Phong", &model, 0);
+  locate("render.phong");
   ImGui::SameLine();
   model_changed |= ImGui::RadioButton("Blinn-Phong", &model, 1);
+  locate("render.blinn");
   if (model_changed) {
     scene.specular_model = model == 0 ? SpecularModel::kPhong : SpecularModel::kBlinn;
     edited = true;
@@ -275,7 +280,9 @@ bool shading_settings_panel(Scene& scene) {
   const bool blinn = scene.specular_model == SpecularModel::kBlinn;
   ImGui::TextDisabled(blinn ? "Blinn-Phong: n about 4\xC3\x97 Phong's gives the same highlight."
                             : "Phong: n about \xC2\xBC of Blinn-Phong's gives the same highlight.");
-  if (ImGui::SmallButton(blinn ? "every material's n \xC3\x97 4" : "every material's n \xC3\xB7 4")) {
+  const bool convert = ImGui::SmallButton(blinn ? "every material's n \xC3\x97 4" : "every material's n \xC3\xB7 4");
+  locate("render.convert_n");
+  if (convert) {
     for (Material& m : scene.materials) m.n = blinn ? m.n * 4 : m.n / 4;
     edited = true;
   }

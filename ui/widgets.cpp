@@ -13,7 +13,15 @@ namespace phonglab::ui {
 
 void locate(const std::string& name) {
   auto* locations = static_cast<ItemLocations*>(ImGui::GetIO().UserData);
-  if (locations != nullptr) locations->rects[name] = ScreenRect{ImGui::GetItemRectMin(), ImGui::GetItemRectMax()};
+  if (locations == nullptr) return;
+  locations->rects[name] = ScreenRect{ImGui::GetItemRectMin(), ImGui::GetItemRectMax()};
+  if (locations->scroll_to == name) {
+    // Only a widget not wholly in view is scrolled to: one in view stays where the user sees it.
+    const float top = ImGui::GetWindowPos().y;
+    const float bottom = top + ImGui::GetWindowSize().y;
+    if (ImGui::GetItemRectMin().y < top || ImGui::GetItemRectMax().y > bottom) ImGui::SetScrollHereY(0.5f);
+    locations->scroll_to.clear();
+  }
 }
 
 double tidy_float(double value) {
@@ -29,6 +37,17 @@ double tidy_float(double value) {
 namespace {
 
 Color tidy(const Color& c) { return Color(tidy_float(c.x), tidy_float(c.y), tidy_float(c.z)); }
+
+// The number a slider's text shows for `value` with its printf `format` ("%.3f", "gain %.1f"):
+// a drag lands on any double, and the value kept is the one the user saw.
+double shown_value(double value, const char* format) {
+  std::array<char, 64> shown{};
+  std::snprintf(shown.data(), shown.size(), format, value);
+  const char* start = shown.data();
+  while (*start != '\0' && !(std::isdigit(static_cast<unsigned char>(*start)) || *start == '-' || *start == '.')) ++start;
+  double parsed = 0;
+  return std::sscanf(start, "%lf", &parsed) == 1 && std::isfinite(parsed) ? parsed : value;
+}
 
 }  // namespace
 
@@ -52,6 +71,7 @@ bool color_edit(const char* label, Color& color) {
 }
 
 bool color_strength_edit(const char* label, Color& color, float max_strength) {
+  constexpr const char* kStrengthFormat = "%.3f";
   ImGui::PushID(label);
   // Swatch and slider share the width the caller set for one item.
   const float width = ImGui::CalcItemWidth();
@@ -72,9 +92,9 @@ bool color_strength_edit(const char* label, Color& color, float max_strength) {
   ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
   ImGui::SetNextItemWidth(std::max(width - ImGui::GetFrameHeight() - ImGui::GetStyle().ItemInnerSpacing.x, 1.0f));
   float new_strength = static_cast<float>(strength);
-  if (ImGui::SliderFloat(label, &new_strength, 0.0f, max_strength, "%.3f")) {
+  if (ImGui::SliderFloat(label, &new_strength, 0.0f, max_strength, kStrengthFormat)) {
     // The largest channel becomes exactly what the slider shows; the others keep their ratio to it.
-    const double target = tidy_float(std::max(new_strength, 0.0f));
+    const double target = shown_value(std::max(static_cast<double>(new_strength), 0.0), kStrengthFormat);
     color = strength > 0 ? tidy(color * (target / strength)) : Color(target);
     for (int c = 0; c < 3; ++c) {
       if (strength > 0 && color[c] != 0 && hue[c] == 1) color[c] = target;
@@ -93,13 +113,7 @@ bool slider_double(const char* label, double& value, double min, double max, con
                    bool logarithmic) {
   const ImGuiSliderFlags flags = logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
   if (!ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags)) return false;
-  // A drag lands on any double; keep what the slider's text shows (its format's digits).
-  std::array<char, 64> shown{};
-  std::snprintf(shown.data(), shown.size(), format, value);
-  double parsed = 0;
-  const char* start = shown.data();
-  while (*start != '\0' && !(std::isdigit(static_cast<unsigned char>(*start)) || *start == '-' || *start == '.')) ++start;
-  if (std::sscanf(start, "%lf", &parsed) == 1 && std::isfinite(parsed)) value = parsed;
+  value = shown_value(value, format);
   return true;
 }
 

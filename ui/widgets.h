@@ -21,6 +21,7 @@ struct ScreenRect {
 // one, locate() does nothing.
 struct ItemLocations {
   std::map<std::string, ScreenRect> rects;
+  std::string scroll_to;  // a widget to scroll into view when it is next drawn (then cleared)
 };
 // Records the last item's rectangle under `name`.
 void locate(const std::string& name);

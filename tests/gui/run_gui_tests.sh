@@ -21,7 +21,8 @@ fi
 BUILD_DIR=$(cd "${1:?usage: run_gui_tests.sh BUILD_DIR [OUT_DIR]}" && pwd)
 OUT=${2:-$BUILD_DIR/gui-tests}
 BIN=$BUILD_DIR/bin/phonglab
-SELF=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/$(basename "${BASH_SOURCE[0]}")
+SELF_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+SELF=$SELF_DIR/$(basename "${BASH_SOURCE[0]}")
 # Sanitizer builds: GL drivers and X libraries keep allocations alive until exit on purpose.
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
@@ -531,6 +532,339 @@ check_rays() {
   check "switching the heat map off goes back to the full image" test "$(state "$dir/r09.txt" term)" = full
 }
 
+# --- Session 5: the lecture's first minutes (issue 12): every bug has its regression check ----
+session_lecture() {
+  local dir=$OUT/lecture src=$SELF_DIR/../..
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+dump_state $dir/l00.txt
+screenshot $dir/l00_start.png
+# Undoing every edit leaves the scene unmodified.
+set material plastic kd 0.9 0.1 0.1
+wait_frames 3
+set material plastic ks 0.8
+wait_frames 3
+dump_state $dir/l07.txt
+undo
+undo
+wait_frames 3
+dump_state $dir/l08.txt
+# The orbit follows the hand: 20 px down looks from higher up; 600 px either way stops at a pole.
+drag left 440 400 440 420 4
+wait_idle 120
+dump_state $dir/l01.txt
+key R
+wait_idle 120
+drag left 440 60 440 660 60
+wait_idle 120
+dump_state $dir/l02.txt
+screenshot $dir/l02_from_above.png
+key R
+wait_idle 120
+drag left 440 660 440 60 60
+wait_idle 120
+dump_state $dir/l03.txt
+screenshot $dir/l03_from_below.png
+key R
+wait_idle 120
+dump_state $dir/l03r.txt
+# The arrow of the light out of view is grabbed by a real xdotool drag, and brings the light in.
+touch $dir/arrow_ready
+wait_file $dir/arrow_done 60
+wait_idle 120
+dump_state $dir/l04.txt
+screenshot $dir/l04_light_dragged_in.png
+# Seven real H taps with no delay: none is lost (the panels end hidden).
+touch $dir/keys_ready
+wait_file $dir/keys_done 60
+wait_frames 10
+dump_state $dir/l05.txt
+screenshot $dir/l05_panels_hidden.png
+key H
+wait_frames 3
+# The UI size slider keeps the value it was dragged to.
+click_item panel.Display
+wait_frames 3
+drag_item display.ui_size 40 0
+wait_frames 5
+dump_state $dir/l06.txt
+screenshot $dir/l06_ui_size_dragged.png
+set display ui_size 1
+wait_frames 3
+click_item panel.Display
+wait_frames 3
+# A asked for while the image is still converging is the finished image: with the eye not moved,
+# |live - A| is black.
+set render target_spp 8
+set instruments head 1
+wait_frames 2
+snapshot_a
+set instruments compare 2
+wait_frames 1
+dump_state $dir/l09.txt
+wait_idle 120
+wait_frames 3
+screenshot $dir/l10_difference_same_eye.png
+dump_state $dir/l10.txt
+# After a resize the wipe says why A is not shown.
+set instruments compare 1
+resize 1000 600
+wait_frames 5
+wait_idle 120
+dump_state $dir/l11.txt
+screenshot $dir/l11_wipe_after_resize.png
+resize 1280 720
+wait_frames 5
+set instruments compare 0
+set instruments head 0
+set render target_spp 1
+wait_idle 120
+# Snapshot A moves no control.
+dump_state $dir/l12.txt
+click_item instruments.snapshot_a
+wait_frames 3
+dump_state $dir/l13.txt
+# A term view says what it shows; the keys: 4 specular, F1 help, Shift+1 solo.
+key 4
+wait_idle 120
+dump_state $dir/l14.txt
+screenshot $dir/l14_specular_caption.png
+key 1
+key F1
+wait_frames 3
+dump_state $dir/l15.txt
+screenshot $dir/l15_keys_help.png
+key ESCAPE
+wait_frames 2
+key 1 shift
+wait_frames 2
+dump_state $dir/l16.txt
+key 1 shift
+wait_frames 2
+dump_state $dir/l17.txt
+# A new point light appears in view.
+click_item lights.add_point
+wait_frames 3
+dump_state $dir/l18.txt
+screenshot $dir/l18_new_light.png
+undo
+# A refused typed value says why; the dolly stops at its limit.
+click_item panel.Camera
+wait_frames 3
+type_item camera.fov 0
+wait_frames 3
+dump_state $dir/l19.txt
+screenshot $dir/l19_refused_fov.png
+scroll 440 400 -200
+wait_frames 3
+dump_state $dir/l20.txt
+key R
+wait_frames 2
+click_item panel.Camera
+wait_frames 3
+# Blinn-Phong: the hint and the offered conversion of n.
+click_item panel.Render_settings
+wait_frames 3
+click_item render.blinn
+wait_frames 3
+click_item render.convert_n
+wait_frames 3
+dump_state $dir/l21.txt
+screenshot $dir/l21_blinn_hint.png
+undo
+undo
+wait_frames 2
+click_item panel.Render_settings
+wait_frames 3
+# A dragged slider saves the value it shows, without float noise.
+drag_item material.ks 23 0
+wait_frames 3
+save_as $dir/noise.json
+dump_state $dir/l22.txt
+# Messages: an MTL is not a scene; an OBJ opened alone cannot be saved over; the figure's path.
+open $src/assets/scenes/cornell/CornellBox-Original.mtl
+wait_frames 2
+dump_state $dir/l23.txt
+open $src/assets/scenes/cornell/CornellBox-Original.obj
+wait_idle 120
+dump_state $dir/l24.txt
+figure $dir/figure.png
+dump_state $dir/l25.txt
+# The embedded scenes at this window's aspect, and the overlays on a light background.
+open glass
+wait_idle 120
+screenshot $dir/l30_glass.png
+probe 440 300
+wait_frames 3
+screenshot $dir/l30b_glass_tree.png
+open shininess
+wait_idle 120
+screenshot $dir/l31_shininess.png
+set instruments depth_cut 1
+wait_idle 120
+dump_state $dir/l32.txt
+set instruments depth_cut -1
+open cornell-sphere
+wait_idle 120
+screenshot $dir/l33_cornell_sphere.png
+set display ui_size 2
+wait_frames 5
+screenshot $dir/l34_ui_size_2.png
+set display ui_size 1
+quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
+  local pid=$! win="" x y
+  if wait_for_file "$dir/arrow_ready" 120 "$pid"; then
+    win=$(xdotool search --sync --limit 1 --name '^phonglab' 2>/dev/null | head -n 1)
+    read -r x y <<<"$(state "$dir/l03r.txt" light0_marker)"
+    x=${x%.*} y=${y%.*}
+    xdotool mousemove --window "$win" "$x" "$y"
+    sleep 0.3
+    xdotool mousedown 1
+    for step in 1 2 3 4 5 6 7 8; do
+      xdotool mousemove --window "$win" $((x - step * 30)) $((y + step * 15))
+      sleep 0.05
+    done
+    xdotool mouseup 1
+    sleep 0.2
+    xdotool mousemove --window "$win" 1270 710
+    touch "$dir/arrow_done"
+  fi
+  if wait_for_file "$dir/keys_ready" 120 "$pid"; then
+    xdotool windowfocus --sync "$win" 2>/dev/null
+    xdotool key --delay 40 h h h h h h h
+    touch "$dir/keys_done"
+  fi
+  wait "$pid"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_lecture() {
+  local dir=$OUT/lecture
+  echo "session 5: the lecture's first minutes"
+  check "the script ran to the end (exit $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
+    test "$(cat "$dir/exit_code")" = 0
+  local y0 y1 p2 p3
+  y0=$(state "$dir/l00.txt" camera_position | cut -d' ' -f2)
+  y1=$(state "$dir/l01.txt" camera_position | cut -d' ' -f2)
+  check "a 20 px drag down looks from higher up (eye y $y0 -> $y1)" greater "$y1" "$y0"
+  p2=$(state "$dir/l02.txt" camera_position)
+  p3=$(state "$dir/l03.txt" camera_position)
+  check "600 px down: above the scene, stopped at the pole, not over it ($p2)" \
+    awk -v p="$p2" 'BEGIN { split(p, v, " "); exit !(v[2] > 6 && v[3] > 0) }'
+  check "600 px up: below, stopped at the pole, not over it ($p3)" \
+    awk -v p="$p3" 'BEGIN { split(p, v, " "); exit !(v[2] < -4 && v[3] > 0) }'
+  check "camera_up and camera_fov are dumped ($(state "$dir/l00.txt" camera_up), $(state "$dir/l00.txt" camera_fov))" \
+    test "$(state "$dir/l00.txt" camera_up)" = "0 1 0" -a -n "$(state "$dir/l00.txt" camera_fov)"
+  check "the lecture's point light starts out of view, as an arrow at the edge" test "$(state "$dir/l00.txt" light0_offscreen)" = 1
+  check "dragging the arrow moved the light, not the camera ($(state "$dir/l04.txt" light0_position))" \
+    test "$(state "$dir/l04.txt" camera_position)" = "$(state "$dir/l03r.txt" camera_position)" \
+    -a "$(state "$dir/l04.txt" light0_position)" != "$(state "$dir/l03r.txt" light0_position)"
+  check "and brought it into view" test "$(state "$dir/l04.txt" light0_offscreen)" = 0
+  check "seven instant H taps: seven toggles, none lost ($(state "$dir/l05.txt" sidebar_toggles))" \
+    test "$(state "$dir/l05.txt" sidebar_toggles)" = 7 -a "$(state "$dir/l05.txt" sidebar)" = 0
+  check "the UI size slider keeps the dragged value ($(state "$dir/l06.txt" ui_size))" greater "$(state "$dir/l06.txt" ui_size)" 1.05
+  check "two edits: modified, two undo steps" test "$(state "$dir/l07.txt" dirty)-$(state "$dir/l07.txt" undo)" = 1-2
+  check "undoing both: not modified any more" test "$(state "$dir/l08.txt" dirty)" = 0
+  check "A asked for mid-render waits for the finished image ($(state "$dir/l09.txt" compare_caption))" \
+    grep -q '^compare_caption=A is taken when the image is done' "$dir/l09.txt"
+  local mean
+  mean=$(convert "$dir/l10_difference_same_eye.png" -crop 880x300+0+300 +repage -format '%[fx:mean]' info:)
+  check "the same eye against that A: |live - A| is black (mean $mean)" less "$mean" 0.0005
+  check "after a resize the wipe says why A is not shown ($(state "$dir/l11.txt" compare_caption))" \
+    grep -q '^compare_caption=A is .*take A again' "$dir/l11.txt"
+  check "Snapshot A moved no control" cmp -s <(grep '^item_' "$dir/l12.txt") <(grep '^item_' "$dir/l13.txt")
+  check "key 4 shows the specular term, and the image says so ($(state "$dir/l14.txt" caption0))" \
+    test "$(state "$dir/l14.txt" term)" = specular -a -n "$(grep '^caption0=specular only: ' "$dir/l14.txt")"
+  check "F1 opens the keys overlay" test "$(state "$dir/l15.txt" help)" = 1
+  check "Shift+1 solos L0, again restores ($(state "$dir/l16.txt" lights_enabled), $(state "$dir/l17.txt" lights_enabled))" \
+    test "$(state "$dir/l16.txt" lights_enabled)-$(state "$dir/l17.txt" lights_enabled)" = 10-11
+  check "Add point puts the new light in view" \
+    test "$(state "$dir/l18.txt" lights)-$(state "$dir/l18.txt" light2_offscreen)" = 3-0
+  check "a typed fov of 0 is refused with a reason ($(state "$dir/l19.txt" camera_notice))" \
+    grep -q '^camera_notice=fov y must be between 0 and 180' "$dir/l19.txt"
+  check "and the camera keeps its field of view" test "$(state "$dir/l19.txt" camera_fov)" = "$(state "$dir/l00.txt" camera_fov)"
+  check "200 wheel clicks out stop at the dolly limit ($(state "$dir/l20.txt" camera_distance))" \
+    less "$(state "$dir/l20.txt" camera_distance)" 1000
+  check "Blinn-Phong offers n x 4 ($(state "$dir/l00.txt" material_plastic_n) -> $(state "$dir/l21.txt" material_plastic_n))" \
+    awk -v a="$(state "$dir/l00.txt" material_plastic_n)" -v b="$(state "$dir/l21.txt" material_plastic_n)" 'BEGIN { exit !(b == 4 * a) }'
+  local ks
+  ks=$(sed -n '/"plastic": {/,/}/p' "$dir/noise.json" | grep '"ks"')
+  check "a dragged slider saves the value it showed ($ks)" grep -qE '"ks": \[0\.[0-9]{1,3}, 0\.[0-9]{1,3}, 0\.[0-9]{1,3}\]' <<<"$ks"
+  check "and nothing in the saved file carries float noise" test -s "$dir/noise.json" -a -z "$(grep -E '[0-9]\.[0-9]{10,}' "$dir/noise.json")"
+  check "opening an MTL says what it is ($(state "$dir/l23.txt" error))" grep -q '^error=.*material library' "$dir/l23.txt"
+  check "an OBJ opened alone cannot be saved over" test "$(state "$dir/l24.txt" can_save)" = 0
+  check "the figure's status names its full path ($(state "$dir/l25.txt" figure_status))" grep -q '^figure_status=saved /' "$dir/l25.txt"
+  check "shininess (max depth 0): the depth cut never reads 'of 0' ($(state "$dir/l32.txt" depth_cut_label))" \
+    test -z "$(grep '^depth_cut_label=.*of 0' "$dir/l32.txt")" -a -n "$(state "$dir/l32.txt" depth_cut_label)"
+}
+
+# --- Session 6: Save never overwrites a change made on disk ----------------------------------
+session_conflict() {
+  local dir=$OUT/conflict
+  mkdir -p "$dir"
+  write_scene "$dir/scene.json" "[0.8, 0.1, 0.1]" 0.8
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+set material red n 200
+wait_frames 3
+touch $dir/outside_ready
+wait_file $dir/outside_done 60
+wait_frames 60
+dump_state $dir/c01.txt
+save
+wait_frames 3
+dump_state $dir/c02.txt
+screenshot $dir/c02_changed_on_disk.png
+modal cancel
+wait_frames 3
+dump_state $dir/c03.txt
+touch $dir/copy_ready
+wait_file $dir/copy_done 60
+close
+wait_frames 3
+dump_state $dir/c04.txt
+screenshot $dir/c04_guard.png
+modal save
+wait_frames 3
+dump_state $dir/c05.txt
+modal overwrite
+wait_frames 300
+fail the guard's Save then Overwrite did not quit
+EOF
+  "$BIN" "$dir/scene.json" --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
+  local pid=$!
+  if wait_for_file "$dir/outside_ready" 120 "$pid"; then
+    sed 's/"n": 20/"n": 50/' "$dir/scene.json" >"$dir/scene.json.new" && mv "$dir/scene.json.new" "$dir/scene.json"
+    touch "$dir/outside_done"
+  fi
+  if wait_for_file "$dir/copy_ready" 120 "$pid"; then
+    cp "$dir/scene.json" "$dir/after_cancel.json"
+    touch "$dir/copy_done"
+  fi
+  wait "$pid"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_conflict() {
+  local dir=$OUT/conflict
+  echo "session 6: Save and a change made on disk"
+  check "exits 0 after Save, Overwrite (got $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
+    test "$(cat "$dir/exit_code")" = 0
+  check "the change on disk is noticed and the edits kept" \
+    test "$(state "$dir/c01.txt" changed_on_disk)-$(state "$dir/c01.txt" dirty)" = 1-1
+  check "save with the file changed on disk asks first" test "$(state "$dir/c02.txt" conflict)" = 1
+  check "Cancel wrote nothing: the outside change stays" grep -q '"n": 50' "$dir/after_cancel.json"
+  check "and the edits stay" test "$(state "$dir/c03.txt" dirty)" = 1
+  check "quitting asks first" test "$(state "$dir/c04.txt" modal)" = 1
+  check "the guard's Save meets the outside change and asks again" test "$(state "$dir/c05.txt" conflict)" = 1
+  check "Overwrite wrote the previewer's version" grep -q '"n": 200' "$dir/scene.json"
+}
+
 # --- Without a display ----------------------------------------------------------------------
 check_no_display() {
   echo "without a display"
@@ -552,6 +886,8 @@ if ((INSIDE_X)); then
   session_files
   session_instruments
   session_rays
+  session_lecture
+  session_conflict
   exit 0
 fi
 
@@ -567,6 +903,8 @@ check_view
 check_files
 check_instruments
 check_rays
+check_lecture
+check_conflict
 check_no_display
 echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))
