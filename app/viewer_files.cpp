@@ -114,6 +114,10 @@ void Viewer::open_scene(const std::string& scene_arg) {
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   picked_text_.clear();
   probe_.reset();
+  // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
+  image_a_ = ProgressiveFrame{};
+  a_requested_ = a_dropped_ = false;
+  instruments_.compare = 0;
   drag_ = Drag{};
   scene_replaced_ = true;
 }

@@ -39,9 +39,9 @@ std::optional<float> blocked_until(const ui::ScreenRect& r, const std::vector<ui
 
 // A small overlay window at `pos` (anchored at `pivot`); returns where it was drawn.
 template <typename Contents>
-ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, Contents contents) {
+ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, Contents contents, float alpha = kOverlayAlpha) {
   ImGui::SetNextWindowPos(pos, ImGuiCond_Always, pivot);
-  ImGui::SetNextWindowBgAlpha(kOverlayAlpha);
+  ImGui::SetNextWindowBgAlpha(alpha);
   ui::ScreenRect rect;
   if (ImGui::Begin(id, nullptr, kOverlayFlags)) {
     contents();
@@ -85,8 +85,9 @@ void Viewer::draw_overlays() {
 
   // Captions at the top centre, each below whatever box it would overlap.
   float y = viewport_.y + margin;
+  const float wrap = std::max(viewport_.width - 4 * margin, 1.0f);  // a caption never leaves the view
   for (const std::string& text : captions()) {
-    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
     const float pad = 5 * scale;
     ui::ScreenRect r{ImVec2(viewport_.x + (viewport_.width - size.x) / 2 - pad, y),
                      ImVec2(viewport_.x + (viewport_.width + size.x) / 2 + pad, y + size.y + 2 * pad)};
@@ -95,7 +96,8 @@ void Viewer::draw_overlays() {
       r.min.y += shift;
       r.max.y += shift;
     }
-    ui::text_on_plate(ImGui::GetBackgroundDrawList(), ImVec2(r.min.x + pad, r.min.y + pad), text.c_str(), scale);
+    ui::text_on_plate(ImGui::GetBackgroundDrawList(), ImVec2(r.min.x + pad, r.min.y + pad), text.c_str(), scale, 0.75f,
+                      wrap);
     taken.push_back(r);
     y = r.max.y + 4 * scale;
   }
@@ -119,7 +121,7 @@ void Viewer::draw_overlays() {
   }
   if (help_visible_) {
     overlay_window("##keys", ImVec2(viewport_.x + viewport_.width / 2, viewport_.y + viewport_.height / 2),
-                   ImVec2(0.5f, 0.5f), [] { ui::keys_help(); });
+                   ImVec2(0.5f, 0.5f), [] { ui::keys_help(); }, 0.94f);
   }
 }
 

@@ -47,12 +47,22 @@ void note(GLFWwindow* window) {
 
 }  // namespace
 
+void record_cursor(GLFWwindow* window, double x, double y) {
+  auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window));
+  if (p == nullptr) return;
+  p->cursor_x_ = x;
+  p->cursor_y_ = y;
+}
+
 void record_mouse_press(GLFWwindow* window, int button, int action) {
   auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window));
   if (p == nullptr || action != GLFW_PRESS || button < 0 || button > 2) return;
   MousePress press;
   press.button = button;
-  glfwGetCursorPos(window, &press.x, &press.y);
+  // The cursor as the events so far left it (glfwGetCursorPos would ask the X server for where
+  // the pointer is now, after moves not yet delivered).
+  press.x = p->cursor_x_;
+  press.y = p->cursor_y_;
   constexpr std::size_t kMaxQueued = 64;
   if (p->mouse_presses_.size() >= kMaxQueued) p->mouse_presses_.erase(p->mouse_presses_.begin());
   p->mouse_presses_.push_back(press);
@@ -63,7 +73,10 @@ namespace {
 void install_activity_callbacks(Platform* platform) {
   GLFWwindow* w = platform->window();
   glfwSetWindowUserPointer(w, platform);
-  glfwSetCursorPosCallback(w, [](GLFWwindow* win, double, double) { note(win); });
+  glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
+    note(win);
+    record_cursor(win, x, y);
+  });
   glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) {
     note(win);
     record_mouse_press(win, button, action);

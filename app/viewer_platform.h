@@ -75,7 +75,11 @@ class Platform {
   std::vector<KeyPress> key_presses_;  // from the key callback, taken once per frame
   std::vector<MousePress> mouse_presses_;  // from the mouse button callback, likewise
 
+  double cursor_x_ = 0;  // the cursor as the last cursor event left it, window coordinates
+  double cursor_y_ = 0;
+
   friend void record_mouse_press(GLFWwindow* window, int button, int action);
+  friend void record_cursor(GLFWwindow* window, double x, double y);
 };
 
 }  // namespace phonglab

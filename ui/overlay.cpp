@@ -29,12 +29,12 @@ bool font_has(ImWchar c) { return ImGui::GetFont()->FindGlyphNoFallback(c) != nu
 
 }  // namespace
 
-void text_on_plate(ImDrawList* draw, ImVec2 at, const char* text, float ui_scale, float alpha) {
-  const ImVec2 size = ImGui::CalcTextSize(text);
+void text_on_plate(ImDrawList* draw, ImVec2 at, const char* text, float ui_scale, float alpha, float wrap_width) {
+  const ImVec2 size = ImGui::CalcTextSize(text, nullptr, false, wrap_width > 0 ? wrap_width : -1.0f);
   const float pad = 4 * ui_scale;
   draw->AddRectFilled(ImVec2(at.x - pad, at.y - pad * 0.6f), ImVec2(at.x + size.x + pad, at.y + size.y + pad * 0.6f),
                       IM_COL32(0, 0, 0, static_cast<int>(255 * alpha)), 3 * ui_scale);
-  draw->AddText(at, kLabelText, text);
+  draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, kLabelText, text, nullptr, wrap_width > 0 ? wrap_width : 0.0f);
 }
 
 void draw_probe_ring(ImDrawList* draw, ImVec2 c, float ui_scale) {

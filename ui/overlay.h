@@ -34,8 +34,10 @@ inline float light_marker_radius(float ui_scale) { return 7.0f * ui_scale; }
 // Markers on the background draw list: over the rendered image, under the panels.
 void draw_light_markers(std::span<const LightMarker> markers, float radius, float ui_scale);
 
-// `text` at `at` (top-left) in white on a dark rounded plate, readable on any image.
-void text_on_plate(ImDrawList* draw, ImVec2 at, const char* text, float ui_scale, float alpha = 0.75f);
+// `text` at `at` (top-left) in white on a dark rounded plate, readable on any image; wrapped at
+// `wrap_width` pixels when that is positive.
+void text_on_plate(ImDrawList* draw, ImVec2 at, const char* text, float ui_scale, float alpha = 0.75f,
+                   float wrap_width = 0);
 
 // The probed pixel's mark: a yellow ring with a gap, on a black outline.
 void draw_probe_ring(ImDrawList* draw, ImVec2 centre, float ui_scale);

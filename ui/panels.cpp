@@ -256,7 +256,7 @@ bool lights_panel(std::vector<Light>& lights, int& selected, LightSolo& solo) {
 
 bool shading_settings_panel(Scene& scene) {
   bool edited = false;
-  edited |= color_edit("ambient Ia", scene.ambient);
+  edited |= color_edit(("ambient " + i_a()).c_str(), scene.ambient);
   edited |= color_edit("background", scene.background);
   edited |= ImGui::SliderInt("max depth", &scene.max_depth, 0, 16, "%d", ImGuiSliderFlags_AlwaysClamp);
   help_marker("Recursion depth for reflection and refraction rays. 0 = local shading only.");

@@ -626,6 +626,7 @@ dump_state $dir/l12.txt
 click_item instruments.snapshot_a
 wait_frames 3
 dump_state $dir/l13.txt
+set instruments compare 0
 # A term view says what it shows; the keys: 4 specular, F1 help, Shift+1 solo.
 key 4
 wait_idle 120
