@@ -64,8 +64,10 @@ bool camera_panel(Camera& camera, CameraActions& actions, std::string& notice) {
   changed |= drag_vec3("position", edit.position, 0.02f);
   changed |= drag_vec3("look at", edit.look_at, 0.02f);
   changed |= drag_vec3("up", edit.up, 0.01f);
-  changed |= slider_double("fov y (deg)", edit.fov_y_deg, 5.0, 150.0, "%.1f");
+  std::string typed_refusal;
+  changed |= slider_double("fov y (deg)", edit.fov_y_deg, 5.0, 150.0, "%.1f", false, &typed_refusal);
   locate("camera.fov");
+  if (!typed_refusal.empty()) notice = "fov y: " + typed_refusal;
   if (changed) {
     notice = camera_problem(edit);
     if (notice.empty()) {

@@ -1,5 +1,7 @@
 #include "ui/widgets.h"
 
+#include <imgui_internal.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -110,9 +112,26 @@ bool drag_vec3(const char* label, Vec3& v, float speed, const char* format) {
 }
 
 bool slider_double(const char* label, double& value, double min, double max, const char* format,
-                   bool logarithmic) {
+                   bool logarithmic, std::string* refused) {
   const ImGuiSliderFlags flags = logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
-  if (!ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags)) return false;
+  // Ctrl+click turns a slider into a text field; ImGui ignores text that is not a number. Say so.
+  const ImGuiID id = ImGui::GetID(label);
+  ImGuiStorage* storage = ImGui::GetStateStorage();
+  const ImGuiID typing_key = id + 1;  // "was a text field last frame", kept in ImGui's per-window storage
+  const bool was_typing = storage->GetBool(typing_key);
+  if (refused != nullptr && was_typing) {
+    // The text field drops characters that cannot be part of a number (ImGui's filter) and then
+    // consumes the queue: name them first.
+    std::string dropped;
+    for (const ImWchar c : ImGui::GetIO().InputQueueCharacters) {
+      if (c < 0x80 && std::strchr("0123456789.eE+-*/ ", static_cast<int>(c)) == nullptr) dropped += static_cast<char>(c);
+    }
+    if (!dropped.empty()) *refused = "'" + dropped + "' is not a number (only digits, '.', 'e' and signs)";
+  }
+  const bool changed = ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags);
+  const bool typing = ImGui::TempInputIsActive(id);
+  storage->SetBool(typing_key, typing);
+  if (!changed) return false;
   value = shown_value(value, format);
   return true;
 }

@@ -43,9 +43,11 @@ bool color_strength_edit(const char* label, Color& color, float max_strength);
 // Three doubles dragged together.
 bool drag_vec3(const char* label, Vec3& v, float speed, const char* format = "%.3f");
 
-// A double on a slider; `logarithmic` spreads decades evenly (shininess, weights).
+// A double on a slider; `logarithmic` spreads decades evenly (shininess, weights). The value kept
+// is the one the slider's text shows. With `refused`, text typed into it (Ctrl+click) that is not
+// a number is reported there instead of being ignored without a word.
 bool slider_double(const char* label, double& value, double min, double max, const char* format,
-                   bool logarithmic = false);
+                   bool logarithmic = false, std::string* refused = nullptr);
 
 // A one-line help marker: "(?)" that shows `text` when hovered.
 void help_marker(const char* text);

@@ -654,6 +654,9 @@ undo
 # A refused typed value says why; the dolly stops at its limit.
 click_item panel.Camera
 wait_frames 3
+type_item camera.fov abc
+wait_frames 3
+dump_state $dir/l19a.txt
 type_item camera.fov 0
 wait_frames 3
 dump_state $dir/l19.txt
@@ -787,6 +790,8 @@ check_lecture() {
     test "$(state "$dir/l18.txt" lights)-$(state "$dir/l18.txt" light2_offscreen)" = 3-0
   check "a typed fov of 0 is refused with a reason ($(state "$dir/l19.txt" camera_notice))" \
     grep -q '^camera_notice=fov y must be between 0 and 180' "$dir/l19.txt"
+  check "typed text that is not a number is refused with a word ($(state "$dir/l19a.txt" camera_notice))" \
+    grep -q "^camera_notice=fov y: 'abc' is not a number" "$dir/l19a.txt"
   check "and the camera keeps its field of view" test "$(state "$dir/l19.txt" camera_fov)" = "$(state "$dir/l00.txt" camera_fov)"
   check "200 wheel clicks out stop at the dolly limit ($(state "$dir/l20.txt" camera_distance))" \
     less "$(state "$dir/l20.txt" camera_distance)" 1000
