@@ -7,6 +7,7 @@
 
 #include "renderer/camera.h"
 #include "ui/camera_control.h"
+#include "ui/numbers.h"
 
 namespace phonglab {
 namespace {
@@ -90,6 +91,24 @@ TEST(CameraControl, FitToViewLeavesWideViewsAlone) {
   EXPECT_EQ(ui::fit_to_view(c, 16.0 / 9.0, 3.0).fov_y_deg, c.fov_y_deg);
   // A sliver of a window still gives a valid camera.
   EXPECT_TRUE(ui::camera_is_valid(ui::fit_to_view(c, 16.0 / 9.0, 1e-4)));
+}
+
+TEST(PanelNumbers, AFloatWidgetsValueIsItsShortestDecimal) {
+  // 0.366 through a float slider is 0.3659999966621399 as a double: the file would say so.
+  const double through_float = static_cast<double>(0.366f);
+  EXPECT_NE(through_float, 0.366);
+  EXPECT_EQ(ui::tidy_float(through_float), 0.366);
+  EXPECT_EQ(ui::tidy_float(1.0), 1.0);
+  EXPECT_EQ(ui::tidy_float(0.0), 0.0);
+  EXPECT_EQ(ui::tidy_float(static_cast<double>(1e-7f)), 1e-7);
+}
+
+TEST(PanelNumbers, ASliderKeepsTheValueItsTextShows) {
+  EXPECT_EQ(ui::shown_value(0.36612345, "%.3f"), 0.366);
+  EXPECT_EQ(ui::shown_value(39.96, "%.1f"), 40.0);
+  EXPECT_EQ(ui::shown_value(0.00123456, "%.4g"), 0.001235);
+  EXPECT_EQ(ui::shown_value(-2.5, "x%.1f"), -2.5);  // text before the number
+  EXPECT_EQ(ui::shown_value(7.25, "none"), 7.25);  // no number to read back: unchanged
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "renderer/embedded_scenes.h"
 #include "renderer/camera.h"
 #include "renderer/figure.h"
+#include "renderer/probe_report.h"
 #include "renderer/render.h"
 #include "renderer/scene_io.h"
 #include "tests/test_support.h"
@@ -53,6 +55,28 @@ TEST(PixelProbe, TotalEqualsTheRenderedLinearPixelInEveryEmbeddedScene) {
       }
     }
   }
+}
+
+TEST(PixelProbe, TextWithFourDigitsHasNoLongerNumberAndTheCliDefaultIsUnchanged) {
+  const Scene scene = load_prepared("lecture");
+  const PixelProbe probe = probe_pixel(scene, 320, 180, 200, 120);
+  const std::string four = probe_to_text(scene, probe, 4);
+  // No number in the text carries more than four significant digits ("0.1234", "1.235e-07").
+  const std::regex long_number("[0-9]\\.?[0-9]{4,}");
+  std::smatch m;
+  std::string rest = four;
+  while (std::regex_search(rest, m, long_number)) {
+    std::string digits;
+    for (const char c : m.str()) {
+      if (c != '.') digits += c;
+    }
+    digits.erase(0, digits.find_first_not_of('0'));
+    EXPECT_LE(digits.size(), 4u) << m.str() << " in\n" << four;
+    rest = m.suffix();
+  }
+  // phonglab-cli probe keeps its nine (and six) digits: more digits than the four-digit text.
+  EXPECT_GT(probe_to_text(scene, probe).size(), four.size());
+  EXPECT_EQ(probe_to_text(scene, probe), probe_to_text(scene, probe, 0));
 }
 
 TEST(PixelProbe, TermsAndLightsAddUpToTheTotal) {

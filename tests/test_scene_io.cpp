@@ -778,6 +778,15 @@ TEST(SceneLoader, MissingFileIsOneDiagnosticWithTheOsReason) {
   fs::remove_all(dir);
 }
 
+TEST(SceneLoader, AnMtlFileIsNotASceneAndTheMessageSaysWhatToOpen) {
+  const std::string mtl = std::string(PHONGLAB_SOURCE_DIR) + "/assets/scenes/cornell/CornellBox-Original.mtl";
+  const LoadResult r = load_scene_arg(mtl);
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_NE(r.error_text().find("material library (MTL)"), std::string::npos) << r.error_text();
+  EXPECT_NE(r.error_text().find("open the .obj"), std::string::npos) << r.error_text();
+  EXPECT_EQ(r.error_text().find("syntax"), std::string::npos) << r.error_text();
+}
+
 TEST(SceneLoader, LoadsFilesAndNamesThemAsGivenInDiagnostics) {
   const fs::path dir = temp_dir("file");
   const std::string good = (dir / "good.json").string();

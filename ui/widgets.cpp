@@ -1,5 +1,7 @@
 #include "ui/widgets.h"
 
+#include "ui/numbers.h"
+
 #include <imgui_internal.h>
 
 #include <algorithm>
@@ -26,30 +28,11 @@ void locate(const std::string& name) {
   }
 }
 
-double tidy_float(double value) {
-  const auto f = static_cast<float>(value);
-  if (!std::isfinite(f)) return value;
-  std::array<char, 32> text{};
-  const auto result = std::to_chars(text.data(), text.data() + text.size(), f);  // shortest round trip
-  double tidy = value;
-  std::from_chars(text.data(), result.ptr, tidy);
-  return tidy;
-}
 
 namespace {
 
 Color tidy(const Color& c) { return Color(tidy_float(c.x), tidy_float(c.y), tidy_float(c.z)); }
 
-// The number a slider's text shows for `value` with its printf `format` ("%.3f", "gain %.1f"):
-// a drag lands on any double, and the value kept is the one the user saw.
-double shown_value(double value, const char* format) {
-  std::array<char, 64> shown{};
-  std::snprintf(shown.data(), shown.size(), format, value);
-  const char* start = shown.data();
-  while (*start != '\0' && !(std::isdigit(static_cast<unsigned char>(*start)) || *start == '-' || *start == '.')) ++start;
-  double parsed = 0;
-  return std::sscanf(start, "%lf", &parsed) == 1 && std::isfinite(parsed) ? parsed : value;
-}
 
 }  // namespace
 

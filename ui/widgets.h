@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "renderer/math.h"
+#include "ui/numbers.h"
 
 namespace phonglab::ui {
 
@@ -26,9 +27,6 @@ struct ItemLocations {
 // Records the last item's rectangle under `name`.
 void locate(const std::string& name);
 
-// The double nearest to the shortest decimal that reads back as `value` in float: what a float
-// slider or colour picker meant (0.366, not 0.3659999966621399), so saved files carry no noise.
-double tidy_float(double value);
 
 // A text field editing a std::string in place (grows the string as the user types).
 bool input_text(const char* label, std::string& text, ImGuiInputTextFlags flags = 0);
