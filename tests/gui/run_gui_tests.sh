@@ -739,7 +739,7 @@ EOF
   fi
   if wait_for_file "$dir/keys_ready" 120 "$pid"; then
     xdotool windowfocus --sync "$win" 2>/dev/null
-    xdotool key --delay 40 h h h h h h h
+    xdotool key --delay 6 h h h h h h h
     touch "$dir/keys_done"
   fi
   wait "$pid"
