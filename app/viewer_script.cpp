@@ -448,6 +448,13 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     save_scene(false);
     return true;
   }
+  if (name == "show_item") {
+    // show_item NAME: scrolls the sidebar until the widget is in view (nothing is clicked).
+    if (w.size() != 2) return fail("usage: show_item NAME");
+    item_locations_.scroll_to = w[1];
+    wait_frames_left_ = 3;
+    return wait_for(ScriptWait::kFrames, 99);
+  }
   if (name == "click_item" || name == "drag_item" || name == "type_item") {
     // Real (injected) mouse input on a widget found by name (docs/previewer.md lists the names):
     // click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT (Ctrl+click, which turns

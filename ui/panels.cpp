@@ -421,7 +421,10 @@ namespace {
 
 // Probe numbers: `digits` significant digits (4 by default, 17 with "all digits").
 void rgb_text(const char* label, const Color& c, int digits) {
-  ImGui::Text("%-11s (%.*g, %.*g, %.*g)", label, digits, c.x, digits, c.y, digits, c.z);
+  // The label, then the values in a column of their own (a proportional font does not pad).
+  ImGui::TextUnformatted(label);
+  ImGui::SameLine(ImGui::GetFontSize() * 6.0f);
+  ImGui::Text("(%.*g, %.*g, %.*g)", digits, c.x, digits, c.y, digits, c.z);
 }
 
 void vec_text(const char* label, const Vec3& v, int digits) { rgb_text(label, v, digits); }
@@ -519,8 +522,9 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
   ImGui::SameLine();
   ImGui::Checkbox("all digits", &all_digits);
   rgb_text("linear", root.total, d);
-  ImGui::Text("%-11s (%d, %d, %d) at %+.1f EV", "displayed", view.srgb[0], view.srgb[1], view.srgb[2],
-              static_cast<double>(view.exposure_ev));
+  ImGui::TextUnformatted("displayed");
+  ImGui::SameLine(ImGui::GetFontSize() * 6.0f);
+  ImGui::Text("(%d, %d, %d) at %+.1f EV", view.srgb[0], view.srgb[1], view.srgb[2], static_cast<double>(view.exposure_ev));
   if (!root.hit) {
     ImGui::TextDisabled("The ray misses: the pixel is the background.");
     ImGui::PopTextWrapPos();

@@ -26,7 +26,7 @@ SELF=$SELF_DIR/$(basename "${BASH_SOURCE[0]}")
 # Sanitizer builds: GL drivers and X libraries keep allocations alive until exit on purpose.
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
-TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-150}  # per session, seconds (sanitizer builds are slow)
+TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-420}  # all sessions, seconds (sanitizer builds are slow)
 
 failures=0
 pass() { echo "  ok    $*"; }
@@ -432,10 +432,9 @@ wait_idle 120
 # The red sphere's highlight, with the probe panel scrolled into view.
 probe 371 339
 wait_frames 3
-scroll 1080 400 -16
+show_item panel.Probe
 wait_frames 5
 screenshot $dir/r00_probe_panel.png
-scroll 1080 400 4
 # The glass sphere: reflected and refracted rays to several depths, blocked shadow rays inside.
 probe 543 415
 wait_frames 3
