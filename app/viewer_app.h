@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -164,6 +165,7 @@ class Viewer {
   void draw_stats();                             // the stats box's contents
   void draw_head_plot();                         // the "move your head" plot's contents
   void draw_cell_labels_and_probe_ring();        // small multiples' labels, the probed pixel's ring
+  ImVec2 probe_screen_point() const;             // the probed pixel's centre on screen (the full image's cell)
   void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
   void draw_ray_tree_lines();                    // the probed tree over the full image's cell
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
@@ -235,6 +237,7 @@ class Viewer {
   int selected_light_ = -1;
   int hovered_light_ = -1;
   std::vector<ui::LightMarker> markers_;  // the light markers as drawn last frame (for grabbing)
+  std::map<std::string, ui::ScreenRect> overlay_rects_;  // the overlay boxes drawn last frame (their layout)
   double dolly_limit_ = 1e300;       // farthest the wheel takes the eye from look_at (ui::dolly_limit)
   bool help_visible_ = false;        // the keys overlay (F1 or ?)
   int sidebar_toggles_ = 0;          // H presses handled (the tests count lost taps)

@@ -5,8 +5,10 @@
 #include "app/viewer_app.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -37,9 +39,29 @@ std::optional<float> blocked_until(const ui::ScreenRect& r, const std::vector<ui
   return bottom;
 }
 
-// A small overlay window at `pos` (anchored at `pivot`); returns where it was drawn.
+// A small overlay window anchored at `pos` (`pivot` (0, 0) top-left ... (1, 1) bottom-right) and
+// returns where it was drawn. With the size it had last frame it is first moved clear of the
+// boxes already `taken`: down when it hangs from the top, up when it stands on the bottom.
 template <typename Contents>
-ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, Contents contents, float alpha = kOverlayAlpha) {
+ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, const std::vector<ui::ScreenRect>& taken,
+                              const std::map<std::string, ui::ScreenRect>& last_rects,
+                              std::map<std::string, ui::ScreenRect>& drawn, Contents contents, float alpha = kOverlayAlpha) {
+  if (const auto it = last_rects.find(id); it != last_rects.end()) {
+    const ImVec2 size(it->second.max.x - it->second.min.x, it->second.max.y - it->second.min.y);
+    const float gap = 4;
+    for (int tries = 0; tries < 8; ++tries) {
+      const ui::ScreenRect r{ImVec2(pos.x - pivot.x * size.x, pos.y - pivot.y * size.y),
+                             ImVec2(pos.x + (1 - pivot.x) * size.x, pos.y + (1 - pivot.y) * size.y)};
+      bool moved = false;
+      for (const ui::ScreenRect& t : taken) {
+        if (!overlaps(r, t)) continue;
+        pos.y = pivot.y < 0.5f ? t.max.y + gap : t.min.y - gap;
+        moved = true;
+        break;
+      }
+      if (!moved) break;
+    }
+  }
   ImGui::SetNextWindowPos(pos, ImGuiCond_Always, pivot);
   ImGui::SetNextWindowBgAlpha(alpha);
   ui::ScreenRect rect;
@@ -48,6 +70,7 @@ ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, Contents
     rect.min = ImGui::GetWindowPos();
     const ImVec2 size = ImGui::GetWindowSize();
     rect.max = ImVec2(rect.min.x + size.x, rect.min.y + size.y);
+    drawn[id] = rect;
   }
   ImGui::End();
   return rect;
@@ -57,6 +80,10 @@ ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, Contents
 
 void Viewer::draw_overlays() {
   markers_.clear();
+  // Last frame's boxes give the sizes for this frame's layout; this frame's replace them (so
+  // dump_state lists the boxes on screen).
+  const std::map<std::string, ui::ScreenRect> last = std::move(overlay_rects_);
+  overlay_rects_.clear();
   if (viewport_.width < 1 || viewport_.height < 1) return;
   const float scale = platform_.ui_scale();
   const float margin = 8 * scale;
@@ -68,19 +95,42 @@ void Viewer::draw_overlays() {
 
   // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left, the
   // heat scale bottom right.
-  if (display_.show_stats) taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), [&] { draw_stats(); }));
+  if (display_.show_stats) {
+    taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, overlay_rects_, [&] { draw_stats(); }));
+  }
   draw_ray_tree_lines();
   if (probe_ && rays_.overlay && rays_.legend && !tree_segments_.empty()) {
     const bool blinn = snapshot_ && snapshot_->specular_model == SpecularModel::kBlinn;
-    taken.push_back(overlay_window("##ray_tree_legend", top_right, ImVec2(1, 0),
+    // The legend must not hide the tree it explains: top right, unless the probed point is there,
+    // then bottom right, then bottom left.
+    ImVec2 anchor = top_right, pivot(1, 0);
+    if (const auto it = last.find("##ray_tree_legend"); it != last.end() && render_width_ > 0 && render_height_ > 0) {
+      const ImVec2 size(it->second.max.x - it->second.min.x, it->second.max.y - it->second.min.y);
+      const ImVec2 hit = probe_screen_point();
+      const float keep = 40 * scale;  // the ring and the N, L, R, V arrows around it
+      const ui::ScreenRect around{ImVec2(hit.x - keep, hit.y - keep), ImVec2(hit.x + keep, hit.y + keep)};
+      const std::array<std::pair<ImVec2, ImVec2>, 3> places = {
+          std::pair{top_right, ImVec2(1, 0)}, std::pair{bottom_right, ImVec2(1, 1)}, std::pair{bottom_left, ImVec2(0, 1)}};
+      for (const auto& [at, pv] : places) {
+        const ui::ScreenRect r{ImVec2(at.x - pv.x * size.x, at.y - pv.y * size.y),
+                               ImVec2(at.x + (1 - pv.x) * size.x, at.y + (1 - pv.y) * size.y)};
+        if (!overlaps(r, around) && !blocked_until(r, taken)) {
+          anchor = at;
+          pivot = pv;
+          break;
+        }
+      }
+    }
+    taken.push_back(overlay_window("##ray_tree_legend", anchor, pivot, taken, last, overlay_rects_,
                                    [&] { ui::ray_tree_legend(tree_segments_, blinn); }));
   }
   if (instruments_.move_head && snapshot_) {
-    taken.push_back(overlay_window("##head_plot", bottom_left, ImVec2(0, 1), [&] { draw_head_plot(); }));
+    taken.push_back(
+        overlay_window("##head_plot", bottom_left, ImVec2(0, 1), taken, last, overlay_rects_, [&] { draw_head_plot(); }));
   }
   if (heat_shown() && heat_max_ > 0) {
-    taken.push_back(
-        overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), [&] { ui::heat_legend(heat_max_, 220 * scale); }));
+    taken.push_back(overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), taken, last, overlay_rects_,
+                                   [&] { ui::heat_legend(heat_max_, 220 * scale); }));
   }
 
   // Captions at the top centre, each below whatever box it would overlap.
@@ -120,8 +170,9 @@ void Viewer::draw_overlays() {
                       text, scale, 0.55f);
   }
   if (help_visible_) {
+    // Over everything else, on purpose: it is asked for, and Esc closes it.
     overlay_window("##keys", ImVec2(viewport_.x + viewport_.width / 2, viewport_.y + viewport_.height / 2),
-                   ImVec2(0.5f, 0.5f), [] { ui::keys_help(); }, 0.94f);
+                   ImVec2(0.5f, 0.5f), {}, last, overlay_rects_, [] { ui::keys_help(); }, 0.94f);
   }
 }
 
@@ -181,6 +232,18 @@ void Viewer::draw_head_plot() {
   plot.angle_deg = instruments_.head_angle_deg;
   plot.width = 340 * platform_.ui_scale();
   ui::head_plot(plot);
+}
+
+ImVec2 Viewer::probe_screen_point() const {
+  // The probed pixel's centre in the full image's cell (the only one, or the last).
+  const int columns = instruments_.small_multiples ? kMultiplesColumns : 1;
+  const int rows = instruments_.small_multiples ? kMultiplesRows : 1;
+  const float cell_w = viewport_.width / static_cast<float>(columns);
+  const float cell_h = viewport_.height / static_cast<float>(rows);
+  return ImVec2(viewport_.x + static_cast<float>(columns - 1) * cell_w +
+                    (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(std::max(render_width_, 1)) * cell_w,
+                viewport_.y + static_cast<float>(rows - 1) * cell_h +
+                    (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(std::max(render_height_, 1)) * cell_h);
 }
 
 void Viewer::draw_cell_labels_and_probe_ring() {

@@ -716,7 +716,11 @@ void Viewer::write_state(const std::string& path) const {
       << "captions=" << captions().size() << "\n";
   const std::vector<std::string> caption_lines = captions();
   for (std::size_t i = 0; i < caption_lines.size(); ++i) out << "caption" << i << "=" << caption_lines[i] << "\n";
-  // Where the named widgets were drawn last frame: x y width height.
+  // The boxes over the image and the named widgets, where they were drawn last frame: x y width height.
+  for (const auto& [id, rect] : overlay_rects_) {
+    out << "overlay_" << id.substr(2) << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
+        << rect.max.y - rect.min.y << "\n";
+  }
   for (const auto& [item, rect] : item_locations_.rects) {
     out << "item_" << item << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
         << rect.max.y - rect.min.y << "\n";
@@ -763,7 +767,9 @@ void Viewer::write_state(const std::string& path) const {
       << "heat_max=" << heat_max_ << "\n";
   if (probe_) {
     const Color total = probe_->root.total;
+    const ImVec2 on_screen = probe_screen_point();
     out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
+        << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
         << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"
         << "probe_total=" << vec(total) << "\n";
     // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).

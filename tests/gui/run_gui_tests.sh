@@ -59,6 +59,12 @@ rmse() {
   compare -metric RMSE "$a" "$b" null: 2>&1 | sed -n 's/.*(\(.*\)).*/\1/p'
   rm -f "$a" "$b"
 }
+# apart FILE KEY1 KEY2: the rectangles "x y w h" under KEY1 and KEY2 in a dump do not overlap.
+apart() {
+  awk -v a="$(state "$1" "$2")" -v b="$(state "$1" "$3")" 'BEGIN {
+    if (split(a, p, " ") != 4 || split(b, q, " ") != 4) exit 1
+    exit !(p[1] + p[3] <= q[1] || q[1] + q[3] <= p[1] || p[2] + p[4] <= q[2] || q[2] + q[4] <= p[2]) }'
+}
 greater() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 > b + 0) }'; }
 less() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 < b + 0) }'; }
 wait_for_file() {  # wait_for_file FILE SECONDS PID
@@ -702,6 +708,13 @@ screenshot $dir/l30_glass.png
 probe 440 300
 wait_frames 3
 screenshot $dir/l30b_glass_tree.png
+set display stats_details 1
+set display ui_size 1.5
+wait_frames 5
+dump_state $dir/l30c.txt
+screenshot $dir/l30c_glass_ui_1_5.png
+set display ui_size 1
+set display stats_details 0
 open shininess
 wait_idle 120
 screenshot $dir/l31_shininess.png
@@ -803,6 +816,12 @@ check_lecture() {
   check "opening an MTL says what it is ($(state "$dir/l23.txt" error))" grep -q '^error=.*material library' "$dir/l23.txt"
   check "an OBJ opened alone cannot be saved over" test "$(state "$dir/l24.txt" can_save)" = 0
   check "the figure's status names its full path ($(state "$dir/l25.txt" figure_status))" grep -q '^figure_status=saved /' "$dir/l25.txt"
+  check "UI size 1.5, stats details and the ray-tree legend: the boxes do not overlap ($(state "$dir/l30c.txt" overlay_stats) / $(state "$dir/l30c.txt" overlay_ray_tree_legend))" \
+    apart "$dir/l30c.txt" overlay_stats overlay_ray_tree_legend
+  check "and the legend keeps clear of the probed point ($(state "$dir/l30c.txt" probe_screen))" \
+    awk -v r="$(state "$dir/l30c.txt" overlay_ray_tree_legend)" -v p="$(state "$dir/l30c.txt" probe_screen)" 'BEGIN {
+      split(r, q, " "); split(p, c, " "); exit !(c[1] < q[1] || c[1] > q[1] + q[3] || c[2] < q[2] || c[2] > q[2] + q[4]) }'
+
   check "shininess (max depth 0): the depth cut never reads 'of 0' ($(state "$dir/l32.txt" depth_cut_label))" \
     test -z "$(grep '^depth_cut_label=.*of 0' "$dir/l32.txt")" -a -n "$(state "$dir/l32.txt" depth_cut_label)"
 }
