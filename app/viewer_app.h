@@ -176,6 +176,7 @@ class Viewer {
   void reload_scene(bool keep_view);
   void save_scene(bool as);                      // Save (false) or Save as the path field (true), then after_save_
   bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
+  bool begin_screenshot(Image& image);           // the shown image's size, or false (and why) before the first
   void save_png(const std::string& path);        // what is shown, exposure and curve applied
   void save_pfm(const std::string& path);        // the linear image
   // Writes a screenshot and reports it in the Screenshot panel; `kind` prefixes the size.

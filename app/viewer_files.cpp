@@ -166,14 +166,19 @@ bool Viewer::finish_save(SceneDocument::SaveResult result) {
   return true;
 }
 
-void Viewer::save_png(const std::string& path) {
+bool Viewer::begin_screenshot(Image& image) {
   if (shown_.pixels.empty()) {
     screenshot_state_.status = "no image yet";
-    return;
+    return false;
   }
-  Image image;
   image.width = shown_.width;
   image.height = shown_.height;
+  return true;
+}
+
+void Viewer::save_png(const std::string& path) {
+  Image image;
+  if (!begin_screenshot(image)) return;
   image.pixels.reserve(shown_.pixels.size());
   // The heat map is written as shown: its colours, without exposure.
   const bool heat = heat_shown();
@@ -192,13 +197,8 @@ void Viewer::save_png(const std::string& path) {
 }
 
 void Viewer::save_pfm(const std::string& path) {
-  if (shown_.pixels.empty()) {
-    screenshot_state_.status = "no image yet";
-    return;
-  }
   Image image;
-  image.width = shown_.width;
-  image.height = shown_.height;
+  if (!begin_screenshot(image)) return;
   image.pixels = shown_.pixels;
   write_screenshot(path, image, "linear, ");
 }

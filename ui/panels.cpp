@@ -684,6 +684,20 @@ void stats_overlay(const StatsView& stats) {
   }
 }
 
+namespace {
+
+// The last row of a dialog: Cancel (or Esc), a scripted answer in place of the user's, and the
+// dialog closed once answered. Call inside BeginPopupModal; ends the popup.
+GuardChoice end_choice(GuardChoice choice, GuardChoice scripted) {
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
+  if (scripted != GuardChoice::kNone) choice = scripted;
+  if (choice != GuardChoice::kNone) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+  return choice;
+}
+
+}  // namespace
+
 GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
                                   GuardChoice scripted) {
   constexpr const char* kTitle = "Unsaved changes";
@@ -710,10 +724,7 @@ GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::str
     input_text("##save_as", save_as_path);
     if (ImGui::Button("Discard")) choice = GuardChoice::kDiscard;
     ImGui::SameLine();
-    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
-    if (scripted != GuardChoice::kNone) choice = scripted;
-    if (choice != GuardChoice::kNone) ImGui::CloseCurrentPopup();
-    ImGui::EndPopup();
+    choice = end_choice(choice, scripted);
   }
   return choice;
 }
@@ -732,10 +743,7 @@ GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardC
     ImGui::SameLine();
     if (ImGui::Button("Reload from disk (lose my edits)")) choice = GuardChoice::kReload;
     ImGui::SameLine();
-    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
-    if (scripted != GuardChoice::kNone) choice = scripted;
-    if (choice != GuardChoice::kNone) ImGui::CloseCurrentPopup();
-    ImGui::EndPopup();
+    choice = end_choice(choice, scripted);
   }
   return choice;
 }

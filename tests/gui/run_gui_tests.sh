@@ -67,6 +67,14 @@ apart() {
 }
 greater() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 > b + 0) }'; }
 less() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 < b + 0) }'; }
+finish() {  # finish DIR PID: waits for the session's program and keeps its exit status
+  wait "$2"
+  echo "$?" >"$1/exit_code"
+}
+# check_exit DIR WHAT: the session's program exited 0 (the message shows the end of its stderr).
+check_exit() {
+  check "$2 (exit $(cat "$1/exit_code"); stderr: $(tail -n 2 "$1/stderr.txt" | tr '\n' ' '))" test "$(cat "$1/exit_code")" = 0
+}
 wait_for_file() {  # wait_for_file FILE SECONDS PID
   local deadline=$((SECONDS + $2))
   while [[ ! -e "$1" ]]; do
@@ -173,15 +181,13 @@ EOF
     xdotool mousemove --window "$win" 1270 710  # out of the way of later scripted input
     touch "$dir/pick_done"
   fi
-  wait "$pid"
-  echo "$?" >"$dir/exit_code"
+  finish "$dir" "$pid"
 }
 
 check_view() {
   local dir=$OUT/view
   echo "session 1: view, picking, editing, window handling"
-  check "exits 0 after the guard's Discard (got $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
-    test "$(cat "$dir/exit_code")" = 0
+  check_exit "$dir" "exits 0 after the guard's Discard"
   check "the first screenshot shows a scene, not a uniform image" greater "$(stddev "$dir/01_start.png" $SCENE_REGION)" 0.05
   check "the shown image was saved as PNG ($(state "$dir/s01.txt" image))" test -s "$dir/shown.png"
   check "the linear image was saved as PFM" test "$(head -c 2 "$dir/linear.pfm" 2>/dev/null)" = PF
@@ -282,14 +288,13 @@ EOF
     mv "$dir/scene.json.new" "$dir/scene.json"
     touch "$dir/break_done"
   fi
-  wait "$pid"
-  echo "$?" >"$dir/exit_code"
+  finish "$dir" "$pid"
 }
 
 check_files() {
   local dir=$OUT/files
   echo "session 2: scene files"
-  check "exits 0 (got $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" test "$(cat "$dir/exit_code")" = 0
+  check_exit "$dir" "exits 0"
   check "opens the file given on the command line" test "$(state "$dir/f01.txt" file)" = "$dir/scene.json"
   check "a changed file reloads by itself ($(state "$dir/f02.txt" status))" test "$(state "$dir/f02.txt" material_red_kd)" = "0 0 1"
   check "a broken file shows its diagnostics ($(state "$dir/f03.txt" error))" \
@@ -392,8 +397,7 @@ EOF
 check_instruments() {
   local dir=$OUT/instruments
   echo "session 3: teaching instruments"
-  check "the script ran to the end (exit $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
-    test "$(cat "$dir/exit_code")" = 0
+  check_exit "$dir" "the script ran to the end"
   check "probe: hits the scene at $(state "$dir/i01.txt" probe_pixel)" test "$(state "$dir/i01.txt" probe_hit)" = 1
   check "probe: its total equals the shown linear pixel exactly" test "$(state "$dir/i01.txt" probe_match)" = 1
   check "Ctrl+click probes another pixel ($(state "$dir/i02.txt" probe_pixel))" \
@@ -494,8 +498,7 @@ EOF
 check_rays() {
   local dir=$OUT/rays cli=$BUILD_DIR/bin/phonglab-cli size w h
   echo "session 4: ray tree overlay, depth cut, heat map"
-  check "the script ran to the end (exit $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
-    test "$(cat "$dir/exit_code")" = 0
+  check_exit "$dir" "the script ran to the end"
   check "the glass sphere's tree is drawn ($(state "$dir/r01.txt" tree_segments) segments, deepest ray $(state "$dir/r01.txt" tree_deepest))" \
     test "$(state "$dir/r01.txt" tree_segments)" -ge 10 -a "$(state "$dir/r01.txt" tree_deepest)" -ge 2
   check "a shaded floor point: the overlay's blocked shadow rays are the probe's ($(state "$dir/r02.txt" tree_blocked))" \
@@ -754,15 +757,13 @@ EOF
     xdotool key --delay 6 h h h h h h h
     touch "$dir/keys_done"
   fi
-  wait "$pid"
-  echo "$?" >"$dir/exit_code"
+  finish "$dir" "$pid"
 }
 
 check_lecture() {
   local dir=$OUT/lecture
   echo "session 5: the lecture's first minutes"
-  check "the script ran to the end (exit $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
-    test "$(cat "$dir/exit_code")" = 0
+  check_exit "$dir" "the script ran to the end"
   local y0 y1 p2 p3
   y0=$(state "$dir/l00.txt" camera_position | cut -d' ' -f2)
   y1=$(state "$dir/l01.txt" camera_position | cut -d' ' -f2)
@@ -870,15 +871,13 @@ EOF
     cp "$dir/scene.json" "$dir/after_cancel.json"
     touch "$dir/copy_done"
   fi
-  wait "$pid"
-  echo "$?" >"$dir/exit_code"
+  finish "$dir" "$pid"
 }
 
 check_conflict() {
   local dir=$OUT/conflict
   echo "session 6: Save and a change made on disk"
-  check "exits 0 after Save, Overwrite (got $(cat "$dir/exit_code"); stderr: $(tail -n 2 "$dir/stderr.txt" | tr '\n' ' '))" \
-    test "$(cat "$dir/exit_code")" = 0
+  check_exit "$dir" "exits 0 after Save, Overwrite"
   check "the change on disk is noticed and the edits kept" \
     test "$(state "$dir/c01.txt" changed_on_disk)-$(state "$dir/c01.txt" dirty)" = 1-1
   check "save with the file changed on disk asks first" test "$(state "$dir/c02.txt" conflict)" = 1
