@@ -61,13 +61,17 @@ bool camera_panel(Camera& camera, CameraActions& actions, std::string& notice) {
   // along the view); say why when it is refused.
   Camera edit = camera;
   bool changed = false;
-  changed |= drag_vec3("position", edit.position, 0.02f);
-  changed |= drag_vec3("look at", edit.look_at, 0.02f);
-  changed |= drag_vec3("up", edit.up, 0.01f);
-  std::string typed_refusal;
-  changed |= slider_double("fov y (deg)", edit.fov_y_deg, 5.0, 150.0, "%.1f", false, &typed_refusal);
+  std::string typed[4];  // what each field refused to take as typed text
+  changed |= drag_vec3("position", edit.position, 0.02f, "%.3f", &typed[0]);
+  locate("camera.position");
+  changed |= drag_vec3("look at", edit.look_at, 0.02f, "%.3f", &typed[1]);
+  changed |= drag_vec3("up", edit.up, 0.01f, "%.3f", &typed[2]);
+  changed |= slider_double("fov y (deg)", edit.fov_y_deg, 5.0, 150.0, "%.1f", false, &typed[3]);
   locate("camera.fov");
-  if (!typed_refusal.empty()) notice = "fov y: " + typed_refusal;
+  static constexpr std::array<const char*, 4> kFields = {"position", "look at", "up", "fov y"};
+  for (std::size_t i = 0; i < kFields.size(); ++i) {
+    if (!typed[i].empty()) notice = std::string(kFields[i]) + ": " + typed[i];
+  }
   if (changed) {
     notice = camera_problem(edit);
     if (notice.empty()) {

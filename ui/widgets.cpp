@@ -33,6 +33,27 @@ namespace {
 
 Color tidy(const Color& c) { return Color(tidy_float(c.x), tidy_float(c.y), tidy_float(c.z)); }
 
+// Ctrl+click turns a slider or drag field into a text field, and ImGui's filter then drops every
+// character that cannot be part of a number without a word. The widget `key` was such a field
+// last frame (remember_typing): name the dropped characters in `refused` before the widget
+// consumes this frame's typing.
+void name_dropped_letters(ImGuiID key, std::string* refused) {
+  if (refused == nullptr || !ImGui::GetStateStorage()->GetBool(key + 1)) return;
+  std::string dropped;
+  for (const ImWchar c : ImGui::GetIO().InputQueueCharacters) {
+    if (c < 0x80 && std::strchr("0123456789.eE+-*/ ", static_cast<int>(c)) == nullptr) dropped += static_cast<char>(c);
+  }
+  if (!dropped.empty()) *refused = "'" + dropped + "' is not a number (only digits, '.', 'e' and signs)";
+}
+
+// After the widget: whether it (or, for a row of fields, one of them) is a text field now. Kept in
+// ImGui's per-window storage under key + 1.
+void remember_typing(ImGuiID key) {
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  const bool typing = ImGui::IsItemActive() && g.TempInputId != 0 && g.TempInputId == g.ActiveId;
+  ImGui::GetStateStorage()->SetBool(key + 1, typing);
+}
+
 
 }  // namespace
 
@@ -90,30 +111,21 @@ bool color_strength_edit(const char* label, Color& color, float max_strength) {
   return edited;
 }
 
-bool drag_vec3(const char* label, Vec3& v, float speed, const char* format) {
-  return ImGui::DragScalarN(label, ImGuiDataType_Double, &v.x, 3, speed, nullptr, nullptr, format);
+bool drag_vec3(const char* label, Vec3& v, float speed, const char* format, std::string* refused) {
+  const ImGuiID key = ImGui::GetID(label);
+  name_dropped_letters(key, refused);
+  const bool changed = ImGui::DragScalarN(label, ImGuiDataType_Double, &v.x, 3, speed, nullptr, nullptr, format);
+  remember_typing(key);
+  return changed;
 }
 
 bool slider_double(const char* label, double& value, double min, double max, const char* format,
                    bool logarithmic, std::string* refused) {
   const ImGuiSliderFlags flags = logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None;
-  // Ctrl+click turns a slider into a text field; ImGui ignores text that is not a number. Say so.
-  const ImGuiID id = ImGui::GetID(label);
-  ImGuiStorage* storage = ImGui::GetStateStorage();
-  const ImGuiID typing_key = id + 1;  // "was a text field last frame", kept in ImGui's per-window storage
-  const bool was_typing = storage->GetBool(typing_key);
-  if (refused != nullptr && was_typing) {
-    // The text field drops characters that cannot be part of a number (ImGui's filter) and then
-    // consumes the queue: name them first.
-    std::string dropped;
-    for (const ImWchar c : ImGui::GetIO().InputQueueCharacters) {
-      if (c < 0x80 && std::strchr("0123456789.eE+-*/ ", static_cast<int>(c)) == nullptr) dropped += static_cast<char>(c);
-    }
-    if (!dropped.empty()) *refused = "'" + dropped + "' is not a number (only digits, '.', 'e' and signs)";
-  }
+  const ImGuiID key = ImGui::GetID(label);
+  name_dropped_letters(key, refused);
   const bool changed = ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags);
-  const bool typing = ImGui::TempInputIsActive(id);
-  storage->SetBool(typing_key, typing);
+  remember_typing(key);
   if (!changed) return false;
   value = shown_value(value, format);
   return true;

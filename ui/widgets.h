@@ -38,8 +38,9 @@ bool color_edit(const char* label, Color& color);
 // channel, so "twice as shiny" is one drag. Setting a strength on black gives grey.
 bool color_strength_edit(const char* label, Color& color, float max_strength);
 
-// Three doubles dragged together.
-bool drag_vec3(const char* label, Vec3& v, float speed, const char* format = "%.3f");
+// Three doubles dragged together. With `refused`, text typed into them (Ctrl+click) that is not a
+// number is reported there instead of being dropped without a word.
+bool drag_vec3(const char* label, Vec3& v, float speed, const char* format = "%.3f", std::string* refused = nullptr);
 
 // A double on a slider; `logarithmic` spreads decades evenly (shininess, weights). The value kept
 // is the one the slider's text shows. With `refused`, text typed into it (Ctrl+click) that is not

@@ -665,6 +665,9 @@ wait_frames 3
 type_item camera.fov abc
 wait_frames 3
 dump_state $dir/l19a.txt
+type_item camera.position xyz
+wait_frames 3
+dump_state $dir/l19b.txt
 type_item camera.fov 0
 wait_frames 3
 dump_state $dir/l19.txt
@@ -805,6 +808,7 @@ check_lecture() {
     grep -q '^camera_notice=fov y must be between 0 and 180' "$dir/l19.txt"
   check "typed text that is not a number is refused with a word ($(state "$dir/l19a.txt" camera_notice))" \
     grep -q "^camera_notice=fov y: 'abc' is not a number" "$dir/l19a.txt"
+  check "in a position field too ($(state "$dir/l19b.txt" camera_notice))" grep -q "^camera_notice=position: 'xyz' is not a number" "$dir/l19b.txt"
   check "and the camera keeps its field of view" test "$(state "$dir/l19.txt" camera_fov)" = "$(state "$dir/l00.txt" camera_fov)"
   check "200 wheel clicks out stop at the dolly limit ($(state "$dir/l20.txt" camera_distance))" \
     less "$(state "$dir/l20.txt" camera_distance)" 1000
