@@ -274,7 +274,7 @@ std::vector<PrecisionConfig> precision_configs() {
   return c;
 }
 
-// A unit sphere `dist` away along (0.48, 0.6, 0.64), 5/6 of the image tall (HARDCASES S1, S2).
+// A unit sphere `dist` away along (0.48, 0.6, 0.64), 5/6 of the image tall (docs/accuracy.md S1, S2).
 Scene far_sphere_scene(double dist) {
   Scene s;
   const Vec3 axis = glm::normalize(Vec3(0.48, 0.6, 0.64));
@@ -375,7 +375,7 @@ void precision_section(std::ostringstream& md, Writer& out, bool quick, int thre
         " variants exist only there; the packet tracer gives the production image bit for bit, faster).\n\n"
         "- **Reference**: the production configuration rendering the unit-scale `lecture` near the origin (for the"
         " scaled and moved copies, whose ideal image is the same), or the same scene (`glass`, and a unit sphere"
-        " 1e4, 1e6 and 1e7 away filling 5/6 of the image, HARDCASES S1/S2). The production's own pixel-centre values agree"
+        " 1e4, 1e6 and 1e7 away filling 5/6 of the image, docs/accuracy.md S1/S2). The production's own pixel-centre values agree"
         " with independent long-double references to 1e-6 there (tests/test_hardcases.cpp); on the scenes"
         " compared with themselves its error is 0 by construction.\n"
         "- **max error**: the largest channel difference from the reference, linear radiance. **pixels off**:"
@@ -438,7 +438,7 @@ void precision_section(std::ostringstream& md, Writer& out, bool quick, int thre
       sm.acne += acne.pixels;
       sm.nan += nan;
       if (acne.pixels) sm.acne_scenes += (sm.acne_scenes.empty() ? "" : ", ") + ps.name;
-      if (ci == 0) {  // the production renderer must pass its own bar (SPEC section 5, HARDCASES O5)
+      if (ci == 0) {  // the production renderer must pass its own bar (docs/accuracy.md O5)
         if (!usable) std::printf("CHECK FAILED: production configuration has acne or NaN on %s\n", ps.name.c_str());
         if (static_cast<double>(off) > 1e-4 * static_cast<double>(img.size()))
           std::printf("CHECK FAILED: production differs on %s in more than 0.01 %% of the pixels\n", ps.name.c_str());

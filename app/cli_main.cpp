@@ -1,4 +1,4 @@
-// phonglab-cli: the headless side of phonglab (SPEC §4).
+// phonglab-cli: the headless side of phonglab (README).
 // Exit codes: 0 success, 1 bad input (scene or files), 2 bad usage.
 #include <algorithm>
 #include <chrono>

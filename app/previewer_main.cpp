@@ -1,4 +1,4 @@
-// phonglab [SCENE]: the interactive previewer (SPEC §4).
+// phonglab [SCENE]: the interactive previewer (README).
 #include <cstdlib>
 #include <iostream>
 #include <string>

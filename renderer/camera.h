@@ -1,4 +1,4 @@
-// Pinhole camera rays and per-pixel sample positions (SPEC §2).
+// Pinhole camera rays and per-pixel sample positions (docs/model.md, camera and samples).
 #pragma once
 
 #include <cstdint>

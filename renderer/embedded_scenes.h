@@ -11,7 +11,7 @@ namespace phonglab {
 struct EmbeddedScene {
   std::string_view name;         // what `phonglab-cli scenes` lists and SCENE accepts
   std::string_view description;  // one line: what the scene teaches
-  std::string_view json;         // scene file text (SPEC §3)
+  std::string_view json;         // scene file text (docs/scene-format.md)
 };
 
 // A mesh file of an embedded scene, as string chunks to concatenate.

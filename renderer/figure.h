@@ -1,4 +1,4 @@
-// Figures for slides: the five term images of SPEC §1 and their sum in a labelled 3x2 grid.
+// Figures for slides: the five term images of docs/model.md and their sum in a labelled 3x2 grid.
 // Deterministic: the same scene and options give the same pixels (and PNG bytes).
 #pragma once
 

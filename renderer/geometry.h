@@ -169,7 +169,7 @@ inline double surface_offset(const Vec3& p, double t) { return surface_offset(ma
 // (b) Sizes: the next test's own error is relative to what it computes with once those
 // differences are formed: the radius, the distance t travelled; kSizeMargin is the 1e-9 of
 // surface_offset. Splitting them keeps the offset at 1e-12 of the coordinates far from the
-// origin (a unit scene moved 1e5 away: 1e-7, not 1e-4 of its size, HARDCASES O5) while a huge
+// origin (a unit scene moved 1e5 away: 1e-7, not 1e-4 of its size, docs/accuracy.md O5) while a huge
 // sphere still gets 1e-9 of its radius (S3).
 inline constexpr double kCoordinateMargin = 0x1p-40;  // 9.1e-13 = 4096 ulps of a coordinate
 inline constexpr double kSizeMargin = 1e-9;

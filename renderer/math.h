@@ -1,6 +1,6 @@
 // Vector types and small numeric helpers. Geometry and shading run in double precision:
 // measured at about the same cost as float here, and free of acne at every scene scale
-// the project supports (see docs/accuracy.md).
+// the project supports (docs/accuracy.md).
 #pragma once
 
 #include <algorithm>
@@ -27,14 +27,14 @@ inline bool all_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// max(0, x) that maps NaN to 0 whatever the argument order (HARDCASES N5).
+// max(0, x) that maps NaN to 0 whatever the argument order (docs/accuracy.md N5).
 inline double clamp_positive(double x) { return x > 0 ? x : 0; }
 
-// Clamp to [-1, 1]: dot products of unit vectors can leave it by rounding (HARDCASES N4).
+// Clamp to [-1, 1]: dot products of unit vectors can leave it by rounding (docs/accuracy.md N4).
 inline double clamp_unit(double x) { return x > 1 ? 1 : (x < -1 ? -1 : x); }
 
 // Mirror direction of d about the plane with normal n: d - 2(d.n)n / (n.n), exact for a normal
-// of any length (HARDCASES R5: a normal of length 1.01 would otherwise tilt it by up to 1.1
+// of any length (docs/accuracy.md R5: a normal of length 1.01 would otherwise tilt it by up to 1.1
 // degrees), and renormalised so a slightly non-unit d never yields a non-unit direction.
 // A zero normal leaves d unchanged.
 inline Vec3 reflect_dir(const Vec3& d, const Vec3& n) {

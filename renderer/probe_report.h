@@ -7,7 +7,7 @@
 
 namespace phonglab {
 
-// JSON (SPEC §4 probe --json): pixel, hit, total, terms, lights, and the children.
+// JSON (phonglab-cli probe --json, README): pixel, hit, total, terms, lights, and the children.
 std::string probe_to_json(const Scene& scene, const PixelProbe& probe);
 
 // Plain text for people: the lecture's equation with the numbers filled in. `digits` > 0 gives

@@ -1,4 +1,4 @@
-// The scene as plain data: what a scene file says, with SPEC §3's defaults.
+// The scene as plain data: what a scene file says, with the defaults of docs/scene-format.md.
 // Objects refer to materials by index. Copying a Scene is a cheap snapshot.
 #pragma once
 
@@ -11,7 +11,7 @@
 
 namespace phonglab {
 
-// Pinhole camera (SPEC §2).
+// Pinhole camera (docs/model.md, camera and samples).
 struct Camera {
   Vec3 position{0, 1.5, 6};  // eye, world units
   Vec3 look_at{0, 0.8, 0};   // point the view centre passes through

@@ -1,4 +1,4 @@
-// Scene files (SPEC §3). Loading runs in four passes over the text, none of them recursive:
+// Scene files (docs/scene-format.md). Loading runs in four passes over the text, none of them recursive:
 //   1. prescan: rejects NUL bytes and nesting deeper than kMaxNesting, and finds number tokens
 //      that overflow double (nlohmann throws on those instead of returning inf);
 //   2. nlohmann parses (syntax errors are translated into positioned plain messages);

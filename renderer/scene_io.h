@@ -1,4 +1,4 @@
-// Scene files (SPEC §3): JSON text <-> Scene, with positioned diagnostics.
+// Scene files (docs/scene-format.md): JSON text <-> Scene, with positioned diagnostics.
 // Part of the phonglab_io library (nlohmann-json); the core renderer does not depend on it.
 #pragma once
 

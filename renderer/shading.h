@@ -1,4 +1,4 @@
-// The lecture's illumination equation (SPEC §1): local Phong/Blinn-Phong shading with hard
+// The lecture's illumination equation (docs/model.md): local Phong/Blinn-Phong shading with hard
 // shadows, and Whitted recursion for mirrors and glass, pruned by path weight.
 #pragma once
 
@@ -60,7 +60,7 @@ inline HitSide hit_side(const Hit& hit, const Vec3& d) {
 }
 
 // The specular factor max(0, cos)^n. The base is clamped before pow, so a fractional n never
-// sees a negative base (HARDCASES N4, N5); pow(0, n) is exactly 0 for n > 0, which spares the
+// sees a negative base (docs/accuracy.md N4, N5); pow(0, n) is exactly 0 for n > 0, which spares the
 // call for most lit points.
 inline double specular_factor(double cos_spec, double n) {
   const double base = clamp_positive(clamp_unit(cos_spec));
@@ -146,7 +146,7 @@ struct TraceLimits {
   double min_weight = 0.001;
 };
 
-// Radiance along a ray (SPEC §1 trace). `probe`, when given, receives the whole ray tree.
+// Radiance along a ray (docs/model.md, the equation: trace). `probe`, when given, receives the whole ray tree.
 // `shading_eye`, when given, is the eye used for V at this ray's hit only ("move your head":
 // V = normalize(eye - P) instead of -D); the reflected and refracted children still follow the
 // real ray and use their own -D. Without it the result is bit-identical to the plain equation.

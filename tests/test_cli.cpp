@@ -1,4 +1,4 @@
-// phonglab-cli end to end: exit codes, image formats and orientation, stats, probe (SPEC §4).
+// phonglab-cli end to end: exit codes, image formats and orientation, stats, probe (README).
 #include <gtest/gtest.h>
 
 #include <algorithm>

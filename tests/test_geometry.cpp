@@ -1,4 +1,4 @@
-// Ray-primitive intersection: exact answers and the robustness cases of HARDCASES.md (S, O, T).
+// Ray-primitive intersection: exact answers and the robustness cases of docs/accuracy.md (S, O, T).
 #include <gtest/gtest.h>
 
 #include <cmath>

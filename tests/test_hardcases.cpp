@@ -1,7 +1,7 @@
-// The numerical hard cases of HARDCASES.md (S, O, N, T, R, L), each with its pass criterion.
+// The numerical hard cases of docs/accuracy.md (S, O, N, T, R, L), each with its pass criterion.
 // Every expected value is computed here, independently and in long double, from the scene's
-// input numbers: ray-sphere and ray-plane hits, the camera rays of SPEC §2, the local Phong
-// term of SPEC §1, Snell's law and the exact Fresnel equations. Random cases are seeded and
+// input numbers: ray-sphere and ray-plane hits, the camera rays of docs/model.md, camera and samples, the local Phong
+// term of docs/model.md, Snell's law and the exact Fresnel equations. Random cases are seeded and
 // print their seed on failure.
 #include <gtest/gtest.h>
 
@@ -180,9 +180,9 @@ RefHit ref_intersect(const Scene& scene, const LV& o, const LV& d) {
   return best;
 }
 
-// The local term of SPEC §1 at a hit, with every light on the lit side taken as visible: test
+// The local term of docs/model.md at a hit, with every light on the lit side taken as visible: test
 // scenes that use it are built so that nothing lies between a lit point and its lights.
-// `lit_lights` receives the number of lights with N.L > 0 (the shadow rays SPEC requires).
+// `lit_lights` receives the number of lights with N.L > 0 (the shadow rays docs/model.md requires).
 struct RefLocal {
   LV ambient, diffuse, specular;
   int lit_lights = 0;
@@ -223,7 +223,7 @@ RefLocal ref_local(const Scene& scene, const RefHit& h, const LV& d) {
   return out;
 }
 
-// The pinhole camera of SPEC §2, in long double.
+// The pinhole camera of docs/model.md, camera and samples, in long double.
 struct RefCamera {
   LV origin, forward, right, up;  // right scaled by h * W / H, up by h
   int width = 1, height = 1;
@@ -983,7 +983,7 @@ TEST(HardCases, O8_TotalInternalReflectionHitsTheSameSphere) {
 // N. NaN and Inf in shading
 
 // n = 0: specular is 0 wherever N.L <= 0 (pow(0, 0) = 1 must not light the dark side); where
-// N.L > 0 it is ks I even with R.V < 0 (SPEC: pow(0, 0) is 1).
+// N.L > 0 it is ks I even with R.V < 0 (docs/model.md: pow(0, 0) is 1).
 TEST(HardCases, N1_ZeroShininessDoesNotLightTheDarkSide) {
   {
     SCOPED_TRACE("plane, shade() directly");
@@ -1243,7 +1243,7 @@ TEST(HardCases, N4_OutOfRangeCosinesAreClamped) {
 
 namespace {
 
-// A random scene within the valid ranges of SPEC §3, including the awkward values: n in
+// A random scene within the valid ranges of docs/scene-format.md, including the awkward values: n in
 // {0, 0.5, 1, 10, 10.5, 1e4}, ior in (0.1, 3), Fresnel, lights and the camera on surfaces.
 Scene random_scene(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> uni(0, 1);
@@ -1973,7 +1973,7 @@ TEST(HardCases, L3_ShadowRaysOnlyForLitSideLights) {
 }
 
 // =============================================================================================
-// Remaining cases of HARDCASES.md: S2 S3 S7 O5 R2 R5 R6 T3 T5 L4.
+// Remaining cases of docs/accuracy.md: S2 S3 S7 O5 R2 R5 R6 T3 T5 L4.
 
 // A unit sphere at D = 1e4 (and 1e5, 1e6) filling a disk of 200 px, 1 spp, seen from the origin
 // (the depth image, 0 on a miss): no isolated miss pixel inside the disk; every pixel whose
@@ -2240,7 +2240,7 @@ int pixels_differing(const Rendered& a, const Rendered& b, double tol, std::stri
 
 // The embedded `lecture` scene (mirror, glass, shadows, 5 bounces) scaled by 1e-4 and 1e4 and
 // translated by 1e5 (and both, and the intermediate scales): >= 99.99 % of the 320x180 pixels
-// (all but 5) are within 1/255 of the unit image, with no NaN. (SPEC section 5. A scene of size
+// (all but 5) are within 1/255 of the unit image, with no NaN. (docs/accuracy.md. A scene of size
 // 1e-4 placed 1e5 away is outside it: its coordinates' ulps are 1e-7 of the scene.)
 // Measured with the per-primitive offsets (surface_offset(scene, hit)): 0 differing pixels in
 // every case, at 320x180 and at 1280x720. With the former single 1e-9 x (|P| + t) offset, the
@@ -2275,7 +2275,7 @@ TEST(HardCases, O5_LectureSceneAtAnyScaleAndPlace) {
   }
 }
 
-// O5 at 1280x720, and further away than SPEC section 5 asks: the lecture moved 1e5 and 1e6
+// O5 at 1280x720, and further away than docs/accuracy.md promises: the lecture moved 1e5 and 1e6
 // from the origin keeps >= 99.99 % of its pixels within 1/255 of the unit image. Measured: 0
 // differing pixels at 1e5, 1 at 1e6 (5 at 3e6, 11 at 1e7, 95 at 1e8, the limit: there the
 // camera's own rays are rounded to ulp(1e8) = 1.5e-8).

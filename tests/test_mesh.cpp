@@ -1,4 +1,4 @@
-// Mesh objects (SPEC §3): Wavefront OBJ/MTL through the scene loader. What real files contain
+// Mesh objects (docs/scene-format.md): Wavefront OBJ/MTL through the scene loader. What real files contain
 // is tolerated (quads, n-gons, negative indices, missing normals or MTL, stray MTL lines), what
 // is broken is an error naming file:line, the MTL maps onto the lecture's coefficients as
 // docs/scene-format.md's table says, transforms place vertices and normals exactly, and the BVH

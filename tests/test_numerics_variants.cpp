@@ -146,7 +146,7 @@ TEST(NumericsVariants, SchlickDiffersFromExactFresnelByItsKnownAmount) {
   EXPECT_NEAR(fresnel_exact(0.5, eta), 0.0891867, 1e-7);
   EXPECT_NEAR(fresnel_exact(0.5, eta) - fresnel_schlick(0.5, eta), 0.0191867, 1e-7);
   // At normal incidence they agree; from inside, 0.1 degree below the critical angle (41.81),
-  // the exact F is 0.69 while Schlick with cos(theta_i) stays near R0 (HARDCASES R4).
+  // the exact F is 0.69 while Schlick with cos(theta_i) stays near R0 (docs/accuracy.md R4).
   EXPECT_NEAR(fresnel_schlick(1, eta), fresnel_exact(1, eta), 1e-15);
   const double cos_i = std::cos(41.7 * kPi / 180);
   EXPECT_NEAR(fresnel_exact(cos_i, 1.5), 0.68966, 1e-5);

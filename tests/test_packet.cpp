@@ -260,7 +260,7 @@ TEST(PacketTracer, HierarchyScenesAreBitIdenticalToTheScalarRenderer) {
   for (std::uint32_t seed = 1; seed <= 200; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     Scene scene = random_scene(seed, seed % 4 != 0);
-    // Every fifth scene far from the origin (HARDCASES O5): coordinates 1e5 times its size.
+    // Every fifth scene far from the origin (docs/accuracy.md O5): coordinates 1e5 times its size.
     if (seed % 5 == 0) {
       scene = transformed_scene(scene, 1, Vec3(1e5, -4e4, 3e4) * glm::length(scene.camera.position));
       prepare_scene(scene);

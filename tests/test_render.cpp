@@ -1,5 +1,5 @@
 // Whole-image invariants: term images sum to the full image, thread-count independence,
-// sample 0 at the pixel centre, the camera formula of SPEC §2.
+// sample 0 at the pixel centre, the camera formula of docs/model.md, camera and samples.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Scene files (SPEC §3): defaults, every class of error with its exact positioned message, the
+// Scene files (docs/scene-format.md): defaults, every class of error with its exact positioned message, the
 // JSON round trip, the atomic writer, and inputs that must never crash or hang the loader.
 #include <gtest/gtest.h>
 

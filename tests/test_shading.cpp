@@ -1,4 +1,4 @@
-// The illumination equation at hand-computed points (SPEC §1).
+// The illumination equation at hand-computed points (docs/model.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -13,7 +13,7 @@ namespace phonglab::ui {
 
 // A bounded history of committed scene states. The app commits once per finished edit (a
 // slider released, a light drag ended, a checkbox clicked), so one Ctrl+Z undoes one gesture.
-// Undo and redo keep the current camera: navigation is not an edit (SPEC's "unsaved" rule).
+// Undo and redo keep the current camera: navigation is not an edit (docs/previewer.md, Files).
 class SceneHistory {
  public:
   static constexpr std::size_t kMaxStates = 100;  // oldest states drop off beyond this

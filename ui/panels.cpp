@@ -155,7 +155,7 @@ bool materials_panel(std::vector<Material>& materials, int& selected, SpecularMo
   term_text("kt\xC2\xB7trace(T)");
   widget_before_term(term_width);
   if (slider_double("##ior", m.ior, 1.0, 3.0, "%.3f")) {
-    m.ior = std::max(m.ior, 0.01);  // must stay > 0 (SPEC §3)
+    m.ior = std::max(m.ior, 0.01);  // must stay > 0 (docs/scene-format.md)
     edited = true;
   }
   term_text(greek ? "ior: \xCE\xB7 = 1/ior" : "ior: eta = 1/ior");
@@ -249,7 +249,7 @@ bool lights_panel(std::vector<Light>& lights, int& selected, LightSolo& solo) {
     ImGui::TextDisabled("Or drag its marker in the viewport.");
   } else {
     Vec3 direction = light.direction;
-    // A zero direction is invalid (SPEC §3): refuse it rather than hand it to the renderer.
+    // A zero direction is invalid (docs/scene-format.md): refuse it rather than hand it to the renderer.
     if (drag_vec3("direction", direction, 0.01f) && glm::length(direction) > 1e-9 && all_finite(direction)) {
       light.direction = direction;
       edited = true;
