@@ -20,11 +20,13 @@ add_executable(phonglab
   previewer_main.cpp
   viewer_app.cpp
   viewer_files.cpp
+  viewer_instruments.cpp
   viewer_overlays.cpp
   viewer_sidebar.cpp
   viewer_document.cpp
   viewer_gl.cpp
   viewer_platform.cpp
-  viewer_script.cpp)
+  viewer_script.cpp
+  viewer_state.cpp)
 target_link_libraries(phonglab PRIVATE phonglab_ui phonglab_io phonglab_glad glfw PkgConfig::IMGUI)
 target_compile_definitions(phonglab PRIVATE PHONGLAB_VERSION="${PROJECT_VERSION}" GLFW_INCLUDE_NONE)

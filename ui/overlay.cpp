@@ -25,7 +25,6 @@ bool inside(const ScreenRect& r, ImVec2 lo, ImVec2 hi) {
   return r.min.x >= lo.x && r.min.y >= lo.y && r.max.x <= hi.x && r.max.y <= hi.y;
 }
 
-bool font_has(ImWchar c) { return ImGui::GetFont()->FindGlyphNoFallback(c) != nullptr; }
 
 }  // namespace
 
@@ -127,8 +126,8 @@ std::string term_caption(Term term, bool blinn) {
   const bool greek = font_has(0x03A3) && font_has(0x00B7);
   const std::string sum = greek ? "\xCE\xA3 " : "sum ";
   const std::string dot = greek ? "\xC2\xB7" : "*";
-  const std::string ia = font_has(0x2090) ? "I\xE2\x82\x90" : "I_a";   // I with a subscript a (not "la")
-  const std::string il = font_has(0x2097) ? "I\xE2\x82\x97" : "I_l";   // I with a subscript l
+  const std::string ia = i_a();
+  const std::string il = i_l();
   const std::string spec = blinn ? "max(0, N" + dot + "H)^n" : "max(0, R" + dot + "V)^n";
   switch (term) {
     case Term::kFull: return "the full image: I = the sum of the five terms";

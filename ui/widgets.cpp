@@ -131,6 +131,12 @@ bool slider_double(const char* label, double& value, double min, double max, con
   return true;
 }
 
+bool font_has(ImWchar c) { return ImGui::GetFont()->FindGlyphNoFallback(c) != nullptr; }
+
+std::string i_a() { return font_has(0x2090) ? "I\xE2\x82\x90" : "I_a"; }
+
+std::string i_l() { return font_has(0x2097) ? "I\xE2\x82\x97" : "I_l"; }
+
 void help_marker(const char* text) {
   ImGui::SameLine();
   ImGui::TextDisabled("(?)");

@@ -48,6 +48,13 @@ bool drag_vec3(const char* label, Vec3& v, float speed, const char* format = "%.
 bool slider_double(const char* label, double& value, double min, double max, const char* format,
                    bool logarithmic = false, std::string* refused = nullptr);
 
+// Whether the current font can draw `c` (the built-in fallback font lacks Greek and maths symbols).
+bool font_has(ImWchar c);
+// I with a subscript a, and with a subscript l ("Ia" in a sans-serif font reads as "la"); "I_a" and
+// "I_l" when the font has no subscripts.
+std::string i_a();
+std::string i_l();
+
 // A one-line help marker: "(?)" that shows `text` when hovered.
 void help_marker(const char* text);
 
