@@ -702,6 +702,9 @@ dump_state $dir/l22.txt
 open $src/assets/scenes/cornell/CornellBox-Original.mtl
 wait_frames 2
 dump_state $dir/l23.txt
+show_item panel.Scene_file
+wait_frames 3
+screenshot $dir/l23_mtl_message.png
 open $src/assets/scenes/cornell/CornellBox-Original.obj
 wait_idle 120
 dump_state $dir/l24.txt
