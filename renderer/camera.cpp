@@ -4,6 +4,10 @@
 
 namespace phonglab {
 
+double view_up_sine(const Camera& camera) {
+  return glm::length(glm::cross(glm::normalize(camera.look_at - camera.position), glm::normalize(camera.up)));
+}
+
 CameraFrame make_camera_frame(const Camera& camera, int width, int height) {
   CameraFrame f;
   f.width = width;

@@ -19,6 +19,14 @@ struct CameraFrame {
   int height = 1; // H, pixels
 };
 
+// Up must not be parallel to the view direction: |normalize(F) x normalize(up)| must exceed this
+// (one rule for the scene loader and the previewer's camera edits).
+inline constexpr double kMinViewUpSine = 1e-9;
+
+// |normalize(look_at - position) x normalize(up)|, computed on the normalised vectors so nothing
+// under- or overflows; for a camera whose view vector and up are non-zero and finite.
+double view_up_sine(const Camera& camera);
+
 // F = normalize(look_at - position), R = normalize(F x up), U = R x F, h = tan(fov_y / 2).
 CameraFrame make_camera_frame(const Camera& camera, int width, int height);
 

@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/accel.h"
+#include "renderer/camera.h"
 #include "renderer/embedded_scenes.h"
 #include "renderer/obj_io.h"
 
@@ -385,9 +386,7 @@ class Validator {
       return;
     }
     if (!up_ok) return;
-    // |F x up| <= 1e-9 |F||up|, computed on the normalised vectors so nothing under/overflows.
-    const double sine = glm::length(glm::cross(glm::normalize(view), glm::normalize(cam.up)));
-    if (!(sine > 1e-9)) {
+    if (!(view_up_sine(cam) > kMinViewUpSine)) {
       if (up) {
         report(*up, "must not be parallel to the view direction (got " + shown(*up) + ")");
       } else {

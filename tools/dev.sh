@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libglm-dev nlohmann-json3-dev libstb-dev libtinyobjloader-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
+  libgtest-dev libembree-dev
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri
   xvfb xauth xdotool imagemagick fonts-dejavu-core
   clang libclang-rt-14-dev

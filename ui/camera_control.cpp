@@ -50,12 +50,8 @@ std::string camera_problem(const Camera& camera) {
   const Vec3 view = camera.look_at - camera.position;
   const double distance = glm::length(view);
   if (!(distance > min_distance(camera))) return "look at must differ from the position";
-  const double up_length = glm::length(camera.up);
-  if (!(up_length > 0)) return "up must not be the zero vector";
-  // sin of the angle between view and up; 1e-6 is far below any deliberate setting.
-  if (!(glm::length(glm::cross(view / distance, camera.up / up_length)) > 1e-6)) {
-    return "up must not point along the view direction";
-  }
+  if (!(glm::length(camera.up) > 0)) return "up must not be the zero vector";
+  if (!(view_up_sine(camera) > kMinViewUpSine)) return "up must not point along the view direction";
   return {};
 }
 
