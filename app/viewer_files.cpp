@@ -25,16 +25,6 @@
 
 namespace phonglab {
 
-namespace {
-
-// Inverse of the sRGB transfer curve, so that writing through image_io's sRGB encoder gives
-// back the 8-bit value shown on screen.
-double srgb_to_linear(double c) {
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
-}  // namespace
-
 void Viewer::request(PendingAction action) {
   doc_.update_dirty();  // edits made earlier in this frame count
   if (!doc_.dirty()) {

@@ -23,7 +23,6 @@ constexpr std::array<std::array<double, 3>, 9> kStops = {{
     {252, 255, 164},
 }};
 
-double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 }  // namespace
 

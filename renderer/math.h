@@ -23,6 +23,9 @@ inline double max_channel(const Color& c) { return std::max(std::max(c.x, c.y), 
 
 inline bool is_zero(const Color& c) { return c.x == 0 && c.y == 0 && c.z == 0; }
 
+// The inverse of the sRGB transfer curve (IEC 61966-2-1): an encoded value in [0, 1] to linear.
+inline double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
 inline bool all_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

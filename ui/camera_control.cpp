@@ -9,6 +9,7 @@
 
 #include "renderer/accel.h"
 #include "renderer/camera.h"
+#include "renderer/ray_tree_view.h"
 
 namespace phonglab::ui {
 
@@ -148,14 +149,10 @@ double view_depth(const Camera& camera, const Vec3& p) {
 
 std::optional<ViewportPoint> project(const Camera& camera, const Vec3& p, int width, int height) {
   if (width <= 0 || height <= 0) return std::nullopt;
-  const CameraFrame frame = make_camera_frame(camera, width, height);
-  const Vec3 d = p - frame.origin;
-  const double z = glm::dot(d, frame.forward);
-  if (!(z > 1e-9 * std::max(1.0, max_abs(d)))) return std::nullopt;  // behind or at the eye
-  // frame.right and frame.up carry the image-plane scale: divide it out twice.
-  const double sx = glm::dot(d, frame.right) / (z * glm::dot(frame.right, frame.right));
-  const double sy = glm::dot(d, frame.up) / (z * glm::dot(frame.up, frame.up));
-  return ViewportPoint{(sx + 1) / 2 * width, (1 - sy) / 2 * height};
+  // The ray tree's projection: the inverse of the renderer's camera formula, one definition.
+  const auto at = project_point(make_camera_frame(camera, width, height), p);
+  if (!at) return std::nullopt;
+  return ViewportPoint{at->x, at->y};
 }
 
 Vec3 unproject(const Camera& camera, ViewportPoint pixel, double depth, int width, int height) {
