@@ -436,11 +436,21 @@ void Viewer::shortcut(int key, bool shift) {
   }
 }
 
+Viewer::Cells Viewer::cells() const {
+  Cells c;
+  c.columns = instruments_.small_multiples ? kMultiplesColumns : 1;
+  c.rows = instruments_.small_multiples ? kMultiplesRows : 1;
+  c.x = viewport_.x;
+  c.y = viewport_.y;
+  c.width = viewport_.width / static_cast<float>(c.columns);
+  c.height = viewport_.height / static_cast<float>(c.rows);
+  return c;
+}
+
 double Viewer::view_aspect() const {
   if (!(viewport_.width >= 1 && viewport_.height >= 1)) return 0;
-  const int columns = instruments_.small_multiples ? kMultiplesColumns : 1;
-  const int rows = instruments_.small_multiples ? kMultiplesRows : 1;
-  return (static_cast<double>(viewport_.width) / columns) / (static_cast<double>(viewport_.height) / rows);
+  const Cells c = cells();
+  return static_cast<double>(c.width) / static_cast<double>(c.height);
 }
 
 Camera Viewer::view_camera() const {

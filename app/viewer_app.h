@@ -136,6 +136,19 @@ class Viewer {
   void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
   void after_swap();                       // edit-to-image latency of a first image just shown
 
+  // The viewport's cells: one, or the small multiples' 3 x 2 (the full image last).
+  struct Cells {
+    int columns = 1;
+    int rows = 1;
+    float x = 0, y = 0;          // the viewport's top-left, window coordinates
+    float width = 0, height = 0; // of one cell
+    int count() const { return columns * rows; }
+    ImVec2 origin(int cell) const {  // top-left of a cell, in reading order
+      return ImVec2(x + static_cast<float>(cell % columns) * width, y + static_cast<float>(cell / columns) * height);
+    }
+  };
+  Cells cells() const;
+
   // The camera the image is rendered with: the scene's, its field of view widened for a view
   // narrower than the image the scene was framed for (see ui::fit_to_view).
   Camera view_camera() const;
@@ -165,7 +178,7 @@ class Viewer {
   void draw_stats();                             // the stats box's contents
   void draw_head_plot();                         // the "move your head" plot's contents
   void draw_cell_labels_and_probe_ring();        // small multiples' labels, the probed pixel's ring
-  ImVec2 probe_screen_point() const;             // the probed pixel's centre on screen (the full image's cell)
+  ImVec2 probe_point_in_cell(int cell) const;    // the probed pixel's centre as cell `cell` shows it
   void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
   void draw_ray_tree_lines();                    // the probed tree over the full image's cell
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
@@ -193,6 +206,7 @@ class Viewer {
   bool script_set(const std::vector<std::string>& words);             // the `set` command
   void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
   void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
+  void push_click(ImVec2 at, bool ctrl);          // queues a left click (hover, press, release)
   bool push_item_input();                        // queues item_action_'s input; false: no such widget
   void write_state(const std::string& path) const;                    // `dump_state`
   std::string depth_cut_label() const;                                // the depth-cut slider's text

@@ -24,10 +24,10 @@ constexpr int kFigureCellHeight = 270;  // slide figure cells: a quarter of 1080
 
 std::optional<std::array<int, 2>> Viewer::render_pixel_at(ImVec2 mouse) const {
   if (render_width_ <= 0 || render_height_ <= 0 || viewport_.width < 1 || viewport_.height < 1) return std::nullopt;
-  const int columns = instruments_.small_multiples ? kMultiplesColumns : 1;
-  const int rows = instruments_.small_multiples ? kMultiplesRows : 1;
-  const double cell_w = static_cast<double>(viewport_.width) / columns;
-  const double cell_h = static_cast<double>(viewport_.height) / rows;
+  const Cells c = cells();
+  // In double, as the image's pixels are counted.
+  const double cell_w = static_cast<double>(viewport_.width) / c.columns;
+  const double cell_h = static_cast<double>(viewport_.height) / c.rows;
   const double x = mouse.x - viewport_.x;
   const double y = mouse.y - viewport_.y;
   // Within its cell, the point maps to the render pixel the cell shows there.

@@ -26,15 +26,11 @@ constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoDecoration | ImGui
                                            ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
 constexpr float kOverlayAlpha = 0.72f;  // boxes over the image: readable, the image still shows through
 
-bool overlaps(const ui::ScreenRect& a, const ui::ScreenRect& b) {
-  return a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y;
-}
-
 // The lowest bottom of the boxes `r` overlaps, or nothing.
 std::optional<float> blocked_until(const ui::ScreenRect& r, const std::vector<ui::ScreenRect>& taken) {
   std::optional<float> bottom;
   for (const ui::ScreenRect& t : taken) {
-    if (overlaps(r, t)) bottom = std::max(bottom.value_or(t.max.y), t.max.y);
+    if (ui::overlaps(r, t)) bottom = std::max(bottom.value_or(t.max.y), t.max.y);
   }
   return bottom;
 }
@@ -47,14 +43,13 @@ ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, const st
                               const std::map<std::string, ui::ScreenRect>& last_rects,
                               std::map<std::string, ui::ScreenRect>& drawn, Contents contents, float alpha = kOverlayAlpha) {
   if (const auto it = last_rects.find(id); it != last_rects.end()) {
-    const ImVec2 size(it->second.max.x - it->second.min.x, it->second.max.y - it->second.min.y);
+    const ImVec2 size = ui::size_of(it->second);
     const float gap = 4;
     for (int tries = 0; tries < 8; ++tries) {
-      const ui::ScreenRect r{ImVec2(pos.x - pivot.x * size.x, pos.y - pivot.y * size.y),
-                             ImVec2(pos.x + (1 - pivot.x) * size.x, pos.y + (1 - pivot.y) * size.y)};
+      const ui::ScreenRect r = ui::rect_at(pos, pivot, size);
       bool moved = false;
       for (const ui::ScreenRect& t : taken) {
-        if (!overlaps(r, t)) continue;
+        if (!ui::overlaps(r, t)) continue;
         pos.y = pivot.y < 0.5f ? t.max.y + gap : t.min.y - gap;
         moved = true;
         break;
@@ -67,9 +62,7 @@ ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, const st
   ui::ScreenRect rect;
   if (ImGui::Begin(id, nullptr, kOverlayFlags)) {
     contents();
-    rect.min = ImGui::GetWindowPos();
-    const ImVec2 size = ImGui::GetWindowSize();
-    rect.max = ImVec2(rect.min.x + size.x, rect.min.y + size.y);
+    rect = ui::rect_at(ImGui::GetWindowPos(), ImVec2(0, 0), ImGui::GetWindowSize());
     drawn[id] = rect;
   }
   ImGui::End();
@@ -105,16 +98,15 @@ void Viewer::draw_overlays() {
     // then bottom right, then bottom left.
     ImVec2 anchor = top_right, pivot(1, 0);
     if (const auto it = last.find("##ray_tree_legend"); it != last.end() && render_width_ > 0 && render_height_ > 0) {
-      const ImVec2 size(it->second.max.x - it->second.min.x, it->second.max.y - it->second.min.y);
-      const ImVec2 hit = probe_screen_point();
+      const ImVec2 size = ui::size_of(it->second);
+      const ImVec2 hit = probe_point_in_cell(cells().count() - 1);
       const float keep = 40 * scale;  // the ring and the N, L, R, V arrows around it
       const ui::ScreenRect around{ImVec2(hit.x - keep, hit.y - keep), ImVec2(hit.x + keep, hit.y + keep)};
       const std::array<std::pair<ImVec2, ImVec2>, 3> places = {
           std::pair{top_right, ImVec2(1, 0)}, std::pair{bottom_right, ImVec2(1, 1)}, std::pair{bottom_left, ImVec2(0, 1)}};
       for (const auto& [at, pv] : places) {
-        const ui::ScreenRect r{ImVec2(at.x - pv.x * size.x, at.y - pv.y * size.y),
-                               ImVec2(at.x + (1 - pv.x) * size.x, at.y + (1 - pv.y) * size.y)};
-        if (!overlaps(r, around) && !blocked_until(r, taken)) {
+        const ui::ScreenRect r = ui::rect_at(at, pv, size);
+        if (!ui::overlaps(r, around) && !blocked_until(r, taken)) {
           anchor = at;
           pivot = pv;
           break;
@@ -234,45 +226,31 @@ void Viewer::draw_head_plot() {
   ui::head_plot(plot);
 }
 
-ImVec2 Viewer::probe_screen_point() const {
-  // The probed pixel's centre in the full image's cell (the only one, or the last).
-  const int columns = instruments_.small_multiples ? kMultiplesColumns : 1;
-  const int rows = instruments_.small_multiples ? kMultiplesRows : 1;
-  const float cell_w = viewport_.width / static_cast<float>(columns);
-  const float cell_h = viewport_.height / static_cast<float>(rows);
-  return ImVec2(viewport_.x + static_cast<float>(columns - 1) * cell_w +
-                    (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(std::max(render_width_, 1)) * cell_w,
-                viewport_.y + static_cast<float>(rows - 1) * cell_h +
-                    (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(std::max(render_height_, 1)) * cell_h);
+ImVec2 Viewer::probe_point_in_cell(int cell) const {
+  // The probed pixel's centre as cell `cell` shows it.
+  const Cells c = cells();
+  const ImVec2 origin = c.origin(cell);
+  return ImVec2(origin.x + (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(std::max(render_width_, 1)) * c.width,
+                origin.y + (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(std::max(render_height_, 1)) * c.height);
 }
 
 void Viewer::draw_cell_labels_and_probe_ring() {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const float scale = platform_.ui_scale();
-  const bool multiples = instruments_.small_multiples;
-  const int columns = multiples ? kMultiplesColumns : 1;
-  const int rows = multiples ? kMultiplesRows : 1;
-  const float cell_w = viewport_.width / static_cast<float>(columns);
-  const float cell_h = viewport_.height / static_cast<float>(rows);
-  if (multiples) {
+  const Cells c = cells();
+  if (instruments_.small_multiples) {
     const bool blinn = doc_.scene().specular_model == SpecularModel::kBlinn;
-    for (int cell = 0; cell < columns * rows; ++cell) {
+    for (int cell = 0; cell < c.count(); ++cell) {
       const Term term = cell < kTermCells ? kCellTerms[static_cast<std::size_t>(cell)] : Term::kFull;
       const std::string label = ui::term_caption(term, blinn);
-      const ImVec2 at(viewport_.x + static_cast<float>(cell % columns) * cell_w + 6 * scale,
-                      viewport_.y + static_cast<float>(cell / columns + 1) * cell_h - ImGui::GetFontSize() - 8 * scale);
-      ui::text_on_plate(draw, at, label.c_str(), scale);
+      const ImVec2 origin = c.origin(cell);
+      ui::text_on_plate(draw, ImVec2(origin.x + 6 * scale, origin.y + c.height - ImGui::GetFontSize() - 8 * scale),
+                        label.c_str(), scale);
     }
   }
   // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
   if (!probe_ || render_width_ <= 0 || render_height_ <= 0) return;
-  for (int cell = 0; cell < columns * rows; ++cell) {
-    const float x = viewport_.x + static_cast<float>(cell % columns) * cell_w +
-                    (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(render_width_) * cell_w;
-    const float y = viewport_.y + static_cast<float>(cell / columns) * cell_h +
-                    (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(render_height_) * cell_h;
-    ui::draw_probe_ring(draw, ImVec2(x, y), scale);
-  }
+  for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
 }
 
 void Viewer::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
@@ -327,13 +305,8 @@ void Viewer::draw_ray_tree_lines() {
   // The ray tree over the full image: the only cell, or the last of the small multiples.
   tree_segments_.clear();
   if (!probe_ || !rays_.overlay || !snapshot_ || render_width_ <= 0 || render_height_ <= 0) return;
-  const bool multiples = instruments_.small_multiples;
-  const int columns = multiples ? kMultiplesColumns : 1;
-  const int rows = multiples ? kMultiplesRows : 1;
-  const float cell_w = viewport_.width / static_cast<float>(columns);
-  const float cell_h = viewport_.height / static_cast<float>(rows);
-  const float cell_x = viewport_.x + static_cast<float>(columns - 1) * cell_w;
-  const float cell_y = viewport_.y + static_cast<float>(rows - 1) * cell_h;
+  const Cells c = cells();
+  const ImVec2 full_cell = c.origin(c.count() - 1);
   RayTreeViewOptions options;
   options.shadow_rays = rays_.shadow_rays;
   options.secondary_rays = rays_.secondary_rays;
@@ -344,8 +317,8 @@ void Viewer::draw_ray_tree_lines() {
                                     ray_tree_near(*snapshot_, probe_->root));
   int lit_lights = 0;
   for (const ProbeLight& light : probe_->root.lights) lit_lights += light.lit_side ? 1 : 0;
-  const ui::ImageRect rect{ImVec2(cell_x, cell_y), ImVec2(cell_w / static_cast<float>(render_width_),
-                                                          cell_h / static_cast<float>(render_height_))};
+  const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(render_width_),
+                                             c.height / static_cast<float>(render_height_))};
   const bool blinn = snapshot_->specular_model == SpecularModel::kBlinn;
   ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), tree_segments_, rect, platform_.ui_scale(), blinn, lit_lights);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <utility>
 
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -45,6 +46,14 @@ void note(GLFWwindow* window) {
   if (auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window))) p->note_event();
 }
 
+// An event for the next frame; a frame that never comes (minimised) keeps the newest 256.
+template <typename Event>
+void push_bounded(std::vector<Event>& queue, const Event& event) {
+  constexpr std::size_t kMaxQueued = 256;
+  if (queue.size() >= kMaxQueued) queue.erase(queue.begin());
+  queue.push_back(event);
+}
+
 }  // namespace
 
 void record_cursor(GLFWwindow* window, double x, double y) {
@@ -63,9 +72,7 @@ void record_mouse_press(GLFWwindow* window, int button, int action) {
   // the pointer is now, after moves not yet delivered).
   press.x = p->cursor_x_;
   press.y = p->cursor_y_;
-  constexpr std::size_t kMaxQueued = 64;
-  if (p->mouse_presses_.size() >= kMaxQueued) p->mouse_presses_.erase(p->mouse_presses_.begin());
-  p->mouse_presses_.push_back(press);
+  push_bounded(p->mouse_presses_, press);
 }
 
 namespace {
@@ -103,23 +110,11 @@ void install_activity_callbacks(Platform* platform) {
 
 void Platform::note_event() { last_event_time_ = glfwGetTime(); }
 
-std::vector<KeyPress> Platform::take_key_presses() {
-  std::vector<KeyPress> presses;
-  presses.swap(key_presses_);
-  return presses;
-}
+std::vector<KeyPress> Platform::take_key_presses() { return std::exchange(key_presses_, {}); }
 
-std::vector<MousePress> Platform::take_mouse_presses() {
-  std::vector<MousePress> presses;
-  presses.swap(mouse_presses_);
-  return presses;
-}
+std::vector<MousePress> Platform::take_mouse_presses() { return std::exchange(mouse_presses_, {}); }
 
-void Platform::push_key_press(KeyPress press) {
-  constexpr std::size_t kMaxQueued = 256;  // a frame that never comes (minimised) keeps the newest
-  if (key_presses_.size() >= kMaxQueued) key_presses_.erase(key_presses_.begin());
-  key_presses_.push_back(press);
-}
+void Platform::push_key_press(KeyPress press) { push_bounded(key_presses_, press); }
 
 std::unique_ptr<Platform> Platform::create(const PlatformOptions& options, std::string& error) {
   std::unique_ptr<Platform> p(new Platform());

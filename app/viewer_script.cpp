@@ -118,6 +118,17 @@ void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift
   input_steps_.push_back(release);
 }
 
+void Viewer::push_click(ImVec2 at, bool ctrl) {
+  InputStep hover;
+  hover.pos = at;
+  hover.ctrl = ctrl;
+  input_steps_.push_back(hover);  // ImGui learns what is under the mouse before the press
+  InputStep press = hover;
+  press.buttons[0] = true;
+  input_steps_.push_back(press);
+  input_steps_.push_back(hover);
+}
+
 bool Viewer::push_item_input() {
   const auto it = item_locations_.rects.find(item_action_.name);
   if (it == item_locations_.rects.end()) return false;
@@ -127,14 +138,7 @@ bool Viewer::push_item_input() {
               item_action_.steps, false);
     return true;
   }
-  InputStep hover;
-  hover.pos = at;
-  hover.ctrl = item_action_.kind == ItemAction::Kind::kType;
-  input_steps_.push_back(hover);
-  InputStep press = hover;
-  press.buttons[0] = true;
-  input_steps_.push_back(press);
-  input_steps_.push_back(hover);
+  push_click(at, item_action_.kind == ItemAction::Kind::kType);
   if (item_action_.kind == ItemAction::Kind::kType) {
     InputStep typed;
     typed.pos = at;
@@ -306,14 +310,18 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
         (name == "scroll" && (w.size() != 4 || !parse_double(w[3], amount)))) {
       return fail("usage: click X Y | scroll X Y CLICKS");
     }
-    InputStep hover;
-    hover.pos = ImVec2(static_cast<float>(x), static_cast<float>(y));
-    input_steps_.push_back(hover);
-    InputStep act = hover;
-    if (name == "click") act.buttons[0] = true;
-    else act.wheel = static_cast<float>(amount);
-    input_steps_.push_back(act);
-    input_steps_.push_back(hover);
+    const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
+    if (name == "click") {
+      push_click(at, false);
+    } else {
+      InputStep hover;
+      hover.pos = at;
+      input_steps_.push_back(hover);
+      InputStep act = hover;
+      act.wheel = static_cast<float>(amount);
+      input_steps_.push_back(act);
+      input_steps_.push_back(hover);
+    }
     return wait_for(ScriptWait::kInput, 99);
   }
   if (name == "key") {
@@ -346,15 +354,8 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
       if (!probe_) return fail("nothing to probe (no scene yet)");
       return true;
     }
-    InputStep hover;
-    hover.pos = at;
-    hover.ctrl = true;
-    input_steps_.push_back(hover);
-    InputStep act = hover;
-    act.buttons[0] = true;
-    input_steps_.push_back(act);
-    input_steps_.push_back(hover);
-    InputStep after;
+    push_click(at, true);
+    InputStep after;  // Ctrl released again
     after.pos = at;
     input_steps_.push_back(after);
     return wait_for(ScriptWait::kInput, 99);

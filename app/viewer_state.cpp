@@ -33,6 +33,7 @@ void Viewer::write_state(const std::string& path) const {
   glfwGetWindowSize(platform_.window(), &window_w, &window_h);
   glfwGetFramebufferSize(platform_.window(), &fb_w, &fb_h);
   std::string first_error_line = file_state_.error_text.substr(0, file_state_.error_text.find('\n'));
+  const std::vector<std::string> caption_lines = captions();
   out << "source=" << doc_.source() << "\n"
       << "file=" << doc_.file_path() << "\n"
       << "dirty=" << (doc_.dirty() ? 1 : 0) << "\n"
@@ -70,8 +71,7 @@ void Viewer::write_state(const std::string& path) const {
       << "can_save=" << (!doc_.file_path().empty() && !doc_.opened_mesh() ? 1 : 0) << "\n"
       << "figure_status=" << figure_status_ << "\n"
       << "compare_caption=" << (instruments_.compare != 0 ? compare_caption() : "") << "\n"
-      << "captions=" << captions().size() << "\n";
-  const std::vector<std::string> caption_lines = captions();
+      << "captions=" << caption_lines.size() << "\n";
   for (std::size_t i = 0; i < caption_lines.size(); ++i) out << "caption" << i << "=" << caption_lines[i] << "\n";
   // The boxes over the image and the named widgets, where they were drawn last frame: x y width height.
   for (const auto& [id, rect] : overlay_rects_) {
@@ -124,7 +124,7 @@ void Viewer::write_state(const std::string& path) const {
       << "heat_max=" << heat_max_ << "\n";
   if (probe_) {
     const Color total = probe_->root.total;
-    const ImVec2 on_screen = probe_screen_point();
+    const ImVec2 on_screen = probe_point_in_cell(cells().count() - 1);
     out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
         << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
         << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"

@@ -13,10 +13,6 @@ constexpr ImU32 kLabelText = IM_COL32(255, 255, 255, 240);
 constexpr ImU32 kOutline = IM_COL32(0, 0, 0, 200);
 constexpr ImU32 kProbeYellow = IM_COL32(255, 230, 0, 255);
 
-bool overlaps(const ScreenRect& a, const ScreenRect& b) {
-  return a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y;
-}
-
 bool free_of(const ScreenRect& r, const std::vector<ScreenRect>& taken) {
   return std::none_of(taken.begin(), taken.end(), [&](const ScreenRect& t) { return overlaps(r, t); });
 }
@@ -27,6 +23,15 @@ bool inside(const ScreenRect& r, ImVec2 lo, ImVec2 hi) {
 
 
 }  // namespace
+
+bool overlaps(const ScreenRect& a, const ScreenRect& b) {
+  return a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y;
+}
+
+ScreenRect rect_at(ImVec2 anchor, ImVec2 pivot, ImVec2 size) {
+  const ImVec2 min(anchor.x - pivot.x * size.x, anchor.y - pivot.y * size.y);
+  return ScreenRect{min, ImVec2(min.x + size.x, min.y + size.y)};
+}
 
 void text_on_plate(ImDrawList* draw, ImVec2 at, const char* text, float ui_scale, float alpha, float wrap_width) {
   const ImVec2 size = ImGui::CalcTextSize(text, nullptr, false, wrap_width > 0 ? wrap_width : -1.0f);

@@ -28,6 +28,14 @@ struct LightMarker {
   int index = 0;         // into Scene::lights (the label)
 };
 
+// Whether two screen rectangles share any area.
+bool overlaps(const ScreenRect& a, const ScreenRect& b);
+// The rectangle of `size` placed with its point `pivot` ((0, 0) top-left .. (1, 1) bottom-right,
+// as ImGui's SetNextWindowPos takes it) at `anchor`.
+ScreenRect rect_at(ImVec2 anchor, ImVec2 pivot, ImVec2 size);
+// The width and height of a rectangle.
+inline ImVec2 size_of(const ScreenRect& r) { return ImVec2(r.max.x - r.min.x, r.max.y - r.min.y); }
+
 // Radius of a light marker in screen pixels for a UI scale.
 inline float light_marker_radius(float ui_scale) { return 7.0f * ui_scale; }
 
