@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "renderer/render.h"
-#include "renderer/scene_io.h"
+#include "core/render/render.h"
+#include "io/scene/scene_io.h"
 
 using namespace phonglab;
 

@@ -1,0 +1,399 @@
+// phonglab-cli: the headless side of phonglab (README).
+// Exit codes: 0 success, 1 bad input (scene or files), 2 bad usage.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/bench/bench_accel.h"
+#include "apps/bench/bench_report.h"
+#include "core/accel/accel.h"
+#include "io/embedded_scenes.h"
+#include "io/figure.h"
+#include "core/teaching/heat_map.h"
+#include "io/image_io.h"
+#include "core/packet/packet.h"
+#include "io/probe_report.h"
+#include "core/render/render.h"
+#include "io/scene/scene_io.h"
+
+namespace {
+
+using namespace phonglab;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kExitOk = 0;
+constexpr int kExitBadInput = 1;
+constexpr int kExitUsage = 2;
+
+constexpr const char* kUsage = R"(usage: phonglab-cli <command> [options]
+
+commands:
+  render [SCENE] -o OUT [--width W] [--height H] [--spp N] [--term T]
+         [--max-depth D] [--fov-y DEG] [--threads N] [--stats FILE.json]
+      Render to OUT (.pfm: linear float32, unclamped; .png: 8-bit sRGB).
+      --fov-y: the camera's vertical field of view instead of the scene's
+         (the previewer's dump_state camera_fov, to match a narrow view).
+      T: full (default), ambient, diffuse, specular, reflection, refraction,
+         or the debug views normal, depth, rays. A .png of rays is a heat map
+         (0 black .. the image's maximum pale yellow; the maximum is printed).
+  probe [SCENE] --pixel X,Y [--json] [--width W] [--height H]
+      The illumination equation of that pixel's centre ray, term by term.
+  figure [SCENE] -o OUT.png [--width W] [--height H] [--spp N] [--threads N]
+      The five term images and their sum in a labelled 3x2 grid (W x H each).
+  validate SCENE       Parse and check a scene only.
+  scenes               List the embedded scenes.
+  bench [--out DIR] [--quick] [--threads N] [--only accel]
+      The speed-versus-error report: report.md, CSV files and SVG plots in DIR
+      (default bench-out/); --quick finishes in about a minute. --only accel:
+      the acceleration section alone (accel.md, accel.csv).
+  bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
+      Time Whitted frames (1 spp) of one scene and print the median.
+      --scalar: without the packet tracer (the same image, traced ray by ray).
+
+SCENE is a scene file (JSON) or an embedded scene's name; default: lecture.
+Options: --help, --version.
+Exit codes: 0 success, 1 bad input, 2 bad usage.
+)";
+
+struct UsageError {
+  std::string message;
+};
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Command-line words after the command name, consumed option by option.
+class Args {
+ public:
+  explicit Args(std::vector<std::string> words) : words_(std::move(words)) {}
+
+  // Value of `--name VALUE` (or `--name=VALUE`), removed from the words.
+  std::optional<std::string> take_value(const std::string& name) {
+    for (std::size_t i = 0; i < words_.size(); ++i) {
+      if (words_[i] == name) {
+        if (i + 1 >= words_.size()) throw UsageError{name + " needs a value"};
+        std::string v = words_[i + 1];
+        words_.erase(words_.begin() + static_cast<long>(i), words_.begin() + static_cast<long>(i) + 2);
+        return v;
+      }
+      if (words_[i].rfind(name + "=", 0) == 0) {
+        std::string v = words_[i].substr(name.size() + 1);
+        words_.erase(words_.begin() + static_cast<long>(i));
+        return v;
+      }
+    }
+    return std::nullopt;
+  }
+
+  bool take_flag(const std::string& name) {
+    auto it = std::find(words_.begin(), words_.end(), name);
+    if (it == words_.end()) return false;
+    words_.erase(it);
+    return true;
+  }
+
+  std::optional<int> take_int(const std::string& name, int lo, int hi) {
+    auto v = take_value(name);
+    if (!v) return std::nullopt;
+    char* end = nullptr;
+    errno = 0;
+    const long x = std::strtol(v->c_str(), &end, 10);
+    if (v->empty() || *end != '\0' || errno != 0 || x < lo || x > hi) {
+      throw UsageError{name + " must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) +
+                       " (got '" + *v + "')"};
+    }
+    return static_cast<int>(x);
+  }
+
+  // A number strictly between lo and hi.
+  std::optional<double> take_open_range(const std::string& name, double lo, double hi) {
+    auto v = take_value(name);
+    if (!v) return std::nullopt;
+    char* end = nullptr;
+    const double x = std::strtod(v->c_str(), &end);
+    if (v->empty() || *end != '\0' || !(x > lo && x < hi)) {
+      throw UsageError{name + " must be a number in (" + std::to_string(static_cast<int>(lo)) + ", " +
+                       std::to_string(static_cast<int>(hi)) + ") (got '" + *v + "')"};
+    }
+    return x;
+  }
+
+  // The optional positional SCENE; anything else left over is an error.
+  std::optional<std::string> take_positional() {
+    std::optional<std::string> pos;
+    for (const std::string& w : words_) {
+      if (w.size() > 1 && w[0] == '-') throw UsageError{"unknown option '" + w + "'"};
+      if (pos) throw UsageError{"unexpected argument '" + w + "'"};
+      pos = w;
+    }
+    words_.clear();
+    return pos;
+  }
+
+ private:
+  std::vector<std::string> words_;
+};
+
+// Loads SCENE (or the default) and prints its warnings and errors. nullopt when it has errors.
+std::optional<Scene> load_or_report(const std::string& arg) {
+  LoadResult r = load_scene_arg(arg);
+  for (const Diagnostic& w : r.warnings) std::cerr << "warning: " << w.to_string() << "\n";
+  if (!r.ok()) {
+    std::cerr << r.error_text() << "\n";
+    return std::nullopt;
+  }
+  return std::move(*r.scene);
+}
+
+std::string default_scene_name() { return std::string(embedded_scenes().front().name); }
+
+int cmd_render(Args& args) {
+  const auto out = args.take_value("-o");
+  const auto width = args.take_int("--width", 1, 16384);
+  const auto height = args.take_int("--height", 1, 16384);
+  const auto spp = args.take_int("--spp", 1, 1 << 20);
+  const auto max_depth = args.take_int("--max-depth", 0, 100);
+  const auto fov_y = args.take_open_range("--fov-y", 0, 180);
+  const auto threads = args.take_int("--threads", 0, 1024);
+  const auto term_arg = args.take_value("--term");
+  const auto stats_path = args.take_value("--stats");
+  const std::string scene_arg = args.take_positional().value_or(default_scene_name());
+  if (!out) throw UsageError{"render needs -o OUT (.pfm or .png)"};
+  const std::string ext = out->size() >= 4 ? out->substr(out->size() - 4) : "";
+  if (ext != ".pfm" && ext != ".png") throw UsageError{"-o " + *out + ": the extension must be .pfm or .png"};
+  RenderOptions options;
+  if (term_arg) {
+    const auto term = term_from_name(*term_arg);
+    if (!term) throw UsageError{"unknown --term '" + *term_arg + "'"};
+    options.term = *term;
+  }
+  options.threads = threads.value_or(0);
+
+  const auto t_load = Clock::now();
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  const double load_ms = ms_since(t_load);
+  const auto t_build = Clock::now();
+  if (width) scene->width = *width;
+  if (height) scene->height = *height;
+  if (max_depth) scene->max_depth = *max_depth;
+  if (fov_y) scene->camera.fov_y_deg = *fov_y;
+  prepare_scene(*scene);
+  const double build_ms = ms_since(t_build);
+
+  Accumulator accum;
+  accum.reset(scene->width, scene->height);
+  const auto t_render = Clock::now();
+  const PassStats total = render_passes(*scene, options, accum, spp.value_or(1));
+  const double render_ms = ms_since(t_render);
+
+  Image image = mean_image(accum);
+  if (options.term == Term::kRays && ext == ".png") {
+    // Rays per pixel as grey would be white almost everywhere: a PNG shows them as a heat map.
+    // The PFM keeps the counts.
+    const double max = heat_max(image.pixels);
+    image.pixels = heat_map_pixels(image.pixels, max);
+    std::printf("heat map: 0 (black) .. %g (pale yellow) rays per pixel\n", max);
+  }
+  if (std::string err = write_image(*out, image); !err.empty()) {
+    std::cerr << *out << ": " << err << "\n";
+    return kExitBadInput;
+  }
+  if (stats_path) {
+    const double seconds = render_ms / 1000;
+    nlohmann::json j = {{"load_ms", load_ms},
+                        {"build_ms", build_ms},
+                        {"render_ms", render_ms},
+                        {"samples_per_pixel", accum.samples},
+                        {"width", accum.width},
+                        {"height", accum.height},
+                        {"threads", resolve_thread_count(options.threads)},
+                        {"rays",
+                         {{"primary", total.rays.primary},
+                          {"shadow", total.rays.shadow},
+                          {"reflection", total.rays.reflection},
+                          {"refraction", total.rays.refraction}}},
+                        {"mrays_per_s", seconds > 0 ? static_cast<double>(total.rays.total()) / seconds / 1e6 : 0.0},
+                        {"nan_count", total.nan_count},
+                        {"tracer", total.packets ? "packet" : "scalar"}};
+    if (std::string err = write_file_atomically(*stats_path, j.dump(2) + "\n"); !err.empty()) {
+      std::cerr << *stats_path << ": " << err << "\n";
+      return kExitBadInput;
+    }
+  }
+  return kExitOk;
+}
+
+int cmd_probe(Args& args) {
+  const auto pixel = args.take_value("--pixel");
+  const bool as_json = args.take_flag("--json");
+  const auto width = args.take_int("--width", 1, 16384);
+  const auto height = args.take_int("--height", 1, 16384);
+  const std::string scene_arg = args.take_positional().value_or(default_scene_name());
+  if (!pixel) throw UsageError{"probe needs --pixel X,Y"};
+  int x = 0, y = 0;
+  char extra = 0;
+  if (std::sscanf(pixel->c_str(), "%d,%d%c", &x, &y, &extra) != 2) {
+    throw UsageError{"--pixel must be X,Y (got '" + *pixel + "')"};
+  }
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  if (width) scene->width = *width;
+  if (height) scene->height = *height;
+  if (x < 0 || y < 0 || x >= scene->width || y >= scene->height) {
+    throw UsageError{"--pixel " + *pixel + " is outside the " + std::to_string(scene->width) + "x" +
+                     std::to_string(scene->height) + " image"};
+  }
+  prepare_scene(*scene);
+  const PixelProbe probe = probe_pixel(*scene, scene->width, scene->height, x, y);
+  std::cout << (as_json ? probe_to_json(*scene, probe) : probe_to_text(*scene, probe));
+  return kExitOk;
+}
+
+int cmd_figure(Args& args) {
+  const auto out = args.take_value("-o");
+  FigureOptions options;
+  options.cell_width = args.take_int("--width", 1, 8192).value_or(options.cell_width);
+  options.cell_height = args.take_int("--height", 1, 8192).value_or(options.cell_height);
+  options.spp = args.take_int("--spp", 1, 1 << 16).value_or(options.spp);
+  options.threads = args.take_int("--threads", 0, 1024).value_or(0);
+  const std::string scene_arg = args.take_positional().value_or(default_scene_name());
+  if (!out) throw UsageError{"figure needs -o OUT.png"};
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  prepare_scene(*scene);
+  if (std::string err = write_figure(*out, *scene, options); !err.empty()) {
+    std::cerr << *out << ": " << err << "\n";
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
+int cmd_validate(Args& args) {
+  const auto scene_arg = args.take_positional();
+  if (!scene_arg) throw UsageError{"validate needs SCENE"};
+  std::optional<Scene> scene = load_or_report(*scene_arg);
+  if (!scene) return kExitBadInput;
+  std::cout << *scene_arg << ": ok (" << scene->spheres.size() << " spheres, " << scene->planes.size()
+            << " planes, " << scene->triangles.size() << " triangles, ";
+  if (!scene->meshes.empty()) {
+    std::size_t mesh_triangles = 0;
+    for (const Mesh& m : scene->meshes) mesh_triangles += m.geometry->triangles.size();
+    std::cout << scene->meshes.size() << " meshes of " << mesh_triangles << " triangles, ";
+  }
+  std::cout << scene->lights.size() << " lights, " << scene->materials.size() << " materials)\n";
+  return kExitOk;
+}
+
+int cmd_scenes(Args& args) {
+  args.take_positional();
+  std::size_t w = 0;
+  for (const EmbeddedScene& s : embedded_scenes()) w = std::max(w, s.name.size());
+  for (const EmbeddedScene& s : embedded_scenes()) {
+    std::cout << s.name << std::string(w + 2 - s.name.size(), ' ') << s.description << "\n";
+  }
+  return kExitOk;
+}
+
+int cmd_bench(Args& args) {
+  const auto frames = args.take_int("--frames", 1, 10000);
+  const auto width = args.take_int("--width", 1, 16384);
+  const auto height = args.take_int("--height", 1, 16384);
+  const auto threads = args.take_int("--threads", 0, 1024);
+  const auto out_dir = args.take_value("--out");
+  const bool quick = args.take_flag("--quick");
+  const auto only = args.take_value("--only");
+  const bool scalar = args.take_flag("--scalar");
+  const auto positional = args.take_positional();
+  if (only) {
+    if (*only != "accel" || positional) throw UsageError{"bench --only takes 'accel' and no SCENE"};
+    return write_accel_report(AccelBenchOptions{quick, threads.value_or(0)}, out_dir.value_or("bench-out"));
+  }
+  if (!positional) {  // no SCENE: the whole speed-versus-error report
+    BenchReportOptions report;
+    report.out_dir = out_dir.value_or(report.out_dir);
+    report.quick = quick;
+    report.threads = threads.value_or(0);
+    return run_bench_report(report);
+  }
+  const std::string& scene_arg = *positional;
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  scene->width = width.value_or(1280);
+  scene->height = height.value_or(720);
+  prepare_scene(*scene);
+  RenderOptions options;
+  options.threads = threads.value_or(0);
+  options.packets = !scalar;
+  std::vector<double> ms;
+  std::vector<double> mrays;
+  RayCounts rays;
+  for (int f = 0; f < frames.value_or(15); ++f) {
+    Accumulator accum;
+    accum.reset(scene->width, scene->height);
+    const PassStats pass = render_pass(*scene, options, accum);
+    ms.push_back(pass.seconds * 1000);
+    mrays.push_back(static_cast<double>(pass.rays.total()) / pass.seconds / 1e6);
+    rays = pass.rays;
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  std::printf("scene %s, %dx%d, 1 spp, %d threads, %zu frames, %s tracer\n", scene_arg.c_str(), scene->width,
+              scene->height, resolve_thread_count(options.threads), ms.size(),
+              options.packets && packet_tracing_applies(*scene) ? "packet (AVX2)" : "scalar");
+  std::printf("rays per frame: %llu (primary %llu, shadow %llu, reflection %llu, refraction %llu)\n",
+              static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
+              static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.reflection),
+              static_cast<unsigned long long>(rays.refraction));
+  std::printf("median frame: %.2f ms, median %.1f Mrays/s (min %.2f ms, max %.2f ms)\n", median(ms), median(mrays),
+              *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()));
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> words(argv + 1, argv + argc);
+  if (words.empty()) {
+    std::cerr << kUsage;
+    return kExitUsage;
+  }
+  if (words[0] == "--help" || words[0] == "-h" || words[0] == "help") {
+    std::cout << kUsage;
+    return kExitOk;
+  }
+  if (words[0] == "--version") {
+    std::cout << "phonglab-cli " << PHONGLAB_VERSION << "\n";
+    return kExitOk;
+  }
+  const std::string command = words[0];
+  words.erase(words.begin());
+  if (std::find(words.begin(), words.end(), "--help") != words.end()) {
+    std::cout << kUsage;
+    return kExitOk;
+  }
+  Args args(std::move(words));
+  try {
+    if (command == "render") return cmd_render(args);
+    if (command == "probe") return cmd_probe(args);
+    if (command == "figure") return cmd_figure(args);
+    if (command == "validate") return cmd_validate(args);
+    if (command == "scenes") return cmd_scenes(args);
+    if (command == "bench") return cmd_bench(args);
+    throw UsageError{"unknown command '" + command + "'"};
+  } catch (const UsageError& e) {
+    std::cerr << "phonglab-cli: " << e.message << "\n(see phonglab-cli --help)\n";
+    return kExitUsage;
+  }
+}

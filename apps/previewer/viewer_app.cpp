@@ -1,0 +1,730 @@
+#include "apps/previewer/viewer_app.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <backends/imgui_impl_opengl3.h>
+
+#include "core/scene/camera.h"
+#include "io/figure.h"
+#include "core/geometry/geometry.h"
+#include "core/teaching/heat_map.h"
+#include "io/image_io.h"
+#include "io/probe_report.h"
+#include "core/teaching/ray_tree_view.h"
+#include "core/shading/shading.h"
+#include "interaction/camera_control.h"
+#include "ui/widgets.h"
+
+namespace phonglab {
+
+namespace {
+
+constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
+constexpr double kEarlyFrameGap = 0.004;    // a new edit's first image may go up this soon after a frame
+constexpr double kActivityWindow = 1.0;     // keep drawing this long after an input event, seconds
+constexpr double kIdleWait = 0.5;           // idle wake-up period, seconds: also the file poll rate
+constexpr double kFilePollPeriod = 0.5;     // "poll mtime about twice a second"
+constexpr float kSidebarWidth = 400;        // panel width at UI scale 1, ImGui units
+constexpr float kDragThreshold = 3;         // pixels a press may move and still be a click
+constexpr double kOrbitRadPerPixel = 0.008; // about 1.4 turns across a 1280-pixel drag
+constexpr double kDollyPerPixel = 0.01;     // distance factor e^0.01 per pixel dragged
+constexpr double kDollyPerWheelClick = 0.85;
+constexpr float kMarkerGrabFactor = 1.8f;   // a marker can be grabbed a little outside its disc
+constexpr int kInteractiveDivisor = 4;      // while dragging, refine no further than 1/4 resolution
+constexpr double kMaxDeferral = 1.0;        // a drag's edit waits at most this long for the renderer, s
+
+ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std::optional<Vec3>& shading_eye) {
+  ProgressiveSettings p;
+  p.shading_eye = shading_eye;
+  p.target_spp = s.target_spp;
+  p.threads = s.threads;
+  p.term = s.term;
+  p.interactive_divisor = kInteractiveDivisor;
+  p.lower_thread_priority = true;  // the UI thread stays ahead of the workers on few cores
+  return p;
+}
+
+const char* object_kind_name(ObjectRef::Kind kind) {
+  switch (kind) {
+    case ObjectRef::Kind::kSphere: return "sphere";
+    case ObjectRef::Kind::kPlane: return "plane";
+    case ObjectRef::Kind::kTriangle: return "triangle";
+    case ObjectRef::Kind::kMesh: return "mesh";
+    case ObjectRef::Kind::kNone: break;
+  }
+  return "object";
+}
+
+bool same_camera(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.look_at == b.look_at && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
+}
+
+double mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (const double x : v) sum += x;
+  return v.empty() ? 0 : sum / static_cast<double>(v.size());
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1)));
+  return v[std::min(i, v.size() - 1)];
+}
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+  std::string error;
+  PlatformOptions platform_options;
+  platform_options.width = options.width;
+  platform_options.height = options.height;
+  std::unique_ptr<Platform> platform = Platform::create(platform_options, error);
+  if (!platform) {
+    std::cerr << "phonglab: " << error << "\n"
+              << "phonglab needs a display with OpenGL 3.3. Without one, render with phonglab-cli, e.g.\n"
+              << "  phonglab-cli render " << options.scene_arg << " -o image.png\n";
+    return 1;
+  }
+  Viewer viewer(*platform, options);
+  error = viewer.init();
+  if (!error.empty()) {
+    std::cerr << "phonglab: " << error << "\n";
+    return 1;
+  }
+  return viewer.run();
+}
+
+Viewer::Viewer(Platform& platform, const ViewerOptions& options)
+    : platform_(platform),
+      options_(options),
+      // The render thread only wakes the event loop; the UI takes the image itself.
+      renderer_(progressive_settings(ui::RenderSettings{}, std::nullopt), [] { glfwPostEmptyEvent(); }) {}
+
+Viewer::~Viewer() = default;
+
+std::string Viewer::init() {
+  ImGui::GetIO().UserData = &item_locations_;
+  std::string error = image_view_.init();
+  if (!error.empty()) return error;
+  for (ImageView& view : term_views_) {
+    error = view.init();
+    if (!error.empty()) return error;
+  }
+  if (!doc_.open(options_.scene_arg)) {
+    // The UI starts anyway, on the default scene, with the file's diagnostics on show.
+    const std::string load_error = doc_.error_text();
+    std::cerr << "phonglab: " << load_error << "\n";
+    doc_.open("lecture");
+    file_state_.error_text = load_error;
+    file_state_.path_field = options_.scene_arg;
+  } else {
+    file_state_.status = doc_.status();
+    file_state_.path_field = doc_.file_path();
+  }
+  scene_replaced_ = true;
+  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
+  if (!options_.script_path.empty()) {
+    std::ifstream in(options_.script_path);
+    if (!in) return "cannot read script " + options_.script_path;
+    std::ostringstream text;
+    text << in.rdbuf();
+    script_ = parse_script(text.str());
+  }
+  if (!options_.stats_log_path.empty()) {
+    stats_log_.open(options_.stats_log_path);
+    if (!stats_log_) return "cannot write " + options_.stats_log_path;
+  }
+  update_title();
+  return {};
+}
+
+int Viewer::run() {
+  GLFWwindow* window = platform_.window();
+  last_frame_start_ = glfwGetTime();
+  while (!quit_) {
+    wait_for_next_frame();
+    const double frame_start = glfwGetTime();
+    const double frame_seconds = frame_start - last_frame_start_;
+    last_frame_start_ = frame_start;
+    // Frames after an idle sleep say nothing about drawing speed.
+    if (!slept_idle_) frame_times_.emplace_back(frame_start, frame_seconds);
+    while (!frame_times_.empty() && frame_times_.front().first < frame_start - 1.0) frame_times_.pop_front();
+    // Frames paced while the renderer works are the ones the 60 Hz target is about.
+    if (was_rendering_ && stats_log_) {
+      busy_frame_ms_.push_back(frame_seconds * 1e3);
+      stats_log_ << "frame " << frame_start * 1e3 << " " << frame_seconds * 1e3 << "\n";
+    }
+    was_rendering_ = !renderer_.status().idle;
+
+    platform_.update_scale();
+    if (glfwWindowShouldClose(window)) {
+      // Closing goes through the unsaved-changes guard like any other way of quitting.
+      glfwSetWindowShouldClose(window, GLFW_FALSE);
+      request(PendingAction{PendingAction::Kind::kQuit, {}});
+    }
+    poll_scene_file(frame_start);
+
+    int fb_width = 0, fb_height = 0;
+    glfwGetFramebufferSize(window, &fb_width, &fb_height);
+    if (fb_width <= 0 || fb_height <= 0) continue;  // minimised: nothing to draw, keep running
+
+    platform_.begin_backend_frame();
+    step_script(frame_start);
+    ImGui::NewFrame();
+    layout();
+    handle_viewport_input();
+    draw_sidebar();
+    draw_overlays();
+    handle_guard_modal();
+    apply_edits(frame_start);
+    ImGui::Render();
+    draw_gl(fb_width, fb_height);
+    glfwSwapBuffers(window);
+    after_swap();
+  }
+  write_stats_summary("session");
+  return script_failed_ ? 3 : 0;
+}
+
+bool Viewer::poll_render_frame() {
+  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
+    if (term_renderers_[i] && term_renderers_[i]->take_frame(term_frames_[i])) term_upload_pending_[i] = true;
+  }
+  if (!renderer_.take_frame(shown_)) return false;
+  upload_pending_ = true;
+  return true;
+}
+
+void Viewer::wait_for_next_frame() {
+  const ProgressiveStatus status = renderer_.status();
+  const double now = glfwGetTime();
+  const bool script_running = script_index_ < script_.size() || !input_steps_.empty();
+  const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
+                    script_running || guard_visible_ || drag_.mode != DragMode::kNone || !terms_idle();
+  slept_idle_ = !busy;
+  if (!busy) {
+    // Nothing moves: sleep until an event, a new image (the render thread posts an empty
+    // event) or the next file poll.
+    glfwWaitEventsTimeout(kIdleWait);
+    poll_render_frame();
+    return;
+  }
+  const double deadline = last_frame_start_ + kFramePeriod;
+  for (;;) {
+    poll_render_frame();
+    // The first image after an edit goes up at once: that is the latency users feel.
+    const bool first_image = upload_pending_ && shown_.generation != drawn_generation_;
+    const double t = glfwGetTime();
+    const double early = last_frame_start_ + kEarlyFrameGap;
+    if (first_image && t >= early) break;
+    if (t >= deadline) break;
+    glfwWaitEventsTimeout(first_image ? early - t : deadline - t);
+  }
+  glfwPollEvents();
+}
+
+void Viewer::poll_scene_file(double now) {
+  if (now < next_file_poll_) return;
+  next_file_poll_ = now + kFilePollPeriod;
+  if (doc_.file_path().empty() || !file_state_.auto_reload || !doc_.changed_on_disk()) {
+    file_state_.changed_on_disk = false;
+    return;
+  }
+  if (doc_.dirty()) {
+    file_state_.changed_on_disk = true;  // never throw away edits silently
+    return;
+  }
+  reload_scene(true);
+}
+
+void Viewer::layout() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float sidebar = sidebar_visible_ ? std::min(kSidebarWidth * platform_.ui_scale(), io.DisplaySize.x * 0.5f) : 0;
+  viewport_ = ViewportRect{0, 0, std::max(io.DisplaySize.x - sidebar, 0.0f), io.DisplaySize.y};
+}
+
+void Viewer::handle_viewport_input() {
+  ImGuiIO& io = ImGui::GetIO();
+  Scene& scene = doc_.scene();
+  Camera& camera = scene.camera;
+  const Camera view = view_camera();
+  // Where each button went down, from GLFW's event: ImGui 1.86 polls the cursor once a frame, so
+  // a press followed by a quick move in the same frame would otherwise start where the pointer
+  // already moved to (and miss the light marker it was pressed on).
+  const std::vector<MousePress> presses = platform_.take_mouse_presses();
+  const auto pressed_at = [&](int button) {
+    ImVec2 at = io.MousePos;
+    for (const MousePress& p : presses) {
+      if (p.button == button) at = ImVec2(static_cast<float>(p.x), static_cast<float>(p.y));
+    }
+    return at;
+  };
+  ImVec2 mouse = io.MousePos;
+  for (int button = 0; button < 3; ++button) {
+    if (ImGui::IsMouseClicked(button)) mouse = pressed_at(button);
+  }
+  const bool over_viewport = ImGui::IsMousePosValid(&mouse) && mouse.x >= viewport_.x &&
+                             mouse.x < viewport_.x + viewport_.width && mouse.y >= viewport_.y &&
+                             mouse.y < viewport_.y + viewport_.height;
+  const bool mouse_is_ours = over_viewport && !io.WantCaptureMouse && !help_visible_;
+  const int view_w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
+  const int view_h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
+
+  // The point light whose marker is under the mouse, where it was drawn last frame (an arrow at
+  // the edge for a light out of view): what the user sees is what the user grabs.
+  hovered_light_ = -1;
+  if (drag_.mode == DragMode::kNone && mouse_is_ours) {
+    const float grab = ui::light_marker_radius(platform_.ui_scale()) * kMarkerGrabFactor;
+    float best = grab * grab;
+    for (const ui::LightMarker& marker : markers_) {
+      const float dx = marker.pos.x - mouse.x;
+      const float dy = marker.pos.y - mouse.y;
+      if (dx * dx + dy * dy <= best) {
+        best = dx * dx + dy * dy;
+        hovered_light_ = marker.index;
+      }
+    }
+  }
+
+  if (drag_.mode == DragMode::kNone) {
+    if (mouse_is_ours) {
+      for (int button = 0; button < 3; ++button) {
+        if (!ImGui::IsMouseClicked(button)) continue;
+        drag_ = Drag{};
+        drag_.button = button;
+        drag_.start = mouse;
+        if (button == ImGuiMouseButton_Left && hovered_light_ >= 0 &&
+            hovered_light_ < static_cast<int>(scene.lights.size())) {
+          drag_.mode = DragMode::kLight;
+          drag_.light = hovered_light_;
+          drag_.light_depth = ui::view_depth(view, scene.lights[static_cast<std::size_t>(hovered_light_)].position);
+          selected_light_ = hovered_light_;
+        } else if (button == ImGuiMouseButton_Left) {
+          drag_.mode = io.KeyShift ? DragMode::kPan : DragMode::kOrbit;
+        } else {
+          drag_.mode = button == ImGuiMouseButton_Right ? DragMode::kDolly : DragMode::kPan;
+        }
+        break;
+      }
+      if (io.MouseWheel != 0) {
+        ui::dolly(camera, std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel)), dolly_limit_);
+        camera_changed_ = true;
+      }
+    }
+  } else if (ImGui::IsMouseDown(drag_.button)) {
+    if (!drag_.moved && ImGui::IsMouseDragging(drag_.button, kDragThreshold)) drag_.moved = true;
+    const ImVec2 d = io.MouseDelta;
+    // A grabbed light follows the pointer from the first pixel (an arrow at the edge brings the
+    // light into view at once); the camera waits for the drag threshold, so a click stays a click.
+    const bool moving = (drag_.moved || drag_.mode == DragMode::kLight) && (d.x != 0 || d.y != 0);
+    if (moving) drag_viewport(mouse, d, view, view_w, view_h);
+  } else {
+    if (drag_.mode == DragMode::kOrbit && !drag_.moved) {
+      // Plain click selects a material (as before); Ctrl+click, or any click in probe mode, probes.
+      if (instruments_.probe_mode || io.KeyCtrl) probe_at(drag_.start);
+      else pick(drag_.start);
+    }
+    drag_ = Drag{};
+  }
+  interacting_ = drag_.mode != DragMode::kNone && (drag_.moved || drag_.mode == DragMode::kLight);
+  handle_keys();
+}
+
+void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int view_w, int view_h) {
+  Scene& scene = doc_.scene();
+  Camera& camera = scene.camera;
+  const double per_px = kOrbitRadPerPixel / platform_.ui_scale();
+  switch (drag_.mode) {
+    case DragMode::kOrbit:
+      // The scene follows the hand: drag right, it turns right; drag down, it is seen from higher up.
+      ui::orbit(camera, -delta.x * per_px, delta.y * per_px);
+      camera_changed_ = true;
+      break;
+    case DragMode::kPan: {
+      Camera moved = view;  // the fitted field of view sets how far a pixel goes
+      ui::pan(moved, delta.x, delta.y, viewport_.height);
+      camera.position = moved.position;
+      camera.look_at = moved.look_at;
+      camera_changed_ = true;
+      break;
+    }
+    case DragMode::kDolly:
+      ui::dolly(camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
+      camera_changed_ = true;
+      break;
+    case DragMode::kLight:
+      if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size()) && drag_.light_depth > 0) {
+        const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
+        // Kept to float precision, as every value the panels edit: a saved file reads 1.8074448,
+        // not 1.8074447666598992.
+        const Vec3 p = ui::unproject(view, at, drag_.light_depth, view_w, view_h);
+        scene.lights[static_cast<std::size_t>(drag_.light)].position =
+            Vec3(ui::tidy_float(p.x), ui::tidy_float(p.y), ui::tidy_float(p.z));
+        scene_edited_ = true;
+      }
+      break;
+    case DragMode::kNone:
+      break;
+  }
+}
+
+void Viewer::handle_keys() {
+  const ImGuiIO& io = ImGui::GetIO();
+  // Presses come from GLFW's key events, not from the key state once per frame: a tap shorter
+  // than a frame still counts. A text field being edited keeps its keys.
+  for (const KeyPress& press : platform_.take_key_presses()) {
+    if (io.WantTextInput) continue;
+    const bool ctrl = (press.mods & GLFW_MOD_CONTROL) != 0;
+    const bool shift = (press.mods & GLFW_MOD_SHIFT) != 0;
+    if (ctrl) {
+      // Ctrl+Z is also a text field's own undo: taken only when no field has the keyboard.
+      if (press.key == GLFW_KEY_Z) shift ? redo() : undo();
+      if (press.key == GLFW_KEY_Y) redo();
+      continue;
+    }
+    if (press.key == GLFW_KEY_F1 || (press.key == GLFW_KEY_SLASH && shift)) {
+      help_visible_ = !help_visible_;
+      continue;
+    }
+    if (press.key == GLFW_KEY_ESCAPE && help_visible_) {
+      help_visible_ = false;
+      continue;
+    }
+    if (io.WantCaptureKeyboard && !help_visible_) continue;  // a widget is active
+    shortcut(press.key, shift);
+  }
+}
+
+void Viewer::shortcut(int key, bool shift) {
+  Scene& scene = doc_.scene();
+  if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
+    const int digit = key - GLFW_KEY_1;  // 0 for the key 1
+    if (shift) {
+      // Shift+1..9: solo light L0..L8 (again: end the solo).
+      if (digit < static_cast<int>(scene.lights.size())) {
+        ui::toggle_solo(scene.lights, solo_, digit);
+        selected_light_ = digit;
+        scene_edited_ = true;
+      }
+    } else if (digit < static_cast<int>(kShortcutTerms.size())) {
+      // 1 the full image, 2..6 its terms in the order of the equation.
+      if (render_settings_.term != kShortcutTerms[static_cast<std::size_t>(digit)]) {
+        render_settings_.term = kShortcutTerms[static_cast<std::size_t>(digit)];
+        settings_changed_ = true;
+      }
+    }
+    return;
+  }
+  switch (key) {
+    case GLFW_KEY_F: frame_requested_ = true; break;
+    case GLFW_KEY_R: reset_requested_ = true; break;
+    case GLFW_KEY_H: sidebar_visible_ = !sidebar_visible_; ++sidebar_toggles_; break;
+    case GLFW_KEY_M:
+      instruments_.small_multiples = !instruments_.small_multiples;
+      settings_changed_ = true;
+      break;
+    default: break;
+  }
+}
+
+Viewer::Cells Viewer::cells() const {
+  Cells c;
+  c.columns = instruments_.small_multiples ? kMultiplesColumns : 1;
+  c.rows = instruments_.small_multiples ? kMultiplesRows : 1;
+  c.x = viewport_.x;
+  c.y = viewport_.y;
+  c.width = viewport_.width / static_cast<float>(c.columns);
+  c.height = viewport_.height / static_cast<float>(c.rows);
+  return c;
+}
+
+double Viewer::view_aspect() const {
+  if (!(viewport_.width >= 1 && viewport_.height >= 1)) return 0;
+  const Cells c = cells();
+  return static_cast<double>(c.width) / static_cast<double>(c.height);
+}
+
+Camera Viewer::view_camera() const {
+  const Scene& scene = doc_.scene();
+  const double framed = scene.height > 0 ? static_cast<double>(scene.width) / scene.height : 0;
+  return ui::fit_to_view(scene.camera, framed, view_aspect());
+}
+
+void Viewer::pick(ImVec2 mouse) {
+  if (!snapshot_) return;
+  const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
+  const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
+  const double x = mouse.x - viewport_.x;
+  const double y = mouse.y - viewport_.y;
+  const int px = std::clamp(static_cast<int>(std::floor(x)), 0, w - 1);
+  const int py = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
+  // The same camera formula as the renderer, through the clicked point of the pixel.
+  const CameraFrame frame = make_camera_frame(view_camera(), w, h);
+  const Ray ray = camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0));
+  const std::optional<Hit> hit = intersect(*snapshot_, ray);
+  if (!hit) {
+    picked_text_ = "the background";
+    return;
+  }
+  const Scene& scene = *snapshot_;
+  selected_material_ = hit->material;
+  open_materials_ = true;
+  std::ostringstream text;
+  // The probe's naming: "objects[i]", and a mesh's OBJ face.
+  text << object_kind_name(hit->object.kind) << " " << object_name(scene, hit->object);
+  if (hit->material >= 0 && hit->material < static_cast<int>(scene.materials.size())) {
+    text << ", material '" << scene.materials[static_cast<std::size_t>(hit->material)].name << "'";
+  }
+  picked_text_ = text.str();
+}
+
+void Viewer::note_restart(std::uint64_t generation, double edit_time) {
+  restart_times_.emplace_back(generation, edit_time);
+  constexpr std::size_t kKeep = 256;  // a few seconds of drag frames; older ones never show
+  while (restart_times_.size() > kKeep) restart_times_.pop_front();
+  if (bench_expect_restart_) {
+    bench_generation_ = generation;
+    bench_expect_restart_ = false;
+  }
+}
+
+void Viewer::apply_edits(double frame_start) {
+  Scene& scene = doc_.scene();
+  const ImGuiIO& io = ImGui::GetIO();
+  if (frame_requested_ && viewport_.height > 0) {
+    // Framed for the scene's own image: the view's fitting keeps that in any window.
+    const double framed = scene.height > 0 ? static_cast<double>(scene.width) / scene.height : 1;
+    if (ui::frame_scene(scene.camera, scene, framed)) camera_changed_ = true;
+  }
+  if (reset_requested_) {
+    scene.camera = doc_.loaded_camera();
+    camera_changed_ = true;
+  }
+  frame_requested_ = reset_requested_ = false;
+  if (scene_edited_) doc_.update_dirty();
+  if (scene_replaced_) {
+    dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());
+    history_.reset(scene);
+    commit_pending_ = false;
+    solo_ = ui::LightSolo{};
+  } else if (scene_edited_ && !restored_) {
+    commit_pending_ = true;
+  }
+  restored_ = false;
+  // One undo step per gesture: a slider drag or a light drag commits when it ends.
+  if (commit_pending_ && !ImGui::IsAnyItemActive() && drag_.mode != DragMode::kLight) {
+    history_.commit(scene);
+    commit_pending_ = false;
+  }
+
+  // "Move your head": a new shading eye (angle, probe or camera changed) restarts the renderers.
+  const std::optional<Vec3> eye = head_eye();
+  if (eye != shading_eye_) {
+    shading_eye_ = eye;
+    settings_changed_ = true;
+    if (probe_) refresh_probe();
+  }
+  if (settings_changed_) {
+    const std::uint64_t before = renderer_.status().generation;
+    const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_, shading_eye_));
+    if (generation != before) {
+      sent_generation_ = generation;
+      note_restart(generation, frame_start);
+    }
+  }
+
+  const float resolution = render_settings_.resolution_scale;
+  int width = static_cast<int>(std::lround(viewport_.width * io.DisplayFramebufferScale.x * resolution));
+  int height = static_cast<int>(std::lround(viewport_.height * io.DisplayFramebufferScale.y * resolution));
+  if (instruments_.small_multiples) {
+    width /= kMultiplesColumns;
+    height /= kMultiplesRows;
+  }
+  if (viewport_.width >= 1 && viewport_.height >= 1) {
+    width = std::max(width, 1);
+    height = std::max(height, 1);
+  } else {
+    width = height = 0;  // nothing visible: the renderer idles
+  }
+  const bool resized = width != render_width_ || height != render_height_;
+  // A new window aspect may widen or narrow the fitted field of view: a new camera.
+  if (snapshot_ && !same_camera(view_camera(), snapshot_->camera)) camera_changed_ = true;
+  const bool edited = scene_edited_ || camera_changed_ || scene_replaced_ || view_changed_ || !snapshot_;
+  if (edited && !change_deferred_) deferred_since_ = frame_start;
+  const bool scene_changed = edited || change_deferred_;
+  // During a drag, a new snapshot waits until the renderer has shown the previous one:
+  // restarting every UI frame would cancel each coarse pass before it finishes whenever a
+  // pass takes longer than a frame, and the view would freeze until the drag ends.
+  const bool dragging = interacting_ || edited_while_active_;
+  const bool first_image_pending = renderer_.status().published_generation < sent_generation_;
+  const bool defer = scene_changed && dragging && !resized && !scene_replaced_ && first_image_pending &&
+                     frame_start - deferred_since_ < kMaxDeferral;
+  change_deferred_ = defer;
+  if ((scene_changed && !defer) || resized) {
+    if (scene_changed) {
+      auto snapshot = std::make_shared<Scene>(scene);
+      snapshot->camera = view_camera();
+      // The depth cut changes what is rendered, never the scene: history and file keep max_depth.
+      apply_depth_cut(*snapshot, ui::depth_cut_of(rays_));
+      prepare_scene(*snapshot);
+      snapshot_ = std::move(snapshot);
+    }
+    render_width_ = width;
+    render_height_ = height;
+    // One restart per UI frame, however many edits it gathered.
+    const std::uint64_t generation = renderer_.set_scene(snapshot_, width, height);
+    sent_generation_ = generation;
+    // Latency counts from the oldest edit this snapshot carries.
+    if (scene_changed) note_restart(generation, deferred_since_);
+    if (probe_) refresh_probe();
+  }
+  update_term_renderers((scene_changed && !defer) || resized);
+  renderer_.set_interacting(interacting_ || edited_while_active_);
+  for (const auto& term_renderer : term_renderers_) {
+    if (term_renderer) term_renderer->set_interacting(interacting_ || edited_while_active_);
+  }
+  scene_edited_ = camera_changed_ = scene_replaced_ = settings_changed_ = view_changed_ = false;
+  take_a_when_final();
+  update_title();
+}
+
+void Viewer::draw_gl(int fb_width, int fb_height) {
+  glViewport(0, 0, fb_width, fb_height);
+  glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  if (upload_pending_) {
+    heat_max_ = heat_shown() ? heat_max(shown_.pixels) : 0;
+    image_view_.upload(shown_.width, shown_.height, display_pixels());
+    upload_pending_ = false;
+    if (shown_.generation != drawn_generation_) first_image_generation_ = shown_.generation;
+    drawn_generation_ = shown_.generation;
+    drawn_serial_ = shown_.stats.serial;
+  }
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  // The heat map's colours are final: exposure does not apply to them.
+  const float exposure_ev = heat_shown() ? 0.0f : display_.exposure_ev;
+  const int view_w = static_cast<int>(std::lround(viewport_.width * scale.x));
+  const int view_h = static_cast<int>(std::lround(viewport_.height * scale.y));
+  const int view_x = static_cast<int>(std::lround(viewport_.x * scale.x));
+  const int view_y = fb_height - view_h - static_cast<int>(std::lround(viewport_.y * scale.y));  // GL counts from the bottom
+  if (instruments_.small_multiples) {
+    // 3 x 2 cells, top row first; GL rows count from the bottom.
+    const int cell_w = view_w / kMultiplesColumns;
+    const int cell_h = view_h / kMultiplesRows;
+    for (int cell = 0; cell < kMultiplesColumns * kMultiplesRows; ++cell) {
+      const int x = view_x + (cell % kMultiplesColumns) * cell_w;
+      const int y = view_y + (kMultiplesRows - 1 - cell / kMultiplesColumns) * cell_h;
+      if (cell == kTermCells) {
+        image_view_.draw(x, y, cell_w, cell_h, exposure_ev, display_.srgb, shown_.divisor > 1);
+        continue;
+      }
+      const auto i = static_cast<std::size_t>(cell);
+      if (term_upload_pending_[i]) {
+        term_views_[i].upload(term_frames_[i].width, term_frames_[i].height, term_frames_[i].pixels);
+        term_upload_pending_[i] = false;
+        term_drawn_serial_[i] = term_frames_[i].stats.serial;
+      }
+      if (term_views_[i].has_image()) {
+        term_views_[i].draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, term_frames_[i].divisor > 1);
+      }
+    }
+  } else {
+    // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
+    const bool nearest = shown_.divisor > 1 || shown_.width == view_w;
+    image_view_.draw(view_x, view_y, view_w, view_h, exposure_ev, display_.srgb, nearest);
+  }
+  glViewport(0, 0, fb_width, fb_height);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (!screenshot_request_.empty()) {
+    save_window_screenshot(screenshot_request_, fb_width, fb_height);
+    screenshot_request_.clear();
+  }
+}
+
+void Viewer::after_swap() {
+  if (first_image_generation_ == 0) return;
+  const double now = glfwGetTime();
+  for (const auto& [generation, edit_time] : restart_times_) {
+    if (generation != first_image_generation_) continue;
+    last_latency_ms_ = (now - edit_time) * 1e3;
+    // The renderer's share: restart to publication of this image.
+    if (stats_log_) {
+      latencies_ms_.push_back(last_latency_ms_);
+      stats_log_ << "latency " << generation << " " << last_latency_ms_ << " 1/" << shown_.divisor << " render_ms "
+                 << shown_.stats.ms_since_restart << " pass_ms " << shown_.stats.pass_ms << "\n";
+    }
+    break;
+  }
+  // Edits up to this one are on screen or were overtaken by it.
+  while (!restart_times_.empty() && restart_times_.front().first <= first_image_generation_) restart_times_.pop_front();
+  first_image_generation_ = 0;
+}
+
+void Viewer::update_title() {
+  std::string title = "phonglab - " + doc_.source() + (doc_.dirty() ? " *" : "");
+  if (title == title_) return;
+  title_ = std::move(title);
+  glfwSetWindowTitle(platform_.window(), title_.c_str());
+}
+
+bool Viewer::image_is_final() const {
+  const ProgressiveStatus status = renderer_.status();
+  return status.idle && status.serial > 0 && drawn_serial_ == status.serial &&
+         drawn_generation_ == status.generation && !upload_pending_ && terms_idle();
+}
+
+bool Viewer::terms_idle() const {
+  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
+    if (!term_renderers_[i]) continue;
+    const ProgressiveStatus status = term_renderers_[i]->status();
+    if (!status.idle || term_upload_pending_[i] || (status.serial > 0 && term_drawn_serial_[i] != status.serial)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void Viewer::update_term_renderers(bool scene_changed) {
+  if (!instruments_.small_multiples) {
+    for (auto& term_renderer : term_renderers_) term_renderer.reset();  // joins its thread
+    return;
+  }
+  const bool started = !term_renderers_[0];
+  ProgressiveSettings settings = progressive_settings(render_settings_, shading_eye_);
+  // Five more renderers share the machine with the main one.
+  settings.threads = std::max(1, resolve_thread_count(render_settings_.threads) / 3);
+  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
+    settings.term = kCellTerms[i];
+    if (!term_renderers_[i]) {
+      term_renderers_[i] = std::make_unique<ProgressiveRenderer>(settings, [] { glfwPostEmptyEvent(); });
+      term_frames_[i] = ProgressiveFrame{};
+      term_drawn_serial_[i] = 0;
+      term_upload_pending_[i] = false;
+    } else {
+      term_renderers_[i]->set_settings(settings);
+    }
+    if ((started || scene_changed) && snapshot_) term_renderers_[i]->set_scene(snapshot_, render_width_, render_height_);
+  }
+}
+
+void Viewer::write_stats_summary(const std::string& label) {
+  if (!stats_log_) return;
+  stats_log_ << "summary " << label << " ui_frames " << busy_frame_ms_.size() << " mean_ms " << mean(busy_frame_ms_)
+             << " p50_ms " << percentile(busy_frame_ms_, 0.5) << " p95_ms " << percentile(busy_frame_ms_, 0.95)
+             << " p99_ms " << percentile(busy_frame_ms_, 0.99) << " max_ms " << percentile(busy_frame_ms_, 1.0) << "\n";
+  stats_log_ << "summary " << label << " edit_to_image n " << latencies_ms_.size() << " mean_ms " << mean(latencies_ms_)
+             << " p50_ms " << percentile(latencies_ms_, 0.5) << " p95_ms " << percentile(latencies_ms_, 0.95)
+             << " max_ms " << percentile(latencies_ms_, 1.0) << "\n";
+  stats_log_.flush();
+}
+
+}  // namespace phonglab

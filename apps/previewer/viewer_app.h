@@ -1,0 +1,346 @@
+// The previewer's main loop: owns the editable scene (through SceneDocument), hands the
+// progressive renderer a snapshot at most once per UI frame, shows its latest image, draws the
+// panels, turns mouse drags into camera and light moves, and runs test scripts.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+
+#include "apps/previewer/viewer_document.h"
+#include "apps/previewer/viewer_gl.h"
+#include "apps/previewer/viewer_platform.h"
+#include "io/image_io.h"
+#include "core/render/progressive.h"
+#include "interaction/history.h"
+#include "ui/panels.h"
+#include "ui/ray_tree_overlay.h"
+
+namespace phonglab {
+
+struct ViewerOptions {
+  std::string scene_arg = "lecture";  // embedded scene name or scene file
+  int width = 1280;                   // window size, screen coordinates
+  int height = 720;
+  std::string script_path;            // test hook: commands run from the main loop
+  std::string stats_log_path;         // test hook: frame times and edit latencies
+};
+
+// Opens the window and runs until the user quits. Returns the process exit code: 0, 1 when
+// there is no display (the message points at phonglab-cli), 3 when a test script failed.
+int run_viewer(const ViewerOptions& options);
+
+// One scripted frame of input, injected into ImGui as if it came from the window system.
+struct InputStep {
+  ImVec2 pos;                  // mouse position, window coordinates
+  bool buttons[3] = {};        // left, right, middle held
+  bool shift = false;          // shift held
+  bool ctrl = false;           // control held
+  int key = -1;                // GLFW key code to press or release in this frame, -1 for none
+  bool key_down = false;       // press (true) or release (false) `key`
+  float wheel = 0;             // wheel clicks, positive away from the user
+  std::string text;            // characters typed in this frame (into the active text field)
+};
+
+// One line of a test script: the words, and where it came from.
+struct ScriptCommand {
+  int line = 0;
+  std::vector<std::string> words;
+};
+
+// Splits a script into commands (one per line, '#' starts a comment). Commands are
+// checked when they run; see docs/previewer.md for the list.
+std::vector<ScriptCommand> parse_script(const std::string& text);
+
+class Viewer {
+ public:
+  Viewer(Platform& platform, const ViewerOptions& options);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  // Initialises GL resources; an empty string or the error.
+  std::string init();
+  // The main loop. Returns the exit code.
+  int run();
+
+ private:
+  // What a mouse drag in the viewport does.
+  enum class DragMode : std::uint8_t { kNone, kOrbit, kPan, kDolly, kLight };
+  struct Drag {
+    DragMode mode = DragMode::kNone;
+    int button = 0;          // ImGui mouse button that started it
+    bool moved = false;      // passed the drag threshold (else a release is a click)
+    ImVec2 start;            // where the button went down
+    int light = -1;          // kLight: index of the light being moved
+    double light_depth = 0;  // kLight: its distance along the view direction
+  };
+  // An action that would lose unsaved edits, waiting for the modal's answer.
+  struct PendingAction {
+    enum class Kind : std::uint8_t { kNone, kQuit, kOpen, kReload };
+    Kind kind = Kind::kNone;
+    std::string arg;  // kOpen: what to open
+  };
+  // The viewport: the window area left of the panels, in ImGui (window) coordinates.
+  struct ViewportRect {
+    float x = 0;
+    float y = 0;
+    float width = 0;
+    float height = 0;
+  };
+  // What the script is waiting for before its next command.
+  enum class ScriptWait : std::uint8_t { kNone, kFrames, kIdle, kImage, kFile, kInput, kBench, kItem };
+  // A scripted click, drag or typed value on a widget found by name (click_item and friends).
+  struct ItemAction {
+    enum class Kind : std::uint8_t { kClick, kDrag, kType };
+    Kind kind = Kind::kClick;
+    std::string name;     // as ui::locate recorded it
+    double dx = 0;        // kDrag: how far, window pixels
+    double dy = 0;
+    int steps = 10;       // kDrag: mouse moves on the way
+    std::string text;     // kType: what is typed
+  };
+
+  // Frame phases, in order.
+  void wait_for_next_frame();              // 60 Hz pacing, early for a new edit's first image, sleep when idle
+  bool poll_render_frame();                // takes the renderer's newest image into shown_, if any
+  void poll_scene_file(double now);        // twice a second: reload a changed file (or flag it)
+  void layout();                           // the viewport rectangle beside the panels
+  void handle_viewport_input();            // drags, wheel, clicks and keys over the image
+  void drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int view_w, int view_h);  // one drag step
+  void handle_keys();                      // this frame's key presses (GLFW events, none lost)
+  void shortcut(int key, bool shift);      // what a plain (or shifted) key does over the view
+  void draw_sidebar();                     // the panels; edits set the flags below
+  // The sidebar's panels (viewer_sidebar.cpp).
+  void sidebar_show();
+  void sidebar_materials();
+  void sidebar_lights();
+  void sidebar_probe();
+  void sidebar_instruments();
+  void sidebar_rays();
+  void sidebar_camera();
+  void sidebar_file();
+  void sidebar_render();
+  void draw_overlays();                    // boxes, captions, markers and labels over the image, apart
+  void handle_guard_modal();               // the unsaved-changes dialog and its answer
+  void handle_conflict_modal();            // the changed-on-disk dialog (from Save) and its answer
+  void apply_edits(double frame_start);    // at most one restart for everything this frame changed
+  void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
+  void after_swap();                       // edit-to-image latency of a first image just shown
+
+  // The viewport's cells: one, or the small multiples' 3 x 2 (the full image last).
+  struct Cells {
+    int columns = 1;
+    int rows = 1;
+    float x = 0, y = 0;          // the viewport's top-left, window coordinates
+    float width = 0, height = 0; // of one cell
+    int count() const { return columns * rows; }
+    ImVec2 origin(int cell) const {  // top-left of a cell, in reading order
+      return ImVec2(x + static_cast<float>(cell % columns) * width, y + static_cast<float>(cell / columns) * height);
+    }
+  };
+  Cells cells() const;
+
+  // The camera the image is rendered with: the scene's, its field of view widened for a view
+  // narrower than the image the scene was framed for (see ui::fit_to_view).
+  Camera view_camera() const;
+  double view_aspect() const;                    // width / height of one rendered image (a cell)
+
+  // Actions.
+  void pick(ImVec2 mouse);                       // selects the material under a click
+  void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
+  void refresh_probe();                          // probes the same pixel again in the newest snapshot
+  void undo();                                   // Ctrl+Z: the scene before the last edit
+  void redo();                                   // Ctrl+Shift+Z
+  void restore(std::optional<Scene> step);       // makes an undo/redo step the scene, if any
+  void snapshot_a();                             // asks for A: the image shown, once it is done
+  void take_a_when_final();                      // takes the asked-for A when the image is done
+  bool a_comparable() const;                     // A and the live image can be compared as the view asks
+  void save_figure(const std::string& path);     // the slide figure of the current snapshot
+  std::optional<Vec3> head_eye() const;          // "move your head": the shading eye, nullopt when off
+  Vec3 head_pivot() const;                       // the point the head turns about: the probed hit or look-at
+  void update_term_renderers(bool scene_changed);  // starts, feeds or stops the small multiples' renderers
+  bool terms_idle() const;                       // every small-multiples renderer is idle and its image shown
+  std::vector<glm::vec3> display_pixels() const; // shown_, its heat map, or its wipe / difference against A
+  bool heat_shown() const;                       // the rays view is on screen as a heat map
+  void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
+  // Overlay parts (viewer_overlays.cpp).
+  std::vector<std::string> captions() const;     // what the top-centre captions say, top first
+  std::string compare_caption() const;           // what the compare view shows, or why it cannot
+  void draw_stats();                             // the stats box's contents
+  void draw_head_plot();                         // the "move your head" plot's contents
+  void draw_cell_labels_and_probe_ring();        // small multiples' labels, the probed pixel's ring
+  ImVec2 probe_point_in_cell(int cell) const;    // the probed pixel's centre as cell `cell` shows it
+  void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
+  void draw_ray_tree_lines();                    // the probed tree over the full image's cell
+  // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
+  std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
+  void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
+  void perform(const PendingAction& action);     // runs it
+  void open_scene(const std::string& scene_arg);
+  void reload_scene(bool keep_view);
+  void save_scene(bool as);                      // Save (false) or Save as the path field (true), then after_save_
+  bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
+  bool begin_screenshot(Image& image);           // the shown image's size, or false (and why) before the first
+  void save_png(const std::string& path);        // what is shown, exposure and curve applied
+  void save_pfm(const std::string& path);        // the linear image
+  // Writes a screenshot and reports it in the Screenshot panel; `kind` prefixes the size.
+  void write_screenshot(const std::string& path, const Image& image, const char* kind);
+  void save_window_screenshot(const std::string& path, int fb_width, int fb_height);  // the whole window
+  void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
+  void update_title();                           // "phonglab - source *"
+  bool image_is_final() const;                   // the renderer idles and its last image is on screen
+
+  // Scripts (viewer_script.cpp).
+  void step_script(double now);                  // injects this frame's input, runs commands until one waits
+  bool script_wait_done(double now);             // whether the current wait is over (fails on timeout)
+  bool run_script_command(const ScriptCommand& command, double now);  // false: the script failed
+  bool script_set(const std::vector<std::string>& words);             // the `set` command
+  void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
+  void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
+  void push_click(ImVec2 at, bool ctrl);          // queues a left click (hover, press, release)
+  bool push_item_input();                        // queues item_action_'s input; false: no such widget
+  void write_state(const std::string& path) const;                    // `dump_state`
+  std::string depth_cut_label() const;                                // the depth-cut slider's text
+  void write_stats_summary(const std::string& label);                 // percentiles into the stats log
+
+  Platform& platform_;
+  ViewerOptions options_;
+  SceneDocument doc_;
+  ProgressiveRenderer renderer_;
+  ImageView image_view_;
+
+  // The image on screen: the newest frame taken from the renderer.
+  ProgressiveFrame shown_;
+  bool upload_pending_ = false;          // shown_ is newer than the texture
+  std::uint64_t drawn_generation_ = 0;   // generation of the image last put on screen
+  std::uint64_t drawn_serial_ = 0;       // its FrameStats::serial
+  std::shared_ptr<const Scene> snapshot_;  // the prepared scene the renderer has (for picking)
+
+  // Edits gathered during a UI frame, applied once at its end.
+  bool scene_edited_ = false;      // materials, lights, shading: restart and mark unsaved
+  bool camera_changed_ = false;    // navigation: restart, not an unsaved change
+  bool scene_replaced_ = false;    // opened or reloaded
+  bool settings_changed_ = false;  // render settings panel
+  bool view_changed_ = false;      // the depth cut: a new snapshot of the same scene, not an edit
+  bool frame_requested_ = false;   // F / "Frame"
+  bool reset_requested_ = false;   // R / "Reset"
+  bool edited_while_active_ = false;  // a slider drag is editing: render coarse while it lasts
+  bool change_deferred_ = false;   // a drag's edit waits for the renderer's current first image
+  double deferred_since_ = 0;      // glfwGetTime() of the oldest deferred edit
+  std::uint64_t sent_generation_ = 0;  // generation of the last snapshot handed over
+  int render_width_ = 0;           // full-resolution size last given to the renderer
+  int render_height_ = 0;
+
+  // UI state.
+  ui::SceneFileState file_state_;
+  ui::ScreenshotState screenshot_state_;
+  ui::RenderSettings render_settings_;
+  ui::DisplaySettings display_;
+  ui::InstrumentSettings instruments_;
+  ui::LightSolo solo_;
+  ui::ItemLocations item_locations_;  // named widgets' rectangles (io.UserData), for test scripts
+  int selected_material_ = 0;
+  int selected_light_ = -1;
+  int hovered_light_ = -1;
+  std::vector<ui::LightMarker> markers_;  // the light markers as drawn last frame (for grabbing)
+  std::map<std::string, ui::ScreenRect> overlay_rects_;  // the overlay boxes drawn last frame (their layout)
+  double dolly_limit_ = 1e300;       // farthest the wheel takes the eye from look_at (ui::dolly_limit)
+  bool help_visible_ = false;        // the keys overlay (F1 or ?)
+  int sidebar_toggles_ = 0;          // H presses handled (the tests count lost taps)
+  std::string picked_text_;          // what the last viewport click hit
+  bool open_materials_ = false;      // a click picked a material: unfold its panel
+  bool sidebar_visible_ = true;
+  ViewportRect viewport_;
+  Drag drag_;
+  bool interacting_ = false;
+  PendingAction pending_;
+  bool open_guard_ = false;          // open the modal this frame
+  bool guard_visible_ = false;       // the modal is up
+  bool open_conflict_ = false;       // open the changed-on-disk dialog this frame
+  bool conflict_visible_ = false;    // it is up
+  PendingAction after_save_;         // what runs once a save (through the dialogs) succeeds
+  ui::GuardChoice scripted_choice_ = ui::GuardChoice::kNone;
+  bool quit_ = false;
+  double next_file_poll_ = 0;        // glfwGetTime() of the next mtime check
+  std::string title_;
+
+  // Instruments.
+  ui::SceneHistory history_;           // undo and redo of committed edits
+  bool commit_pending_ = false;        // an edit waits for its gesture to end before it is committed
+  bool restored_ = false;              // this frame's scene change came from undo or redo: no commit
+  std::optional<PixelProbe> probe_;    // the probed pixel's ray tree, in snapshot_
+  int probe_x_ = 0;                    // the probed render pixel
+  int probe_y_ = 0;
+  std::string probe_report_;           // probe_to_text of probe_
+  bool probe_precision_ = false;       // the probe panel shows every digit (else four significant)
+  std::string camera_notice_;          // why the last typed camera value was refused
+  std::vector<std::string> probe_occluders_;  // object_name of each primary-hit light's occluder
+  ProgressiveFrame image_a_;           // snapshot A (pixels empty: none)
+  bool a_requested_ = false;           // Snapshot A was pressed; A is taken when the image is done
+  std::uint64_t a_generation_ = 0;     // the renderer generation A was asked of
+  bool a_dropped_ = false;             // an edit came before that image was done: no A
+  std::string figure_path_ = "phonglab-figure.png";
+  std::string figure_status_;
+  std::optional<Vec3> shading_eye_;    // the head-moved eye the renderers and the probe use now
+  ui::RayTreeSettings rays_;           // ray tree overlay, depth cut, heat map
+  Term term_before_heat_ = Term::kFull;  // what the heat map switch goes back to
+  std::vector<ScreenSegment> tree_segments_;  // the overlay as drawn this frame (image coordinates)
+  double heat_max_ = 0;                // top of the heat map's scale in the image on screen
+  static constexpr int kTermCells = 5;  // the small multiples besides the full image
+  // Keys 1..6: the full image, then the terms in the order of the equation.
+  static constexpr std::array<Term, 6> kShortcutTerms = {Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular,
+                                                         Term::kReflection, Term::kRefraction};
+  static constexpr int kMultiplesColumns = 3;  // small multiples: 3 x 2 cells, the full image last
+  static constexpr int kMultiplesRows = 2;
+  // The small multiples' cells in reading order (the full image is the main renderer's).
+  static constexpr std::array<Term, kTermCells> kCellTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular,
+                                                              Term::kReflection, Term::kRefraction};
+  std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> term_renderers_;  // ambient .. refraction
+  std::array<ProgressiveFrame, kTermCells> term_frames_;  // their newest images
+  std::array<bool, kTermCells> term_upload_pending_{};   // term_frames_[i] is newer than its texture
+  std::array<std::uint64_t, kTermCells> term_drawn_serial_{};  // serial of the image in each texture
+  std::array<ImageView, kTermCells> term_views_;         // their textures
+
+  // Timing.
+  double last_frame_start_ = 0;
+  std::deque<std::pair<double, double>> frame_times_;  // (start, duration) over the last second
+  bool was_rendering_ = false;       // the renderer was busy when this frame started
+  bool slept_idle_ = false;          // this frame followed an idle sleep, not the 60 Hz pacing
+  // Edits whose first image is not yet on screen: (generation, glfwGetTime() of the edit).
+  std::deque<std::pair<std::uint64_t, double>> restart_times_;
+  std::uint64_t first_image_generation_ = 0;  // its first image went up this frame; 0: none
+  double last_latency_ms_ = -1;               // edit to first image on screen, last measured
+  std::vector<double> latencies_ms_;      // for the stats log's summary (kept only with a log)
+  std::vector<double> busy_frame_ms_;     // UI frame times while the renderer was working (same)
+  std::ofstream stats_log_;
+
+  // Scripts.
+  std::vector<ScriptCommand> script_;
+  std::size_t script_index_ = 0;
+  ScriptWait script_wait_ = ScriptWait::kNone;
+  int wait_frames_left_ = 0;
+  double wait_deadline_ = 0;
+  std::string wait_file_;
+  std::deque<InputStep> input_steps_;
+  ItemAction item_action_;           // the widget action waiting for its widget to scroll into view
+  bool script_failed_ = false;
+  std::string screenshot_request_;   // window screenshot to take after drawing this frame
+  int bench_left_ = 0;               // bench_edits: edits still to make
+  int bench_gap_frames_ = 0;         // frames to wait after an image before the next edit
+  std::string bench_kind_;           // "material" or "camera"
+  bool bench_waiting_image_ = false; // an edit was made; its first image is not up yet
+  bool bench_expect_restart_ = false;  // the next restart is the bench's edit
+  std::uint64_t bench_generation_ = 0;
+  int bench_sign_ = 1;               // edits alternate direction so the scene stays put
+};
+
+}  // namespace phonglab

@@ -1,0 +1,74 @@
+// The scene being edited and the file behind it: open, save, save-as, reload, noticing
+// changes on disk. A failed load keeps the current scene and reports the file's diagnostics.
+// No GL, no ImGui.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/scene/scene.h"
+
+namespace phonglab {
+
+class SceneDocument {
+ public:
+  // Opens SCENE: an embedded scene's name or a file path. On failure the current scene stays
+  // and error_text() holds the diagnostics.
+  bool open(const std::string& scene_arg);
+  // Reads the file again. With `keep_view`, the current camera stays if the file's camera is
+  // the one last loaded (someone edited materials in a text editor, not the view).
+  bool reload(bool keep_view);
+  // What save() did.
+  enum class SaveResult : std::uint8_t { kSaved, kFailed, kChangedOnDisk };
+  // Writes the scene (with the current camera) to file_path(), atomically. When the file changed
+  // on disk since it was read or written here, nothing is written (kChangedOnDisk) unless
+  // `overwrite_outside_change`: another program's change is never overwritten silently.
+  SaveResult save(bool overwrite_outside_change = false);
+  // Writes to `path`, which then becomes the document's file.
+  bool save_as(const std::string& path);
+  // True when the document is an OBJ opened on its own (Save must not write JSON over it).
+  bool opened_mesh() const;
+  // True when the file's modification time differs from the one last loaded or saved.
+  bool changed_on_disk() const;
+
+  Scene& scene() { return scene_; }
+  const Scene& scene() const { return scene_; }
+  // Camera as loaded from the file (for Reset).
+  const Camera& loaded_camera() const { return loaded_camera_; }
+  // File the scene came from and saves to; empty for an embedded scene.
+  const std::string& file_path() const { return file_path_; }
+  // "embedded scene 'lecture'" or the path.
+  const std::string& source() const { return source_; }
+  // Unsaved edits: the scene differs from what was last loaded or saved (camera moves do not
+  // count: they are navigation, though Save writes them). Undoing every edit makes it clean.
+  bool dirty() const { return dirty_; }
+  // Compares the scene with the saved state again; call after edits.
+  void update_dirty();
+  // Diagnostics of the last failed operation; empty after a success.
+  const std::string& error_text() const { return error_text_; }
+  // What the last successful operation did.
+  const std::string& status() const { return status_; }
+  // Whether any scene was loaded successfully yet.
+  bool loaded() const { return loaded_; }
+
+ private:
+  bool write(const std::string& path);
+  std::string content(const Scene& scene) const;  // what dirty() compares: the file's text, camera aside
+  void mark_saved();                              // the scene as it is now is what the file holds
+  std::optional<std::filesystem::file_time_type> current_mtime() const;
+
+  Scene scene_;
+  Camera loaded_camera_;
+  std::string file_path_;
+  std::string source_;
+  bool dirty_ = false;
+  bool loaded_ = false;
+  std::string error_text_;
+  std::string status_;
+  std::string saved_content_;  // content() of the scene when last loaded or saved
+  std::optional<std::filesystem::file_time_type> mtime_;  // of file_path_ when last read or written
+};
+
+}  // namespace phonglab

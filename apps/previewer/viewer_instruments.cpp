@@ -1,0 +1,192 @@
+// The previewer's teaching instruments: the probe, undo and redo, snapshot A and the compare
+// views, the heat map, "move your head" and the slide figure.
+#include "apps/previewer/viewer_app.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/figure.h"
+#include "core/teaching/heat_map.h"
+#include "io/probe_report.h"
+#include "interaction/camera_control.h"
+
+namespace phonglab {
+
+namespace {
+
+constexpr int kFigureCellHeight = 270;  // slide figure cells: a quarter of 1080p per row
+
+}  // namespace
+
+std::optional<std::array<int, 2>> Viewer::render_pixel_at(ImVec2 mouse) const {
+  if (render_width_ <= 0 || render_height_ <= 0 || viewport_.width < 1 || viewport_.height < 1) return std::nullopt;
+  const Cells c = cells();
+  // In double, as the image's pixels are counted.
+  const double cell_w = static_cast<double>(viewport_.width) / c.columns;
+  const double cell_h = static_cast<double>(viewport_.height) / c.rows;
+  const double x = mouse.x - viewport_.x;
+  const double y = mouse.y - viewport_.y;
+  // Within its cell, the point maps to the render pixel the cell shows there.
+  const double u = (x - std::floor(x / cell_w) * cell_w) / cell_w;
+  const double v = (y - std::floor(y / cell_h) * cell_h) / cell_h;
+  return std::array<int, 2>{std::clamp(static_cast<int>(std::floor(u * render_width_)), 0, render_width_ - 1),
+                            std::clamp(static_cast<int>(std::floor(v * render_height_)), 0, render_height_ - 1)};
+}
+
+void Viewer::probe_at(ImVec2 mouse) {
+  const auto pixel = render_pixel_at(mouse);
+  if (!pixel || !snapshot_) return;
+  probe_x_ = (*pixel)[0];
+  probe_y_ = (*pixel)[1];
+  refresh_probe();
+}
+
+void Viewer::refresh_probe() {
+  if (!snapshot_ || render_width_ <= 0 || render_height_ <= 0) {
+    probe_.reset();
+    return;
+  }
+  probe_x_ = std::clamp(probe_x_, 0, render_width_ - 1);
+  probe_y_ = std::clamp(probe_y_, 0, render_height_ - 1);
+  // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
+  probe_ = probe_pixel(*snapshot_, render_width_, render_height_, probe_x_, probe_y_, shading_eye_);
+  probe_report_ = probe_to_text(*snapshot_, *probe_, probe_precision_ ? 17 : 4);
+  probe_occluders_.clear();
+  for (const ProbeLight& light : probe_->root.lights) probe_occluders_.push_back(object_name(*snapshot_, light.occluder));
+}
+
+void Viewer::undo() {
+  if (commit_pending_) {
+    history_.commit(doc_.scene());  // a gesture still in progress becomes the step undone
+    commit_pending_ = false;
+  }
+  restore(history_.undo(doc_.scene()));
+}
+
+void Viewer::redo() { restore(history_.redo(doc_.scene())); }
+
+void Viewer::restore(std::optional<Scene> step) {
+  if (!step) return;
+  Scene& scene = doc_.scene();
+  scene = std::move(*step);
+  selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
+  scene_edited_ = true;
+  restored_ = true;
+}
+
+void Viewer::snapshot_a() {
+  // A is the finished image of what is on screen now, never a half-converged one (its noise
+  // would show in |live - A| as if something had changed). Until it is done, A waits; an edit
+  // before then means the image asked for no longer exists.
+  a_requested_ = true;
+  a_generation_ = renderer_.status().generation;
+  a_dropped_ = false;
+  if (instruments_.compare == 0) instruments_.compare = 1;
+  take_a_when_final();
+}
+
+void Viewer::take_a_when_final() {
+  if (!a_requested_) return;
+  if (renderer_.status().generation != a_generation_) {
+    a_requested_ = false;
+    a_dropped_ = true;
+    return;
+  }
+  if (!image_is_final() || shown_.pixels.empty()) return;
+  image_a_ = shown_;
+  a_requested_ = false;
+  upload_pending_ = true;
+}
+
+bool Viewer::a_comparable() const {
+  if (image_a_.pixels.empty() || image_a_.width != shown_.width || image_a_.height != shown_.height ||
+      image_a_.divisor != shown_.divisor || image_a_.pixels.size() != shown_.pixels.size()) {
+    return false;
+  }
+  // The difference compares like with like: the same samples, so only a change shows.
+  return instruments_.compare != 2 || image_a_.spp == shown_.spp;
+}
+
+std::string Viewer::compare_caption() const {
+  char text[160];
+  if (a_requested_) {
+    std::snprintf(text, sizeof text, "A is taken when the image is done (%u of %d spp)", shown_.spp,
+                  render_settings_.target_spp);
+  } else if (image_a_.pixels.empty()) {
+    std::snprintf(text, sizeof text, "%s", a_dropped_ ? "A was not taken: the view changed before the image was done"
+                                                      : "no A yet: Snapshot A keeps the finished image");
+  } else if (image_a_.width != shown_.width || image_a_.height != shown_.height) {
+    std::snprintf(text, sizeof text, "A is %dx%d, the view is now %dx%d: take A again to compare", image_a_.width,
+                  image_a_.height, shown_.width, shown_.height);
+  } else if (!a_comparable()) {
+    std::snprintf(text, sizeof text, "|live - A| shows when live has A's %u spp (now %u)", image_a_.spp, shown_.spp);
+  } else if (instruments_.compare == 1) {
+    std::snprintf(text, sizeof text, "wipe: A (%u spp) left of the line, live right", image_a_.spp);
+  } else {
+    std::snprintf(text, sizeof text, "|live - A| \xC3\x97 %.0f (%u spp each)", static_cast<double>(instruments_.difference_gain),
+                  image_a_.spp);
+  }
+  return text;
+}
+
+bool Viewer::heat_shown() const { return render_settings_.term == Term::kRays && instruments_.compare == 0; }
+
+void Viewer::set_heat_map(bool on) {
+  if (on == (render_settings_.term == Term::kRays)) return;
+  if (on) term_before_heat_ = render_settings_.term;
+  render_settings_.term = on ? Term::kRays : (term_before_heat_ == Term::kRays ? Term::kFull : term_before_heat_);
+  rays_.heat_map = on;
+  settings_changed_ = true;
+}
+
+std::vector<glm::vec3> Viewer::display_pixels() const {
+  if (heat_shown()) {
+    // Rays per pixel on the ramp, 0 to the image's maximum. With the sRGB curve the shader
+    // encodes heat_color back to the ramp; raw display shows the ramp's codes themselves.
+    const double max = heat_max(shown_.pixels);
+    if (display_.srgb) return heat_map_pixels(shown_.pixels, max);
+    std::vector<glm::vec3> out(shown_.pixels.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(heat_ramp_srgb(max > 0 ? shown_.pixels[i].x / max : 0));
+    return out;
+  }
+  if (instruments_.compare == 0 || !a_comparable()) return shown_.pixels;
+  std::vector<glm::vec3> out(shown_.pixels.size());
+  const int wipe_x = static_cast<int>(std::lround(instruments_.wipe * static_cast<float>(shown_.width)));
+  for (int y = 0; y < shown_.height; ++y) {
+    for (int x = 0; x < shown_.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(shown_.width) + static_cast<std::size_t>(x);
+      if (instruments_.compare == 1) out[i] = x < wipe_x ? image_a_.pixels[i] : shown_.pixels[i];
+      else out[i] = glm::abs(shown_.pixels[i] - image_a_.pixels[i]) * instruments_.difference_gain;
+    }
+  }
+  return out;
+}
+
+Vec3 Viewer::head_pivot() const {
+  if (probe_ && probe_->root.hit) return probe_->root.p;
+  return doc_.scene().camera.look_at;
+}
+
+std::optional<Vec3> Viewer::head_eye() const {
+  if (!instruments_.move_head) return std::nullopt;
+  return ui::head_eye(doc_.scene().camera, head_pivot(), static_cast<double>(instruments_.head_angle_deg));
+}
+
+void Viewer::save_figure(const std::string& path) {
+  if (!snapshot_ || viewport_.height < 1) {
+    figure_status_ = "no scene yet";
+    return;
+  }
+  FigureOptions options;
+  options.cell_height = kFigureCellHeight;
+  options.cell_width = std::max(1, static_cast<int>(std::lround(kFigureCellHeight * viewport_.width / viewport_.height)));
+  options.threads = render_settings_.threads;
+  const std::string error = write_figure(path, *snapshot_, options);
+  figure_status_ = error.empty() ? "saved " + std::filesystem::absolute(path).lexically_normal().string() : error;
+}
+
+}  // namespace phonglab

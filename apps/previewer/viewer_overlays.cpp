@@ -1,0 +1,326 @@
+// What the previewer draws over the image: the stats line, legends, captions, the probe ring,
+// the ray tree and the light markers. Boxes are laid out first; captions, arrows and labels then
+// take places that no box holds, so nothing covers anything else, and every text sits on a dark
+// plate so it reads on any image.
+#include "apps/previewer/viewer_app.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/scene/camera.h"
+#include "io/figure.h"
+#include "core/teaching/ray_tree_view.h"
+#include "interaction/camera_control.h"
+
+namespace phonglab {
+
+namespace {
+
+constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                           ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                           ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
+constexpr float kOverlayAlpha = 0.72f;  // boxes over the image: readable, the image still shows through
+
+// The lowest bottom of the boxes `r` overlaps, or nothing.
+std::optional<float> blocked_until(const ui::ScreenRect& r, const std::vector<ui::ScreenRect>& taken) {
+  std::optional<float> bottom;
+  for (const ui::ScreenRect& t : taken) {
+    if (ui::overlaps(r, t)) bottom = std::max(bottom.value_or(t.max.y), t.max.y);
+  }
+  return bottom;
+}
+
+// A small overlay window anchored at `pos` (`pivot` (0, 0) top-left ... (1, 1) bottom-right) and
+// returns where it was drawn. With the size it had last frame it is first moved clear of the
+// boxes already `taken`: down when it hangs from the top, up when it stands on the bottom.
+template <typename Contents>
+ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, const std::vector<ui::ScreenRect>& taken,
+                              const std::map<std::string, ui::ScreenRect>& last_rects,
+                              std::map<std::string, ui::ScreenRect>& drawn, Contents contents, float alpha = kOverlayAlpha) {
+  if (const auto it = last_rects.find(id); it != last_rects.end()) {
+    const ImVec2 size = ui::size_of(it->second);
+    const float gap = 4;
+    for (int tries = 0; tries < 8; ++tries) {
+      const ui::ScreenRect r = ui::rect_at(pos, pivot, size);
+      bool moved = false;
+      for (const ui::ScreenRect& t : taken) {
+        if (!ui::overlaps(r, t)) continue;
+        pos.y = pivot.y < 0.5f ? t.max.y + gap : t.min.y - gap;
+        moved = true;
+        break;
+      }
+      if (!moved) break;
+    }
+  }
+  ImGui::SetNextWindowPos(pos, ImGuiCond_Always, pivot);
+  ImGui::SetNextWindowBgAlpha(alpha);
+  ui::ScreenRect rect;
+  if (ImGui::Begin(id, nullptr, kOverlayFlags)) {
+    contents();
+    rect = ui::rect_at(ImGui::GetWindowPos(), ImVec2(0, 0), ImGui::GetWindowSize());
+    drawn[id] = rect;
+  }
+  ImGui::End();
+  return rect;
+}
+
+}  // namespace
+
+void Viewer::draw_overlays() {
+  markers_.clear();
+  // Last frame's boxes give the sizes for this frame's layout; this frame's replace them (so
+  // dump_state lists the boxes on screen).
+  const std::map<std::string, ui::ScreenRect> last = std::move(overlay_rects_);
+  overlay_rects_.clear();
+  if (viewport_.width < 1 || viewport_.height < 1) return;
+  const float scale = platform_.ui_scale();
+  const float margin = 8 * scale;
+  std::vector<ui::ScreenRect> taken;  // boxes and captions placed so far
+  const ImVec2 top_left(viewport_.x + margin, viewport_.y + margin);
+  const ImVec2 top_right(viewport_.x + viewport_.width - margin, viewport_.y + margin);
+  const ImVec2 bottom_left(viewport_.x + margin, viewport_.y + viewport_.height - margin);
+  const ImVec2 bottom_right(viewport_.x + viewport_.width - margin, viewport_.y + viewport_.height - margin);
+
+  // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left, the
+  // heat scale bottom right.
+  if (display_.show_stats) {
+    taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, overlay_rects_, [&] { draw_stats(); }));
+  }
+  draw_ray_tree_lines();
+  if (probe_ && rays_.overlay && rays_.legend && !tree_segments_.empty()) {
+    const bool blinn = snapshot_ && snapshot_->specular_model == SpecularModel::kBlinn;
+    // The legend must not hide the tree it explains: top right, unless the probed point is there,
+    // then bottom right, then bottom left.
+    ImVec2 anchor = top_right, pivot(1, 0);
+    if (const auto it = last.find("##ray_tree_legend"); it != last.end() && render_width_ > 0 && render_height_ > 0) {
+      const ImVec2 size = ui::size_of(it->second);
+      const ImVec2 hit = probe_point_in_cell(cells().count() - 1);
+      const float keep = 40 * scale;  // the ring and the N, L, R, V arrows around it
+      const ui::ScreenRect around{ImVec2(hit.x - keep, hit.y - keep), ImVec2(hit.x + keep, hit.y + keep)};
+      const std::array<std::pair<ImVec2, ImVec2>, 3> places = {
+          std::pair{top_right, ImVec2(1, 0)}, std::pair{bottom_right, ImVec2(1, 1)}, std::pair{bottom_left, ImVec2(0, 1)}};
+      for (const auto& [at, pv] : places) {
+        const ui::ScreenRect r = ui::rect_at(at, pv, size);
+        if (!ui::overlaps(r, around) && !blocked_until(r, taken)) {
+          anchor = at;
+          pivot = pv;
+          break;
+        }
+      }
+    }
+    taken.push_back(overlay_window("##ray_tree_legend", anchor, pivot, taken, last, overlay_rects_,
+                                   [&] { ui::ray_tree_legend(tree_segments_, blinn); }));
+  }
+  if (instruments_.move_head && snapshot_) {
+    taken.push_back(
+        overlay_window("##head_plot", bottom_left, ImVec2(0, 1), taken, last, overlay_rects_, [&] { draw_head_plot(); }));
+  }
+  if (heat_shown() && heat_max_ > 0) {
+    taken.push_back(overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), taken, last, overlay_rects_,
+                                   [&] { ui::heat_legend(heat_max_, 220 * scale); }));
+  }
+
+  // Captions at the top centre, each below whatever box it would overlap.
+  float y = viewport_.y + margin;
+  const float wrap = std::max(viewport_.width - 4 * margin, 1.0f);  // a caption never leaves the view
+  for (const std::string& text : captions()) {
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
+    const float pad = 5 * scale;
+    ui::ScreenRect r{ImVec2(viewport_.x + (viewport_.width - size.x) / 2 - pad, y),
+                     ImVec2(viewport_.x + (viewport_.width + size.x) / 2 + pad, y + size.y + 2 * pad)};
+    while (const std::optional<float> bottom = blocked_until(r, taken)) {
+      const float shift = *bottom + 4 * scale - r.min.y;
+      r.min.y += shift;
+      r.max.y += shift;
+    }
+    ui::text_on_plate(ImGui::GetBackgroundDrawList(), ImVec2(r.min.x + pad, r.min.y + pad), text.c_str(), scale, 0.75f,
+                      wrap);
+    taken.push_back(r);
+    y = r.max.y + 4 * scale;
+  }
+  draw_cell_labels_and_probe_ring();
+  draw_light_markers(taken);
+  if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  if (shown_.pixels.empty()) {
+    const char* text = "rendering...";
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    ui::text_on_plate(draw, ImVec2(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + (viewport_.height - size.y) / 2),
+                      text, scale);
+  }
+  if (!sidebar_visible_) {
+    // With the panels hidden, say how to get them back (bottom centre, clear of the corner boxes).
+    const char* text = "H shows the panels  \xC2\xB7  F1 keys";
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    ui::text_on_plate(draw, ImVec2(viewport_.x + (viewport_.width - size.x) / 2, bottom_left.y - size.y - 4 * scale),
+                      text, scale, 0.55f);
+  }
+  if (help_visible_) {
+    // Over everything else, on purpose: it is asked for, and Esc closes it.
+    overlay_window("##keys", ImVec2(viewport_.x + viewport_.width / 2, viewport_.y + viewport_.height / 2),
+                   ImVec2(0.5f, 0.5f), {}, last, overlay_rects_, [] { ui::keys_help(); }, 0.94f);
+  }
+}
+
+std::vector<std::string> Viewer::captions() const {
+  std::vector<std::string> lines;
+  const bool blinn = doc_.scene().specular_model == SpecularModel::kBlinn;
+  // What is on screen, when it is not the whole image: a projected slide must say so.
+  if (!instruments_.small_multiples && render_settings_.term != Term::kFull && !heat_shown()) {
+    lines.push_back(ui::term_caption(render_settings_.term, blinn));
+  }
+  if (snapshot_ && rays_.depth_cut) {
+    char caption[96];
+    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", snapshot_->max_depth,
+                  doc_.scene().max_depth);
+    lines.emplace_back(caption);
+  }
+  if (instruments_.compare != 0) lines.push_back(compare_caption());
+  return lines;
+}
+
+void Viewer::draw_stats() {
+  const ProgressiveStatus status = renderer_.status();
+  ui::StatsView stats;
+  double sum = 0, slowest = 0;
+  for (const auto& [start, seconds] : frame_times_) {
+    sum += seconds;
+    slowest = std::max(slowest, seconds);
+  }
+  stats.ui_frame_ms = frame_times_.empty() ? -1 : sum / static_cast<double>(frame_times_.size()) * 1e3;
+  stats.ui_frame_max_ms = slowest * 1e3;
+  stats.edit_to_image_ms = last_latency_ms_;
+  stats.have_frame = !shown_.pixels.empty();
+  stats.level_divisor = shown_.divisor;
+  stats.image_width = shown_.width;
+  stats.image_height = shown_.height;
+  stats.spp = shown_.spp;
+  stats.target_spp = render_settings_.target_spp;
+  stats.frame = shown_.stats;
+  stats.idle = status.idle;
+  stats.interacting = interacting_ || edited_while_active_;
+  stats.scene_error = file_state_.error_text;
+  stats.details = display_.stats_details;
+  ui::stats_overlay(stats);
+}
+
+void Viewer::draw_head_plot() {
+  // "Move your head": the highlight against the head angle.
+  ui::HeadPlotView plot;
+  plot.hit = probe_ ? &probe_->root : nullptr;
+  plot.eye_at_zero = snapshot_->camera.position;
+  plot.axis = glm::normalize(make_camera_frame(snapshot_->camera, 1, 1).up);
+  if (probe_ && probe_->root.hit && probe_->root.material >= 0 &&
+      probe_->root.material < static_cast<int>(snapshot_->materials.size())) {
+    plot.shininess = snapshot_->materials[static_cast<std::size_t>(probe_->root.material)].n;
+  }
+  plot.blinn = snapshot_->specular_model == SpecularModel::kBlinn;
+  plot.angle_deg = instruments_.head_angle_deg;
+  plot.width = 340 * platform_.ui_scale();
+  ui::head_plot(plot);
+}
+
+ImVec2 Viewer::probe_point_in_cell(int cell) const {
+  // The probed pixel's centre as cell `cell` shows it.
+  const Cells c = cells();
+  const ImVec2 origin = c.origin(cell);
+  return ImVec2(origin.x + (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(std::max(render_width_, 1)) * c.width,
+                origin.y + (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(std::max(render_height_, 1)) * c.height);
+}
+
+void Viewer::draw_cell_labels_and_probe_ring() {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const float scale = platform_.ui_scale();
+  const Cells c = cells();
+  if (instruments_.small_multiples) {
+    const bool blinn = doc_.scene().specular_model == SpecularModel::kBlinn;
+    for (int cell = 0; cell < c.count(); ++cell) {
+      const Term term = cell < kTermCells ? kCellTerms[static_cast<std::size_t>(cell)] : Term::kFull;
+      const std::string label = ui::term_caption(term, blinn);
+      const ImVec2 origin = c.origin(cell);
+      ui::text_on_plate(draw, ImVec2(origin.x + 6 * scale, origin.y + c.height - ImGui::GetFontSize() - 8 * scale),
+                        label.c_str(), scale);
+    }
+  }
+  // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
+  if (!probe_ || render_width_ <= 0 || render_height_ <= 0) return;
+  for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
+}
+
+void Viewer::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
+  const Scene& scene = doc_.scene();
+  const Camera view = view_camera();
+  const float scale = platform_.ui_scale();
+  const float radius = ui::light_marker_radius(scale);
+  const int view_w = static_cast<int>(std::lround(viewport_.width));
+  const int view_h = static_cast<int>(std::lround(viewport_.height));
+  const ImVec2 lo(viewport_.x, viewport_.y);
+  const ImVec2 hi(viewport_.x + viewport_.width, viewport_.y + viewport_.height);
+  std::vector<ui::ScreenRect> occupied = taken;
+  for (int i = 0; i < static_cast<int>(scene.lights.size()); ++i) {
+    const Light& light = scene.lights[static_cast<std::size_t>(i)];
+    if (light.type != LightType::kPoint) continue;
+    const auto p = ui::project(view, light.position, view_w, view_h);
+    if (!p) continue;  // behind the camera
+    ui::LightMarker marker;
+    const ImVec2 at(viewport_.x + static_cast<float>(p->x), viewport_.y + static_cast<float>(p->y));
+    const float inset = 2.5f * radius;
+    marker.pos = ImVec2(std::clamp(at.x, lo.x + inset, std::max(lo.x + inset, hi.x - inset)),
+                        std::clamp(at.y, lo.y + inset, std::max(lo.y + inset, hi.y - inset)));
+    if (marker.pos.x != at.x || marker.pos.y != at.y) {
+      const float dx = at.x - marker.pos.x, dy = at.y - marker.pos.y;
+      const float length = std::sqrt(dx * dx + dy * dy);
+      marker.offscreen = true;
+      marker.toward = ImVec2(dx / length, dy / length);
+      // An arrow at the edge that a box covers slides along the edge until it is clear.
+      marker.pos = ui::slide_clear(marker.pos, inset, occupied, lo, hi);
+    }
+    const double m = std::max(max_channel(light.intensity), 1e-9);
+    marker.color = ImVec4(static_cast<float>(light.intensity.x / m), static_cast<float>(light.intensity.y / m),
+                          static_cast<float>(light.intensity.z / m), 1.0f);
+    marker.enabled = light.enabled;
+    marker.selected = i == selected_light_;
+    marker.hovered = i == hovered_light_ || (drag_.mode == DragMode::kLight && drag_.light == i);
+    marker.index = i;
+    occupied.push_back(ui::ScreenRect{ImVec2(marker.pos.x - inset, marker.pos.y - inset),
+                                      ImVec2(marker.pos.x + inset, marker.pos.y + inset)});
+    markers_.push_back(marker);
+  }
+  // Labels last: each at the first place beside its marker that no box, marker or label holds.
+  for (ui::LightMarker& marker : markers_) {
+    marker.label_pos = ui::place_label(marker, radius, occupied, lo, hi);
+    const ImVec2 size = ImGui::CalcTextSize("L00");
+    occupied.push_back(ui::ScreenRect{marker.label_pos, ImVec2(marker.label_pos.x + size.x, marker.label_pos.y + size.y)});
+  }
+  ui::draw_light_markers(markers_, radius, scale);
+}
+
+void Viewer::draw_ray_tree_lines() {
+  // The ray tree over the full image: the only cell, or the last of the small multiples.
+  tree_segments_.clear();
+  if (!probe_ || !rays_.overlay || !snapshot_ || render_width_ <= 0 || render_height_ <= 0) return;
+  const Cells c = cells();
+  const ImVec2 full_cell = c.origin(c.count() - 1);
+  RayTreeViewOptions options;
+  options.shadow_rays = rays_.shadow_rays;
+  options.secondary_rays = rays_.secondary_rays;
+  options.arrows = rays_.arrows;
+  // The probe was taken in snapshot_ at the render size: project with that camera and size.
+  const CameraFrame frame = make_camera_frame(snapshot_->camera, render_width_, render_height_);
+  tree_segments_ = project_ray_tree(frame, ray_tree_segments(*snapshot_, probe_->root, options),
+                                    ray_tree_near(*snapshot_, probe_->root));
+  int lit_lights = 0;
+  for (const ProbeLight& light : probe_->root.lights) lit_lights += light.lit_side ? 1 : 0;
+  const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(render_width_),
+                                             c.height / static_cast<float>(render_height_))};
+  const bool blinn = snapshot_->specular_model == SpecularModel::kBlinn;
+  ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), tree_segments_, rect, platform_.ui_scale(), blinn, lit_lights);
+}
+
+}  // namespace phonglab

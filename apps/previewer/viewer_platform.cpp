@@ -1,0 +1,222 @@
+#include "apps/previewer/viewer_platform.h"
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <utility>
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+namespace phonglab {
+
+namespace {
+
+// Readable proportional fonts with Greek and maths glyphs (the equation's sigma and eta);
+// the built-in bitmap font is the fallback.
+constexpr std::array<const char*, 3> kFontCandidates = {
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+};
+// Latin-1, Greek and Coptic, super- and subscripts (the a of I_a, the l of I_l), arrows,
+// mathematical operators; zero-terminated as ImGui wants.
+constexpr std::array<ImWchar, 11> kGlyphRanges = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2070, 0x209F,
+                                                  0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+constexpr float kFontPixels = 15.0f;  // at scale 1
+
+std::string glfw_error_text() {
+  const char* description = nullptr;
+  const int code = glfwGetError(&description);
+  if (code == GLFW_NO_ERROR) return "unknown error";
+  return description != nullptr ? description : "GLFW error " + std::to_string(code);
+}
+
+float window_content_scale(GLFWwindow* window) {
+  float x = 1, y = 1;
+  glfwGetWindowContentScale(window, &x, &y);
+  const float s = std::max(x, y);
+  return s > 0 ? s : 1.0f;
+}
+
+// Every input or window event refreshes Platform::last_event_time(). Installed before ImGui's
+// backend, which then chains to these for the callbacks it also needs.
+void note(GLFWwindow* window) {
+  if (auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window))) p->note_event();
+}
+
+// An event for the next frame; a frame that never comes (minimised) keeps the newest 256.
+template <typename Event>
+void push_bounded(std::vector<Event>& queue, const Event& event) {
+  constexpr std::size_t kMaxQueued = 256;
+  if (queue.size() >= kMaxQueued) queue.erase(queue.begin());
+  queue.push_back(event);
+}
+
+}  // namespace
+
+void record_cursor(GLFWwindow* window, double x, double y) {
+  auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window));
+  if (p == nullptr) return;
+  p->cursor_x_ = x;
+  p->cursor_y_ = y;
+}
+
+void record_mouse_press(GLFWwindow* window, int button, int action) {
+  auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window));
+  if (p == nullptr || action != GLFW_PRESS || button < 0 || button > 2) return;
+  MousePress press;
+  press.button = button;
+  // The cursor as the events so far left it (glfwGetCursorPos would ask the X server for where
+  // the pointer is now, after moves not yet delivered).
+  press.x = p->cursor_x_;
+  press.y = p->cursor_y_;
+  push_bounded(p->mouse_presses_, press);
+}
+
+namespace {
+
+void install_activity_callbacks(Platform* platform) {
+  GLFWwindow* w = platform->window();
+  glfwSetWindowUserPointer(w, platform);
+  glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
+    note(win);
+    record_cursor(win, x, y);
+  });
+  glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) {
+    note(win);
+    record_mouse_press(win, button, action);
+  });
+  glfwSetScrollCallback(w, [](GLFWwindow* win, double, double) { note(win); });
+  glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int mods) {
+    note(win);
+    auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win));
+    if (p != nullptr && key != GLFW_KEY_UNKNOWN && (action == GLFW_PRESS || action == GLFW_REPEAT)) {
+      p->push_key_press(KeyPress{key, mods});
+    }
+  });
+  glfwSetCharCallback(w, [](GLFWwindow* win, unsigned int) { note(win); });
+  glfwSetWindowSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
+  glfwSetFramebufferSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
+  glfwSetWindowRefreshCallback(w, [](GLFWwindow* win) { note(win); });
+  glfwSetWindowFocusCallback(w, [](GLFWwindow* win, int) { note(win); });
+  glfwSetCursorEnterCallback(w, [](GLFWwindow* win, int) { note(win); });
+  glfwSetWindowIconifyCallback(w, [](GLFWwindow* win, int) { note(win); });
+  glfwSetWindowContentScaleCallback(w, [](GLFWwindow* win, float, float) { note(win); });
+}
+
+}  // namespace
+
+void Platform::note_event() { last_event_time_ = glfwGetTime(); }
+
+std::vector<KeyPress> Platform::take_key_presses() { return std::exchange(key_presses_, {}); }
+
+std::vector<MousePress> Platform::take_mouse_presses() { return std::exchange(mouse_presses_, {}); }
+
+void Platform::push_key_press(KeyPress press) { push_bounded(key_presses_, press); }
+
+std::unique_ptr<Platform> Platform::create(const PlatformOptions& options, std::string& error) {
+  std::unique_ptr<Platform> p(new Platform());
+  if (glfwInit() != GLFW_TRUE) {
+    error = "cannot initialise the window system (" + glfw_error_text() + ")";
+    return nullptr;
+  }
+  p->glfw_ready_ = true;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);  // required by macOS, harmless elsewhere
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);       // HiDPI: window size in logical units
+  p->window_ = glfwCreateWindow(std::max(options.width, 1), std::max(options.height, 1), options.title.c_str(),
+                                nullptr, nullptr);
+  if (p->window_ == nullptr) {
+    error = "cannot create a window with an OpenGL 3.3 core context (" + glfw_error_text() + ")";
+    return nullptr;
+  }
+  glfwMakeContextCurrent(p->window_);
+  if (gladLoadGL(glfwGetProcAddress) == 0) {
+    error = "cannot load the OpenGL 3.3 core functions";
+    return nullptr;
+  }
+  glfwSwapInterval(1);  // vsync where there is one; the main loop paces itself otherwise
+  install_activity_callbacks(p.get());
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // no imgui.ini in the user's working directory: the layout is fixed
+  // No keyboard navigation: with it, a focused panel would take F, R and H away from the
+  // viewport; text fields still get the keyboard while they are being edited.
+  // The app installs its own GLFW callbacks first; ImGui chains to them.
+  ImGui_ImplGlfw_InitForOpenGL(p->window_, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  p->imgui_ready_ = true;
+  p->apply_scale(window_content_scale(p->window_));
+  return p;
+}
+
+Platform::~Platform() {
+  if (imgui_ready_) {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  if (window_ != nullptr) glfwDestroyWindow(window_);
+  if (glfw_ready_) glfwTerminate();
+}
+
+void Platform::apply_scale(float scale) {
+  ui_scale_ = scale;
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  bool loaded = false;
+  for (const char* path : kFontCandidates) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) continue;
+    if (io.Fonts->AddFontFromFileTTF(path, kFontPixels * scale, nullptr, kGlyphRanges.data()) != nullptr) {
+      loaded = true;
+      break;
+    }
+  }
+  if (!loaded) {
+    ImFontConfig config;
+    config.SizePixels = 13.0f * scale;  // the built-in font's native size
+    io.Fonts->AddFontDefault(&config);
+  }
+  // The first time, the backend builds the font texture with its other GL objects on the
+  // first frame; later, the texture is replaced here.
+  if (fonts_built_) {
+    ImGui_ImplOpenGL3_DestroyFontsTexture();
+    ImGui_ImplOpenGL3_CreateFontsTexture();
+  }
+  fonts_built_ = true;
+
+  ImGuiStyle style;
+  ImGui::StyleColorsDark(&style);
+  style.WindowRounding = 0;
+  style.FrameRounding = 3;
+  style.GrabRounding = 3;
+  style.WindowBorderSize = 0;
+  style.FramePadding = ImVec2(6, 4);
+  style.ItemSpacing = ImVec2(8, 6);
+  style.Colors[ImGuiCol_WindowBg].w = 0.97f;
+  // A thin, half-transparent slider grab: the value's digits stay readable under it.
+  style.GrabMinSize = 4;
+  style.Colors[ImGuiCol_SliderGrab].w = 0.55f;
+  style.Colors[ImGuiCol_SliderGrabActive].w = 0.75f;
+  style.ScaleAllSizes(scale);
+  ImGui::GetStyle() = style;
+}
+
+void Platform::update_scale() {
+  const float scale = window_content_scale(window_) * user_scale_;
+  if (scale != ui_scale_) apply_scale(scale);
+}
+
+void Platform::begin_backend_frame() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+}
+
+}  // namespace phonglab

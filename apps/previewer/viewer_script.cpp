@@ -1,0 +1,658 @@
+// Test scripts: commands run from inside the main loop, so GUI tests drive the real program
+// (input goes through ImGui exactly as the window system's would). See docs/previewer.md.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <cstdio>
+
+#include "apps/previewer/viewer_app.h"
+#include "interaction/camera_control.h"
+
+namespace phonglab {
+
+namespace {
+
+constexpr double kDefaultWaitSeconds = 30;  // generous: sanitizer builds render slowly
+constexpr int kBenchGapFrames = 10;         // frames between bench edits: the renderer is mid-pass again
+
+bool parse_double(const std::string& word, double& value) {
+  char* end = nullptr;
+  value = std::strtod(word.c_str(), &end);
+  return end != word.c_str() && *end == '\0' && std::isfinite(value);
+}
+
+bool parse_int(const std::string& word, int& value) {
+  double d = 0;
+  if (!parse_double(word, d) || d != std::floor(d) || std::abs(d) > 1e9) return false;
+  value = static_cast<int>(d);
+  return true;
+}
+
+// Reads `count` numbers from words[first...]; a colour may also be given as one grey number.
+bool parse_vec3(const std::vector<std::string>& words, std::size_t first, bool grey_allowed, Vec3& out) {
+  const std::size_t n = words.size() - first;
+  double v[3] = {0, 0, 0};
+  if (n == 3) {
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!parse_double(words[first + i], v[i])) return false;
+    }
+  } else if (n == 1 && grey_allowed) {
+    if (!parse_double(words[first], v[0])) return false;
+    v[1] = v[2] = v[0];
+  } else {
+    return false;
+  }
+  out = Vec3(v[0], v[1], v[2]);
+  return true;
+}
+
+// GLFW key code of a key name: one letter or digit, ESCAPE, F1 or SLASH.
+int key_code(const std::string& name) {
+  if (name == "F1") return GLFW_KEY_F1;
+  if (name == "SLASH") return GLFW_KEY_SLASH;
+  if (name.size() == 1) {
+    const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
+    if (c >= 'A' && c <= 'Z') return GLFW_KEY_A + (c - 'A');
+    if (c >= '0' && c <= '9') return GLFW_KEY_0 + (c - '0');
+  }
+  if (name == "ESCAPE") return GLFW_KEY_ESCAPE;
+  return -1;
+}
+
+int mouse_button(const std::string& name) {
+  if (name == "left") return 0;
+  if (name == "right") return 1;
+  if (name == "middle") return 2;
+  return -1;
+}
+
+}  // namespace
+
+std::vector<ScriptCommand> parse_script(const std::string& text) {
+  std::vector<ScriptCommand> commands;
+  std::istringstream lines(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(lines, line)) {
+    ++number;
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    ScriptCommand command;
+    command.line = number;
+    for (std::string w; words >> w;) command.words.push_back(w);
+    if (!command.words.empty()) commands.push_back(std::move(command));
+  }
+  return commands;
+}
+
+void Viewer::fail_script(const ScriptCommand& command, const std::string& message) {
+  std::cerr << "phonglab: script line " << command.line << " (" << command.words.front() << "): " << message << "\n";
+  if (stats_log_) stats_log_ << "script_error line " << command.line << ": " << message << "\n";
+  script_failed_ = true;
+  quit_ = true;
+}
+
+void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift) {
+  InputStep hover;
+  hover.pos = from;
+  hover.shift = shift;
+  input_steps_.push_back(hover);  // ImGui learns what is under the mouse before the press
+  InputStep press = hover;
+  press.buttons[button] = true;
+  input_steps_.push_back(press);
+  for (int i = 1; i <= steps; ++i) {
+    const float t = static_cast<float>(i) / static_cast<float>(steps);
+    InputStep move = press;
+    move.pos = ImVec2(from.x + (to.x - from.x) * t, from.y + (to.y - from.y) * t);
+    input_steps_.push_back(move);
+  }
+  InputStep release;
+  release.pos = to;
+  input_steps_.push_back(release);
+}
+
+void Viewer::push_click(ImVec2 at, bool ctrl) {
+  InputStep hover;
+  hover.pos = at;
+  hover.ctrl = ctrl;
+  input_steps_.push_back(hover);  // ImGui learns what is under the mouse before the press
+  InputStep press = hover;
+  press.buttons[0] = true;
+  input_steps_.push_back(press);
+  input_steps_.push_back(hover);
+}
+
+bool Viewer::push_item_input() {
+  const auto it = item_locations_.rects.find(item_action_.name);
+  if (it == item_locations_.rects.end()) return false;
+  const ImVec2 at((it->second.min.x + it->second.max.x) / 2, (it->second.min.y + it->second.max.y) / 2);
+  if (item_action_.kind == ItemAction::Kind::kDrag) {
+    push_drag(0, at, ImVec2(at.x + static_cast<float>(item_action_.dx), at.y + static_cast<float>(item_action_.dy)),
+              item_action_.steps, false);
+    return true;
+  }
+  push_click(at, item_action_.kind == ItemAction::Kind::kType);
+  if (item_action_.kind == ItemAction::Kind::kType) {
+    InputStep typed;
+    typed.pos = at;
+    typed.text = item_action_.text;
+    input_steps_.push_back(typed);
+    InputStep enter;
+    enter.pos = at;
+    enter.key = GLFW_KEY_ENTER;
+    enter.key_down = true;
+    input_steps_.push_back(enter);
+    enter.key_down = false;
+    input_steps_.push_back(enter);
+  }
+  InputStep after;
+  after.pos = at;
+  input_steps_.push_back(after);
+  return true;
+}
+
+void Viewer::step_script(double now) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (!input_steps_.empty()) {
+    const InputStep step = input_steps_.front();
+    input_steps_.pop_front();
+    io.MousePos = step.pos;
+    for (int b = 0; b < 3; ++b) io.MouseDown[b] = step.buttons[b];
+    io.KeyShift = step.shift;
+    io.KeyCtrl = step.ctrl;
+    io.MouseWheel += step.wheel;
+    if (step.key >= 0) io.KeysDown[step.key] = step.key_down;
+    for (const char c : step.text) io.AddInputCharacter(static_cast<unsigned char>(c));
+    platform_.note_event();
+  }
+  if (script_failed_ || (script_index_ >= script_.size() && script_wait_ == ScriptWait::kNone)) return;
+  if (script_wait_ != ScriptWait::kNone) {
+    if (!script_wait_done(now)) return;
+    script_wait_ = ScriptWait::kNone;
+  }
+  while (script_index_ < script_.size() && script_wait_ == ScriptWait::kNone && !script_failed_) {
+    const ScriptCommand& command = script_[script_index_++];
+    if (stats_log_) {
+      stats_log_ << "script " << now * 1e3;
+      for (const std::string& w : command.words) stats_log_ << " " << w;
+      stats_log_ << "\n";
+    }
+    if (!run_script_command(command, now)) return;
+  }
+}
+
+bool Viewer::script_wait_done(double now) {
+  bool done = false;
+  switch (script_wait_) {
+    case ScriptWait::kNone: return true;
+    case ScriptWait::kFrames: done = --wait_frames_left_ <= 0; break;
+    case ScriptWait::kIdle: done = image_is_final(); break;
+    case ScriptWait::kImage:
+      done = !upload_pending_ && drawn_serial_ > 0 && drawn_generation_ == renderer_.status().generation;
+      break;
+    case ScriptWait::kFile: {
+      std::error_code ec;
+      done = std::filesystem::exists(wait_file_, ec);
+      break;
+    }
+    case ScriptWait::kInput: done = input_steps_.empty(); break;
+    case ScriptWait::kItem:
+      if (--wait_frames_left_ > 0) break;
+      if (!push_item_input()) {
+        fail_script(script_[script_index_ - 1], "no widget named '" + item_action_.name + "' was drawn (is its panel open?)");
+        return false;
+      }
+      script_wait_ = ScriptWait::kInput;  // now wait for the injected input to be used
+      return false;
+    case ScriptWait::kBench:
+      if (bench_waiting_image_) {
+        if (!bench_expect_restart_ && drawn_generation_ >= bench_generation_ && !upload_pending_) {
+          bench_waiting_image_ = false;
+          bench_gap_frames_ = kBenchGapFrames;
+        }
+      } else if (bench_gap_frames_ > 0) {
+        --bench_gap_frames_;
+      } else if (bench_left_ > 0) {
+        --bench_left_;
+        bench_sign_ = -bench_sign_;
+        Scene& scene = doc_.scene();
+        if (bench_kind_ == "camera") {
+          ui::orbit(scene.camera, 0.02 * bench_sign_, 0);
+          camera_changed_ = true;
+        } else if (!scene.materials.empty()) {
+          Material& m = scene.materials[static_cast<std::size_t>(std::clamp(selected_material_, 0, static_cast<int>(scene.materials.size()) - 1))];
+          m.kd *= bench_sign_ > 0 ? 1.25 : 0.8;  // exact inverses in turn: the scene stays put
+          scene_edited_ = true;
+        }
+        bench_waiting_image_ = true;
+        bench_expect_restart_ = true;
+      } else {
+        done = true;
+      }
+      break;
+  }
+  if (done) return true;
+  if (now > wait_deadline_) {
+    fail_script(script_[script_index_ - 1], "timed out");
+  }
+  return false;
+}
+
+bool Viewer::run_script_command(const ScriptCommand& command, double now) {
+  const std::vector<std::string>& w = command.words;
+  const std::string& name = w[0];
+  const auto fail = [&](const std::string& message) {
+    fail_script(command, message);
+    return false;
+  };
+  const auto wait_for = [&](ScriptWait kind, std::size_t timeout_word) {
+    double timeout = kDefaultWaitSeconds;
+    if (w.size() > timeout_word && !parse_double(w[timeout_word], timeout)) return fail("bad timeout");
+    script_wait_ = kind;
+    wait_deadline_ = now + timeout;
+    return true;
+  };
+
+  if (name == "wait_frames") {
+    int frames = 0;
+    if (w.size() != 2 || !parse_int(w[1], frames)) return fail("usage: wait_frames N");
+    wait_frames_left_ = frames;
+    return wait_for(ScriptWait::kFrames, 99);
+  }
+  if (name == "wait_idle") return wait_for(ScriptWait::kIdle, 1);
+  if (name == "wait_image") return wait_for(ScriptWait::kImage, 1);
+  if (name == "wait_file") {
+    if (w.size() < 2) return fail("usage: wait_file FILE [TIMEOUT]");
+    wait_file_ = w[1];
+    return wait_for(ScriptWait::kFile, 2);
+  }
+  if (name == "drag") {
+    // drag BUTTON X0 Y0 X1 Y1 [STEPS] [shift]
+    int button = w.size() >= 6 ? mouse_button(w[1]) : -1;
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int steps = 10;
+    if (button < 0 || !parse_double(w[2], x0) || !parse_double(w[3], y0) || !parse_double(w[4], x1) ||
+        !parse_double(w[5], y1) || (w.size() > 6 && !parse_int(w[6], steps)) || steps < 1) {
+      return fail("usage: drag left|right|middle X0 Y0 X1 Y1 [STEPS] [shift]");
+    }
+    const bool shift = w.size() > 7 && w[7] == "shift";
+    push_drag(button, ImVec2(static_cast<float>(x0), static_cast<float>(y0)),
+              ImVec2(static_cast<float>(x1), static_cast<float>(y1)), steps, shift);
+    return wait_for(ScriptWait::kInput, 99);
+  }
+  if (name == "drag_light") {
+    // drag_light I DX DY: grabs light I's marker where it is drawn and drags it by (DX, DY).
+    int index = -1;
+    double dx = 0, dy = 0;
+    const std::vector<Light>& lights = doc_.scene().lights;
+    if (w.size() != 4 || !parse_int(w[1], index) || !parse_double(w[2], dx) || !parse_double(w[3], dy) ||
+        index < 0 || index >= static_cast<int>(lights.size())) {
+      return fail("usage: drag_light I DX DY");
+    }
+    // Where its marker (or its arrow at the edge) was drawn last frame: what a user would grab.
+    const auto marker = std::find_if(markers_.begin(), markers_.end(),
+                                     [&](const ui::LightMarker& m) { return m.index == index; });
+    if (marker == markers_.end()) return fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
+    const ImVec2 from = marker->pos;
+    push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), 10, false);
+    return wait_for(ScriptWait::kInput, 99);
+  }
+  if (name == "click" || name == "scroll") {
+    double x = 0, y = 0, amount = 0;
+    if (w.size() < 3 || !parse_double(w[1], x) || !parse_double(w[2], y) ||
+        (name == "scroll" && (w.size() != 4 || !parse_double(w[3], amount)))) {
+      return fail("usage: click X Y | scroll X Y CLICKS");
+    }
+    const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
+    if (name == "click") {
+      push_click(at, false);
+    } else {
+      InputStep hover;
+      hover.pos = at;
+      input_steps_.push_back(hover);
+      InputStep act = hover;
+      act.wheel = static_cast<float>(amount);
+      input_steps_.push_back(act);
+      input_steps_.push_back(hover);
+    }
+    return wait_for(ScriptWait::kInput, 99);
+  }
+  if (name == "key") {
+    const int key = w.size() >= 2 ? key_code(w[1]) : -1;
+    if (key < 0) return fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
+    InputStep press;
+    press.pos = ImGui::GetIO().MousePos;
+    for (std::size_t i = 2; i < w.size(); ++i) {
+      if (w[i] == "ctrl") press.ctrl = true;
+      else if (w[i] == "shift") press.shift = true;
+      else return fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
+    }
+    press.key = key;
+    press.key_down = true;
+    InputStep release = press;
+    release.key_down = false;
+    input_steps_.push_back(press);
+    input_steps_.push_back(release);
+    // The press also arrives as a key event, as GLFW's callback delivers it (the viewer's
+    // shortcuts read events; ImGui's widgets read the key state above).
+    platform_.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
+    return wait_for(ScriptWait::kInput, 99);
+  }
+  if (name == "probe" || name == "ctrl_click") {
+    double x = 0, y = 0;
+    if (w.size() != 3 || !parse_double(w[1], x) || !parse_double(w[2], y)) return fail("usage: probe|ctrl_click X Y");
+    const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
+    if (name == "probe") {
+      probe_at(at);
+      if (!probe_) return fail("nothing to probe (no scene yet)");
+      return true;
+    }
+    push_click(at, true);
+    InputStep after;  // Ctrl released again
+    after.pos = at;
+    input_steps_.push_back(after);
+    return wait_for(ScriptWait::kInput, 99);
+  }
+  if (name == "undo" || name == "redo" || name == "snapshot_a") {
+    if (name == "undo") undo();
+    else if (name == "redo") redo();
+    else snapshot_a();
+    return true;
+  }
+  if (name == "solo") {
+    int index = 0;
+    if (w.size() != 2 || !parse_int(w[1], index) || index < 0 ||
+        index >= static_cast<int>(doc_.scene().lights.size())) {
+      return fail("usage: solo I");
+    }
+    ui::toggle_solo(doc_.scene().lights, solo_, index);
+    scene_edited_ = true;
+    return true;
+  }
+  if (name == "figure") {
+    if (w.size() != 2) return fail("usage: figure FILE.png");
+    save_figure(w[1]);
+    if (figure_status_.rfind("saved ", 0) != 0) return fail(figure_status_);
+    return true;
+  }
+  if (name == "set") {
+    if (!script_set(w)) return fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
+                                    "position|direction|intensity|enabled V.. | set camera position|look_at|up|fov V.. | "
+                                    "set render target_spp|resolution_scale|threads|term V | set display exposure|srgb|stats V | "
+                                    "set instruments probe_mode|multiples|compare|wipe|gain|head|head_angle|ray_tree|tree_shadows|"
+                                    "tree_secondary|tree_arrows|tree_legend|depth_cut|heat V");
+    return true;
+  }
+  if (name == "resize") {
+    int width = 0, height = 0;
+    if (w.size() != 3 || !parse_int(w[1], width) || !parse_int(w[2], height) || width < 1 || height < 1) {
+      return fail("usage: resize W H");
+    }
+    glfwSetWindowSize(platform_.window(), width, height);
+    return true;
+  }
+  if (name == "screenshot") {
+    if (w.size() != 2) return fail("usage: screenshot FILE.png");
+    screenshot_request_ = w[1];
+    // Taken when this frame is drawn: later commands wait for the next frame so they
+    // cannot change what it shows (or resize the window under it).
+    wait_frames_left_ = 1;
+    return wait_for(ScriptWait::kFrames, 99);
+  }
+  if (name == "save_png" || name == "save_pfm") {
+    if (w.size() != 2) return fail("usage: save_png|save_pfm FILE");
+    if (name == "save_png") save_png(w[1]);
+    else save_pfm(w[1]);
+    if (screenshot_state_.status.rfind("saved ", 0) != 0) return fail(screenshot_state_.status);
+    return true;
+  }
+  if (name == "open") {
+    if (w.size() != 2) return fail("usage: open SCENE");
+    request(PendingAction{PendingAction::Kind::kOpen, w[1]});
+    return true;
+  }
+  if (name == "save_as") {
+    if (w.size() != 2) return fail("usage: save_as FILE");
+    file_state_.path_field = w[1];
+    save_scene(true);
+    if (doc_.dirty()) return fail(file_state_.error_text);
+    return true;
+  }
+  if (name == "close") {
+    glfwSetWindowShouldClose(platform_.window(), GLFW_TRUE);  // as the window manager's close button
+    return true;
+  }
+  if (name == "modal") {
+    constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload";
+    if (w.size() != 2) return fail(kUsage);
+    if (!guard_visible_ && !conflict_visible_) return fail("no unsaved-changes or changed-on-disk dialog is open");
+    if (w[1] == "save") scripted_choice_ = ui::GuardChoice::kSave;
+    else if (w[1] == "save_as") scripted_choice_ = ui::GuardChoice::kSaveAs;
+    else if (w[1] == "discard") scripted_choice_ = ui::GuardChoice::kDiscard;
+    else if (w[1] == "cancel") scripted_choice_ = ui::GuardChoice::kCancel;
+    else if (w[1] == "overwrite") scripted_choice_ = ui::GuardChoice::kOverwrite;
+    else if (w[1] == "reload") scripted_choice_ = ui::GuardChoice::kReload;
+    else return fail(kUsage);
+    return true;
+  }
+  if (name == "save") {
+    // The Save button, through the same checks: a file changed on disk opens its dialog, a
+    // refusal (an embedded scene, an OBJ) shows in the Scene panel and in dump_state's error.
+    if (w.size() != 1) return fail("usage: save");
+    save_scene(false);
+    return true;
+  }
+  if (name == "show_item") {
+    // show_item NAME: scrolls the sidebar until the widget is in view (nothing is clicked).
+    if (w.size() != 2) return fail("usage: show_item NAME");
+    item_locations_.scroll_to = w[1];
+    wait_frames_left_ = 3;
+    return wait_for(ScriptWait::kFrames, 99);
+  }
+  if (name == "click_item" || name == "drag_item" || name == "type_item") {
+    // Real (injected) mouse input on a widget found by name (docs/previewer.md lists the names):
+    // click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT (Ctrl+click, which turns
+    // a slider or drag field into a text field with its text selected, then TEXT and Enter).
+    // The sidebar first scrolls the widget into view, as a user would.
+    ItemAction action;
+    action.name = w.size() > 1 ? w[1] : "";
+    bool ok = w.size() == 2 && name == "click_item";
+    if (name == "drag_item") {
+      action.kind = ItemAction::Kind::kDrag;
+      ok = (w.size() == 4 || w.size() == 5) && parse_double(w[2], action.dx) && parse_double(w[3], action.dy) &&
+           (w.size() == 4 || parse_int(w[4], action.steps)) && action.steps >= 1;
+    } else if (name == "type_item") {
+      action.kind = ItemAction::Kind::kType;
+      ok = w.size() == 3;
+      if (ok) action.text = w[2];
+    }
+    if (!ok) return fail("usage: click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT");
+    item_action_ = action;
+    item_locations_.scroll_to = action.name;
+    wait_frames_left_ = 3;  // the scroll lands, the widget is drawn where it will be clicked
+    return wait_for(ScriptWait::kItem, 99);
+  }
+  if (name == "dump_state") {
+    if (w.size() != 2) return fail("usage: dump_state FILE");
+    write_state(w[1]);
+    return true;
+  }
+  if (name == "touch") {
+    if (w.size() != 2) return fail("usage: touch FILE");
+    std::ofstream(w[1]) << "\n";
+    return true;
+  }
+  if (name == "bench_edits") {
+    int count = 0;
+    if (w.size() != 3 || !parse_int(w[1], count) || count < 1 || (w[2] != "material" && w[2] != "camera")) {
+      return fail("usage: bench_edits N material|camera");
+    }
+    bench_left_ = count;
+    bench_kind_ = w[2];
+    bench_gap_frames_ = 0;
+    bench_waiting_image_ = false;
+    script_wait_ = ScriptWait::kBench;
+    wait_deadline_ = now + 10.0 * count + kDefaultWaitSeconds;
+    return true;
+  }
+  if (name == "log") {
+    std::string text;
+    for (std::size_t i = 1; i < w.size(); ++i) text += (i > 1 ? " " : "") + w[i];
+    std::cerr << "phonglab script: " << text << "\n";
+    return true;
+  }
+  if (name == "stats_reset") {
+    busy_frame_ms_.clear();
+    latencies_ms_.clear();
+    return true;
+  }
+  if (name == "stats_summary") {
+    write_stats_summary(w.size() > 1 ? w[1] : "script");
+    return true;
+  }
+  if (name == "fail") {
+    std::string text;
+    for (std::size_t i = 1; i < w.size(); ++i) text += (i > 1 ? " " : "") + w[i];
+    return fail(text.empty() ? "fail command reached" : text);
+  }
+  if (name == "quit") {
+    quit_ = true;
+    return true;
+  }
+  return fail("unknown command");
+}
+
+bool Viewer::script_set(const std::vector<std::string>& w) {
+  if (w.size() < 4) return false;
+  Scene& scene = doc_.scene();
+  const std::string& subject = w[1];
+  if (subject == "material" && w.size() >= 5) {
+    Material* m = nullptr;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+      if (scene.materials[i].name == w[2]) {
+        m = &scene.materials[i];
+        selected_material_ = static_cast<int>(i);
+      }
+    }
+    if (m == nullptr) return false;
+    const std::string& field = w[3];
+    double v = 0;
+    if (field == "ka" || field == "kd" || field == "ks" || field == "kr" || field == "kt") {
+      Color c;
+      if (!parse_vec3(w, 4, true, c) || c.x < 0 || c.y < 0 || c.z < 0) return false;
+      (field == "ka" ? m->ka : field == "kd" ? m->kd : field == "ks" ? m->ks : field == "kr" ? m->kr : m->kt) = c;
+    } else if (field == "n" && w.size() == 5 && parse_double(w[4], v) && v >= 0) {
+      m->n = v;
+    } else if (field == "ior" && w.size() == 5 && parse_double(w[4], v) && v > 0) {
+      m->ior = v;
+    } else if (field == "fresnel" && w.size() == 5) {
+      m->fresnel = w[4] == "1" || w[4] == "true";
+    } else {
+      return false;
+    }
+    scene_edited_ = true;
+    return true;
+  }
+  if (subject == "light" && w.size() >= 5) {
+    int index = 0;
+    if (!parse_int(w[2], index) || index < 0 || index >= static_cast<int>(scene.lights.size())) return false;
+    Light& light = scene.lights[static_cast<std::size_t>(index)];
+    const std::string& field = w[3];
+    Vec3 v;
+    if (field == "position" && parse_vec3(w, 4, false, v)) light.position = v;
+    else if (field == "direction" && parse_vec3(w, 4, false, v) && glm::length(v) > 0) light.direction = v;
+    else if (field == "intensity" && parse_vec3(w, 4, true, v)) light.intensity = v;
+    else if (field == "enabled" && w.size() == 5) light.enabled = w[4] == "1" || w[4] == "true";
+    else return false;
+    selected_light_ = index;
+    scene_edited_ = true;
+    return true;
+  }
+  if (subject == "camera") {
+    Camera edit = scene.camera;
+    const std::string& field = w[2];
+    Vec3 v;
+    double fov = 0;
+    if (field == "position" && parse_vec3(w, 3, false, v)) edit.position = v;
+    else if (field == "look_at" && parse_vec3(w, 3, false, v)) edit.look_at = v;
+    else if (field == "up" && parse_vec3(w, 3, false, v)) edit.up = v;
+    else if (field == "fov" && w.size() == 4 && parse_double(w[3], fov)) edit.fov_y_deg = fov;
+    else return false;
+    if (!ui::camera_is_valid(edit)) return false;
+    scene.camera = edit;
+    camera_changed_ = true;
+    return true;
+  }
+  if (subject == "render" && w.size() == 4) {
+    const std::string& field = w[2];
+    double v = 0;
+    if (field == "term") {
+      const std::optional<Term> term = term_from_name(w[3]);
+      if (!term) return false;
+      render_settings_.term = *term;
+    } else if (!parse_double(w[3], v)) {
+      return false;
+    } else if (field == "target_spp" && v >= 1) {
+      render_settings_.target_spp = static_cast<int>(v);
+    } else if (field == "resolution_scale" && v > 0 && v <= 1) {
+      render_settings_.resolution_scale = static_cast<float>(v);
+    } else if (field == "threads" && v >= 0) {
+      render_settings_.threads = static_cast<int>(v);
+    } else {
+      return false;
+    }
+    settings_changed_ = true;
+    return true;
+  }
+  if (subject == "instruments" && w.size() == 4) {
+    double v = 0;
+    if (!parse_double(w[3], v)) return false;
+    if (w[2] == "probe_mode") instruments_.probe_mode = v != 0;
+    else if (w[2] == "multiples") instruments_.small_multiples = v != 0;
+    else if (w[2] == "compare" && v >= 0 && v <= 2) instruments_.compare = static_cast<int>(v);
+    else if (w[2] == "wipe" && v >= 0 && v <= 1) instruments_.wipe = static_cast<float>(v);
+    else if (w[2] == "gain" && v > 0) instruments_.difference_gain = static_cast<float>(v);
+    else if (w[2] == "head") instruments_.move_head = v != 0;
+    else if (w[2] == "head_angle" && v >= -90 && v <= 90) instruments_.head_angle_deg = static_cast<float>(v);
+    else if (w[2] == "ray_tree") rays_.overlay = v != 0;
+    else if (w[2] == "tree_shadows") rays_.shadow_rays = v != 0;
+    else if (w[2] == "tree_secondary") rays_.secondary_rays = v != 0;
+    else if (w[2] == "tree_arrows") rays_.arrows = v != 0;
+    else if (w[2] == "tree_legend") rays_.legend = v != 0;
+    else if (w[2] == "depth_cut" && v >= -1 && v <= 100) {
+      // -1 ends the cut; 0, 1, ... cut there (as the panel's box and slider).
+      rays_.depth_cut = v >= 0;
+      if (v >= 0) rays_.cut_depth = static_cast<int>(v);
+      view_changed_ = true;
+    }
+    else if (w[2] == "heat") set_heat_map(v != 0);
+    else return false;
+    upload_pending_ = upload_pending_ || !shown_.pixels.empty();
+    return true;
+  }
+  if (subject == "display" && w.size() == 4) {
+    double v = 0;
+    if (!parse_double(w[3], v)) return false;
+    if (w[2] == "exposure") display_.exposure_ev = static_cast<float>(v);
+    else if (w[2] == "srgb") display_.srgb = v != 0;
+    else if (w[2] == "stats") display_.show_stats = v != 0;
+    else if (w[2] == "stats_details") display_.stats_details = v != 0;
+    else if (w[2] == "sidebar") sidebar_visible_ = v != 0;
+    else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) {
+      display_.ui_size = static_cast<float>(v);
+      platform_.set_user_scale(display_.ui_size);
+    }
+    else return false;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace phonglab

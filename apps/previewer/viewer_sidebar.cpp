@@ -1,0 +1,215 @@
+// The previewer's sidebar: the panels in the order a lecture uses them, and what their edits request.
+#include "apps/previewer/viewer_app.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <backends/imgui_impl_opengl3.h>
+
+#include "core/scene/camera.h"
+#include "io/figure.h"
+#include "core/geometry/geometry.h"
+#include "core/teaching/heat_map.h"
+#include "io/image_io.h"
+#include "io/probe_report.h"
+#include "core/teaching/ray_tree_view.h"
+#include "core/shading/shading.h"
+#include "interaction/camera_control.h"
+
+
+namespace phonglab {
+
+namespace {
+
+// A panel header that tests can find by name ("panel.Lights") and click.
+bool header(const char* title, bool open_by_default) {
+  const bool open = ImGui::CollapsingHeader(title, open_by_default ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+  std::string name = std::string("panel.") + title;
+  std::replace(name.begin(), name.end(), ' ', '_');  // one word for scripts: panel.Render_settings
+  name = name.substr(0, name.find(':'));             // panel.Rays
+  ui::locate(name);
+  return open;
+}
+
+}  // namespace
+
+void Viewer::draw_sidebar() {
+  if (!sidebar_visible_) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  const float width = io.DisplaySize.x - viewport_.width;
+  if (width < 1 || io.DisplaySize.y < 1) return;
+  ImGui::SetNextWindowPos(ImVec2(viewport_.width, 0));
+  ImGui::SetNextWindowSize(ImVec2(width, io.DisplaySize.y));
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoFocusOnAppearing;
+  item_locations_.rects.clear();  // what this frame draws
+  if (ImGui::Begin("##sidebar", nullptr, flags)) {
+    // Text wraps at the panel's edge at any UI size; labels sit right of the widgets.
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 6.5f);
+    ImGui::TextDisabled("phonglab %s   H hides the panels, F1 lists the keys", PHONGLAB_VERSION);
+    // In the order a lecture uses them: what is shown, the coefficients, the lights, the probe
+    // and the instruments; then the camera, the file and the settings.
+    if (header("Show", true)) sidebar_show();
+    if (open_materials_) {
+      ImGui::SetNextItemOpen(true);
+      open_materials_ = false;
+    }
+    if (header("Materials", true)) sidebar_materials();
+    if (header("Lights", true)) sidebar_lights();
+    if (header("Probe", true)) sidebar_probe();
+    if (header("Instruments", true)) sidebar_instruments();
+    if (header("Rays: tree, depth cut, heat map", false)) sidebar_rays();
+    if (header("Camera", false)) sidebar_camera();
+    if (header("Scene file", true)) sidebar_file();
+    if (header("Render settings", false)) sidebar_render();
+    if (header("Display", false) && ui::display_panel(display_)) platform_.set_user_scale(display_.ui_size);
+    if (header("Screenshot", false)) {
+      ui::ScreenshotActions actions;
+      ui::screenshot_panel(screenshot_state_, actions);
+      if (actions.save_png) save_png(screenshot_state_.png_path);
+      if (actions.save_pfm) save_pfm(screenshot_state_.pfm_path);
+    }
+    ImGui::PopItemWidth();
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::End();
+  // While a slider is held, each tick is an edit: keep the renderer at coarse levels.
+  if (!ImGui::IsAnyItemActive()) edited_while_active_ = false;
+  else if (scene_edited_ || camera_changed_) edited_while_active_ = true;
+}
+
+void Viewer::sidebar_show() {
+  const Term before = render_settings_.term;
+  const bool multiples = instruments_.small_multiples;
+  ui::show_panel(render_settings_.term, instruments_.small_multiples, doc_.scene().specular_model == SpecularModel::kBlinn);
+  if (render_settings_.term != before) {
+    if (render_settings_.term != Term::kRays) rays_.heat_map = false;
+    settings_changed_ = true;
+  }
+  if (multiples != instruments_.small_multiples) settings_changed_ = true;
+}
+
+void Viewer::sidebar_materials() {
+  Scene& scene = doc_.scene();
+  if (picked_text_.empty()) ImGui::TextDisabled("Click an object in the view to select its material.");
+  else ImGui::TextDisabled("Clicked: %s", picked_text_.c_str());
+  if (ui::materials_panel(scene.materials, selected_material_, scene.specular_model)) scene_edited_ = true;
+}
+
+void Viewer::sidebar_lights() {
+  Scene& scene = doc_.scene();
+  const std::size_t count = scene.lights.size();
+  if (ui::lights_panel(scene.lights, selected_light_, solo_)) scene_edited_ = true;
+  // A new point light goes where the lecturer can see it and grab it: above and left of the
+  // look-at point, in the view, at the look-at point's depth.
+  if (scene.lights.size() == count + 1 && scene.lights.back().type == LightType::kPoint) {
+    const Camera view = view_camera();
+    const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
+    const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
+    const double depth = ui::view_depth(view, view.look_at);
+    scene.lights.back().position = ui::unproject(view, ui::ViewportPoint{0.3 * w, 0.2 * h}, depth, w, h);
+  }
+}
+
+void Viewer::sidebar_probe() {
+  // A fixed height, scrolled inside: a probe arriving never moves the panels below.
+  const float height = ImGui::GetTextLineHeightWithSpacing() * 15;
+  if (ImGui::BeginChild("##probe", ImVec2(0, height), true, ImGuiWindowFlags_HorizontalScrollbar)) {
+    ui::ProbeView view;
+    view.scene = snapshot_.get();
+    view.probe = probe_ ? &*probe_ : nullptr;
+    view.image_width = render_width_;
+    view.image_height = render_height_;
+    view.report = probe_report_;
+    view.occluders = probe_occluders_;
+    view.exposure_ev = display_.exposure_ev;
+    if (probe_) {
+      const double gain = std::exp2(static_cast<double>(display_.exposure_ev));
+      for (int c = 0; c < 3; ++c) {
+        const double v = std::clamp(probe_->root.total[c] * gain, 0.0, 1.0);
+        view.srgb[c] = display_.srgb ? linear_to_srgb8(v) : static_cast<unsigned char>(std::lround(v * 255));
+      }
+    }
+    const bool digits_before = probe_precision_;
+    ui::probe_panel(view, probe_precision_);
+    if (probe_precision_ != digits_before) refresh_probe();
+  }
+  ImGui::EndChild();
+}
+
+void Viewer::sidebar_instruments() {
+  ui::InstrumentActions actions;
+  const ui::InstrumentSettings before = instruments_;
+  if (ui::instruments_panel(instruments_, actions, !image_a_.pixels.empty(), history_.undo_count(),
+                            history_.redo_count(), figure_path_, figure_status_)) {
+    if (before.small_multiples != instruments_.small_multiples) settings_changed_ = true;
+    upload_pending_ = upload_pending_ || !shown_.pixels.empty();  // a compare view changed
+  }
+  if (actions.snapshot_a) snapshot_a();
+  if (actions.undo) undo();
+  if (actions.redo) redo();
+  if (actions.save_figure) save_figure(figure_path_);
+  if (actions.head_reference) {
+    snapshot_a();
+    instruments_.compare = 2;
+    upload_pending_ = upload_pending_ || !shown_.pixels.empty();
+  }
+}
+
+void Viewer::sidebar_rays() {
+  rays_.heat_map = render_settings_.term == Term::kRays;
+  const ui::RayTreeSettings before = rays_;
+  ui::RayTreeSummary summary;
+  summary.probe = probe_ ? &*probe_ : nullptr;
+  summary.scene_max_depth = doc_.scene().max_depth;
+  summary.heat_max = heat_max_;
+  if (ui::rays_panel(rays_, summary)) {
+    if (before.depth_cut != rays_.depth_cut || (rays_.depth_cut && before.cut_depth != rays_.cut_depth)) {
+      view_changed_ = true;
+    }
+    if (before.heat_map != rays_.heat_map) set_heat_map(rays_.heat_map);
+  }
+}
+
+void Viewer::sidebar_camera() {
+  ui::CameraActions actions;
+  if (ui::camera_panel(doc_.scene().camera, actions, camera_notice_)) camera_changed_ = true;
+  frame_requested_ |= actions.frame_scene;
+  reset_requested_ |= actions.reset;
+  if (view_camera().fov_y_deg != doc_.scene().camera.fov_y_deg) {
+    ImGui::TextDisabled("Shown with fov y %.1f: the view is narrower than the scene's %dx%d image.",
+                        view_camera().fov_y_deg, doc_.scene().width, doc_.scene().height);
+  }
+}
+
+void Viewer::sidebar_file() {
+  file_state_.source = doc_.source();
+  file_state_.file_path = doc_.file_path();
+  file_state_.dirty = doc_.dirty();
+  file_state_.opened_mesh = doc_.opened_mesh();
+  ui::SceneFileActions actions;
+  ui::scene_file_panel(file_state_, actions);
+  if (actions.open) request(PendingAction{PendingAction::Kind::kOpen, file_state_.path_field});
+  if (!actions.open_embedded.empty()) request(PendingAction{PendingAction::Kind::kOpen, actions.open_embedded});
+  if (actions.save) save_scene(false);
+  if (actions.save_as) save_scene(true);
+  if (actions.reload) request(PendingAction{PendingAction::Kind::kReload, {}});
+}
+
+void Viewer::sidebar_render() {
+  Scene& scene = doc_.scene();
+  if (ui::shading_settings_panel(scene)) scene_edited_ = true;
+  ImGui::Separator();
+  const int hardware = resolve_thread_count(0);
+  if (ui::render_settings_panel(render_settings_, hardware)) settings_changed_ = true;
+}
+
+}  // namespace phonglab

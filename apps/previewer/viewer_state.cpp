@@ -1,0 +1,154 @@
+// `dump_state`: the previewer's state as key=value lines for the test scripts (docs/previewer.md
+// lists the keys).
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "apps/previewer/viewer_app.h"
+#include "ui/ray_tree_overlay.h"
+
+namespace phonglab {
+
+std::string Viewer::depth_cut_label() const {
+  // The depth-cut slider's text, as the Rays panel shows it.
+  const int top = std::max(doc_.scene().max_depth, 0);
+  char text[80];
+  std::snprintf(text, sizeof text, ui::depth_cut_format(top).c_str(), std::clamp(rays_.cut_depth, 0, top));
+  return text;
+}
+
+void Viewer::write_state(const std::string& path) const {
+  std::ofstream out(path);
+  const Scene& scene = doc_.scene();
+  const ProgressiveStatus status = renderer_.status();
+  const auto vec = [](const Vec3& v) {
+    std::ostringstream s;
+    s << v.x << " " << v.y << " " << v.z;
+    return s.str();
+  };
+  const bool have_material = selected_material_ >= 0 && selected_material_ < static_cast<int>(scene.materials.size());
+  int window_w = 0, window_h = 0, fb_w = 0, fb_h = 0;
+  glfwGetWindowSize(platform_.window(), &window_w, &window_h);
+  glfwGetFramebufferSize(platform_.window(), &fb_w, &fb_h);
+  std::string first_error_line = file_state_.error_text.substr(0, file_state_.error_text.find('\n'));
+  const std::vector<std::string> caption_lines = captions();
+  out << "source=" << doc_.source() << "\n"
+      << "file=" << doc_.file_path() << "\n"
+      << "dirty=" << (doc_.dirty() ? 1 : 0) << "\n"
+      << "modal=" << (guard_visible_ ? 1 : 0) << "\n"
+      << "conflict=" << (conflict_visible_ ? 1 : 0) << "\n"
+      << "error=" << first_error_line << "\n"
+      << "picked=" << picked_text_ << "\n"
+      << "selected_material=" << (have_material ? scene.materials[static_cast<std::size_t>(selected_material_)].name : "") << "\n"
+      << "selected_light=" << selected_light_ << "\n"
+      << "hovered_light=" << hovered_light_ << "\n"
+      << "lights=" << scene.lights.size() << "\n"
+      << "camera_position=" << vec(scene.camera.position) << "\n"
+      << "camera_look_at=" << vec(scene.camera.look_at) << "\n"
+      << "camera_up=" << vec(scene.camera.up) << "\n"
+      << "camera_fov=" << std::setprecision(17) << (snapshot_ ? snapshot_->camera.fov_y_deg : view_camera().fov_y_deg)
+      << std::setprecision(6) << "\n"
+      << "generation=" << status.generation << "\n"
+      << "drawn_generation=" << drawn_generation_ << "\n"
+      << "spp=" << shown_.spp << "\n"
+      << "divisor=" << shown_.divisor << "\n"
+      << "image=" << shown_.width << "x" << shown_.height << "\n"
+      << "render=" << render_width_ << "x" << render_height_ << "\n"
+      << "window=" << window_w << "x" << window_h << "\n"
+      << "framebuffer=" << fb_w << "x" << fb_h << "\n"
+      << "nan_count=" << shown_.stats.nan_count << "\n"
+      << "status=" << file_state_.status << "\n"
+      << "changed_on_disk=" << (file_state_.changed_on_disk ? 1 : 0) << "\n"
+      << "sidebar=" << (sidebar_visible_ ? 1 : 0) << "\n"
+      << "sidebar_toggles=" << sidebar_toggles_ << "\n"
+      << "help=" << (help_visible_ ? 1 : 0) << "\n"
+      << "ui_size=" << display_.ui_size << "\n"
+      << "stats_details=" << (display_.stats_details ? 1 : 0) << "\n"
+      << "camera_notice=" << camera_notice_ << "\n"
+      << "camera_distance=" << glm::length(scene.camera.position - scene.camera.look_at) << "\n"
+      << "can_save=" << (!doc_.file_path().empty() && !doc_.opened_mesh() ? 1 : 0) << "\n"
+      << "figure_status=" << figure_status_ << "\n"
+      << "compare_caption=" << (instruments_.compare != 0 ? compare_caption() : "") << "\n"
+      << "captions=" << caption_lines.size() << "\n";
+  for (std::size_t i = 0; i < caption_lines.size(); ++i) out << "caption" << i << "=" << caption_lines[i] << "\n";
+  // The boxes over the image and the named widgets, where they were drawn last frame: x y width height.
+  for (const auto& [id, rect] : overlay_rects_) {
+    out << "overlay_" << id.substr(2) << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
+        << rect.max.y - rect.min.y << "\n";
+  }
+  for (const auto& [item, rect] : item_locations_.rects) {
+    out << "item_" << item << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
+        << rect.max.y - rect.min.y << "\n";
+  }
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) out << "light" << i << "_position=" << vec(scene.lights[i].position) << "\n";
+  // Where each point light's marker was drawn (window coordinates) and whether it is an arrow at
+  // the edge (the light out of view).
+  for (const ui::LightMarker& m : markers_) {
+    out << "light" << m.index << "_marker=" << m.pos.x << " " << m.pos.y << "\n"
+        << "light" << m.index << "_offscreen=" << (m.offscreen ? 1 : 0) << "\n";
+  }
+  for (const Material& m : scene.materials) {
+    out << "material_" << m.name << "_kd=" << vec(m.kd) << "\n"
+        << "material_" << m.name << "_n=" << m.n << "\n";
+  }
+  std::string enabled;
+  for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';
+  out << "lights_enabled=" << enabled << "\n"
+      << "undo=" << history_.undo_count() << "\n"
+      << "redo=" << history_.redo_count() << "\n"
+      << "multiples=" << (instruments_.small_multiples ? 1 : 0) << "\n"
+      << "compare=" << instruments_.compare << "\n"
+      << "have_a=" << (image_a_.pixels.empty() ? 0 : 1) << "\n"
+      << "head=" << (shading_eye_ ? 1 : 0) << "\n";
+  if (shading_eye_) out << "head_eye=" << vec(*shading_eye_) << "\n";
+  // Rays: the overlay as drawn in the last frame, the depth cut and the heat map.
+  int tree_blocked = 0, tree_deepest = 0;
+  for (const ScreenSegment& segment : tree_segments_) {
+    tree_blocked += segment.kind == TreeSegmentKind::kShadowBlocked ? 1 : 0;
+    if (segment.kind == TreeSegmentKind::kReflection || segment.kind == TreeSegmentKind::kRefraction) {
+      tree_deepest = std::max(tree_deepest, segment.depth);
+    }
+  }
+  out << "term=" << term_name(render_settings_.term) << "\n"
+      << "ray_tree=" << (rays_.overlay ? 1 : 0) << "\n"
+      << "tree_segments=" << tree_segments_.size() << "\n"
+      << "tree_blocked=" << tree_blocked << "\n"
+      << "tree_deepest=" << tree_deepest << "\n"
+      << "depth_cut=" << (rays_.depth_cut ? rays_.cut_depth : -1) << "\n"
+      << "depth_cut_label=" << depth_cut_label() << "\n"
+      << "scene_max_depth=" << scene.max_depth << "\n"
+      << "render_max_depth=" << (snapshot_ ? snapshot_->max_depth : -1) << "\n"
+      << "heat=" << (heat_shown() ? 1 : 0) << "\n"
+      << "heat_max=" << heat_max_ << "\n";
+  if (probe_) {
+    const Color total = probe_->root.total;
+    const ImVec2 on_screen = probe_point_in_cell(cells().count() - 1);
+    out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
+        << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
+        << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"
+        << "probe_total=" << vec(total) << "\n";
+    // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).
+    int blocked = 0;
+    std::vector<const ProbeNode*> stack{&probe_->root};
+    while (!stack.empty()) {
+      const ProbeNode* node = stack.back();
+      stack.pop_back();
+      for (const ProbeLight& light : node->lights) blocked += light.lit_side && !light.visible ? 1 : 0;
+      if (node->reflection) stack.push_back(node->reflection.get());
+      if (node->refraction) stack.push_back(node->refraction.get());
+    }
+    out << "probe_blocked=" << blocked << "\n"
+        << "probe_rays=" << probe_->rays.total() << "\n";
+    // The shown image's pixel there, when it is the full-resolution 1-spp image of this
+    // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
+    if (shown_.divisor == 1 && shown_.spp == 1 && shown_.width == render_width_ && shown_.height == render_height_) {
+      const glm::vec3 shown = shown_.pixels[static_cast<std::size_t>(probe_y_) * static_cast<std::size_t>(shown_.width) +
+                                            static_cast<std::size_t>(probe_x_)];
+      out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";
+    }
+  }
+}
+
+}  // namespace phonglab

@@ -1,0 +1,178 @@
+#include "core/geometry/geometry.h"
+
+#include <utility>
+
+#include "core/accel/accel.h"
+#include "experiments/numerics_variants.h"
+
+namespace phonglab {
+
+TriangleShear make_shear(const Vec3& dir) {
+  TriangleShear sh;
+  // The axis where the direction is largest becomes z; x and y follow cyclically, swapped
+  // when d_z < 0 so the triangle's winding is preserved (Woop et al. 2013, section 3).
+  const double ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
+  sh.kz = (ax >= ay) ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+  sh.kx = (sh.kz + 1) % 3;
+  sh.ky = (sh.kx + 1) % 3;
+  if (dir[sh.kz] < 0) std::swap(sh.kx, sh.ky);
+  sh.sz = 1.0 / dir[sh.kz];
+  sh.sx = dir[sh.kx] * sh.sz;
+  sh.sy = dir[sh.ky] * sh.sz;
+  return sh;
+}
+
+
+std::optional<double> intersect_sphere(const Sphere& s, const Ray& ray, double t_min) {
+  const double t = sphere_root(s, ray.origin, ray.dir, t_min, std::numeric_limits<double>::infinity());
+  if (t > 0) return t;
+  return std::nullopt;
+}
+
+std::optional<double> intersect_plane(const Plane& pl, const Ray& ray, double t_min) {
+  const double denom = glm::dot(ray.dir, pl.normal);
+  if (denom == 0) return std::nullopt;  // parallel: no gap guard, so no horizon gap
+  const double t = glm::dot(pl.point - ray.origin, pl.normal) / denom;
+  if (t > t_min && t < std::numeric_limits<double>::infinity()) return t;
+  return std::nullopt;
+}
+
+std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, double* b1, double* b2,
+                                         double t_min) {
+  return intersect_triangle(tri, ray, make_shear(ray.dir), b1, b2, t_min);
+}
+
+int nearest_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double& best,
+                     double& b1, double& b2) {
+  int nearest = -1;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    double u = 0, v = 0;
+    if (auto t = intersect_triangle(tris[i], ray, shear, &u, &v); t && *t < best) {
+      best = *t;
+      b1 = u;
+      b2 = v;
+      nearest = static_cast<int>(i);
+    }
+  }
+  return nearest;
+}
+
+bool any_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double t_max) {
+  for (const Triangle& tri : tris) {
+    if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < t_max) return true;
+  }
+  return false;
+}
+
+std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.numerics.geometry()) [[unlikely]] return intersect_variant(scene, ray, t_max);  // bench only
+  if (scene.accel) return scene.accel->intersect(scene, ray, t_max);
+  return intersect_all(scene, ray, t_max);
+}
+
+bool occluded(const Scene& scene, const Ray& ray, double t_max) {
+  if (scene.numerics.occlusion()) [[unlikely]] return occluded_variant(scene, ray, t_max);  // bench only
+  if (scene.accel) return scene.accel->occluded(scene, ray, t_max);
+  return occluded_all(scene, ray, t_max);
+}
+
+std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray, double t_max) {
+  double best = t_max;
+  ObjectRef obj;
+  double best_b1 = 0, best_b2 = 0;
+  for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+    if (const double t = sphere_root(scene.spheres[i], ray.origin, ray.dir, 0, best); t > 0) {
+      best = t;
+      obj = {ObjectRef::Kind::kSphere, static_cast<int>(i)};
+    }
+  }
+  for (std::size_t i = 0; i < scene.planes.size(); ++i) {
+    if (auto t = intersect_plane(scene.planes[i], ray); t && *t < best) {
+      best = *t;
+      obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
+    }
+  }
+  if (scene.triangles.empty() && scene.meshes.empty()) {
+    if (obj.kind == ObjectRef::Kind::kNone) return std::nullopt;
+    return make_hit(scene, ray, obj, best, 0, 0);
+  }
+  const TriangleShear shear = make_shear(ray.dir);
+  const auto test_triangles = [&](const std::vector<Triangle>& tris, ObjectRef::Kind kind, int index) {
+    if (const int i = nearest_triangle(tris, ray, shear, best, best_b1, best_b2); i >= 0) {
+      obj = kind == ObjectRef::Kind::kMesh ? ObjectRef{kind, index, i} : ObjectRef{kind, i};
+    }
+  };
+  test_triangles(scene.triangles, ObjectRef::Kind::kTriangle, -1);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    test_triangles(scene.meshes[m].geometry->triangles, ObjectRef::Kind::kMesh, static_cast<int>(m));
+  }
+  if (obj.kind == ObjectRef::Kind::kNone) return std::nullopt;
+  return make_hit(scene, ray, obj, best, best_b1, best_b2);
+}
+
+bool occluded_all(const Scene& scene, const Ray& ray, double t_max) {
+  for (const Sphere& s : scene.spheres) {
+    if (sphere_root(s, ray.origin, ray.dir, 0, t_max) > 0) return true;
+  }
+  for (const Plane& pl : scene.planes) {
+    if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
+  }
+  if (scene.triangles.empty() && scene.meshes.empty()) return false;
+  const TriangleShear shear = make_shear(ray.dir);
+  if (any_triangle(scene.triangles, ray, shear, t_max)) return true;
+  for (const Mesh& mesh : scene.meshes) {
+    if (any_triangle(mesh.geometry->triangles, ray, shear, t_max)) return true;
+  }
+  return false;
+}
+
+Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double b1, double b2) {
+  Hit hit;
+  hit.t = t;
+  hit.object = obj;
+  hit.p = ray.origin + t * ray.dir;
+  switch (obj.kind) {
+    case ObjectRef::Kind::kSphere: {
+      const Sphere& s = scene.spheres[obj.index];
+      // Re-project onto the sphere: the radial error of o + t d is then a few ulps of |c| + r.
+      Vec3 radial = hit.p - s.center;
+      const double len = glm::length(radial);
+      hit.ng = len > 0 ? radial / len : Vec3(0, 1, 0);
+      hit.p = s.center + s.radius * hit.ng;
+      hit.ns = hit.ng;
+      hit.material = s.material;
+      hit.magnitude = std::max(max_abs(hit.p), max_abs(s.center) + s.radius);
+      break;
+    }
+    case ObjectRef::Kind::kPlane: {
+      const Plane& pl = scene.planes[obj.index];
+      hit.ng = pl.normal;
+      hit.ns = pl.normal;
+      hit.material = pl.material;
+      hit.magnitude = max_abs(hit.p);
+      break;
+    }
+    case ObjectRef::Kind::kTriangle:
+    case ObjectRef::Kind::kMesh: {
+      const Triangle& tri = triangle_of(scene, obj);
+      const double b0 = 1 - b1 - b2;
+      // Interpolating the vertices is more accurate than o + t d for far-away rays.
+      hit.p = b0 * tri.v0 + b1 * tri.v1 + b2 * tri.v2;
+      hit.magnitude = std::max({max_abs(tri.v0), max_abs(tri.v1), max_abs(tri.v2)});
+      hit.ng = glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+      hit.ns = hit.ng;
+      if (tri.has_vertex_normals) {
+        const Vec3 n = b0 * tri.n0 + b1 * tri.n1 + b2 * tri.n2;
+        const double len = glm::length(n);
+        if (len > 0 && std::isfinite(len)) hit.ns = n / len;
+      }
+      hit.material = tri.material;
+      break;
+    }
+    case ObjectRef::Kind::kNone:
+      break;
+  }
+  return hit;
+}
+
+}  // namespace phonglab

@@ -1,0 +1,646 @@
+// The packet tracer's driver: batches, culling, and the scalar steps between the AVX2 kernels.
+#include "core/packet/packet.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "core/accel/accel.h"
+#include "core/geometry/geometry.h"
+#include "core/packet/packet_kernels.h"
+
+namespace phonglab {
+
+bool packet_cpu_supported() {
+#if defined(PHONGLAB_PACKET_AVX2)
+  static const bool supported = __builtin_cpu_supports("avx2");
+  return supported;
+#else
+  return false;
+#endif
+}
+
+bool packet_tracing_applies(const Scene& scene) {
+  const bool walkable = scene.accel ? dynamic_cast<const SceneBvh*>(scene.accel.get()) != nullptr : scene.meshes.empty();
+  return scene.numerics.production() && walkable && packet_cpu_supported();
+}
+
+namespace {
+
+// The kernels read BVH nodes and triangles in place, through plain structs of their own (the
+// AVX2 unit sees no glm): the layouts must agree.
+static_assert(std::is_standard_layout_v<BvhNode> && std::is_standard_layout_v<Aabb> && std::is_standard_layout_v<Vec3>);
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && offsetof(Aabb, lo) == 0 && offsetof(Aabb, hi) == sizeof(Vec3));
+static_assert(sizeof(BvhNode) == sizeof(packet::Node) && offsetof(BvhNode, box) == offsetof(packet::Node, box) &&
+              offsetof(BvhNode, first) == offsetof(packet::Node, first) &&
+              offsetof(BvhNode, count) == offsetof(packet::Node, count) &&
+              offsetof(BvhNode, axis) == offsetof(packet::Node, axis));
+static_assert(std::is_standard_layout_v<Triangle> && offsetof(Triangle, v1) == offsetof(Triangle, v0) + sizeof(Vec3) &&
+              offsetof(Triangle, v2) == offsetof(Triangle, v1) + sizeof(Vec3) && sizeof(Triangle) % sizeof(double) == 0);
+
+const packet::Node* kernel_nodes(const Bvh& bvh) {
+  return bvh.nodes.empty() ? nullptr : reinterpret_cast<const packet::Node*>(bvh.nodes.data());
+}
+const double* kernel_vertices(const std::vector<Triangle>& tris) { return tris.empty() ? nullptr : &tris[0].v0.x; }
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+int padded(int n) { return (n + 3) & ~3; }
+
+// Grows v to at least n elements (never shrinks, never clears: lanes past the live ones keep
+// old but initialised values, which the kernels compute on and the driver ignores).
+template <class T>
+void fit(std::vector<T>& v, int n) {
+  if (v.size() < static_cast<std::size_t>(n)) v.resize(static_cast<std::size_t>(n));
+}
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+// Rays of one batch as structure of arrays, with room for a multiple of 4 lanes.
+struct RayBatch {
+  std::vector<double> ox, oy, oz, dx, dy, dz;
+  std::vector<double> weight;  // path weight from the camera
+  int n = 0;
+
+  void reserve_lanes(int count) {
+    const int size = padded(count);
+    for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &weight}) fit(*v, size);
+  }
+  void push(const Vec3& o, const Vec3& d, double w) {
+    const std::size_t i = at(n);
+    ox[i] = o.x, oy[i] = o.y, oz[i] = o.z;
+    dx[i] = d.x, dy[i] = d.y, dz[i] = d.z;
+    weight[i] = w;
+    ++n;
+  }
+  Vec3 origin(int i) const { return {ox[at(i)], oy[at(i)], oz[at(i)]}; }
+  Vec3 dir(int i) const { return {dx[at(i)], dy[at(i)], dz[at(i)]}; }
+  packet::Rays view() const { return {ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data()}; }
+};
+
+// A shadow ray's fate for one light at one hit.
+enum class Shadow : std::uint8_t { kNone = 0, kVisible = 1, kTest = 2 };
+
+// Everything one recursion level keeps while its children are traced. All arrays are indexed
+// by the level's ray (lane); lanes whose ray missed are skipped (their light kernel lanes are
+// computed and ignored, and their shadow lanes are idle).
+struct Level {
+  // Nearest hits.
+  std::vector<double> t, b1, b2;
+  std::vector<std::int32_t> id;  // sphere k, spheres + plane k, spheres + planes + triangle k,
+                                 // spheres + planes + triangles + mesh k; -1: miss
+  std::vector<std::int32_t> prim;  // a mesh's triangle
+  // Shading frame at the hit.
+  std::vector<int> material;
+  std::vector<std::uint8_t> entering;
+  std::vector<std::uint8_t> lit;  // a hit whose material has kd or ks: lights are evaluated there
+  Vec3 lo{0}, hi{0};              // bounds of the hit points
+  double max_offset = 0;          // the largest surface_offset among them
+  std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset;
+  std::vector<Terms> terms;
+  // One light at those points, with its shadow rays (kernel output, tested in place).
+  std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max;
+  std::vector<Shadow> shadow;
+  std::vector<std::uint8_t> blocked;
+  // Children: the bounce at mirror and glass hits (kernel output), the level's reflected and
+  // refracted rays, and what they bring back.
+  std::vector<std::uint8_t> bounces, tir;
+  std::vector<double> ior, eta, fresnel, mx, my, mz, tx, ty, tz;
+  RayBatch reflected, refracted;
+  std::vector<Color> kr, kt;  // kr', kt' of each hit
+  std::vector<Color> reflected_radiance, refracted_radiance;
+  std::vector<int> reflected_index, refracted_index;  // per lane: lane in the child batch, or -1
+
+  void fit_lanes(int count) {
+    const int size = padded(count);
+    for (std::vector<double>* v : {&t, &b1, &b2, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz, &vx, &vy, &vz, &offset,
+                                   &n_dot_l, &cos_spec, &sox, &soy, &soz, &sdx, &sdy, &sdz, &st_max, &ior, &eta,
+                                   &fresnel, &mx, &my, &mz, &tx, &ty, &tz}) {
+      fit(*v, size);
+    }
+    fit(id, size);
+    fit(prim, size);
+    fit(material, size);
+    fit(entering, size);
+    fit(lit, size);
+    fit(bounces, size);
+    fit(tir, size);
+    fit(terms, size);
+    fit(shadow, size);
+    fit(blocked, size);
+    fit(kr, size);
+    fit(kt, size);
+    fit(reflected_index, size);
+    fit(refracted_index, size);
+  }
+  packet::HitRecords records() {
+    return {px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), gx.data(),
+            gy.data(), gz.data(), vx.data(), vy.data(), vz.data(), offset.data(), entering.data()};
+  }
+};
+
+// What the light loop needs of a material, gathered once per scene.
+struct MaterialInfo {
+  bool lit = false;       // kd or ks non-zero: lights are evaluated
+  bool specular = false;  // ks non-zero
+  bool bounces = false;   // kr or kt non-zero: children may follow
+  double n = 0;
+  double ior = 1;
+  Color ambient{0};       // ka * Ia, as shade() computes it
+};
+
+}  // namespace
+
+struct PacketTracer::Impl {
+  const Scene& scene;
+  TraceLimits limits;
+  // The scene's spheres and planes as arrays for the kernels.
+  std::vector<double> cx, cy, cz, radius, sphere_offset;
+  std::vector<double> plx, ply, plz, pnx, pny, pnz, plane_size;
+  std::vector<int> prim_material;  // by kernel id (spheres, then planes, then triangles)
+  std::vector<std::int32_t> every_sphere, primary_tested, shadow_tested;
+  packet::Spheres spheres{};
+  packet::Planes planes{};
+  // With a SceneBvh: the spheres, loose triangles and meshes are found through it (planes are
+  // tested before it, as SceneBvh does), and no sphere is culled.
+  bool walk_hierarchy = false;
+  packet::Hierarchy hierarchy{};
+  std::vector<std::uint8_t> top_kind;
+  std::vector<std::int32_t> top_index;
+  std::vector<packet::MeshTree> mesh_trees;
+  int mesh_id = 0;  // id of mesh 0
+  std::vector<MaterialInfo> info;
+  std::vector<Color> light_kd, light_ks;  // I_l * kd and I_l * ks, per light and material
+  std::vector<Level> levels;
+  RayBatch primary;
+  std::vector<double> x_plus_u, y_plus_v;
+  // What the primary hits give (render_tile's term), what they must compute for it, and the eye
+  // V points to there (null: -D).
+  Term primary_term = Term::kFull;
+  TermsWanted primary_wanted;
+  const Vec3* shading_eye = nullptr;
+
+  explicit Impl(const Scene& s) : scene(s), limits{s.max_depth, s.min_weight} {
+    for (const Sphere& sp : scene.spheres) {
+      cx.push_back(sp.center.x);
+      cy.push_back(sp.center.y);
+      cz.push_back(sp.center.z);
+      radius.push_back(sp.radius);
+      sphere_offset.push_back(kCoordinateMargin * (max_abs(sp.center) + sp.radius));
+      prim_material.push_back(sp.material);
+    }
+    for (const Plane& pl : scene.planes) {
+      plx.push_back(pl.point.x);
+      ply.push_back(pl.point.y);
+      plz.push_back(pl.point.z);
+      pnx.push_back(pl.normal.x);
+      pny.push_back(pl.normal.y);
+      pnz.push_back(pl.normal.z);
+      plane_size.push_back(max_abs(pl.point));
+      prim_material.push_back(pl.material);
+    }
+    for (const Triangle& tri : scene.triangles) prim_material.push_back(tri.material);
+    for (std::size_t k = 0; k < cx.size(); ++k) every_sphere.push_back(static_cast<std::int32_t>(k));
+    spheres = {cx.data(), cy.data(), cz.data(), radius.data(), sphere_offset.data(), every_sphere.data(),
+               static_cast<int>(cx.size()), static_cast<int>(cx.size())};
+    planes = {plx.data(), ply.data(), plz.data(), pnx.data(), pny.data(), pnz.data(), plane_size.data(),
+              static_cast<int>(plx.size())};
+    for (const Material& m : scene.materials) {
+      MaterialInfo mi;
+      mi.specular = !is_zero(m.ks);
+      mi.lit = !is_zero(m.kd) || mi.specular;
+      mi.bounces = !is_zero(m.kr) || !is_zero(m.kt);
+      mi.n = m.n;
+      mi.ior = m.ior;
+      mi.ambient = m.ka * scene.ambient;
+      info.push_back(mi);
+    }
+    for (const Light& light : scene.lights) {
+      for (const Material& m : scene.materials) {
+        light_kd.push_back(light.intensity * m.kd);
+        light_ks.push_back(light.intensity * m.ks);
+      }
+    }
+    levels.resize(at(std::max(0, limits.max_depth)) + 1);
+    mesh_id = static_cast<int>(prim_material.size());
+    if (const auto* bvh = dynamic_cast<const SceneBvh*>(scene.accel.get())) set_up_hierarchy(*bvh);
+  }
+
+  void set_up_hierarchy(const SceneBvh& bvh) {
+    walk_hierarchy = true;
+    for (const SceneBvh::TopPrim& p : bvh.prims()) {
+      top_kind.push_back(p.kind == ObjectRef::Kind::kSphere ? 0 : p.kind == ObjectRef::Kind::kTriangle ? 1 : 2);
+      top_index.push_back(p.index);
+    }
+    for (const Mesh& m : scene.meshes) {
+      mesh_trees.push_back({kernel_nodes(m.geometry->bvh), kernel_vertices(m.geometry->triangles)});
+    }
+    hierarchy.top = kernel_nodes(bvh.top());
+    hierarchy.prim_kind = top_kind.data();
+    hierarchy.prim_index = top_index.data();
+    hierarchy.cx = cx.data(), hierarchy.cy = cy.data(), hierarchy.cz = cz.data(), hierarchy.r = radius.data();
+    hierarchy.triangles = kernel_vertices(scene.triangles);
+    hierarchy.meshes = mesh_trees.data();
+    hierarchy.triangle_stride = static_cast<long>(sizeof(Triangle) / sizeof(double));
+    hierarchy.triangle_id = spheres.count + planes.count;
+    hierarchy.mesh_id = mesh_id;
+    hierarchy.far_widen = kBoxFarWiden;
+    hierarchy.t_max_slack = kBoxTmaxSlack;
+  }
+
+  // The spheres the brute-force kernels test themselves: none when the hierarchy holds them.
+  packet::Spheres no_spheres() const {
+    packet::Spheres view = spheres;
+    view.tested_count = 0;
+    return view;
+  }
+
+  int material_of(std::int32_t id, std::int32_t prim) const {
+    if (id < mesh_id) return prim_material[at(id)];
+    return scene.meshes[at(id - mesh_id)].geometry->triangles[at(prim)].material;
+  }
+
+  ObjectRef object_of(std::int32_t id, std::int32_t prim) const {
+    const int s = spheres.count, p = planes.count;
+    if (id < s) return {ObjectRef::Kind::kSphere, id};
+    if (id < s + p) return {ObjectRef::Kind::kPlane, id - s};
+    if (id < mesh_id) return {ObjectRef::Kind::kTriangle, id - s - p};
+    return {ObjectRef::Kind::kMesh, id - mesh_id, prim};
+  }
+
+  // The spheres the primary rays of image region [x0, x1] x [y0, y1] can meet: the rays share
+  // the eye and lie in the cone of the region's corner rays (axis a, half-angle theta); a sphere
+  // of angular radius alpha whose centre is more than theta + alpha off the axis meets none.
+  // The margin (1e-6 rad) is far beyond rounding, so culling never changes a hit.
+  packet::Spheres primary_spheres(const CameraFrame& f, int x0, int y0, int x1, int y1) {
+    if (walk_hierarchy) return no_spheres();
+    Vec3 corner[4];
+    Vec3 sum(0);
+    for (int c = 0; c < 4; ++c) {
+      const double sx = 2.0 * (c & 1 ? x1 : x0) / f.width - 1;
+      const double sy = 1 - 2.0 * (c & 2 ? y1 : y0) / f.height;
+      corner[c] = glm::normalize(f.forward + sx * f.right + sy * f.up);
+      sum += corner[c];
+    }
+    const Vec3 axis = glm::normalize(sum);
+    double cos_theta = 1;
+    for (const Vec3& c : corner) cos_theta = std::min(cos_theta, glm::dot(axis, c));
+    const double theta = std::acos(clamp_unit(cos_theta));
+    if (!(theta < 1.0)) return spheres;  // a wide region: no cone worth testing
+    primary_tested.clear();
+    for (std::size_t k = 0; k < scene.spheres.size(); ++k) {
+      const Sphere& sp = scene.spheres[k];
+      const Vec3 v = sp.center - f.origin;
+      const double dist = glm::length(v);
+      bool keep = !(dist > sp.radius * (1 + 1e-6));  // the eye inside or on the sphere
+      if (!keep) {
+        const double off_axis = std::acos(clamp_unit(glm::dot(axis, v) / dist));
+        keep = !(off_axis > theta + std::asin(sp.radius / dist) + 1e-6);
+      }
+      if (keep) primary_tested.push_back(static_cast<std::int32_t>(k));
+    }
+    packet::Spheres view = spheres;
+    view.tested = primary_tested.data();
+    view.tested_count = static_cast<int>(primary_tested.size());
+    return view;
+  }
+
+  // The spheres shadow rays from points within the ball (b, ball) towards `light` can meet:
+  // the rays lie within `ball` of the segment from b to a point light (of the ray from b along
+  // L for a directional one), so a sphere farther than its radius + `ball` from that segment
+  // meets none. The margins dwarf rounding, so culling never changes an answer.
+  packet::Spheres shadow_spheres(const Vec3& b, double ball, const Light& light, const Vec3& l) {
+    if (walk_hierarchy) return no_spheres();
+    shadow_tested.clear();
+    const bool point = light.type == LightType::kPoint;
+    const Vec3 w = point ? light.position - b : l;
+    const double ww = glm::dot(w, w);
+    const double reach = point ? glm::length(w) : 0.0;
+    for (std::size_t k = 0; k < scene.spheres.size(); ++k) {
+      const Sphere& sp = scene.spheres[k];
+      const Vec3 cb = sp.center - b;
+      double s = ww > 0 ? glm::dot(cb, w) / ww : 0.0;
+      s = point ? std::clamp(s, 0.0, 1.0) : std::max(s, 0.0);
+      const double dist = glm::length(cb - s * w);
+      const double margin = 1e-6 * (sp.radius + ball) + 1e-9 * (glm::length(cb) + reach + max_abs(b));
+      if (!(dist > sp.radius + ball + margin)) shadow_tested.push_back(static_cast<std::int32_t>(k));
+    }
+    packet::Spheres view = spheres;
+    view.tested = shadow_tested.data();
+    view.tested_count = static_cast<int>(shadow_tested.size());
+    return view;
+  }
+
+  // The nearest hit of every ray: spheres and planes in the kernel, then the scene's few loose
+  // triangles ray by ray, in intersect_all's order.
+  void find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested) {
+    lv.fit_lanes(rays.n);
+    for (int i = 0; i < rays.n; ++i) {
+      lv.t[at(i)] = kInf;
+      lv.id[at(i)] = -1;
+    }
+    packet::nearest(tested, planes, rays.view(), padded(rays.n), lv.t.data(), lv.id.data());
+    if (walk_hierarchy) {
+      packet::hierarchy_nearest(hierarchy, rays.view(), rays.n,
+                                {lv.t.data(), lv.id.data(), lv.prim.data(), lv.b1.data(), lv.b2.data()});
+      return;
+    }
+    if (scene.triangles.empty()) return;
+    const int first = spheres.count + planes.count;
+    for (int i = 0; i < rays.n; ++i) {
+      const std::size_t u = at(i);
+      const Ray ray = make_ray(rays.origin(i), rays.dir(i));
+      if (const int k = nearest_triangle(scene.triangles, ray, make_shear(ray.dir), lv.t[u], lv.b1[u], lv.b2[u]);
+          k >= 0) {
+        lv.id[u] = first + k;
+      }
+    }
+  }
+
+  // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
+  void test_shadows(Level& lv, int lanes, const packet::Spheres& tested) {
+    std::fill_n(lv.blocked.begin(), padded(lanes), std::uint8_t{0});
+    const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
+    packet::occluded(tested, planes, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
+    if (walk_hierarchy) {
+      packet::hierarchy_occluded(hierarchy, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
+      return;
+    }
+    if (scene.triangles.empty()) return;
+    for (int h = 0; h < lanes; ++h) {
+      const std::size_t u = at(h);
+      if (lv.shadow[u] != Shadow::kTest || lv.blocked[u]) continue;
+      const Ray ray = make_ray(Vec3(lv.sox[u], lv.soy[u], lv.soz[u]), Vec3(lv.sdx[u], lv.sdy[u], lv.sdz[u]));
+      if (any_triangle(scene.triangles, ray, make_shear(ray.dir), lv.st_max[u])) lv.blocked[u] = 1;
+    }
+  }
+
+  // The light loop of shade() for every hit of the level, one light at a time.
+  void shade_lights(Level& lv, int lanes, RayCounts& counts) {
+    const packet::ShadedPoints pts{lv.px.data(), lv.py.data(), lv.pz.data(), lv.nx.data(), lv.ny.data(),
+                                   lv.nz.data(), lv.gx.data(), lv.gy.data(), lv.gz.data(), lv.vx.data(),
+                                   lv.vy.data(), lv.vz.data(), lv.offset.data(), lv.lit.data()};
+    const packet::LightOut out{lv.n_dot_l.data(), lv.cos_spec.data(), lv.sox.data(), lv.soy.data(), lv.soz.data(),
+                               lv.sdx.data(),     lv.sdy.data(),      lv.sdz.data(), lv.st_max.data()};
+    const bool blinn = scene.specular_model == SpecularModel::kBlinn;
+    const std::size_t materials = scene.materials.size();
+    for (std::size_t li = 0; li < scene.lights.size(); ++li) {
+      const Light& light = scene.lights[li];
+      if (!light.enabled) continue;
+      packet::LightIn in{};
+      in.point = light.type == LightType::kPoint;
+      const Vec3 l = in.point ? light.position : -light.direction;
+      in.x = l.x, in.y = l.y, in.z = l.z;
+      in.shrink = in.point ? surface_offset(light.position, 0) : 0.0;
+      in.blinn = blinn;
+      packet::light(in, pts, padded(lanes), out);
+
+      // Lit points (N.L > 0, a material with kd or ks) cast a shadow ray, except where the
+      // light is within rounding distance (visible without one). N.L is NaN for a point light
+      // exactly at P.
+      bool any_test = false;
+      std::uint64_t shadow_rays = 0;
+      for (int h = 0; h < lanes; ++h) {
+        const std::size_t u = at(h);
+        const bool on = lv.lit[u] && lv.n_dot_l[u] > 0;
+        const bool test = on && lv.st_max[u] > 0;
+        shadow_rays += on;
+        any_test |= test;
+        lv.shadow[u] = static_cast<Shadow>(on + test);
+        if (!test) lv.st_max[u] = 0;
+      }
+      counts.shadow += shadow_rays;
+      for (int h = lanes; h < padded(lanes); ++h) lv.st_max[at(h)] = 0;
+      if (any_test) {
+        // The rays start within max_offset of the hit points' bounding box.
+        const double ball = (0.5 * glm::length(lv.hi - lv.lo) + lv.max_offset) * (1 + 1e-9);
+        test_shadows(lv, lanes, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l));
+      }
+      // The light's terms where it is seen. The specular factor (pow) is computed only there:
+      // a blocked light's would be multiplied by vis = 0.
+      for (int h = 0; h < lanes; ++h) {
+        const std::size_t u = at(h);
+        if (lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
+        const std::size_t m = at(lv.material[u]);
+        const MaterialInfo& mi = info[m];
+        const double spec = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
+        const std::size_t lm = li * materials + m;
+        Terms& t = lv.terms[u];
+        t.diffuse += light_kd[lm] * lv.n_dot_l[u];
+        t.specular += light_ks[lm] * spec;
+      }
+    }
+  }
+
+  // The primary rays of pixels [x0, x1) x [y0, y1) (sample `sample_index`), row by row; returns
+  // the spheres they can meet.
+  packet::Spheres primary_rays(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
+                    std::uint32_t seed) {
+    const int w = x1 - x0;
+    const int n = w * (y1 - y0);
+    primary.reserve_lanes(n);
+    primary.n = n;
+    fit(x_plus_u, padded(n));
+    fit(y_plus_v, padded(n));
+    int i = 0;
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x, ++i) {
+        double u, v;
+        sample_offset(x, y, sample_index, u, v, seed);
+        x_plus_u[at(i)] = x + u;
+        y_plus_v[at(i)] = y + v;
+      }
+    }
+    const packet::CameraIn cam{frame.forward.x, frame.forward.y, frame.forward.z, frame.right.x,
+                               frame.right.y,   frame.right.z,   frame.up.x,      frame.up.y,
+                               frame.up.z,      static_cast<double>(frame.width), static_cast<double>(frame.height)};
+    packet::camera_dirs(cam, x_plus_u.data(), y_plus_v.data(), padded(n), primary.dx.data(), primary.dy.data(),
+                        primary.dz.data());
+    for (int k = 0; k < padded(n); ++k) {
+      primary.ox[at(k)] = frame.origin.x;
+      primary.oy[at(k)] = frame.origin.y;
+      primary.oz[at(k)] = frame.origin.z;
+      primary.weight[at(k)] = 1.0;
+    }
+    return primary_spheres(frame, x0, y0, x1, y1);
+  }
+
+  // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n); `tested`:
+  // the spheres those rays can meet.
+  void trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts) {
+    Level& lv = levels[at(depth)];
+    find_hits(lv, rays, tested);
+    const int lanes = rays.n;
+    packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
+                        padded(lanes), lv.records());
+    bool any_hit = false, any_bounce = false;
+    Vec3 lo(kInf), hi(-kInf);
+    double max_offset = 0;
+    for (int i = 0; i < lanes; ++i) {
+      const std::size_t u = at(i);
+      const std::int32_t id = lv.id[u];
+      if (id < 0) {
+        out[i] = depth == 0 && primary_term != Term::kFull ? Color(0) : scene.background;
+        lv.lit[u] = lv.bounces[u] = 0;
+        continue;
+      }
+      any_hit = true;
+      const int material = material_of(id, lv.prim[u]);
+      const MaterialInfo& mi = info[at(material)];
+      lv.material[u] = material;
+      lv.lit[u] = mi.lit;
+      lv.bounces[u] = mi.bounces;
+      lv.ior[u] = mi.ior;
+      any_bounce |= mi.bounces;
+      Terms& t = lv.terms[u];
+      t = Terms{};
+      t.ambient = mi.ambient;
+      if (id >= spheres.count + planes.count) record_triangle_hit(lv, rays, i);
+      if (depth == 0 && shading_eye) look_from_eye(lv, i);
+      const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+      max_offset = std::max(max_offset, lv.offset[u]);
+    }
+    for (int i = lanes; i < padded(lanes); ++i) lv.lit[at(i)] = lv.bounces[at(i)] = 0;
+    if (!any_hit) return;
+    lv.lo = lo;
+    lv.hi = hi;
+    lv.max_offset = max_offset;
+    const TermsWanted wanted = depth == 0 ? primary_wanted : TermsWanted{};
+    if (wanted.lights) shade_lights(lv, lanes, counts);
+
+    const bool children = any_bounce && depth < limits.max_depth;
+    if (children) send_children(lv, rays, lanes, depth, wanted, counts);
+    for (int i = 0; i < lanes; ++i) {
+      const std::size_t u = at(i);
+      if (lv.id[u] < 0) continue;
+      Terms& t = lv.terms[u];
+      if (children && lv.bounces[u]) {
+        if (lv.reflected_index[u] >= 0) t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
+        if (lv.refracted_index[u] >= 0) t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
+      }
+      out[i] = depth == 0 ? term_value(t, primary_term) : t.sum();
+    }
+  }
+
+  // shade()'s V at a primary hit when the eye has moved ("move your head"): towards the eye; an
+  // eye exactly at P has no direction and keeps -D.
+  void look_from_eye(Level& lv, int i) const {
+    const std::size_t u = at(i);
+    const Vec3 to_eye = *shading_eye - Vec3(lv.px[u], lv.py[u], lv.pz[u]);
+    const double len = glm::length(to_eye);
+    if (!(len > 0)) return;
+    const Vec3 v = to_eye / len;
+    lv.vx[u] = v.x, lv.vy[u] = v.y, lv.vz[u] = v.z;
+  }
+
+  // A triangle's hit record (loose or a mesh's), by the scalar functions (the kernel does spheres
+  // and planes).
+  void record_triangle_hit(Level& lv, const RayBatch& rays, int i) {
+    const std::size_t u = at(i);
+    const Vec3 d = rays.dir(i);
+    const Hit hit = make_hit(scene, make_ray(rays.origin(i), d), object_of(lv.id[u], lv.prim[u]), lv.t[u], lv.b1[u], lv.b2[u]);
+    const HitSide side = hit_side(hit, d);
+    lv.entering[u] = side.entering;
+    lv.px[u] = hit.p.x, lv.py[u] = hit.p.y, lv.pz[u] = hit.p.z;
+    lv.nx[u] = side.n.x, lv.ny[u] = side.n.y, lv.nz[u] = side.n.z;
+    lv.gx[u] = side.ng.x, lv.gy[u] = side.ng.y, lv.gz[u] = side.ng.z;
+    lv.vx[u] = -d.x, lv.vy[u] = -d.y, lv.vz[u] = -d.z;
+    lv.offset[u] = surface_offset(scene, hit);
+  }
+
+  // Reflected and refracted rays of the level's mirror and glass hits, traced as the next
+  // level's two batches (shade()'s recursion, with its path-weight pruning), for the lanes marked
+  // in `bounces` (at the primary hits, only the children whose terms are `wanted`).
+  void send_children(Level& lv, const RayBatch& rays, int lanes, int depth, const TermsWanted& wanted,
+                     RayCounts& counts) {
+    lv.reflected.n = 0;
+    lv.refracted.n = 0;
+    packet::bounce({rays.dx.data(), rays.dy.data(), rays.dz.data(), lv.nx.data(), lv.ny.data(), lv.nz.data(),
+                    lv.ior.data(), lv.entering.data(), lv.bounces.data()},
+                   padded(lanes),
+                   {lv.eta.data(), lv.fresnel.data(), lv.tir.data(), lv.mx.data(), lv.my.data(), lv.mz.data(),
+                    lv.tx.data(), lv.ty.data(), lv.tz.data()});
+    lv.reflected.reserve_lanes(lanes);
+    lv.refracted.reserve_lanes(lanes);
+    for (int k = 0; k < lanes; ++k) {
+      const std::size_t u = at(k);
+      if (!lv.bounces[u]) continue;
+      lv.reflected_index[u] = lv.refracted_index[u] = -1;
+      const Material& m = scene.materials[at(lv.material[u])];
+      const Vec3 ng(lv.gx[u], lv.gy[u], lv.gz[u]);
+      const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
+      // bounce(), from the kernel's geometry and Fresnel reflectance.
+      Bounce bn;
+      bn.eta = lv.eta[u];
+      bn.tir = lv.tir[u] != 0;
+      if (uses_fresnel(m)) bn.fresnel = lv.fresnel[u];
+      set_bounce_weights(m, bn);
+      bn.mirror = Vec3(lv.mx[u], lv.my[u], lv.mz[u]);
+      bn.refracted = Vec3(lv.tx[u], lv.ty[u], lv.tz[u]);
+      lv.kr[u] = bn.kr;
+      lv.kt[u] = bn.kt;
+      const double weight = rays.weight[u];
+      const double offset = lv.offset[u];
+      const auto send = [&](const Color& kw, const Vec3& dir, RayBatch& batch, int& index, std::uint64_t& count) {
+        if (is_zero(kw)) return;
+        const double w = weight * max_channel(kw);
+        if (w < limits.min_weight) return;
+        ++count;
+        index = batch.n;
+        batch.push(offset_origin(p, ng, dir, offset), dir, w);
+      };
+      if (wanted.reflection) send(bn.kr, bn.mirror, lv.reflected, lv.reflected_index[u], counts.reflection);
+      if (wanted.refraction && !is_zero(bn.kt)) {
+        send(bn.kt, bn.refracted, lv.refracted, lv.refracted_index[u], counts.refraction);
+      }
+    }
+    fit(lv.reflected_radiance, lv.reflected.n);
+    fit(lv.refracted_radiance, lv.refracted.n);
+    if (lv.reflected.n > 0) trace_level(depth + 1, lv.reflected, spheres, lv.reflected_radiance.data(), counts);
+    if (lv.refracted.n > 0) trace_level(depth + 1, lv.refracted, spheres, lv.refracted_radiance.data(), counts);
+  }
+};
+
+PacketTracer::PacketTracer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+PacketTracer::~PacketTracer() = default;
+
+bool PacketTracer::draws(Term term) {
+  switch (term) {
+    case Term::kFull:
+    case Term::kAmbient:
+    case Term::kDiffuse:
+    case Term::kSpecular:
+    case Term::kReflection:
+    case Term::kRefraction:
+      return true;
+    default:
+      return false;
+  }
+}
+
+void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
+                               std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye) {
+  Impl& im = *impl_;
+  im.primary_term = term;
+  im.primary_wanted = terms_wanted(term);
+  im.shading_eye = shading_eye;
+  const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
+  counts.primary += static_cast<std::uint64_t>(im.primary.n);
+  im.trace_level(0, im.primary, tested, out, counts);
+}
+
+int PacketTracer::cast_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1) {
+  Impl& im = *impl_;
+  const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
+  Level& lv = im.levels[0];
+  im.find_hits(lv, im.primary, tested);
+  int hits = 0;
+  for (int i = 0; i < im.primary.n; ++i) hits += lv.id[at(i)] >= 0;
+  return hits;
+}
+
+}  // namespace phonglab

@@ -1,0 +1,61 @@
+// The packet tracer: a tile's primary rays traced together, one recursion level at a time.
+//
+// All rays of a level go through each stage as one batch: nearest hits, the light loop with its
+// shadow rays (one batch per light), then the reflected and the refracted rays as the next
+// level's batches. The intersection tests, the camera rays and the light geometry run four
+// lanes wide (AVX2, packet_kernels.h); hit records, pow and the recursion set-up reuse the
+// scalar renderer's own functions. The image is bit-identical to render_sample's, pixel by
+// pixel (tests/core/test_packet.cpp), so the packet tracer is purely a matter of speed.
+//
+// It serves the full image and the five term images ("move your head" included) of scenes
+// traced by brute force (no acceleration structure: a few spheres and triangles, any planes, no
+// mesh) and of scenes with the project's own SceneBvh (meshes, larger scenes: walked four rays
+// at a time), with the production numerics, on CPUs with AVX2; render_pass falls back to the
+// scalar renderer for everything else (another accelerator, the numerics variants, the debug
+// views).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "core/scene/camera.h"
+#include "core/render/render.h"
+#include "core/scene/scene.h"
+#include "core/shading/shading.h"
+
+namespace phonglab {
+
+// Whether this CPU runs the packet kernels (AVX2), checked once.
+bool packet_cpu_supported();
+
+// Whether the packet tracer can render `scene` (prepared) on this CPU.
+bool packet_tracing_applies(const Scene& scene);
+
+// Traces tiles of one scene. One per thread: it owns its batch buffers, reused tile to tile.
+class PacketTracer {
+ public:
+  explicit PacketTracer(const Scene& scene);  // the scene must outlive the tracer
+  ~PacketTracer();
+  PacketTracer(const PacketTracer&) = delete;
+  PacketTracer& operator=(const PacketTracer&) = delete;
+
+  // Whether render_tile draws `term`: the full image and its five terms (not the debug views).
+  static bool draws(Term term);
+
+  // Sample `sample_index` of pixels [x0, x1) x [y0, y1), row by row into `out`
+  // ((x1 - x0) * (y1 - y0) colours): the value render_sample(term, ..., shading_eye) gives each
+  // pixel, for a term that draws() accepts.
+  void render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
+                   std::uint32_t seed, Color* out, RayCounts& counts, Term term = Term::kFull,
+                   const Vec3* shading_eye = nullptr);
+
+  // The nearest hits of the pixel-centre rays of pixels [x0, x1) x [y0, y1), without shading
+  // (the benchmark of primary rays alone). Returns how many rays hit something.
+  int cast_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace phonglab

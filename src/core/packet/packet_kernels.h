@@ -1,0 +1,163 @@
+// The hot loops of the packet tracer (src/core/packet/packet.cpp), four rays at a time with AVX2.
+//
+// They live in their own translation unit, compiled with -mavx2 and called only after a
+// runtime check of the CPU, so the default build still runs on any x86-64 machine. That unit
+// must not define any inline or template function it shares with the rest of the program (the
+// linker could otherwise keep its AVX2 copy for everyone): it sees only this header, which
+// declares plain data and functions, and <immintrin.h>. A test checks its object file.
+//
+// Every kernel repeats, operation for operation, the scalar code it stands for (sphere_root,
+// intersect_plane, camera_ray, the light loop of shade), with no fused multiply-add, so the
+// packet tracer's image is bit-identical to the scalar renderer's.
+#pragma once
+
+#include <cstdint>
+
+namespace phonglab::packet {
+
+// Structure-of-arrays views. Lane counts are multiples of 4; lanes past the live ones hold
+// finite padding and their results are ignored.
+struct Rays {
+  const double *ox, *oy, *oz;
+  const double *dx, *dy, *dz;
+};
+
+struct Spheres {
+  const double *cx, *cy, *cz, *r;  // every sphere of the scene, by index
+  const double* offset_base;  // the coordinate part of surface_offset: margin (max|c| + r)
+  // The spheres a query tests, in increasing order: all, or those a batch's rays can meet.
+  const std::int32_t* tested;
+  int tested_count;
+  int count;  // all spheres
+};
+
+struct Planes {
+  const double *px, *py, *pz;  // stored point
+  const double *nx, *ny, *nz;  // unit normal
+  const double* point_size;    // max|point|
+  int count;
+};
+
+// Nearest sphere or plane with t in (0, t_best) for each lane, in the order of intersect_all
+// (spheres, then planes). On entry t_best holds each lane's limit (+inf for a plain query); on
+// return the nearest t, and id the sphere index, spheres.count + the plane index, or is left
+// unchanged when nothing is nearer.
+void nearest(const Spheres& spheres, const Planes& planes, const Rays& rays, int lanes, double* t_best,
+             std::int32_t* id);
+
+// Any sphere or plane with t in (0, t_max) (occluded_all): sets occluded[i] = 1 for those
+// lanes and leaves the others as they are. Lanes whose t_max is not > 0 hold no ray.
+void occluded(const Spheres& spheres, const Planes& planes, const Rays& rays, const double* t_max, int lanes,
+              std::uint8_t* occluded);
+
+// Hit records (make_hit, hit_side and surface_offset) of the lanes whose nearest hit is a
+// sphere or a plane (id as `nearest` leaves it); other lanes are left as they are.
+struct HitRecords {
+  double *px, *py, *pz;  // P
+  double *nx, *ny, *nz;  // N, facing the ray
+  double *gx, *gy, *gz;  // geometric normal, facing the ray
+  double *vx, *vy, *vz;  // V = -D
+  double* offset;        // surface_offset(scene, hit)
+  std::uint8_t* entering;
+};
+struct OffsetMargins {
+  double coordinate, size;  // kCoordinateMargin, kSizeMargin (geometry.h)
+};
+void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargins& margins, const Rays& rays,
+                 const double* t, const std::int32_t* id, int lanes, const HitRecords& out);
+
+// camera_ray for pixels (x + u, y + v): directions only (the origin is the eye).
+struct CameraIn {
+  double fx, fy, fz;  // forward
+  double rx, ry, rz;  // right, scaled
+  double ux, uy, uz;  // up, scaled
+  double width, height;
+};
+void camera_dirs(const CameraIn& cam, const double* x_plus_u, const double* y_plus_v, int lanes, double* dx,
+                 double* dy, double* dz);
+
+// One light at a batch of shaded points: the light loop of shade() up to the shadow query.
+struct LightIn {
+  bool point;            // point light at (x, y, z); otherwise L = (x, y, z) = -direction
+  double x, y, z;
+  double shrink;         // point lights: surface_offset(position, 0), taken off the far end
+  bool blinn;            // specular model: Blinn's N.H instead of Phong's R.V
+};
+struct ShadedPoints {
+  const double *px, *py, *pz;  // P
+  const double *nx, *ny, *nz;  // N, facing the incoming ray
+  const double *gx, *gy, *gz;  // geometric normal on the same side
+  const double *vx, *vy, *vz;  // V
+  const double* offset;        // surface_offset of each point
+  const std::uint8_t* active;  // lanes to compute (others' outputs are left as they are)
+};
+struct LightOut {
+  double* n_dot_l;   // N.L; NaN where a point light sits exactly on P (no direction)
+  double* cos_spec;  // R.V (Phong) or N.H (Blinn), before clamping
+  double *ox, *oy, *oz, *dx, *dy, *dz;  // the shadow ray
+  double* t_max;     // its far end; not > 0: the light is within rounding distance (visible)
+};
+void light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
+
+// bounce() at a batch of mirror and glass hits: the geometry of the children and the exact
+// Fresnel reflectance (the weights kr', kt' are left to the caller).
+struct BounceIn {
+  const double *dx, *dy, *dz;  // the incoming ray's direction D
+  const double *nx, *ny, *nz;  // N, facing D
+  const double* ior;           // the material's index of refraction
+  const std::uint8_t* entering;
+  const std::uint8_t* active;  // lanes to compute (others' outputs are left as they are)
+};
+struct BounceOut {
+  double* eta;        // n_incident / n_transmitted
+  double* fresnel;    // fresnel_exact(cos_i, eta), 1 under total internal reflection
+  std::uint8_t* tir;  // total internal reflection
+  double *mx, *my, *mz;  // reflected direction
+  double *tx, *ty, *tz;  // transmitted direction (the reflected one under TIR)
+};
+void bounce(const BounceIn& in, int lanes, const BounceOut& out);
+
+// A bounding volume hierarchy for packets of four rays (the scene's SceneBvh, bvh.h and accel.h).
+// Node is BvhNode's layout (box lo, box hi, first, count, axis); packet.cpp checks that it is.
+struct Node {
+  double box[6];  // lo x, y, z, then hi x, y, z
+  std::uint32_t first, count, axis;
+};
+struct MeshTree {
+  const Node* nodes;       // the mesh's BVH; its leaves index its triangles directly
+  const double* vertices;  // the first triangle's v0.x; v1 and v2 follow v0, as in Triangle
+};
+struct Hierarchy {
+  const Node* top;                  // the top level over spheres, loose triangles and meshes
+  const std::uint8_t* prim_kind;    // by top-level leaf slot: 0 sphere, 1 loose triangle, 2 mesh
+  const std::int32_t* prim_index;   // by top-level leaf slot: index among its kind
+  const double *cx, *cy, *cz, *r;   // spheres, by index
+  const double* triangles;          // the first loose triangle's v0.x
+  const MeshTree* meshes;           // by mesh index
+  long triangle_stride;             // doubles from one Triangle's v0.x to the next's
+  int triangle_id;                  // id of loose triangle 0 (spheres + planes); mesh m: mesh_id + m
+  int mesh_id;
+  double far_widen, t_max_slack;    // hits_box's kBoxFarWiden and kBoxTmaxSlack
+};
+
+// SceneBvh::intersect without its planes, for lanes [0, live) (the others are skipped): each
+// lane walks the hierarchy in the order its own traversal would (near child first by its signs,
+// lanes of different signs in turn) and tests exactly the primitives it would. On entry t, id
+// hold each lane's nearest plane hit (+inf, -1 for none); on return the nearest hit (ties
+// between triangles to the first in the scene's order), with a mesh's triangle in `prim` and a
+// triangle's barycentric weights of v1 and v2 in b1, b2. Lanes whose answer is unchanged keep
+// their id and prim.
+struct NearestHits {
+  double* t;
+  std::int32_t* id;
+  std::int32_t* prim;
+  double *b1, *b2;
+};
+void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const NearestHits& out);
+
+// SceneBvh::occluded without its planes: sets occluded[i] = 1 for the lanes that anything blocks
+// within (0, t_max). Lanes whose t_max is not > 0, or that are occluded already, are skipped.
+void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_max, int lanes,
+                        std::uint8_t* occluded);
+
+}  // namespace phonglab::packet

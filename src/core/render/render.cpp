@@ -1,0 +1,229 @@
+#include "core/render/render.h"
+
+#include <array>
+#include <chrono>
+#include <thread>
+
+#include "core/packet/packet.h"
+
+namespace phonglab {
+
+namespace {
+constexpr std::array<std::string_view, 9> kTermNames = {"full",       "ambient",    "diffuse",
+                                                        "specular",   "reflection", "refraction",
+                                                        "normal",     "depth",      "rays"};
+}  // namespace
+
+std::optional<Term> term_from_name(std::string_view name) {
+  for (std::size_t i = 0; i < kTermNames.size(); ++i) {
+    if (kTermNames[i] == name) return static_cast<Term>(i);
+  }
+  return std::nullopt;
+}
+
+std::string_view term_name(Term term) { return kTermNames[static_cast<std::size_t>(term)]; }
+
+void Accumulator::reset(int w, int h) {
+  width = w;
+  height = h;
+  samples = 0;
+  sum.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), Color(0));
+}
+
+Color Accumulator::mean(int x, int y) const {
+  if (samples == 0) return Color(0);
+  return sum[static_cast<std::size_t>(y) * width + x] / static_cast<double>(samples);
+}
+
+int resolve_thread_count(int requested) {
+  if (requested > 0) return requested;
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? static_cast<int>(hw) : 1;
+}
+
+Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
+                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed,
+                    const Vec3* shading_eye) {
+  double u, v;
+  sample_offset(x, y, sample_index, u, v, seed);
+  const Ray ray = camera_ray(frame, x, y, u, v);
+  ++counts.primary;
+  const TraceLimits limits{scene.max_depth, scene.min_weight};
+  if (term == Term::kFull) return trace(scene, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
+  if (term == Term::kRays) {
+    const std::uint64_t before = counts.total() - 1;
+    trace(scene, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
+    return Color(static_cast<double>(counts.total() - before));
+  }
+  const std::optional<Hit> hit = intersect(scene, ray);
+  if (!hit) return Color(0);  // term and debug images are 0 where the primary ray misses
+  switch (term) {
+    case Term::kNormal: {
+      const Vec3 n = glm::dot(hit->ns, ray.dir) < 0 ? hit->ns : -hit->ns;
+      return 0.5 * n + 0.5;
+    }
+    case Term::kDepth:
+      return Color(hit->t);
+    default:
+      break;
+  }
+  return term_value(shade(scene, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, terms_wanted(term)), term);
+}
+
+TermsWanted terms_wanted(Term term) {
+  switch (term) {
+    case Term::kAmbient: return {false, false, false};
+    case Term::kDiffuse:
+    case Term::kSpecular: return {true, false, false};
+    case Term::kReflection: return {false, true, false};
+    case Term::kRefraction: return {false, false, true};
+    default: return {};
+  }
+}
+
+Color term_value(const Terms& t, Term term) {
+  switch (term) {
+    case Term::kAmbient: return t.ambient;
+    case Term::kDiffuse: return t.diffuse;
+    case Term::kSpecular: return t.specular;
+    case Term::kReflection: return t.reflection;
+    case Term::kRefraction: return t.refraction;
+    default: return t.sum();
+  }
+}
+
+namespace {
+
+// The scene itself, or, when its geometry was edited after prepare_scene, a re-prepared copy
+// in `holder`: a stale acceleration structure would silently miss or invent hits.
+const Scene& up_to_date(const Scene& scene, std::optional<Scene>& holder) {
+  if (!scene.accel || scene.accel->matches(scene)) return scene;
+  holder = scene;
+  prepare_scene(*holder);
+  return *holder;
+}
+
+}  // namespace
+
+PassStats render_pass(const Scene& given, const RenderOptions& options, Accumulator& accum,
+                      const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<Scene> refreshed;
+  const Scene& scene = up_to_date(given, refreshed);
+  const CameraFrame frame = make_camera_frame(scene.camera, accum.width, accum.height);
+  const int tile = options.tile_size > 0 ? options.tile_size : 16;
+  const int tiles_x = (accum.width + tile - 1) / tile;
+  const int tiles_y = (accum.height + tile - 1) / tile;
+  const int tile_count = tiles_x * tiles_y;
+  const std::uint32_t sample_index = accum.samples;
+  const int thread_count = std::max(1, std::min(resolve_thread_count(options.threads), tile_count));
+  const Vec3* shading_eye = options.shading_eye ? &*options.shading_eye : nullptr;
+
+  std::atomic<int> next_tile{0};
+  std::atomic<bool> stopped{false};
+  std::vector<PassStats> per_thread(static_cast<std::size_t>(thread_count));
+
+  // Each tile is written by exactly one thread and each pixel's value depends only on
+  // (x, y, sample_index), so the image is the same for any thread count or tile order.
+  const bool packets = options.packets && PacketTracer::draws(options.term) && packet_tracing_applies(scene);
+  auto worker = [&](PassStats& stats) {
+    std::optional<PacketTracer> tracer;
+    std::vector<Color> tile_radiance;
+    if (packets) {
+      tracer.emplace(scene);
+      tile_radiance.resize(static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile));
+    }
+    const auto add = [&](Color* row, int x, Color c) {
+      if (!all_finite(c)) {
+        ++stats.nan_count;
+        c = Color(0);
+      }
+      row[x] += c;
+    };
+    for (;;) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) {
+        stopped.store(true, std::memory_order_relaxed);
+        return;
+      }
+      const int t = next_tile.fetch_add(1, std::memory_order_relaxed);
+      if (t >= tile_count) return;
+      const int x0 = (t % tiles_x) * tile;
+      const int y0 = (t / tiles_x) * tile;
+      const int x1 = std::min(x0 + tile, accum.width);
+      const int y1 = std::min(y0 + tile, accum.height);
+      if (tracer) {
+        tracer->render_tile(frame, x0, y0, x1, y1, sample_index, options.seed, tile_radiance.data(), stats.rays,
+                            options.term, shading_eye);
+        const Color* c = tile_radiance.data();
+        for (int y = y0; y < y1; ++y) {
+          Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
+          for (int x = x0; x < x1; ++x) add(row, x, *c++);
+        }
+        continue;
+      }
+      for (int y = y0; y < y1; ++y) {
+        Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
+        for (int x = x0; x < x1; ++x) {
+          add(row, x, render_sample(scene, frame, options.term, x, y, sample_index, stats.rays, options.seed,
+                                    shading_eye));
+        }
+      }
+    }
+  };
+
+  if (thread_count == 1) {
+    worker(per_thread[0]);
+  } else {
+    std::vector<std::thread> threads;
+    threads.reserve(static_cast<std::size_t>(thread_count - 1));
+    for (int i = 1; i < thread_count; ++i) threads.emplace_back(worker, std::ref(per_thread[static_cast<std::size_t>(i)]));
+    worker(per_thread[0]);
+    for (std::thread& th : threads) th.join();
+  }
+
+  PassStats total;
+  for (const PassStats& s : per_thread) {
+    total.rays += s.rays;
+    total.nan_count += s.nan_count;
+  }
+  total.completed = !stopped.load();
+  total.packets = packets;
+  if (total.completed) ++accum.samples;
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return total;
+}
+
+PassStats render_passes(const Scene& scene, const RenderOptions& options, Accumulator& accum, int passes) {
+  PassStats total;
+  for (int i = 0; i < passes; ++i) {
+    const PassStats pass = render_pass(scene, options, accum);
+    total.rays += pass.rays;
+    total.nan_count += pass.nan_count;
+    total.seconds += pass.seconds;
+    total.packets = pass.packets;
+  }
+  return total;
+}
+
+}  // namespace phonglab
+
+namespace phonglab {
+
+PixelProbe probe_pixel(const Scene& given, int width, int height, int x, int y,
+                       const std::optional<Vec3>& shading_eye) {
+  std::optional<Scene> refreshed;
+  const Scene& scene = up_to_date(given, refreshed);
+  PixelProbe probe;
+  probe.x = x;
+  probe.y = y;
+  const CameraFrame frame = make_camera_frame(scene.camera, width, height);
+  double u, v;
+  sample_offset(x, y, 0, u, v);
+  const Ray ray = camera_ray(frame, x, y, u, v);
+  ++probe.rays.primary;
+  trace(scene, TraceLimits{scene.max_depth, scene.min_weight}, ray, 0, 1.0, probe.rays, &probe.root,
+        shading_eye ? &*shading_eye : nullptr);
+  return probe;
+}
+
+}  // namespace phonglab

@@ -1,0 +1,104 @@
+// Progressive rendering: one pass adds one sample to every pixel, tiles spread over threads.
+// The image is a function of the scene and the sample count only, never of the thread count.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "core/scene/camera.h"
+#include "core/scene/scene.h"
+#include "core/shading/shading.h"
+
+namespace phonglab {
+
+// What a pixel shows: the full equation, one of its five terms at the primary hit, or a
+// debug view.
+enum class Term : std::uint8_t {
+  kFull,
+  kAmbient,
+  kDiffuse,
+  kSpecular,
+  kReflection,
+  kRefraction,
+  kNormal,  // facing shading normal N mapped to 0.5 + 0.5 N
+  kDepth,   // primary hit distance t (world units; 0 on a miss)
+  kRays,    // rays cast for the sample, all kinds (a heat map input)
+};
+
+// The value a shaded primary hit gives for `term`: one of its five terms, else their sum.
+Color term_value(const Terms& terms, Term term);
+// What shading a primary hit must compute for `term`: a term image needs only its own term.
+TermsWanted terms_wanted(Term term);
+
+// Parses "full", "ambient", ... ; nullopt for an unknown name.
+std::optional<Term> term_from_name(std::string_view name);
+std::string_view term_name(Term term);
+
+struct RenderOptions {
+  Term term = Term::kFull;
+  int threads = 0;  // 0: all hardware threads
+  int tile_size = 16;  // pixels per tile side
+  std::uint32_t seed = 0;  // sample set (sample 0 is the centre for every seed)
+  // "Move your head": the eye used for V at the primary hit (the view rays stay the camera's;
+  // reflection and refraction children use their own -D). nullopt: V = -D, the plain equation.
+  std::optional<Vec3> shading_eye;
+  // Trace full images in packets (src/core/packet/packet.h) where the scene and the CPU allow it.
+  // The image is bit-identical either way; off forces the scalar renderer (tests, comparisons).
+  bool packets = true;
+};
+
+// Sums of samples per pixel, row-major from the top-left, plus the sample count.
+struct Accumulator {
+  int width = 0;
+  int height = 0;
+  std::uint32_t samples = 0;  // samples every pixel has
+  std::vector<Color> sum;     // width * height running sums (double, so 1e6 samples stay exact)
+  void reset(int w, int h);
+  Color mean(int x, int y) const;  // sum / samples (0 before the first pass)
+};
+
+struct PassStats {
+  RayCounts rays;
+  std::uint64_t nan_count = 0;  // samples that were NaN or Inf (replaced by 0; should stay 0)
+  double seconds = 0;           // wall-clock time of the pass
+  bool completed = true;        // false when cancelled midway (accum must then be reset)
+  bool packets = false;         // traced by the packet tracer (else by the scalar renderer)
+};
+
+// The radiance (or term, or debug value) of one primary ray.
+Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
+                    std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed = 0,
+                    const Vec3* shading_eye = nullptr);
+
+// Adds sample number `accum.samples` to every pixel. The scene must be prepared
+// (prepare_scene). When `cancel` becomes true the pass stops between tiles; `accum` is then
+// partly updated and must be reset before further use. Returns the pass's statistics.
+PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumulator& accum,
+                      const std::atomic<bool>* cancel = nullptr);
+
+// `passes` passes in a row (no cancel); their statistics summed (rays, NaNs, seconds).
+PassStats render_passes(const Scene& scene, const RenderOptions& options, Accumulator& accum, int passes);
+
+// Number of threads a pass uses for `requested` (0 = all hardware threads).
+int resolve_thread_count(int requested);
+
+}  // namespace phonglab
+
+namespace phonglab {
+
+// The full ray tree of one pixel's centre ray (sample 0), for the `probe` command and panel.
+struct PixelProbe {
+  int x = 0, y = 0;
+  ProbeNode root;   // the primary ray; root.total is the pixel's value at 1 spp
+  RayCounts rays;   // rays the tree cast
+};
+
+// Replays pixel (x, y)'s centre ray of a width x height image, recording everything
+// (`shading_eye` as in RenderOptions).
+PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y,
+                       const std::optional<Vec3>& shading_eye = std::nullopt);
+
+}  // namespace phonglab

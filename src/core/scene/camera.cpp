@@ -1,0 +1,63 @@
+#include "core/scene/camera.h"
+
+#include <cmath>
+
+namespace phonglab {
+
+double view_up_sine(const Camera& camera) {
+  return glm::length(glm::cross(glm::normalize(camera.look_at - camera.position), glm::normalize(camera.up)));
+}
+
+CameraFrame make_camera_frame(const Camera& camera, int width, int height) {
+  CameraFrame f;
+  f.width = width;
+  f.height = height;
+  f.origin = camera.position;
+  f.forward = glm::normalize(camera.look_at - camera.position);
+  const Vec3 right = glm::normalize(glm::cross(f.forward, camera.up));
+  const Vec3 up = glm::cross(right, f.forward);
+  const double h = std::tan(glm::radians(camera.fov_y_deg) / 2);
+  f.right = right * (h * width / height);
+  f.up = up * h;
+  return f;
+}
+
+Ray camera_ray(const CameraFrame& f, int x, int y, double u, double v) {
+  const double sx = 2 * (x + u) / f.width - 1;
+  const double sy = 1 - 2 * (y + v) / f.height;
+  return make_ray(f.origin, glm::normalize(f.forward + sx * f.right + sy * f.up));
+}
+
+namespace {
+
+// A 32-bit integer hash with good avalanche (the "lowbias32" constants of Wellons).
+std::uint32_t hash32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
+  return x;
+}
+
+double fract(double x) { return x - std::floor(x); }
+
+}  // namespace
+
+void sample_offset(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed) {
+  if (index == 0) {
+    u = v = 0.5;
+    return;
+  }
+  // R2 sequence (Roberts 2018): alpha = (1/g, 1/g^2) with g the plastic number.
+  constexpr double kA1 = 0.7548776662466927;
+  constexpr double kA2 = 0.5698402909980532;
+  const std::uint32_t h = hash32(static_cast<std::uint32_t>(x) * 0x9E3779B1U ^
+                                 hash32(static_cast<std::uint32_t>(y) ^ hash32(seed)));
+  const double rot_u = (h & 0xFFFFU) / 65536.0;
+  const double rot_v = (h >> 16) / 65536.0;
+  u = fract(0.5 + rot_u + kA1 * index);
+  v = fract(0.5 + rot_v + kA2 * index);
+}
+
+}  // namespace phonglab

@@ -1,0 +1,162 @@
+// The lecture's illumination equation (docs/model.md): local Phong/Blinn-Phong shading with hard
+// shadows, and Whitted recursion for mirrors and glass, pruned by path weight.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/geometry/geometry.h"
+#include "core/scene/math.h"
+#include "core/scene/scene.h"
+
+namespace phonglab {
+
+// The five terms of the equation at one hit; their sum is the radiance.
+struct Terms {
+  Color ambient{0};     // ka * Ia
+  Color diffuse{0};     // sum over lights of vis * I * kd * max(0, N.L)
+  Color specular{0};    // sum over lights of vis * I * ks * spec
+  Color reflection{0};  // kr' * trace(reflected ray)
+  Color refraction{0};  // kt' * trace(refracted or totally reflected ray)
+  Color sum() const { return ambient + diffuse + specular + reflection + refraction; }
+};
+
+// Rays cast, by kind.
+struct RayCounts {
+  std::uint64_t primary = 0;
+  std::uint64_t shadow = 0;
+  std::uint64_t reflection = 0;
+  std::uint64_t refraction = 0;  // includes rays sent along the mirror direction under TIR
+  std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+  RayCounts& operator+=(const RayCounts& o) {
+    primary += o.primary;
+    shadow += o.shadow;
+    reflection += o.reflection;
+    refraction += o.refraction;
+    return *this;
+  }
+};
+
+// Normalises the scene's direction vectors (plane normals, directional lights) in place and
+// builds its acceleration structure (scene.accel); run it again after any geometry edit.
+// Every function below expects a prepared scene.
+void prepare_scene(Scene& scene);
+
+// Exact unpolarised Fresnel reflectance for a ray arriving with cos_i = -D.N >= 0, where
+// eta = n_incident / n_transmitted. 1 under total internal reflection.
+double fresnel_exact(double cos_i, double eta);
+
+// How a hit faces the incoming ray (direction d).
+struct HitSide {
+  bool entering = false;  // d arrives on the outward side of the geometric normal
+  Vec3 ng{0};             // geometric normal on d's side
+  Vec3 n{0};              // shading normal N, facing d
+};
+inline HitSide hit_side(const Hit& hit, const Vec3& d) {
+  const bool entering = glm::dot(hit.ng, d) < 0;
+  return HitSide{entering, entering ? hit.ng : -hit.ng, glm::dot(hit.ns, d) < 0 ? hit.ns : -hit.ns};
+}
+
+// The specular factor max(0, cos)^n. The base is clamped before pow, so a fractional n never
+// sees a negative base (docs/accuracy.md N4, N5); pow(0, n) is exactly 0 for n > 0, which spares the
+// call for most lit points.
+inline double specular_factor(double cos_spec, double n) {
+  const double base = clamp_positive(clamp_unit(cos_spec));
+  return (base == 0 && n > 0) ? 0.0 : std::pow(base, n);
+}
+
+// What a mirror or glass hit passes on to its children.
+struct Bounce {
+  Color kr{0}, kt{0};    // kr', kt': with Fresnel, kr + kt F and kt (1 - F)
+  double eta = 1;        // n_incident / n_transmitted
+  bool tir = false;      // total internal reflection
+  double fresnel = 0;    // F, when the material uses Fresnel
+  Vec3 mirror{0};        // reflected direction
+  Vec3 refracted{0};     // transmitted direction (the mirror one under TIR); set when kt' != 0
+                         // or `force_refraction`
+};
+// Whether m's kr and kt are weighted by the Fresnel reflectance.
+inline bool uses_fresnel(const Material& m) { return m.fresnel && !is_zero(m.kt); }
+// kr' and kt' of b from m and b.fresnel.
+inline void set_bounce_weights(const Material& m, Bounce& b) {
+  if (uses_fresnel(m)) {
+    b.kr = m.kr + m.kt * b.fresnel;
+    b.kt = m.kt * (1 - b.fresnel);
+  } else {
+    b.kr = m.kr;
+    b.kt = m.kt;
+  }
+}
+// For a ray with direction d meeting material m with facing normal n.
+Bounce bounce(const Scene& scene, const Material& m, const Vec3& d, const Vec3& n, bool entering,
+              bool force_refraction = false);
+
+// One light's part in a probed hit.
+struct ProbeLight {
+  int index = 0;          // into Scene::lights
+  Vec3 l{0};              // unit vector towards the light
+  Vec3 r{0};              // Phong: mirror of L about N; Blinn: half vector H
+  double n_dot_l = 0;
+  double r_dot_v = 0;     // Phong: R.V; Blinn: N.H
+  double spec_factor = 0; // max(0, R.V)^n (or N.H), 0 when N.L <= 0
+  double distance = 0;    // to a point light; infinity for directional lights
+  bool lit_side = false;  // N.L > 0, so a shadow ray was cast
+  bool visible = false;   // vis_l
+  ObjectRef occluder;     // nearest blocker when not visible
+  double occluder_distance = 0;  // from P to where the shadow ray meets it (when not visible)
+  Color diffuse{0};       // vis * I * kd * max(0, N.L)
+  Color specular{0};      // vis * I * ks * spec
+};
+
+// Everything about one ray of a probed pixel's ray tree.
+struct ProbeNode {
+  int depth = 0;
+  double weight = 1;        // product of max-channel weights from the camera
+  Vec3 origin{0}, dir{0};
+  bool hit = false;         // false: the ray returned the background
+  double t = 0;
+  Vec3 p{0}, ng{0}, n{0}, v{0};  // hit point, outward geometric normal, shading N (facing), V
+  bool entering = false;
+  int material = -1;
+  ObjectRef object;
+  std::vector<ProbeLight> lights;
+  Terms terms;
+  Color total{0};           // what this ray returns
+  Color kr_eff{0}, kt_eff{0};  // kr', kt'
+  double fresnel = 0;       // F when the material uses Fresnel
+  bool tir = false;         // total internal reflection at this hit
+  double eta = 1;           // n_incident / n_transmitted
+  std::unique_ptr<ProbeNode> reflection, refraction;  // children actually traced
+};
+
+// Which terms of a hit its caller keeps: all of them for the full image, one for a term image.
+// What feeds only terms nobody keeps is not computed: the light loop (diffuse and specular, with
+// their shadow rays) and each child ray. The kept terms' values are the same either way.
+struct TermsWanted {
+  bool lights = true;
+  bool reflection = true;
+  bool refraction = true;
+};
+
+// Limits of the recursion.
+struct TraceLimits {
+  int max_depth = 5;
+  double min_weight = 0.001;
+};
+
+// Radiance along a ray (docs/model.md, the equation: trace). `probe`, when given, receives the whole ray tree.
+// `shading_eye`, when given, is the eye used for V at this ray's hit only ("move your head":
+// V = normalize(eye - P) instead of -D); the reflected and refracted children still follow the
+// real ray and use their own -D. Without it the result is bit-identical to the plain equation.
+Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
+            RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
+
+// Shading of a known hit, term by term (`shading_eye` as for trace: V at this hit only). Terms
+// that `wanted` leaves out are 0.
+Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
+            double weight, RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr,
+            const TermsWanted& wanted = {});
+
+}  // namespace phonglab

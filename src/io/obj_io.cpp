@@ -1,0 +1,493 @@
+#include "io/obj_io.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <istream>
+#include <map>
+#include <sstream>
+#include <streambuf>
+#include <string_view>
+#include <thread>
+
+#include <tiny_obj_loader.h>  // double precision: the target defines TINYOBJLOADER_USE_DOUBLE
+
+namespace phonglab {
+
+std::string ObjProblem::to_string() const {
+  std::string s = file;
+  if (line > 0) {
+    s += ':';
+    s += std::to_string(line);
+  }
+  s += ": ";
+  s += message;
+  return s;
+}
+
+Material default_mesh_material() {
+  Material m;
+  m.name = "default";
+  m.ka = Color(0.1);
+  m.kd = Color(0.7);
+  m.ks = Color(0.2);
+  m.n = 32;
+  return m;
+}
+
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+// What tinyobjloader does not check: the line of every face (so index errors can name it) and
+// vertex coordinates that are not finite numbers (it would read "nan" as 0).
+struct Prescan {
+  std::vector<int> face_lines;  // line of each face with 3 or more vertices, in file order
+  std::vector<double> vertices;  // x, y, z of each `v`, correctly rounded (std::from_chars)
+  std::size_t max_triangles = 0;  // of the fans of those faces
+  std::vector<ObjProblem> errors;
+};
+
+// Checks one face vertex ("v", "v/t", "v//n", "v/t/n") where tinyobjloader would stop at the
+// first bad one without a line: indices must be integers other than 0, and relative (negative)
+// ones must not reach before the first element read so far (`read`: vertices, texture
+// coordinates, normals). Returns the problem, or "".
+std::string check_face_vertex(std::string_view token, const long read[3]) {
+  static const char* const kKinds[3] = {"vertex", "texture", "normal"};
+  std::size_t start = 0;
+  for (int kind = 0; kind < 3 && start <= token.size(); ++kind) {
+    std::size_t slash = token.find('/', start);
+    if (slash == std::string_view::npos) slash = token.size();
+    const std::string_view digits = token.substr(start, slash - start);
+    start = slash + 1;
+    if (digits.empty() && kind > 0) continue;  // "v//n" has no texture index
+    // std::from_chars where it reads the whole part (plain decimal, in range: what files hold), and
+    // strtol's verdict on anything else, which it alone decides ("+5", overflow): the same answers
+    // as strtol throughout, without a string made for every index of a 1.3M-face file.
+    long index = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size()) {
+      const std::string part(digits);
+      char* after = nullptr;
+      index = std::strtol(part.c_str(), &after, 10);
+      if (part.empty() || *after != '\0') {
+        return "face vertex '" + std::string(token) + "' is not made of integer indices";
+      }
+    }
+    if (index == 0) {
+      return "face vertex '" + std::string(token) + "': index 0 (OBJ indices start at 1; negative ones count back)";
+    }
+    if (index < 0 && -index > read[kind]) {
+      return "relative " + std::string(kKinds[kind]) + " index " + std::to_string(index) +
+             " reaches before the first " + kKinds[kind] + " (" + std::to_string(read[kind]) + " read so far)";
+    }
+  }
+  return "";
+}
+
+Prescan prescan(std::string_view text, const std::string& name) {
+  Prescan out;
+  constexpr std::size_t kMaxErrors = 20;
+  int line = 0;
+  long read[3] = {0, 0, 0};  // vertices, texture coordinates, normals so far
+  std::size_t pos = 0;
+  while (pos < text.size() && out.errors.size() < kMaxErrors) {
+    ++line;
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view l = text.substr(pos, end - pos);
+    pos = end + 1;
+    std::size_t i = 0;
+    while (i < l.size() && is_blank(l[i])) ++i;
+    if (i + 2 < l.size() && l[i] == 'v' && (l[i + 1] == 't' || l[i + 1] == 'n') && is_blank(l[i + 2])) {
+      ++read[l[i + 1] == 't' ? 1 : 2];
+      continue;
+    }
+    if (i + 1 >= l.size() || !is_blank(l[i + 1])) continue;
+    if (l[i] == 'f') {
+      int vertices = 0;
+      std::string problem;
+      for (std::size_t j = i + 1; j < l.size();) {
+        while (j < l.size() && is_blank(l[j])) ++j;
+        if (j >= l.size() || l[j] == '#') break;
+        ++vertices;
+        const std::size_t begin = j;
+        while (j < l.size() && !is_blank(l[j])) ++j;
+        if (problem.empty()) problem = check_face_vertex(l.substr(begin, j - begin), read);
+      }
+      if (!problem.empty()) out.errors.push_back({name, line, problem});
+      if (vertices >= 3) {
+        out.face_lines.push_back(line);
+        out.max_triangles += static_cast<std::size_t>(vertices - 2);
+      }
+    } else if (l[i] == 'v') {
+      ++read[0];
+      // Three coordinates (std::from_chars: correctly rounded, and several times faster than strtod).
+      const char* p = l.data() + i + 1;
+      const char* const stop = l.data() + l.size();
+      for (int k = 0; k < 3; ++k) {
+        while (p < stop && is_blank(*p)) ++p;
+        const char* token_end = p;
+        while (token_end < stop && !is_blank(*token_end)) ++token_end;
+        double x = 0;
+        const char* number = p < token_end && *p == '+' ? p + 1 : p;
+        const auto [after, ec] = std::from_chars(number, token_end, x);
+        if (ec != std::errc() || after != token_end || !std::isfinite(x)) {
+          const std::string token(p, token_end);
+          out.errors.push_back({name, line,
+                                "vertex coordinate " + std::to_string(k + 1) +
+                                    " must be a finite number (got " + (token.empty() ? "nothing" : "'" + token + "'") +
+                                    ")"});
+          break;
+        }
+        out.vertices.push_back(x);
+        p = token_end;
+      }
+    }
+  }
+  return out;
+}
+
+// The OBJ text as a stream for tinyobjloader, read in place (std::istringstream would copy it:
+// 55 MB for a 1.3M-triangle mesh). Only the get area is used, so the text is never written.
+class TextStreamBuf final : public std::streambuf {
+ public:
+  explicit TextStreamBuf(const std::string& text) {
+    char* begin = const_cast<char*>(text.data());
+    setg(begin, begin, begin + text.size());
+  }
+};
+
+// tinyobjloader's messages end in "(line N.)", "line N.)" or "line: N"; split them into our
+// problems, with N as their line.
+void add_messages(const std::string& text, const std::string& file, std::vector<ObjProblem>& to) {
+  std::istringstream in(text);
+  std::string msg;
+  while (std::getline(in, msg)) {
+    while (!msg.empty() && (msg.back() == '\r' || msg.back() == ' ')) msg.pop_back();
+    if (msg.empty() || msg == ".") continue;
+    int line = 0;
+    if (const std::size_t at = msg.rfind("line"); at != std::string::npos) {
+      std::size_t j = at + 4;
+      while (j < msg.size() && (msg[j] == ' ' || msg[j] == ':')) ++j;
+      long n = 0;
+      std::size_t digits = 0;
+      while (j < msg.size() && msg[j] >= '0' && msg[j] <= '9' && digits < 9) {
+        n = 10 * n + (msg[j++] - '0');
+        ++digits;
+      }
+      if (digits > 0) line = static_cast<int>(n);
+    }
+    to.push_back({file, line, msg});
+  }
+}
+
+// Reads the MTL files an OBJ names through the caller's FileReader, and remembers which
+// could not be read (a warning each, then the default material).
+class MtlReader final : public tinyobj::MaterialReader {
+ public:
+  MtlReader(const FileReader& read, std::vector<ObjProblem>& warnings, const std::string& obj_name)
+      : read_(read), warnings_(warnings), obj_name_(obj_name) {}
+
+  bool operator()(const std::string& mat_id, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* mat_map, std::string* warn, std::string* err) override {
+    std::string error;
+    const std::optional<std::string> text = read_ ? read_(mat_id, error) : std::nullopt;
+    if (!text) {
+      warnings_.push_back({obj_name_, 0, "cannot read material library '" + mat_id + "'" +
+                                             (error.empty() ? "" : ": " + error) +
+                                             "; its faces get the default material"});
+      return false;
+    }
+    std::istringstream stream(*text);
+    std::string mtl_warn;
+    tinyobj::LoadMtl(mat_map, materials, &stream, &mtl_warn, err);
+    add_messages(mtl_warn, mat_id, warnings_);
+    if (warn) warn->clear();
+    return true;
+  }
+
+ private:
+  const FileReader& read_;
+  std::vector<ObjProblem>& warnings_;
+  const std::string& obj_name_;
+};
+
+// A coefficient from the MTL: finite and >= 0, else 0 with a warning.
+double coefficient(double x, const std::string& what, const std::string& material, std::vector<ObjProblem>& warnings) {
+  if (std::isfinite(x) && x >= 0) return x;
+  warnings.push_back({"", 0, "material '" + material + "': " + what + " must be finite and >= 0; using 0"});
+  return 0;
+}
+
+Color mtl_color(const double c[3], const std::string& what, const std::string& material,
+                std::vector<ObjProblem>& warnings) {
+  return Color(coefficient(c[0], what, material, warnings), coefficient(c[1], what, material, warnings),
+               coefficient(c[2], what, material, warnings));
+}
+
+// The MTL mapping (docs/scene-format.md has it as a table).
+Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<ObjProblem>& warnings) {
+  Material out;
+  out.name = m.name;
+  out.ka = mtl_color(m.ambient, "Ka", m.name, warnings);
+  out.kd = mtl_color(m.diffuse, "Kd", m.name, warnings);
+  out.ks = mtl_color(m.specular, "Ks", m.name, warnings);
+  const double shininess = coefficient(m.shininess, "Ns", m.name, warnings);
+  out.n = ns == NsMapping::kBlinnToPhong ? shininess / 4 : shininess;
+  out.ior = std::isfinite(m.ior) && m.ior > 0 ? m.ior : 1.5;
+  const int illum = m.illum;
+  // illum 3..7 trace a mirror ray weighted by Ks; 4, 6 and 7 also refract; 5 and 7 weight
+  // both by Fresnel.
+  const bool reflective = illum >= 3 && illum <= 7;
+  const bool refractive = illum == 4 || illum == 6 || illum == 7;
+  if (reflective) out.kr = out.ks;
+  // Tf as 3ds Max writes it and as the Cornell boxes' author reads it (G3D's ParseMTL): 1 - the
+  // transmitted fraction, so Tf 1 (or none) is opaque; the Wavefront spec calls it the transmitted
+  // fraction itself, but the files met in practice follow Max. d is the opaque fraction (coverage):
+  // light passes where neither blocks it, kt = 1 - d*Tf, for glass illums and for d below 1.
+  const Color tf = mtl_color(m.transmittance, "Tf", m.name, warnings);
+  const double dissolve = std::isfinite(m.dissolve) ? std::clamp(m.dissolve, 0.0, 1.0) : 1.0;
+  const Color blocked = is_zero(tf) ? Color(1) : glm::min(tf, Color(1));  // tinyobjloader's 0 0 0: no Tf
+  if (dissolve < 1 || refractive) out.kt = Color(1) - dissolve * blocked;
+  // Ks is also the mirror weight, but a surface cannot send on more light than it receives: kr is
+  // kept to at most 1 - kt per channel. Without it an MTL glass of Ks 0.3 and Tf 0.1 gains 20 % at
+  // every total internal reflection (kr' + kt' = kr + kt = 1.2), and deep paths grow without bound.
+  out.kr = glm::min(out.kr, glm::max(Color(1) - out.kt, Color(0)));
+  out.fresnel = illum == 5 || illum == 7;
+  return out;
+}
+
+// An index-bound check as one message. Positive indices may refer to elements further down the
+// file, so they are checked against the file's count; relative ones the prescan checked.
+std::string index_error(const char* what, const char* plural, int index, std::size_t count) {
+  if (index < 0) return std::string("a relative ") + what + " index reaches before the first " + what;
+  return std::string(what) + " index " + std::to_string(index + 1) + " is out of range (the file has " +
+         std::to_string(count) + " " + (count == 1 ? what : plural) + ")";
+}
+
+}  // namespace
+
+ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
+                                NsMapping ns, const TriangleCountHook& on_prescan) {
+  ObjIndexedMesh out;
+  // The prescan and tinyobjloader read the same text and nothing else: on two threads at once.
+  // A file the prescan rejects is parsed for nothing, but it is then reported as before, with
+  // the prescan's errors only.
+  Prescan pre;
+  std::exception_ptr prescan_error;
+  std::thread prescan_thread([&] {
+    try {
+      pre = prescan(obj_text, obj_name);
+      if (pre.errors.empty() && on_prescan) on_prescan(pre.max_triangles);
+    } catch (...) {
+      prescan_error = std::current_exception();  // out of memory, say: rethrown below
+    }
+  });
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> mtl;
+  std::string warn, err;
+  bool ok = false;
+  try {
+    TextStreamBuf buffer(obj_text);
+    std::istream stream(&buffer);
+    MtlReader reader(read_mtl, out.warnings, obj_name);
+    ok = tinyobj::LoadObj(&attrib, &shapes, &mtl, &warn, &err, &stream, &reader,
+                          /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  } catch (...) {
+    prescan_thread.join();
+    throw;
+  }
+  prescan_thread.join();
+  if (prescan_error) std::rethrow_exception(prescan_error);
+  if (!pre.errors.empty()) {
+    out.warnings.clear();  // the MTL's: only the errors of a file the prescan rejects
+    out.errors = std::move(pre.errors);
+    return out;
+  }
+  if (!ok) {
+    add_messages(err.empty() ? "cannot parse the file" : err, obj_name, out.errors);
+    return out;
+  }
+  for (ObjProblem& w : out.warnings) {
+    if (w.file.empty()) w.file = obj_name;
+  }
+  // tinyobjloader's own number parser is off by up to a few ulps for about half of all decimal
+  // coordinates ("-1.9159" reads as -1.9158999999999997); the prescan's from_chars values are the
+  // doubles nearest to what the file says.
+  if (pre.vertices.size() == attrib.vertices.size()) attrib.vertices = std::move(pre.vertices);
+  // tinyobjloader's own warnings (a `usemtl` naming no material of the MTL, faces of fewer
+  // than 3 vertices), once each; index bounds are errors below and unreadable MTLs have one
+  // warning already.
+  std::vector<ObjProblem> parse_warnings;
+  add_messages(warn, obj_name, parse_warnings);
+  for (ObjProblem& w : parse_warnings) {
+    if (w.message.find("out of bounds") != std::string::npos ||
+        w.message.starts_with("Failed to load material file")) {
+      continue;
+    }
+    const bool seen = std::any_of(out.warnings.begin(), out.warnings.end(),
+                                  [&](const ObjProblem& o) { return o.message == w.message; });
+    if (!seen) out.warnings.push_back(std::move(w));
+  }
+
+  std::vector<ObjProblem> mapping_warnings;
+  for (const tinyobj::material_t& m : mtl) out.materials.push_back(map_material(m, ns, mapping_warnings));
+  for (ObjProblem& w : mapping_warnings) w.file = obj_name;
+  out.warnings.insert(out.warnings.end(), mapping_warnings.begin(), mapping_warnings.end());
+  int default_material = -1;
+
+  const std::size_t vertex_count = attrib.vertices.size() / 3;
+  const std::size_t normal_count = attrib.normals.size() / 3;
+  out.vertices.resize(vertex_count);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    out.vertices[i] = Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+  }
+  out.normals.resize(normal_count);
+  for (std::size_t i = 0; i < normal_count; ++i) {
+    out.normals[i] = Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+  }
+  attrib = {};
+  const std::vector<Vec3>& vertex = out.vertices;
+  std::size_t total_faces = 0;
+  for (const tinyobj::shape_t& s : shapes) total_faces += s.mesh.num_face_vertices.size();
+  // Our count of face lines matches tinyobjloader's faces unless the file uses a syntax we
+  // do not scan (line continuations): then errors name the face number instead of a line.
+  const bool lines_known = total_faces == pre.face_lines.size();
+  std::vector<double> emitter_area(out.materials.size(), 0.0);
+  std::vector<Vec3> emitter_sum(out.materials.size(), Vec3(0));
+  std::vector<int> emitter_faces(out.materials.size(), 0);
+
+  std::size_t triangle_count = 0;
+  for (const tinyobj::shape_t& s : shapes) {
+    for (const unsigned char n : s.mesh.num_face_vertices) triangle_count += n >= 3 ? n - 2u : 0u;
+  }
+  out.triangles.reserve(triangle_count);
+  int face = 0;
+  for (const tinyobj::shape_t& s : shapes) {
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < s.mesh.num_face_vertices.size(); ++f, ++face) {
+      const std::size_t n = s.mesh.num_face_vertices[f];
+      const int line = lines_known ? pre.face_lines[static_cast<std::size_t>(face)] : 0;
+      const auto fail = [&](const std::string& message) {
+        out.errors.push_back({obj_name, line, lines_known ? message : "face " + std::to_string(face + 1) + ": " + message});
+      };
+      bool face_ok = true;
+      bool smooth = true;
+      for (std::size_t k = 0; k < n; ++k) {
+        const tinyobj::index_t idx = s.mesh.indices[offset + k];
+        if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= vertex_count) {
+          fail(index_error("vertex", "vertices", idx.vertex_index, vertex_count));
+          face_ok = false;
+          break;
+        }
+        if (idx.normal_index >= 0 && static_cast<std::size_t>(idx.normal_index) >= normal_count) {
+          fail(index_error("normal", "normals", idx.normal_index, normal_count));
+          face_ok = false;
+          break;
+        }
+        if (idx.normal_index < 0) smooth = false;
+      }
+      if (out.errors.size() >= 20) return out;  // enough to go on
+      if (!face_ok) {
+        offset += n;
+        continue;
+      }
+      int material = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
+      if (material < 0 || static_cast<std::size_t>(material) >= out.materials.size()) {
+        if (default_material < 0) {
+          default_material = static_cast<int>(out.materials.size());
+          out.materials.push_back(default_mesh_material());
+          emitter_area.push_back(0);
+          emitter_sum.emplace_back(0);
+          emitter_faces.push_back(0);
+        }
+        material = default_material;
+      }
+      // A fan from the first vertex: exact for the convex quads and polygons real files hold.
+      const tinyobj::index_t i0 = s.mesh.indices[offset];
+      for (std::size_t k = 1; k + 1 < n; ++k) {
+        const tinyobj::index_t i1 = s.mesh.indices[offset + k];
+        const tinyobj::index_t i2 = s.mesh.indices[offset + k + 1];
+        ObjIndexedTriangle tri;
+        tri.v = {static_cast<std::uint32_t>(i0.vertex_index), static_cast<std::uint32_t>(i1.vertex_index),
+                 static_cast<std::uint32_t>(i2.vertex_index)};
+        tri.n = smooth ? std::array<std::int32_t, 3>{i0.normal_index, i1.normal_index, i2.normal_index}
+                       : std::array<std::int32_t, 3>{-1, -1, -1};
+        tri.material = material;
+        tri.face = face;
+        const Vec3& v0 = vertex[tri.v[0]];
+        const Vec3& v1 = vertex[tri.v[1]];
+        const Vec3& v2 = vertex[tri.v[2]];
+        const Vec3 cross = glm::cross(v1 - v0, v2 - v0);
+        const double area2 = glm::length(cross);
+        if (!(area2 > 0) || !std::isfinite(area2)) {
+          ++out.skipped_degenerate;
+          continue;
+        }
+        const auto m = static_cast<std::size_t>(material);
+        emitter_area[m] += area2;
+        emitter_sum[m] += area2 * (v0 + v1 + v2) / 3.0;
+        out.triangles.push_back(tri);
+      }
+      const auto m = static_cast<std::size_t>(material);
+      ++emitter_faces[m];
+      offset += n;
+    }
+  }
+  if (out.skipped_degenerate > 0) {
+    out.warnings.push_back({obj_name, 0, std::to_string(out.skipped_degenerate) +
+                                             " zero-area triangles left out"});
+  }
+  for (std::size_t i = 0; i < mtl.size(); ++i) {
+    const Color ke(mtl[i].emission[0], mtl[i].emission[1], mtl[i].emission[2]);
+    if (!(max_channel(ke) > 0) || !(emitter_area[i] > 0)) continue;
+    Emitter e;
+    e.material = mtl[i].name;
+    e.ke = ke;
+    e.centroid = emitter_sum[i] / emitter_area[i];
+    e.faces = emitter_faces[i];
+    out.emitters.push_back(e);
+  }
+  return out;
+}
+
+Triangle ObjIndexedMesh::triangle(std::size_t i) const {
+  const ObjIndexedTriangle& t = triangles[i];
+  Triangle tri;
+  tri.v0 = vertices[t.v[0]];
+  tri.v1 = vertices[t.v[1]];
+  tri.v2 = vertices[t.v[2]];
+  tri.material = t.material;
+  if (t.n[0] >= 0) {
+    tri.has_vertex_normals = true;
+    tri.n0 = normals[static_cast<std::size_t>(t.n[0])];
+    tri.n1 = normals[static_cast<std::size_t>(t.n[1])];
+    tri.n2 = normals[static_cast<std::size_t>(t.n[2])];
+  }
+  return tri;
+}
+
+ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl, NsMapping ns) {
+  ObjIndexedMesh indexed = load_obj_indexed(obj_text, obj_name, read_mtl, ns);
+  ObjMesh out;
+  out.triangles.reserve(indexed.triangles.size());
+  out.source_face.reserve(indexed.triangles.size());
+  for (std::size_t i = 0; i < indexed.triangles.size(); ++i) {
+    out.triangles.push_back(indexed.triangle(i));
+    out.source_face.push_back(indexed.triangles[i].face);
+  }
+  out.materials = std::move(indexed.materials);
+  out.emitters = std::move(indexed.emitters);
+  out.skipped_degenerate = indexed.skipped_degenerate;
+  out.warnings = std::move(indexed.warnings);
+  out.errors = std::move(indexed.errors);
+  return out;
+}
+
+}  // namespace phonglab

@@ -1,0 +1,55 @@
+// Scene files (docs/scene-format.md): JSON text <-> Scene, with positioned diagnostics.
+// Part of the phonglab_io library (nlohmann-json); the core renderer does not depend on it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene/scene.h"
+
+namespace phonglab {
+
+// One problem found in a scene file, printed as `file:line:col: json.path: message`.
+struct Diagnostic {
+  std::string file;     // file name as given (or the embedded scene's name)
+  int line = 0;         // 1-based; 0 when unknown
+  int column = 0;       // 1-based; 0 when unknown
+  std::string path;     // JSON path such as `objects[2].radius`; empty for syntax errors
+  std::string message;  // what is wrong, with the offending value: `must be > 0 (got -1)`
+  std::string to_string() const;
+};
+
+struct LoadResult {
+  std::optional<Scene> scene;            // set when there are no errors
+  std::vector<Diagnostic> errors;        // empty on success
+  std::vector<Diagnostic> warnings;      // what was tolerated (mesh files' quirks, emitter hints)
+  bool ok() const { return scene.has_value(); }
+  std::string error_text() const;        // all errors, one per line
+};
+
+// Parses scene JSON. `file_name` is used in diagnostics; `base_dir` resolves mesh paths.
+LoadResult load_scene_text(const std::string& text, const std::string& file_name,
+                           const std::string& base_dir = ".");
+
+// Reads and parses a scene file; an unreadable file is an error, not an exception. A path
+// ending in .obj opens that mesh alone, with a camera framing it and a light.
+LoadResult load_scene_file(const std::string& path);
+
+// Whether `path` names a Wavefront OBJ (by its extension, any case): such a path opens as a mesh
+// alone, and a scene must never be saved over it.
+bool is_obj_path(const std::string& path);
+
+// Resolves SCENE as the CLI takes it: an embedded scene's name, else a file path.
+LoadResult load_scene_arg(const std::string& scene_arg);
+
+// Serialises a scene to JSON text that load_scene_text reads back to an equal scene. With
+// `save_dir`, the folder the text will be saved in, mesh files read from disk are named
+// relative to it (else as they were written).
+std::string scene_to_json(const Scene& scene, const std::string& save_dir = "");
+
+// Writes text to `path` through a temporary file and a rename, so a crash never leaves a
+// half-written file. Returns an empty string on success, else the error.
+std::string write_file_atomically(const std::string& path, const std::string& text);
+
+}  // namespace phonglab

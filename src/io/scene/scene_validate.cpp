@@ -1,0 +1,802 @@
+// Pass 4 of the scene loader: the Validator walks the JSON DOM and the position index together,
+// collecting every independent error with its file:line:col and JSON path, and builds the Scene;
+// load_text runs the four passes over one text.
+#include "io/scene/scene_load.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <new>
+#include <span>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+#include <unordered_map>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/accel/accel.h"
+#include "core/scene/camera.h"
+#include "io/embedded_scenes.h"
+#include "io/obj_io.h"
+
+namespace phonglab::scene_load {
+
+namespace {
+
+// Pass 4: validation.
+
+// A JSON value with its position and its path.
+struct Val {
+  const Json* json = nullptr;
+  std::size_t node = 0;
+  std::string path;
+};
+
+// The known members of one JSON object (unknown and duplicate keys already reported).
+struct Fields {
+  std::vector<std::pair<std::string, Val>> members;  // file order
+
+  const Val* find(std::string_view key) const {
+    for (const auto& [k, v] : members) {
+      if (k == key) return &v;
+    }
+    return nullptr;
+  }
+};
+
+constexpr std::array<std::string_view, 10> kSceneKeys = {
+    "camera", "image", "ambient", "background", "max_depth", "min_weight", "specular_model",
+    "lights", "materials", "objects"};
+constexpr std::array<std::string_view, 4> kCameraKeys = {"position", "look_at", "up", "fov_y"};
+constexpr std::array<std::string_view, 2> kImageKeys = {"width", "height"};
+constexpr std::array<std::string_view, 2> kSpecularModels = {"phong", "blinn"};
+constexpr std::array<std::string_view, 2> kLightTypes = {"point", "directional"};
+constexpr std::array<std::string_view, 4> kPointLightKeys = {"type", "position", "intensity",
+                                                             "enabled"};
+constexpr std::array<std::string_view, 4> kDirectionalLightKeys = {"type", "direction", "intensity",
+                                                                   "enabled"};
+constexpr std::array<std::string_view, 8> kMaterialKeys = {"ka", "kd", "ks", "n",
+                                                           "kr", "kt", "ior", "fresnel"};
+constexpr std::array<std::string_view, 4> kObjectTypes = {"sphere", "plane", "triangle", "mesh"};
+constexpr std::array<std::string_view, 4> kSphereKeys = {"type", "center", "radius", "material"};
+constexpr std::array<std::string_view, 4> kPlaneKeys = {"type", "point", "normal", "material"};
+constexpr std::array<std::string_view, 4> kTriangleKeys = {"type", "vertices", "normals",
+                                                           "material"};
+constexpr std::array<std::string_view, 5> kMeshKeys = {"type", "file", "material", "transform", "ns"};
+constexpr std::array<std::string_view, 3> kTransformKeys = {"scale", "rotate_deg", "translate"};
+constexpr std::array<std::string_view, 2> kNsMappings = {"as_is", "blinn_to_phong"};
+
+// True when v has a usable direction: normalising it in double gives a finite unit vector.
+bool normalizable(const Vec3& v) {
+  const double d = glm::dot(v, v);
+  if (!(d > 0) || !std::isfinite(d)) return false;
+  const Vec3 u = v / std::sqrt(d);
+  return all_finite(u) && std::abs(glm::length(u) - 1.0) < 1e-6;
+}
+
+// Collects issues. After kMaxIssues the validator stops, as compilers do: a file with thousands
+// of errors is not helped by thousands of lines, and 10 MB of bad values must stay fast.
+class Issues {
+ public:
+  void add(Issue issue) {
+    if (list_.size() < kMaxIssues) list_.push_back(std::move(issue));
+  }
+  bool full() const { return list_.size() >= kMaxIssues; }
+  std::vector<Issue>& list() { return list_; }
+
+ private:
+  std::vector<Issue> list_;
+};
+
+
+class Validator {
+ public:
+  Validator(std::string_view original, const PosIndex& index, const Json& root,
+            const std::vector<Overflow>& overflows, Issues& issues, const SceneFiles& files, Issues& warnings)
+      : text_(original), index_(index), root_(root), overflows_(overflows), issues_(issues), files_(files),
+        warnings_(warnings) {}
+
+  Scene run() {
+    Scene s;
+    const Val root{&root_, 0, ""};
+    if (!root_.is_object()) {
+      report(root, "the scene must be a JSON object (got " + shown(root) + ")");
+      return s;
+    }
+    const Fields top = fields(root, kSceneKeys);
+    if (const Val* v = top.find("camera")) camera(*v, s.camera);
+    if (const Val* v = top.find("image")) image(*v, s);
+    if (const Val* v = top.find("ambient")) set(s.ambient, read_color(*v));
+    if (const Val* v = top.find("background")) set(s.background, read_color(*v));
+    if (const Val* v = top.find("max_depth")) set(s.max_depth, read_int(*v, 0, kMaxDepthLimit));
+    if (const Val* v = top.find("min_weight")) set(s.min_weight, read_at_least_zero(*v));
+    if (const Val* v = top.find("specular_model")) {
+      if (auto name = read_choice(*v, kSpecularModels, "specular model")) {
+        s.specular_model = (*name == "blinn") ? SpecularModel::kBlinn : SpecularModel::kPhong;
+      }
+    }
+    if (const Val* v = top.find("lights")) lights(*v, s);
+    // Materials before objects: objects refer to them by name.
+    if (const Val* v = top.find("materials")) materials(*v, s);
+    if (const Val* v = top.find("objects")) objects(*v, s);
+    return s;
+  }
+
+ private:
+  template <typename T, typename U>
+  static void set(T& target, const std::optional<U>& value) {
+    if (value) target = static_cast<T>(*value);
+  }
+
+  void report(const Val& v, std::string message) {
+    issues_.add({index_.begin(v.node), v.path, std::move(message)});
+  }
+
+  // The value as written (the index only knows the patched "0" of an overflowing number).
+  std::string shown(const Val& v) const {
+    const std::size_t begin = index_.begin(v.node);
+    const Overflow* o = overflow(v);
+    return compact_source(text_, begin, o != nullptr ? begin + o->length : index_.end(v.node));
+  }
+
+  // The overflowing number token this value was parsed from, if any.
+  const Overflow* overflow(const Val& v) const {
+    const std::size_t off = index_.begin(v.node);
+    const auto it = std::lower_bound(
+        overflows_.begin(), overflows_.end(), off,
+        [](const Overflow& o, std::size_t offset) { return o.offset < offset; });
+    return (it != overflows_.end() && it->offset == off) ? &*it : nullptr;
+  }
+
+  Val element(const Val& v, std::size_t i) const {
+    return {&(*v.json)[i], index_.children(v.node)[i], element_path(v.path, i)};
+  }
+
+  // Number of elements of an array value (0 if the DOM and the index ever disagreed).
+  std::size_t element_count(const Val& v) const {
+    return index_.children(v.node).size() == v.json->size() ? v.json->size() : 0;
+  }
+
+  // Members in file order with the last duplicate's position (the value the DOM kept);
+  // later duplicates are reported.
+  std::vector<std::pair<std::string, Val>> members(const Val& v) {
+    std::vector<std::pair<std::string, Val>> out;
+    std::unordered_map<std::string, std::size_t> seen;
+    for (std::size_t child : index_.children(v.node)) {
+      std::string key = index_.key(child);
+      const auto it = v.json->find(key);
+      if (it == v.json->end()) continue;
+      const auto [pos, inserted] = seen.emplace(key, out.size());
+      if (!inserted) {
+        issues_.add({index_.key_begin(child), member_path(v.path, key), "duplicate key"});
+        out[pos->second].second.node = child;
+        continue;
+      }
+      Val member{&*it, child, member_path(v.path, key)};
+      out.emplace_back(std::move(key), std::move(member));
+    }
+    return out;
+  }
+
+  // The members of an object value, reporting keys outside `allowed`.
+  Fields fields(const Val& v, std::span<const std::string_view> allowed) {
+    Fields f;
+    for (auto& [key, member] : members(v)) {
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        issues_.add({index_.key_begin(member.node), member.path,
+                     "unknown key" + suggestion(key, allowed, "expected one of")});
+        continue;
+      }
+      f.members.emplace_back(std::move(key), std::move(member));
+    }
+    return f;
+  }
+
+  // One member looked up without any key checks (to read "type" before choosing the keys).
+  std::optional<Val> member(const Val& v, std::string_view key) {
+    const auto it = v.json->find(std::string(key));
+    if (it == v.json->end()) return std::nullopt;
+    const auto kids = index_.children(v.node);
+    for (std::size_t k = kids.size(); k-- > 0;) {
+      if (index_.key(kids[k]) == key) return Val{&*it, kids[k], member_path(v.path, key)};
+    }
+    return std::nullopt;
+  }
+
+  // Reports each missing key at the object's '{'; true when all are present.
+  bool require(const Val& v, const Fields& f, std::initializer_list<std::string_view> keys) {
+    bool ok = true;
+    for (std::string_view k : keys) {
+      if (f.find(k) == nullptr) {
+        report(v, "missing key " + json_string(k));
+        ok = false;
+      }
+    }
+    return ok;
+  }
+
+  bool expect_object(const Val& v) {
+    if (v.json->is_object()) return true;
+    report(v, "must be an object (got " + shown(v) + ")");
+    return false;
+  }
+
+  bool expect_array(const Val& v) {
+    if (v.json->is_array()) return true;
+    report(v, "must be an array (got " + shown(v) + ")");
+    return false;
+  }
+
+  std::optional<double> read_number(const Val& v) {
+    if (!v.json->is_number()) {
+      report(v, "must be a number (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    const double x = v.json->get<double>();
+    if (overflow(v) != nullptr || !std::isfinite(x)) {
+      report(v, "must be a finite number (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    if (std::abs(x) > kMaxMagnitude) {
+      report(v, "out of range: magnitude must be <= 1e100 (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    return x;
+  }
+
+  std::optional<double> read_at_least_zero(const Val& v) {
+    const auto x = read_number(v);
+    if (x && *x < 0) {
+      report(v, "must be >= 0 (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    return x;
+  }
+
+  std::optional<double> read_positive(const Val& v) {
+    const auto x = read_number(v);
+    if (x && !(*x > 0)) {
+      report(v, "must be > 0 (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    return x;
+  }
+
+  std::optional<int> read_int(const Val& v, int lo, int hi) {
+    const auto x = read_number(v);
+    if (!x) return std::nullopt;
+    if (*x != std::floor(*x) || *x < lo || *x > hi) {
+      report(v, "must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) +
+                    " (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    return static_cast<int>(*x);
+  }
+
+  std::optional<bool> read_bool(const Val& v) {
+    if (v.json->is_boolean()) return v.json->get<bool>();
+    report(v, "must be true or false (got " + shown(v) + ")");
+    return std::nullopt;
+  }
+
+  std::optional<std::string> read_string(const Val& v) {
+    if (v.json->is_string()) return v.json->get<std::string>();
+    report(v, "must be a string (got " + shown(v) + ")");
+    return std::nullopt;
+  }
+
+  // A string that must be one of `choices`; `what` names it in the message.
+  std::optional<std::string> read_choice(const Val& v, std::span<const std::string_view> choices,
+                                         std::string_view what) {
+    auto s = read_string(v);
+    if (!s) return std::nullopt;
+    if (std::find(choices.begin(), choices.end(), *s) != choices.end()) return s;
+    report(v, "unknown " + std::string(what) + " " + shown(v) +
+                  suggestion(*s, choices, "expected one of"));
+    return std::nullopt;
+  }
+
+  std::optional<Vec3> read_vec3(const Val& v) {
+    if (!v.json->is_array() || v.json->size() != 3) {
+      report(v, "must be an array of 3 numbers (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    return read_triple(v, &Validator::read_number);
+  }
+
+  // The three elements of an array checked by `read_one`; every element's error is reported.
+  std::optional<Vec3> read_triple(const Val& v, std::optional<double> (Validator::*read_one)(const Val&)) {
+    if (element_count(v) != 3) return std::nullopt;
+    Vec3 out;
+    bool ok = true;
+    for (int i = 0; i < 3; ++i) {
+      if (auto x = (this->*read_one)(element(v, static_cast<std::size_t>(i)))) {
+        out[i] = *x;
+      } else {
+        ok = false;
+      }
+    }
+    return ok ? std::optional<Vec3>(out) : std::nullopt;
+  }
+
+  // A direction: three numbers, not of zero length.
+  std::optional<Vec3> read_direction(const Val& v) {
+    auto d = read_vec3(v);
+    if (d && !normalizable(*d)) {
+      report(v, "must have non-zero length (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    return d;
+  }
+
+  // A colour: one number (grey) or three, every channel >= 0.
+  std::optional<Color> read_color(const Val& v) {
+    if (v.json->is_number()) {
+      const auto x = read_at_least_zero(v);
+      return x ? std::optional<Color>(Color(*x)) : std::nullopt;
+    }
+    if (!v.json->is_array() || v.json->size() != 3) {
+      report(v, "must be a number or an array of 3 numbers (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    return read_triple(v, &Validator::read_at_least_zero);
+  }
+
+  void camera(const Val& v, Camera& cam) {
+    if (!expect_object(v)) return;
+    const Fields f = fields(v, kCameraKeys);
+    const Val* position = f.find("position");
+    const Val* look_at = f.find("look_at");
+    const Val* up = f.find("up");
+    bool position_ok = true, look_ok = true, up_ok = true;
+    if (position) position_ok = assign(cam.position, read_vec3(*position));
+    if (look_at) look_ok = assign(cam.look_at, read_vec3(*look_at));
+    if (up) up_ok = assign(cam.up, read_direction(*up));
+    if (const Val* fov = f.find("fov_y")) {
+      if (auto x = read_number(*fov)) {
+        if (*x > 0 && *x < 180) {
+          cam.fov_y_deg = *x;
+        } else {
+          report(*fov, "must be in (0, 180) (got " + shown(*fov) + ")");
+        }
+      }
+    }
+    if (!position_ok || !look_ok) return;
+    const Vec3 view = cam.look_at - cam.position;
+    if (!normalizable(view)) {
+      if (look_at) {
+        report(*look_at, "must differ from camera.position (got " + shown(*look_at) + ")");
+      } else {
+        report(*position, "must differ from camera.look_at (got " + shown(*position) + ")");
+      }
+      return;
+    }
+    if (!up_ok) return;
+    if (!(view_up_sine(cam) > kMinViewUpSine)) {
+      if (up) {
+        report(*up, "must not be parallel to the view direction (got " + shown(*up) + ")");
+      } else {
+        const Val& at = look_at ? *look_at : *position;
+        report(at, "makes the view direction parallel to camera.up (got " + shown(at) + ")");
+      }
+    }
+  }
+
+  template <typename T>
+  static bool assign(T& target, const std::optional<T>& value) {
+    if (value) target = *value;
+    return value.has_value();
+  }
+
+  void image(const Val& v, Scene& s) {
+    if (!expect_object(v)) return;
+    const Fields f = fields(v, kImageKeys);
+    if (const Val* w = f.find("width")) set(s.width, read_int(*w, 1, kMaxImageSide));
+    if (const Val* h = f.find("height")) set(s.height, read_int(*h, 1, kMaxImageSide));
+  }
+
+  // Reads an element's "type" member (reporting it missing or not a string).
+  std::optional<std::pair<Val, std::string>> type_of(const Val& v) {
+    auto t = member(v, "type");
+    if (!t) {
+      report(v, "missing key \"type\"");
+      return std::nullopt;
+    }
+    auto s = read_string(*t);
+    if (!s) return std::nullopt;
+    return std::make_pair(std::move(*t), std::move(*s));
+  }
+
+  void lights(const Val& v, Scene& s) {
+    if (!expect_array(v)) return;
+    const std::size_t count = element_count(v);
+    for (std::size_t i = 0; i < count && !issues_.full(); ++i) {
+      const Val e = element(v, i);
+      if (!expect_object(e)) continue;
+      const auto type = type_of(e);
+      if (!type) continue;
+      Light light;
+      const bool point = type->second == "point";
+      if (!point && type->second != "directional") {
+        report(type->first, "unknown light type " + shown(type->first) +
+                                suggestion(type->second, kLightTypes, "expected one of"));
+        continue;
+      }
+      const Fields f = fields(e, point ? std::span<const std::string_view>(kPointLightKeys)
+                                       : std::span<const std::string_view>(kDirectionalLightKeys));
+      bool ok = require(e, f, {point ? "position" : "direction"});
+      if (point) {
+        light.type = LightType::kPoint;
+        if (const Val* p = f.find("position")) ok = assign(light.position, read_vec3(*p)) && ok;
+      } else {
+        light.type = LightType::kDirectional;
+        if (const Val* d = f.find("direction")) {
+          ok = assign(light.direction, read_direction(*d)) && ok;
+        }
+      }
+      if (const Val* x = f.find("intensity")) ok = assign(light.intensity, read_color(*x)) && ok;
+      if (const Val* en = f.find("enabled")) ok = assign(light.enabled, read_bool(*en)) && ok;
+      if (ok) s.lights.push_back(light);
+    }
+  }
+
+  void materials(const Val& v, Scene& s) {
+    has_materials_ = true;
+    if (!expect_object(v)) {
+      materials_unusable_ = true;
+      return;
+    }
+    for (auto& [name, m] : members(v)) {
+      if (issues_.full()) break;
+      material_index_.emplace(name, static_cast<int>(s.materials.size()));
+      material_names_.push_back(name);
+      Material mat;
+      mat.name = name;
+      if (expect_object(m)) {
+        const Fields f = fields(m, kMaterialKeys);
+        if (const Val* x = f.find("ka")) set(mat.ka, read_color(*x));
+        if (const Val* x = f.find("kd")) set(mat.kd, read_color(*x));
+        if (const Val* x = f.find("ks")) set(mat.ks, read_color(*x));
+        if (const Val* x = f.find("n")) set(mat.n, read_at_least_zero(*x));
+        if (const Val* x = f.find("kr")) set(mat.kr, read_color(*x));
+        if (const Val* x = f.find("kt")) set(mat.kt, read_color(*x));
+        if (const Val* x = f.find("ior")) set(mat.ior, read_positive(*x));
+        if (const Val* x = f.find("fresnel")) set(mat.fresnel, read_bool(*x));
+      }
+      s.materials.push_back(std::move(mat));
+    }
+  }
+
+  // The index of the material an object names; one error per bad reference, none when the
+  // "materials" section itself was broken (that error says it all).
+  std::optional<int> material_ref(const Val& v) {
+    const auto name = read_string(v);
+    if (!name) return std::nullopt;
+    if (!has_materials_) {
+      // Every object would repeat this; once is enough.
+      if (!reported_no_materials_) {
+        report(v, "unknown material " + shown(v) + " (the scene has no \"materials\")");
+        reported_no_materials_ = true;
+      }
+      return std::nullopt;
+    }
+    if (materials_unusable_) return std::nullopt;
+    if (const auto it = material_index_.find(*name); it != material_index_.end()) return it->second;
+    std::vector<std::string_view> names(material_names_.begin(), material_names_.end());
+    report(v, "unknown material " + shown(v) + suggestion(*name, names, "defined materials"));
+    return std::nullopt;
+  }
+
+  void objects(const Val& v, Scene& s) {
+    if (!expect_array(v)) return;
+    const std::size_t count = element_count(v);
+    for (std::size_t i = 0; i < count && !issues_.full(); ++i) {
+      const Val e = element(v, i);
+      if (!expect_object(e)) continue;
+      const auto type = type_of(e);
+      if (!type) continue;
+      const std::string& t = type->second;
+      const int object = static_cast<int>(i);
+      if (t == "sphere") {
+        sphere(e, s, object);
+      } else if (t == "plane") {
+        plane(e, s, object);
+      } else if (t == "triangle") {
+        triangle(e, s, object);
+      } else if (t == "mesh") {
+        mesh(e, s, object);
+      } else {
+        report(type->first, "unknown object type " + shown(type->first) +
+                                suggestion(t, kObjectTypes, "expected one of"));
+      }
+    }
+  }
+
+  void sphere(const Val& e, Scene& s, int object) {
+    const Fields f = fields(e, kSphereKeys);
+    bool ok = require(e, f, {"center", "radius", "material"});
+    Sphere sp;
+    if (const Val* x = f.find("center")) ok = assign(sp.center, read_vec3(*x)) && ok;
+    if (const Val* x = f.find("radius")) ok = assign(sp.radius, read_positive(*x)) && ok;
+    if (const Val* x = f.find("material")) ok = assign(sp.material, material_ref(*x)) && ok;
+    if (!ok) return;
+    s.spheres.push_back(sp);
+    s.sphere_object.push_back(object);
+  }
+
+  void plane(const Val& e, Scene& s, int object) {
+    const Fields f = fields(e, kPlaneKeys);
+    bool ok = require(e, f, {"point", "normal", "material"});
+    Plane pl;
+    if (const Val* x = f.find("point")) ok = assign(pl.point, read_vec3(*x)) && ok;
+    if (const Val* x = f.find("normal")) ok = assign(pl.normal, read_direction(*x)) && ok;
+    if (const Val* x = f.find("material")) ok = assign(pl.material, material_ref(*x)) && ok;
+    if (!ok) return;
+    s.planes.push_back(pl);
+    s.plane_object.push_back(object);
+  }
+
+  // Three vectors (`what` each: points or directions), as for "vertices" and "normals".
+  std::optional<std::array<Vec3, 3>> read_three(const Val& v, bool directions) {
+    if (!v.json->is_array() || v.json->size() != 3) {
+      report(v, std::string("must be an array of 3 ") + (directions ? "directions" : "points") +
+                    " (got " + shown(v) + ")");
+      return std::nullopt;
+    }
+    std::array<Vec3, 3> out;
+    bool ok = true;
+    if (element_count(v) != 3) return std::nullopt;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Val e = element(v, i);
+      ok = assign(out[i], directions ? read_direction(e) : read_vec3(e)) && ok;
+    }
+    return ok ? std::optional<std::array<Vec3, 3>>(out) : std::nullopt;
+  }
+
+  void triangle(const Val& e, Scene& s, int object) {
+    const Fields f = fields(e, kTriangleKeys);
+    bool ok = require(e, f, {"vertices", "material"});
+    Triangle tri;
+    if (const Val* x = f.find("vertices")) {
+      if (const auto v = read_three(*x, false)) {
+        tri.v0 = (*v)[0];
+        tri.v1 = (*v)[1];
+        tri.v2 = (*v)[2];
+        if (!normalizable(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0))) {
+          report(*x, "degenerate triangle: the vertices are collinear (got " + shown(*x) + ")");
+          ok = false;
+        }
+      } else {
+        ok = false;
+      }
+    }
+    if (const Val* x = f.find("normals")) {
+      if (const auto n = read_three(*x, true)) {
+        tri.has_vertex_normals = true;
+        tri.n0 = (*n)[0];
+        tri.n1 = (*n)[1];
+        tri.n2 = (*n)[2];
+      } else {
+        ok = false;
+      }
+    }
+    if (const Val* x = f.find("material")) ok = assign(tri.material, material_ref(*x)) && ok;
+    if (!ok) return;
+    s.triangles.push_back(tri);
+    s.triangle_object.push_back(object);
+  }
+
+  // A mesh transform: "scale" (a number or 3, none zero), "rotate_deg", "translate".
+  bool transform(const Val& v, MeshTransform& out) {
+    if (!expect_object(v)) return false;
+    const Fields f = fields(v, kTransformKeys);
+    bool ok = true;
+    if (const Val* x = f.find("scale")) {
+      std::optional<Vec3> scale;
+      if (x->json->is_number()) {
+        if (const auto k = read_number(*x)) scale = Vec3(*k);
+      } else {
+        scale = read_vec3(*x);
+      }
+      if (scale && (scale->x == 0 || scale->y == 0 || scale->z == 0)) {
+        report(*x, "must not be zero (got " + shown(*x) + ")");
+        scale.reset();
+      }
+      ok = assign(out.scale, scale) && ok;
+    }
+    if (const Val* x = f.find("rotate_deg")) ok = assign(out.rotate_deg, read_vec3(*x)) && ok;
+    if (const Val* x = f.find("translate")) ok = assign(out.translate, read_vec3(*x)) && ok;
+    return ok;
+  }
+
+  void mesh(const Val& e, Scene& s, int object) {
+    const Fields f = fields(e, kMeshKeys);
+    bool ok = require(e, f, {"file"});
+    Mesh mesh;
+    const Val* file = f.find("file");
+    if (file) {
+      if (auto name = read_string(*file)) {
+        mesh.file = *name;
+        if (mesh.file.empty()) {
+          report(*file, "must name an OBJ file (got \"\")");
+          ok = false;
+        }
+      } else {
+        ok = false;
+      }
+    }
+    int override_material = -1;
+    if (const Val* x = f.find("material")) {
+      const auto m = material_ref(*x);
+      ok = m.has_value() && ok;
+      if (m) {
+        override_material = *m;
+        mesh.material_override = s.materials[static_cast<std::size_t>(*m)].name;
+      }
+    }
+    if (const Val* x = f.find("transform")) ok = transform(*x, mesh.transform) && ok;
+    NsMapping ns = NsMapping::kAsIs;
+    if (const Val* x = f.find("ns")) {
+      const auto choice = read_choice(*x, kNsMappings, "Ns mapping");
+      ok = choice.has_value() && ok;
+      if (choice && *choice == "blinn_to_phong") ns = NsMapping::kBlinnToPhong;
+    }
+    if (!ok || file == nullptr) return;
+    MeshLoad loaded = load_mesh(files_, mesh.file, mesh.transform, ns, override_material,
+                                static_cast<int>(s.materials.size()));
+    for (std::string& w : loaded.warnings) warnings_.add({index_.begin(file->node), file->path, std::move(w)});
+    if (!loaded.errors.empty()) {
+      for (std::string& message : loaded.errors) report(*file, std::move(message));
+      return;
+    }
+    mesh.geometry = std::move(loaded.geometry);
+    mesh.ns = ns;
+    mesh.resolved_path = files_.resolve(mesh.file);
+    for (Material& m : loaded.materials) s.materials.push_back(std::move(m));
+    s.meshes.push_back(std::move(mesh));
+    s.mesh_object.push_back(object);
+  }
+
+  std::string_view text_;
+  const PosIndex& index_;
+  const Json& root_;
+  const std::vector<Overflow>& overflows_;
+  Issues& issues_;
+  const SceneFiles& files_;
+  Issues& warnings_;  // problems that do not stop the scene from loading (mesh files' quirks)
+  bool has_materials_ = false;       // the scene has a "materials" member
+  bool materials_unusable_ = false;  // ... but it is not an object
+  bool reported_no_materials_ = false;
+  std::unordered_map<std::string, int> material_index_;
+  std::vector<std::string> material_names_;  // file order, for suggestions
+};
+
+}  // namespace
+
+// Positions every issue (1-based line; column in characters, a UTF-8 BOM not counted) in one
+// sweep over the text, in text order.
+std::vector<Diagnostic> to_diagnostics(std::string_view t, std::vector<Issue> issues,
+                                       bool truncated, const std::string& file) {
+  std::stable_sort(issues.begin(), issues.end(),
+                   [](const Issue& a, const Issue& b) { return a.offset < b.offset; });
+  std::vector<Diagnostic> out;
+  std::size_t pos = has_bom(t) ? 3 : 0;
+  int line = 1, column = 1;
+  for (Issue& issue : issues) {
+    Diagnostic d;
+    d.file = file;
+    d.path = std::move(issue.path);
+    d.message = std::move(issue.message);
+    if (issue.offset != kNoOffset) {
+      const std::size_t target = std::min(issue.offset, t.size());
+      for (; pos < target; ++pos) {
+        if (t[pos] == '\n') {
+          ++line;
+          column = 1;
+        } else if ((static_cast<unsigned char>(t[pos]) & 0xC0) != 0x80) {
+          ++column;
+        }
+      }
+      d.line = line;
+      d.column = column;
+    }
+    out.push_back(std::move(d));
+  }
+  if (truncated) {
+    Diagnostic d;
+    d.file = file;
+    d.message = "too many errors; stopped after the first " + std::to_string(kMaxIssues);
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+LoadResult fail(const std::string& file, std::string message) {
+  LoadResult r;
+  Diagnostic d;
+  d.file = file;
+  d.message = std::move(message);
+  r.errors.push_back(std::move(d));
+  return r;
+}
+
+LoadResult load_text(const std::string& text, const std::string& file_name, const SceneFiles& files) {
+  Issues issues, warnings;
+  const auto finish = [&](std::optional<Scene> scene) {
+    LoadResult r;
+    const bool truncated = issues.full();
+    r.errors = to_diagnostics(text, std::move(issues.list()), truncated, file_name);
+    r.warnings = to_diagnostics(text, std::move(warnings.list()), false, file_name);
+    if (r.errors.empty()) r.scene = std::move(scene);
+    return r;
+  };
+
+  if (text.size() >= kMaxTextBytes) {
+    issues.add({kNoOffset, "", "the scene text is too large (2 GiB or more)"});
+    return finish(std::nullopt);
+  }
+  const std::size_t start = has_bom(text) ? 3 : 0;
+  if (std::all_of(text.begin() + static_cast<std::ptrdiff_t>(start), text.end(), is_space)) {
+    issues.add({start, "", "the file is empty (expected a JSON object)"});
+    return finish(std::nullopt);
+  }
+  const Prescan pre = prescan(text);
+  if (pre.too_deep != kNoOffset) {
+    issues.add({pre.too_deep, "", "nesting deeper than " + std::to_string(kMaxNesting) +
+                                      " levels of arrays and objects"});
+    return finish(std::nullopt);
+  }
+  // Overflowing numbers become "0" plus spaces: the text keeps every offset and parses, and the
+  // validator reports them as non-finite from the original text.
+  std::string patched;
+  if (!pre.overflows.empty()) {
+    patched = text;
+    for (const Overflow& o : pre.overflows) {
+      patched.replace(o.offset, o.length, std::string(o.length, ' '));
+      patched[o.offset] = '0';
+    }
+  }
+  // nlohmann reads a NUL byte as the end of the input, so it only parses the text before one:
+  // a syntax error there is reported as such, else the NUL itself is the error.
+  std::string_view parsed_text = pre.overflows.empty() ? text : patched;
+  if (pre.nul != kNoOffset) parsed_text = parsed_text.substr(0, pre.nul);
+
+  Json root;
+  try {
+    root = Json::parse(parsed_text);
+  } catch (const Json::parse_error& e) {
+    Issue issue = syntax_issue(std::string_view(text).substr(0, parsed_text.size()), e, pre);
+    if (pre.nul != kNoOffset && issue.offset >= pre.nul) {
+      issue = {pre.nul, "", "syntax error: unexpected byte 0x00 (a scene file is text)"};
+    }
+    issues.add(std::move(issue));
+    return finish(std::nullopt);
+  } catch (const Json::exception& e) {
+    issues.add({kNoOffset, "", std::string("cannot parse: ") + e.what()});
+    return finish(std::nullopt);
+  }
+  if (pre.nul != kNoOffset) {
+    issues.add({pre.nul, "", "syntax error: unexpected byte 0x00 (a scene file is text)"});
+    return finish(std::nullopt);
+  }
+  const PosIndex index(parsed_text);
+  Validator validator(text, index, root, pre.overflows, issues, files, warnings);
+  Scene scene = validator.run();
+  return finish(std::move(scene));
+}
+
+}  // namespace phonglab::scene_load

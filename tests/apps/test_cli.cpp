@@ -1,0 +1,250 @@
+// phonglab-cli end to end: exit codes, image formats and orientation, stats, probe (README).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <sys/wait.h>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/image_io.h"
+#include "core/packet/packet.h"
+
+namespace fs = std::filesystem;
+using phonglab::Image;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+RunResult run_cli(const std::string& args) {
+  const std::string cmd = std::string(PHONGLAB_CLI) + " " + args + " 2>&1";
+  RunResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// A fresh temporary directory per test.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("phonglab_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
+    return path(name);
+  }
+  fs::path dir_;
+};
+
+// Lower half: a lit white floor; upper half: a red background. Camera level, looking along -z.
+constexpr const char* kHalfScene = R"({
+  "camera": {"position": [0, 1, 0], "look_at": [0, 1, -1], "up": [0, 1, 0], "fov_y": 90},
+  "image": {"width": 8, "height": 6},
+  "background": [1, 0, 0],
+  "lights": [{"type": "directional", "direction": [0, -1, 0], "intensity": 1}],
+  "materials": {"white": {"kd": 0.5}},
+  "objects": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "white"}]
+})";
+
+}  // namespace
+
+TEST_F(CliTest, VersionAndHelpExitZero) {
+  EXPECT_EQ(run_cli("--version").exit_code, 0);
+  const RunResult help = run_cli("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("render"), std::string::npos);
+}
+
+TEST_F(CliTest, BadUsageExitsTwo) {
+  EXPECT_EQ(run_cli("").exit_code, 2);
+  EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
+  EXPECT_EQ(run_cli("render lecture").exit_code, 2) << "missing -o";
+  EXPECT_EQ(run_cli("render lecture -o x.pfm --spp zero").exit_code, 2);
+  EXPECT_EQ(run_cli("render lecture -o x.pfm --term glossy").exit_code, 2);
+  EXPECT_EQ(run_cli("probe lecture --pixel 5").exit_code, 2);
+  EXPECT_EQ(run_cli("render lecture -o x.pfm --bogus").exit_code, 2);
+}
+
+TEST_F(CliTest, BadSceneExitsOneWithPositionedMessage) {
+  const std::string scene = write("bad.json", R"({
+  "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "m"}],
+  "materials": {"m": {}}
+})");
+  const RunResult r = run_cli("render " + scene + " -o " + path("out.pfm"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("bad.json:2:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("objects[0].radius"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(path("out.pfm")));
+  EXPECT_EQ(run_cli("validate " + scene).exit_code, 1);
+  EXPECT_EQ(run_cli("validate " + path("missing.json")).exit_code, 1);
+}
+
+TEST_F(CliTest, PfmRowsAreStoredBottomToTop) {
+  const std::string scene = write("half.json", kHalfScene);
+  ASSERT_EQ(run_cli("render " + scene + " -o " + path("half.pfm")).exit_code, 0);
+  std::ifstream in(path("half.pfm"), std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string bytes = ss.str();
+  ASSERT_EQ(bytes.rfind("PF\n8 6\n-1.0\n", 0), 0u) << "standard header, little-endian";
+  const std::size_t header = std::string("PF\n8 6\n-1.0\n").size();
+  ASSERT_EQ(bytes.size(), header + 8 * 6 * 3 * 4);
+  auto value = [&](int file_row, int x, int c) {
+    float f;
+    std::memcpy(&f, bytes.data() + header + ((file_row * 8 + x) * 3 + c) * 4, 4);
+    return f;
+  };
+  // First row in the file is the image's bottom row: the floor, lit at N.L = 1: kd * I = 0.5.
+  EXPECT_FLOAT_EQ(value(0, 3, 0), 0.5f);
+  EXPECT_FLOAT_EQ(value(0, 3, 1), 0.5f);
+  // Last row in the file is the top row: the red background.
+  EXPECT_FLOAT_EQ(value(5, 3, 0), 1.0f);
+  EXPECT_FLOAT_EQ(value(5, 3, 1), 0.0f);
+}
+
+TEST_F(CliTest, PngIsSrgbOfClampedMean) {
+  const std::string scene = write("half.json", kHalfScene);
+  ASSERT_EQ(run_cli("render " + scene + " -o " + path("half.png")).exit_code, 0);
+  std::ifstream in(path("half.png"), std::ios::binary);
+  char sig[8] = {};
+  in.read(sig, 8);
+  EXPECT_EQ(std::string(sig + 1, 3), "PNG");
+  EXPECT_EQ(phonglab::linear_to_srgb8(0.5), 188);  // sRGB of linear 0.5
+  EXPECT_EQ(phonglab::linear_to_srgb8(7.0), 255);
+  EXPECT_EQ(phonglab::linear_to_srgb8(-1.0), 0);
+}
+
+TEST_F(CliTest, WidthHeightOverridesAndStatsFile) {
+  ASSERT_EQ(run_cli("render lecture -o " + path("l.pfm") + " --width 40 --height 30 --spp 2 --stats " +
+                    path("stats.json"))
+                .exit_code,
+            0);
+  std::string err;
+  const Image img = phonglab::read_pfm(path("l.pfm"), &err);
+  ASSERT_EQ(img.width, 40) << err;
+  ASSERT_EQ(img.height, 30);
+  std::ifstream in(path("stats.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"load_ms", "build_ms", "render_ms", "samples_per_pixel", "rays", "mrays_per_s", "nan_count"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["samples_per_pixel"], 2);
+  EXPECT_EQ(j["rays"]["primary"], 40 * 30 * 2);
+  EXPECT_EQ(j["nan_count"], 0);
+  // lecture's full image goes to the packet tracer wherever the CPU has AVX2.
+  EXPECT_EQ(j["tracer"], phonglab::packet_cpu_supported() ? "packet" : "scalar");
+  ASSERT_EQ(run_cli("render lecture -o " + path("d.pfm") + " --width 8 --height 8 --term diffuse --stats " +
+                    path("stats_term.json"))
+                .exit_code,
+            0);
+  std::ifstream term_in(path("stats_term.json"));
+  EXPECT_EQ(nlohmann::json::parse(term_in)["tracer"], phonglab::packet_cpu_supported() ? "packet" : "scalar");
+  ASSERT_EQ(run_cli("render lecture -o " + path("n.pfm") + " --width 8 --height 8 --term normal --stats " +
+                    path("stats_normal.json"))
+                .exit_code,
+            0);
+  std::ifstream normal_in(path("stats_normal.json"));
+  EXPECT_EQ(nlohmann::json::parse(normal_in)["tracer"], "scalar");  // debug views are traced ray by ray
+}
+
+TEST_F(CliTest, ProbeTotalEqualsRenderedPixel) {
+  ASSERT_EQ(run_cli("render lecture -o " + path("l.pfm") + " --width 64 --height 36").exit_code, 0);
+  const Image img = phonglab::read_pfm(path("l.pfm"));
+  ASSERT_EQ(img.width, 64);
+  for (auto [x, y] : {std::pair{32, 20}, {10, 30}, {50, 5}, {40, 25}}) {
+    const RunResult r = run_cli("probe lecture --width 64 --height 36 --json --pixel " + std::to_string(x) + "," +
+                                std::to_string(y));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["pixel"][0], x);
+    for (const char* key : {"hit", "total", "terms", "lights"}) EXPECT_TRUE(j.contains(key)) << key;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_FLOAT_EQ(static_cast<float>(j["total"][c].get<double>()), img.at(x, y)[c]) << x << "," << y;
+      double sum = 0;
+      for (const char* t : {"ambient", "diffuse", "specular", "reflection", "refraction"}) sum += j["terms"][t][c].get<double>();
+      if (j["hit"]) {
+        EXPECT_NEAR(sum, j["total"][c].get<double>(), 1e-12);
+      }
+    }
+    if (j["hit"]) {
+      for (const auto& l : j["lights"]) {
+        for (const char* key : {"visible", "n_dot_l", "diffuse", "specular"}) EXPECT_TRUE(l.contains(key)) << key;
+      }
+    }
+  }
+  const RunResult text = run_cli("probe lecture --width 64 --height 36 --pixel 32,20");
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_NE(text.out.find("N.L"), std::string::npos);
+}
+
+TEST_F(CliTest, TermImagesMatchTermFlag) {
+  for (const char* term : {"ambient", "diffuse", "specular", "reflection", "refraction", "normal", "depth", "rays"}) {
+    EXPECT_EQ(run_cli(std::string("render lecture --width 16 --height 9 --term ") + term + " -o " + path("t.pfm")).exit_code, 0)
+        << term;
+  }
+}
+
+TEST_F(CliTest, RaysPngIsAHeatMapScaledToTheImageMaximumWhileThePfmKeepsTheCounts) {
+  const RunResult png = run_cli("render glass --width 32 --height 18 --term rays -o " + path("heat.png"));
+  ASSERT_EQ(png.exit_code, 0) << png.out;
+  EXPECT_TRUE(fs::file_size(path("heat.png")) > 0);
+  double printed_max = 0;
+  ASSERT_EQ(std::sscanf(png.out.c_str(), "heat map: 0 (black) .. %lf (pale yellow) rays per pixel", &printed_max), 1)
+      << png.out;
+  ASSERT_EQ(run_cli("render glass --width 32 --height 18 --term rays -o " + path("rays.pfm")).exit_code, 0);
+  const Image counts = phonglab::read_pfm(path("rays.pfm"));
+  ASSERT_EQ(counts.width, 32);
+  float max = 0;
+  for (const auto& p : counts.pixels) {
+    EXPECT_EQ(p.x, std::floor(p.x)) << "whole rays at 1 spp";
+    EXPECT_GE(p.x, 1.0f) << "at least the primary ray";
+    max = std::max(max, p.x);
+  }
+  EXPECT_EQ(printed_max, static_cast<double>(max));
+}
+
+TEST_F(CliTest, ScenesListsEveryEmbeddedScene) {
+  const RunResult r = run_cli("scenes");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* name : {"lecture", "shininess", "lights", "mirrors", "glass"}) {
+    EXPECT_NE(r.out.find(name), std::string::npos) << name;
+    EXPECT_EQ(run_cli(std::string("validate ") + name).exit_code, 0) << name;
+  }
+}
+
+TEST_F(CliTest, UnwritableOutputIsBadInput) {
+  EXPECT_EQ(run_cli("render lecture --width 4 --height 4 -o /nonexistent-dir/x.pfm").exit_code, 1);
+  EXPECT_EQ(run_cli("render lecture --width 4 --height 4 -o " + path("x.exr")).exit_code, 2) << "unknown format";
+}
+
+TEST_F(CliTest, MistypedEmbeddedSceneNameGetsASuggestion) {
+  const RunResult r = run_cli("render lectur -o " + path("x.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("did you mean \"lecture\"?"), std::string::npos) << r.out;
+}
+
+TEST_F(CliTest, BenchOnlyAcceptsTheAccelSectionAndNoScene) {
+  EXPECT_EQ(run_cli("bench --only speed").exit_code, 2);
+  EXPECT_EQ(run_cli("bench lecture --only accel").exit_code, 2);
+}

@@ -1,0 +1,300 @@
+// The previewer's progressive renderer: the restart protocol (no image of an old scene after
+// set_scene), coarse-to-fine order, idling at the target, thread-count independence.
+// Written to run under ThreadSanitizer: small images, no sleeps longer than needed.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <ctime>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "core/render/progressive.h"
+#include "core/render/render.h"
+#include "io/scene/scene_io.h"
+
+using namespace phonglab;
+using namespace std::chrono_literals;
+
+namespace {
+
+constexpr auto kLongWait = 60s;  // generous: TSan slows rendering by an order of magnitude
+
+// Only the background shows; `decoys` spheres behind the camera make passes slow without
+// changing a pixel, so restarts land in the middle of passes.
+std::shared_ptr<const Scene> background_scene(const Color& background, int decoys) {
+  auto s = std::make_shared<Scene>();
+  s->background = background;
+  s->materials.push_back(Material{});
+  for (int i = 0; i < decoys; ++i) s->spheres.push_back(Sphere{Vec3(i % 10, i / 10, 40), 0.25, 0});
+  prepare_scene(*s);
+  return s;
+}
+
+std::shared_ptr<const Scene> lecture_scene() {
+  LoadResult loaded = load_scene_arg("lecture");
+  EXPECT_TRUE(loaded.ok()) << loaded.error_text();
+  auto s = std::make_shared<Scene>(*loaded.scene);
+  prepare_scene(*s);
+  return s;
+}
+
+bool all_pixels_are(const ProgressiveFrame& frame, const glm::vec3& color) {
+  for (const glm::vec3& p : frame.pixels) {
+    if (p != color) return false;
+  }
+  return !frame.pixels.empty();
+}
+
+// Records every published frame's level and spp by taking it from the on_frame hook.
+struct FrameLog {
+  std::mutex mutex;
+  std::vector<int> divisors;
+  std::vector<std::uint32_t> spps;
+  ProgressiveRenderer* renderer = nullptr;
+  void on_frame() {
+    ProgressiveFrame frame;
+    const std::lock_guard lock(mutex);
+    if (renderer && renderer->take_frame(frame)) {
+      divisors.push_back(frame.divisor);
+      spps.push_back(frame.spp);
+    }
+  }
+};
+
+double process_cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+}  // namespace
+
+TEST(ProgressiveRenderer, NoFrameAfterSetSceneShowsTheOldScene) {
+  const glm::vec3 red(1, 0, 0), blue(0, 0, 1);
+  const auto scene_a = background_scene(Color(1, 0, 0), 200);
+  const auto scene_b = background_scene(Color(0, 0, 1), 200);
+  ProgressiveSettings settings;
+  settings.target_spp = 3;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(96, 64);
+  int frames_checked = 0;
+  for (int round = 0; round < 40; ++round) {
+    renderer.set_scene(scene_a);
+    // Vary the moment of the switch: before, during and after A's first passes.
+    std::this_thread::sleep_for(std::chrono::microseconds(250 * (round % 8)));
+    ProgressiveFrame frame;
+    if (renderer.take_frame(frame)) {
+      EXPECT_TRUE(all_pixels_are(frame, red)) << "round " << round;
+    }
+    const std::uint64_t generation_b = renderer.set_scene(scene_b);
+    const auto deadline = std::chrono::steady_clock::now() + kLongWait;
+    bool finished = false;
+    while (!finished && std::chrono::steady_clock::now() < deadline) {
+      if (renderer.take_frame(frame)) {
+        ++frames_checked;
+        ASSERT_EQ(frame.generation, generation_b) << "round " << round;
+        ASSERT_TRUE(all_pixels_are(frame, blue)) << "round " << round << ": a pixel of scene A";
+        finished = frame.divisor == 1;
+      } else {
+        std::this_thread::sleep_for(100us);
+      }
+    }
+    EXPECT_TRUE(finished) << "round " << round;
+  }
+  EXPECT_GE(frames_checked, 40);
+}
+
+TEST(ProgressiveRenderer, LevelsGoCoarseToFineThenAccumulateToTheTarget) {
+  FrameLog log;
+  ProgressiveSettings settings;
+  settings.target_spp = 3;
+  ProgressiveRenderer renderer(settings, [&] { log.on_frame(); });
+  {
+    const std::lock_guard lock(log.mutex);
+    log.renderer = &renderer;
+  }
+  renderer.set_resolution(64, 48);
+  renderer.set_scene(background_scene(Color(0.5), 0));
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  const std::lock_guard lock(log.mutex);
+  EXPECT_EQ(log.divisors, (std::vector<int>{8, 4, 2, 1, 1, 1}));
+  EXPECT_EQ(log.spps, (std::vector<std::uint32_t>{1, 1, 1, 1, 2, 3}));
+  log.renderer = nullptr;
+}
+
+TEST(ProgressiveRenderer, CoarseLevelImagesHaveTheirReducedSize) {
+  ProgressiveSettings settings;
+  settings.target_spp = 1;
+  settings.interactive_divisor = 8;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_interacting(true);
+  renderer.set_resolution(160, 90);
+  renderer.set_scene(background_scene(Color(0.25), 0));
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ProgressiveFrame frame;
+  ASSERT_TRUE(renderer.take_frame(frame));
+  EXPECT_EQ(frame.divisor, 8);
+  EXPECT_EQ(frame.width, 20);
+  EXPECT_EQ(frame.height, 12);  // ceil(90 / 8)
+  EXPECT_EQ(frame.pixels.size(), 20u * 12u);
+}
+
+TEST(ProgressiveRenderer, InteractingStaysAtCoarseLevelsUntilReleased) {
+  FrameLog log;
+  ProgressiveSettings settings;
+  settings.target_spp = 2;
+  settings.interactive_divisor = 4;
+  ProgressiveRenderer renderer(settings, [&] { log.on_frame(); });
+  {
+    const std::lock_guard lock(log.mutex);
+    log.renderer = &renderer;
+  }
+  renderer.set_interacting(true);
+  renderer.set_resolution(64, 48);
+  renderer.set_scene(background_scene(Color(0.5), 0));
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  {
+    const std::lock_guard lock(log.mutex);
+    EXPECT_EQ(log.divisors, (std::vector<int>{8, 4}));
+  }
+  renderer.set_interacting(false);
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  const std::lock_guard lock(log.mutex);
+  EXPECT_EQ(log.divisors, (std::vector<int>{8, 4, 2, 1, 1}));
+  log.renderer = nullptr;
+}
+
+TEST(ProgressiveRenderer, IdlesWithoutUsingTheCpuAfterTheTarget) {
+  ProgressiveSettings settings;
+  settings.target_spp = 4;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(48, 32);
+  renderer.set_scene(lecture_scene());
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ProgressiveFrame frame;
+  ASSERT_TRUE(renderer.take_frame(frame));
+  EXPECT_EQ(frame.divisor, 1);
+  EXPECT_EQ(frame.spp, 4u);
+
+  const std::uint64_t passes = renderer.status().passes;
+  const double cpu_before = process_cpu_seconds();
+  std::this_thread::sleep_for(300ms);
+  const double cpu_used = process_cpu_seconds() - cpu_before;
+  EXPECT_EQ(renderer.status().passes, passes);
+  EXPECT_TRUE(renderer.status().idle);
+  EXPECT_LT(cpu_used, 0.05) << "the idle render thread should sleep, not spin";
+  EXPECT_FALSE(renderer.take_frame(frame)) << "no new image while idle";
+}
+
+TEST(ProgressiveRenderer, RaisingTheTargetContinuesWithoutRestart) {
+  ProgressiveSettings settings;
+  settings.target_spp = 2;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(32, 24);
+  const std::uint64_t generation = renderer.set_scene(lecture_scene());
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  settings.target_spp = 5;
+  settings.threads = 1;  // neither a new target nor a thread count changes the image: no restart
+  EXPECT_EQ(renderer.set_settings(settings), generation);
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ProgressiveFrame frame;
+  ASSERT_TRUE(renderer.take_frame(frame));
+  EXPECT_EQ(frame.generation, generation);
+  EXPECT_EQ(frame.spp, 5u);
+}
+
+TEST(ProgressiveRenderer, TermChangeRestarts) {
+  ProgressiveSettings settings;
+  settings.target_spp = 1;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(32, 24);
+  const std::uint64_t generation = renderer.set_scene(lecture_scene());
+  settings.term = Term::kNormal;
+  EXPECT_GT(renderer.set_settings(settings), generation);
+}
+
+TEST(ProgressiveRenderer, ResultIsIndependentOfThreadCountAndMatchesRenderPass) {
+  const auto scene = lecture_scene();
+  constexpr int kWidth = 40, kHeight = 30, kSpp = 3;
+  std::vector<ProgressiveFrame> finals;
+  for (const int threads : {1, 2, 3}) {
+    ProgressiveSettings settings;
+    settings.target_spp = kSpp;
+    settings.threads = threads;
+    ProgressiveRenderer renderer(settings);
+    renderer.set_resolution(kWidth, kHeight);
+    renderer.set_scene(scene);
+    ASSERT_TRUE(renderer.wait_idle(kLongWait));
+    ProgressiveFrame frame;
+    ASSERT_TRUE(renderer.take_frame(frame));
+    ASSERT_EQ(frame.spp, static_cast<std::uint32_t>(kSpp));
+    finals.push_back(std::move(frame));
+  }
+  EXPECT_EQ(finals[0].pixels, finals[1].pixels);
+  EXPECT_EQ(finals[0].pixels, finals[2].pixels);
+
+  // The full-resolution accumulation starts again at sample 0: the same as plain passes.
+  Accumulator accum;
+  accum.reset(kWidth, kHeight);
+  for (int i = 0; i < kSpp; ++i) render_pass(*scene, RenderOptions{}, accum);
+  std::vector<glm::vec3> expected;
+  for (const Color& sum : accum.sum) expected.emplace_back(sum * (1.0 / kSpp));
+  EXPECT_EQ(finals[0].pixels, expected);
+}
+
+TEST(ProgressiveRenderer, SetSceneDoesNotWaitForTheRunningPass) {
+  ProgressiveSettings settings;
+  settings.target_spp = 1000;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(256, 256);
+  renderer.set_scene(background_scene(Color(1, 0, 0), 400));
+  std::this_thread::sleep_for(20ms);  // a pass is now running
+  double slowest_ms = 0;
+  for (int i = 0; i < 20; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    renderer.set_scene(background_scene(Color(0, i % 2, 1), 400));
+    slowest_ms = std::max(slowest_ms, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    std::this_thread::sleep_for(2ms);
+  }
+  // Building the snapshot dominates; the call itself only takes the lock briefly.
+  EXPECT_LT(slowest_ms, 50.0);
+}
+
+TEST(ProgressiveRenderer, DestructionDuringAPassStopsPromptly) {
+  const auto start = std::chrono::steady_clock::now();
+  {
+    ProgressiveSettings settings;
+    settings.target_spp = 1000;
+    ProgressiveRenderer renderer(settings);
+    renderer.set_resolution(512, 512);
+    renderer.set_scene(background_scene(Color(1, 0, 0), 400));
+    std::this_thread::sleep_for(20ms);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 5.0);
+}
+
+TEST(ProgressiveRenderer, TinyImagesRenderAtFullResolutionAtOnce) {
+  FrameLog log;
+  ProgressiveSettings settings;
+  settings.target_spp = 2;
+  ProgressiveRenderer renderer(settings, [&] { log.on_frame(); });
+  {
+    const std::lock_guard lock(log.mutex);
+    log.renderer = &renderer;
+  }
+  renderer.set_resolution(1, 1);
+  renderer.set_scene(background_scene(Color(0.5), 0));
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  const std::lock_guard lock(log.mutex);
+  EXPECT_EQ(log.divisors, (std::vector<int>{1, 1}));
+  log.renderer = nullptr;
+}
+
+TEST(ProgressiveRenderer, NoSceneOrEmptyImageMeansIdleWithoutFrames) {
+  ProgressiveRenderer renderer;
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  renderer.set_resolution(0, 0);
+  renderer.set_scene(background_scene(Color(0.5), 0));
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ProgressiveFrame frame;
+  EXPECT_FALSE(renderer.take_frame(frame));
+}
