@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "core/accel/accel.h"
+#include "core/render/threads.h"
 #include "core/scene/camera.h"
 #include "io/embedded_scenes.h"
 #include "core/packet/packet.h"
@@ -49,10 +50,10 @@ std::string fmt(const char* format, double a) {
 
 std::string mib(std::size_t bytes) { return fmt("%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0)); }
 
-// One accelerator under test: the scene with its `accel` replaced.
+// One accelerator under test: the scene prepared with it.
 struct Contender {
   std::string name;
-  Scene scene;
+  PreparedScene scene;
   bool packets = true;  // RenderOptions::packets
 };
 
@@ -62,7 +63,7 @@ struct Frame {
   std::vector<Color> image;
 };
 
-Frame render_frame(const Scene& scene, int w, int h, int threads, bool packets = true) {
+Frame render_frame(const PreparedScene& scene, int w, int h, int threads, bool packets = true) {
   Accumulator accum;
   accum.reset(w, h);
   RenderOptions options;
@@ -102,17 +103,14 @@ PrimaryCast timed_cast(int threads, const Cast& cast) {
     hits += my_hits;
   };
   const auto t0 = Clock::now();
-  std::vector<std::thread> pool;
-  for (int i = 1; i < std::max(1, threads); ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  run_workers(threads, [&](int) { worker(); });
   return PrimaryCast{seconds_since(t0), rays.load(), hits.load()};
 }
 
 // The pixel-centre primary rays of a w x h frame through intersect() (the scene's accelerator),
 // 4x4 pixel blocks handed out as the packet caster does, so only the query differs.
-PrimaryCast cast_primary(const Scene& scene, int w, int h, int threads) {
-  const CameraFrame frame = make_camera_frame(scene.camera, w, h);
+PrimaryCast cast_primary(const PreparedScene& scene, int w, int h, int threads) {
+  const CameraFrame frame = make_camera_frame(scene.scene().camera, w, h);
   constexpr int kSide = 4;
   constexpr int kBlocksPerTask = 16;
   const int blocks_x = (w + kSide - 1) / kSide;
@@ -137,8 +135,8 @@ PrimaryCast cast_primary(const Scene& scene, int w, int h, int threads) {
 
 // The same rays through the packet tracer's kernels (camera rays and nearest hits, four lanes
 // wide), in its own 16x16-pixel tiles.
-PrimaryCast cast_primary_packets(const Scene& scene, int w, int h, int threads) {
-  const CameraFrame frame = make_camera_frame(scene.camera, w, h);
+PrimaryCast cast_primary_packets(const PreparedScene& scene, int w, int h, int threads) {
+  const CameraFrame frame = make_camera_frame(scene.scene().camera, w, h);
   constexpr int kTile = 16;
   const int tiles_x = (w + kTile - 1) / kTile;
   const int tiles = tiles_x * ((h + kTile - 1) / kTile);
@@ -154,10 +152,8 @@ PrimaryCast cast_primary_packets(const Scene& scene, int w, int h, int threads) 
   });
 }
 
-Scene load_prepared(std::string_view name) {
-  Scene s = *load_scene_arg(std::string(name)).scene;  // embedded scenes always load (tests check it)
-  prepare_scene(s);
-  return s;
+Scene load_embedded(std::string_view name) {
+  return *load_scene_arg(std::string(name)).scene;  // embedded scenes always load (tests check it)
 }
 
 // Timings of one scene's Whitted frame by contender and thread count.
@@ -305,7 +301,6 @@ Scene make_mesh_scene(std::vector<Triangle> triangles) {
   s.camera.look_at = c + r * Vec3(0.4, -0.1, 0);
   s.camera.fov_y_deg = 40;
   s.background = Color(0.05, 0.06, 0.09);
-  prepare_scene(s);
   return s;
 }
 
@@ -327,34 +322,32 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   std::printf("acceleration: %dx%d, median of %d frames (%d threads) and %d (1 thread)%s\n", w, h, frames_multi,
               threads, frames_single, kEmbree ? "" : "; Embree not built");
 
-  // Contenders for a prepared scene: the default path, the scalar renderer where the default is
-  // the packet tracer, the BVH forced, Embree single-ray.
-  const auto contenders = [&](const Scene& s) {
+  // Contenders for a scene: the default path, the scalar renderer where the default is the
+  // packet tracer, the BVH forced, Embree single-ray. Each prepares the scene as loaded.
+  const auto contenders = [&](const Scene& raw) {
     std::vector<Contender> cs;
-    const std::string structure = s.accel ? "BVH" : "brute force";
+    const PreparedScene s(raw);
+    const std::string structure = s.accel() ? "BVH" : "brute force";
     if (packet_tracing_applies(s)) {
       cs.push_back({"default (packets, " + structure + ")", s});
       cs.push_back({"scalar " + structure, s, false});
     } else {
       cs.push_back({"default (" + structure + ")", s});
     }
-    if (!s.accel) {
-      Scene b = s;
-      b.accel = build_scene_accel(b, true);
+    if (!s.accel()) {
+      PreparedScene b(raw, [](const Scene& x) { return build_scene_accel(x, true); });
       const bool packets = packet_tracing_applies(b);
       cs.push_back({packets ? "BVH forced (packets)" : "BVH forced", std::move(b)});
     }
 #ifdef PHONGLAB_HAVE_EMBREE
-    Scene e = s;
-    e.accel = make_embree_accel(e);
-    cs.push_back({"Embree rtcIntersect1/rtcOccluded1", std::move(e)});
+    cs.push_back({"Embree rtcIntersect1/rtcOccluded1", PreparedScene(raw, [](const Scene& x) { return make_embree_accel(x); })});
 #endif
     return cs;
   };
 
   std::vector<SceneRun> runs;
   for (const EmbeddedScene& e : embedded_scenes()) {
-    runs.push_back(run_frames(std::string(e.name), contenders(load_prepared(e.name)), w, h, threads, frames_multi,
+    runs.push_back(run_frames(std::string(e.name), contenders(load_embedded(e.name)), w, h, threads, frames_multi,
                               frames_single));
     std::printf("  %-10s %s %.1f ms (%d threads)\n", runs.back().scene.c_str(), runs.back().names[0].c_str(),
                 runs.back().ms[1][0], threads);
@@ -365,9 +358,10 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   std::vector<Triangle> tris = make_bumpy_sphere(rings, segments, 1);
   const std::size_t tri_count = tris.size();
   auto t0 = Clock::now();
-  const Scene mesh_scene = make_mesh_scene(std::move(tris));
+  const Scene mesh_raw = make_mesh_scene(std::move(tris));
+  const PreparedScene mesh_scene(mesh_raw);
   const double our_build_s = seconds_since(t0);
-  const std::size_t our_bytes = mesh_scene.meshes[0].geometry->memory_bytes();
+  const std::size_t our_bytes = mesh_raw.meshes[0].geometry->memory_bytes();
   std::printf("  mesh: %zu triangles, our build %.2f s, %s\n", tri_count, our_build_s, mib(our_bytes).c_str());
   std::vector<Contender> mesh_cs;
   if (packet_tracing_applies(mesh_scene)) {
@@ -378,12 +372,8 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   }
 #ifdef PHONGLAB_HAVE_EMBREE
   EmbreeBuildStats embree_multi, embree_single;
-  {
-    Scene e = mesh_scene;
-    e.accel = make_embree_accel(e, EmbreeOptions{1}, &embree_single);
-  }
-  Scene embree_mesh = mesh_scene;
-  embree_mesh.accel = make_embree_accel(embree_mesh, EmbreeOptions{threads}, &embree_multi);
+  make_embree_accel(mesh_scene.scene(), EmbreeOptions{1}, &embree_single);
+  PreparedScene embree_mesh(mesh_raw, [&](const Scene& x) { return make_embree_accel(x, EmbreeOptions{threads}, &embree_multi); });
   mesh_cs.push_back({"Embree rtcIntersect1/rtcOccluded1", std::move(embree_mesh)});
   std::printf("  mesh: Embree build %.2f s (%d threads), %.2f s (1 thread), %s\n", embree_multi.total_seconds, threads,
               embree_single.total_seconds, mib(embree_multi.memory_bytes).c_str());
@@ -423,7 +413,7 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
   std::ostringstream md;
   md << "\n## Acceleration\n\nThe Whitted frame at " << w << "x" << h << ", 1 spp, median of " << frames_multi
      << " frames with " << threads << " threads and " << frames_single
-     << " with 1 thread, the contenders and the thread counts alternating frame by frame: the project's default path (prepare_scene:"
+     << " with 1 thread, the contenders and the thread counts alternating frame by frame: the project's default path (PreparedScene:"
         " brute force for a few spheres and triangles, else its BVH; traced by the packet tracer where the CPU has"
         " AVX2, four rays at a time, through the BVH too), the scalar renderer where the default is the packet tracer"
         " (the same image, ray by ray), its BVH forced on every scene, and "
@@ -485,7 +475,7 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
                  : "(Embree not built: no packet figure.)\n\n")
      << "| scene | query | Mrays/s | rays that hit | share of the packet figure |\n|---|---|---|---|---|\n";
   out.csv += "\nprimary_scene,query,threads,median_ms,mrays_per_s,hits\n";
-  const auto primary_rows = [&](const std::string& name, const std::vector<Contender>& cs, const Scene& base) {
+  const auto primary_rows = [&](const std::string& name, const std::vector<Contender>& cs, const PreparedScene& base) {
     std::vector<std::pair<std::string, PrimaryCast>> rows;
     for (const Contender& c : cs) {
       if (c.packets && packet_tracing_applies(c.scene)) continue;  // single rays: the scalar contender's row
@@ -511,7 +501,7 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
 #ifdef PHONGLAB_HAVE_EMBREE
     {
       std::vector<double> secs;
-      const std::vector<PacketCast> casts = embree_cast_primary_packets(base, w, h, threads, frames_multi);
+      const std::vector<PacketCast> casts = embree_cast_primary_packets(base.scene(), w, h, threads, frames_multi);
       for (const PacketCast& pc : casts) secs.push_back(pc.seconds);
       rows.push_back({"Embree rtcIntersect16 packets", PrimaryCast{median(secs), casts.back().rays, casts.back().hits}});
     }
@@ -529,8 +519,8 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
     }
   };
   {
-    const Scene lecture = load_prepared("lecture");
-    primary_rows("lecture", contenders(lecture), lecture);
+    const Scene lecture = load_embedded("lecture");
+    primary_rows("lecture", contenders(lecture), PreparedScene(lecture));
   }
   primary_rows("bumpy sphere", mesh_cs, mesh_scene);
 

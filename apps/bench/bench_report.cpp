@@ -118,9 +118,7 @@ std::string fmt(const char* format, double a) {
 
 Scene load_embedded(std::string_view name) {
   const LoadResult r = load_scene_arg(std::string(name));
-  Scene s = *r.scene;  // embedded scenes always load (tests check it)
-  prepare_scene(s);
-  return s;
+  return *r.scene;  // embedded scenes always load (tests check it)
 }
 
 struct Render {
@@ -130,7 +128,7 @@ struct Render {
 };
 
 // Renders `spp` passes of `scene` at w x h (`packets`: RenderOptions::packets).
-Render render(const Scene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets = true) {
+Render render(const PreparedScene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets = true) {
   Render r;
   r.accum.reset(w, h);
   RenderOptions opt;
@@ -141,6 +139,10 @@ Render render(const Scene& scene, int w, int h, int spp, int threads, std::uint3
   r.stats = render_passes(scene, opt, r.accum, spp);
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return r;
+}
+// The same for a scene prepared here, outside the timing.
+Render render(const Scene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets = true) {
+  return render(PreparedScene(scene), w, h, spp, threads, seed, packets);
 }
 
 // A log-log line chart as SVG: one polyline per series, plus dashed reference slopes.
@@ -292,7 +294,6 @@ Scene far_sphere_scene(double dist) {
   l.position = dist * axis + Vec3(-3, 2, 4);
   l.intensity = Color(0.9);
   s.lights = {l};
-  prepare_scene(s);
   return s;
 }
 
@@ -403,8 +404,7 @@ void precision_section(std::ostringstream& md, Writer& out, bool quick, int thre
   std::vector<Summary> summary(configs.size());
   for (std::size_t ci = 0; ci < configs.size(); ++ci) {
     for (const PrecisionScene& ps : scenes) {
-      Scene v = ps.scene;
-      v.numerics = configs[ci].variant;
+      const PreparedScene v = prepare_variant(ps.scene, configs[ci].variant);
       std::vector<double> ms;
       Render r;
       for (int f = 0; f < frames; ++f) {
@@ -470,7 +470,7 @@ void precision_section(std::ostringstream& md, Writer& out, bool quick, int thre
 }
 
 // 5. Model only what a scene needs: the measured saving of each work-skipping rule, by turning
-// it off (Scene::numerics ablations); the image must stay bit-identical.
+// it off (the NumericsVariant ablations of src/experiments/); the image must stay bit-identical.
 void savings_section(std::ostringstream& md, Writer& out, bool quick, int threads) {
   const int w = quick ? 320 : 1280, h = quick ? 180 : 720, frames = quick ? 3 : 7;
   std::printf("savings: %dx%d, median of %d frames\n", w, h, frames);
@@ -496,11 +496,11 @@ void savings_section(std::ostringstream& md, Writer& out, bool quick, int thread
                     "reflection_without,refraction_with,refraction_without,ms_with,ms_without,saved_percent,identical\n";
   for (const EmbeddedScene& e : embedded_scenes()) {
     const Scene base = load_embedded(e.name);
-    std::vector<Scene> variants(1, base);
+    std::vector<PreparedScene> variants(1, PreparedScene(base));
     for (const Ablation& a : ablations) {
-      Scene v = base;
-      v.numerics.*(a.flag) = true;
-      variants.push_back(v);
+      NumericsVariant v;
+      v.*(a.flag) = true;
+      variants.push_back(prepare_variant(base, v));
     }
     std::vector<std::vector<double>> ms(variants.size());
     std::vector<Render> last(variants.size());
@@ -637,6 +637,7 @@ int run_bench_report(const BenchReportOptions& options) {
     mean_err.assign(spps.size(), 0);
     mean_rmse.assign(spps.size(), 0);
     mean_time.assign(spps.size(), 0);
+    const PreparedScene prepared(s);
     for (int seed = 0; seed < seeds; ++seed) {
       Accumulator acc;
       acc.reset(cw, ch);
@@ -646,7 +647,7 @@ int run_bench_report(const BenchReportOptions& options) {
       double elapsed = 0;
       std::size_t k = 0;
       for (int spp = 1; spp <= max_spp; ++spp) {
-        elapsed += render_pass(s, opt, acc).seconds;
+        elapsed += render_pass(prepared, opt, acc).seconds;
         if (k < spps.size() && spp == static_cast<int>(spps[k])) {
           const std::vector<Color> m = means(acc);
           const double e_rel = rel_mse(m, ref), e_rms = rmse(m, ref), e_psnr = psnr_displayed(m, ref);

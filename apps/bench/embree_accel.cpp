@@ -15,6 +15,7 @@
 
 #include "core/accel/accel.h"
 #include "core/accel/bvh.h"
+#include "core/render/threads.h"
 #include "core/scene/camera.h"
 
 namespace phonglab {
@@ -427,10 +428,7 @@ std::vector<PacketCast> embree_cast_primary_packets(const Scene& scene, int widt
     rays = 0;
     hits = 0;
     const auto t0 = Clock::now();
-    std::vector<std::thread> pool;
-    for (int i = 1; i < std::max(1, threads); ++i) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+    run_workers(threads, [&](int) { worker(); });
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (c > 0) out.push_back(PacketCast{seconds, rays.load(), hits.load()});
   }

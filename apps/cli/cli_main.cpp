@@ -1,6 +1,10 @@
 // phonglab-cli: the headless side of phonglab (README).
 // Exit codes: 0 success, 1 bad input (scene or files), 2 bad usage.
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -11,8 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/bench/bench_accel.h"
-#include "apps/bench/bench_report.h"
+#include "apps/common/args.h"
 #include "core/accel/accel.h"
 #include "io/embedded_scenes.h"
 #include "io/figure.h"
@@ -26,11 +29,8 @@
 namespace {
 
 using namespace phonglab;
+using namespace phonglab::cli;
 using Clock = std::chrono::steady_clock;
-
-constexpr int kExitOk = 0;
-constexpr int kExitBadInput = 1;
-constexpr int kExitUsage = 2;
 
 constexpr const char* kUsage = R"(usage: phonglab-cli <command> [options]
 
@@ -62,98 +62,9 @@ Options: --help, --version.
 Exit codes: 0 success, 1 bad input, 2 bad usage.
 )";
 
-struct UsageError {
-  std::string message;
-};
-
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
-
-// Command-line words after the command name, consumed option by option.
-class Args {
- public:
-  explicit Args(std::vector<std::string> words) : words_(std::move(words)) {}
-
-  // Value of `--name VALUE` (or `--name=VALUE`), removed from the words.
-  std::optional<std::string> take_value(const std::string& name) {
-    for (std::size_t i = 0; i < words_.size(); ++i) {
-      if (words_[i] == name) {
-        if (i + 1 >= words_.size()) throw UsageError{name + " needs a value"};
-        std::string v = words_[i + 1];
-        words_.erase(words_.begin() + static_cast<long>(i), words_.begin() + static_cast<long>(i) + 2);
-        return v;
-      }
-      if (words_[i].rfind(name + "=", 0) == 0) {
-        std::string v = words_[i].substr(name.size() + 1);
-        words_.erase(words_.begin() + static_cast<long>(i));
-        return v;
-      }
-    }
-    return std::nullopt;
-  }
-
-  bool take_flag(const std::string& name) {
-    auto it = std::find(words_.begin(), words_.end(), name);
-    if (it == words_.end()) return false;
-    words_.erase(it);
-    return true;
-  }
-
-  std::optional<int> take_int(const std::string& name, int lo, int hi) {
-    auto v = take_value(name);
-    if (!v) return std::nullopt;
-    char* end = nullptr;
-    errno = 0;
-    const long x = std::strtol(v->c_str(), &end, 10);
-    if (v->empty() || *end != '\0' || errno != 0 || x < lo || x > hi) {
-      throw UsageError{name + " must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi) +
-                       " (got '" + *v + "')"};
-    }
-    return static_cast<int>(x);
-  }
-
-  // A number strictly between lo and hi.
-  std::optional<double> take_open_range(const std::string& name, double lo, double hi) {
-    auto v = take_value(name);
-    if (!v) return std::nullopt;
-    char* end = nullptr;
-    const double x = std::strtod(v->c_str(), &end);
-    if (v->empty() || *end != '\0' || !(x > lo && x < hi)) {
-      throw UsageError{name + " must be a number in (" + std::to_string(static_cast<int>(lo)) + ", " +
-                       std::to_string(static_cast<int>(hi)) + ") (got '" + *v + "')"};
-    }
-    return x;
-  }
-
-  // The optional positional SCENE; anything else left over is an error.
-  std::optional<std::string> take_positional() {
-    std::optional<std::string> pos;
-    for (const std::string& w : words_) {
-      if (w.size() > 1 && w[0] == '-') throw UsageError{"unknown option '" + w + "'"};
-      if (pos) throw UsageError{"unexpected argument '" + w + "'"};
-      pos = w;
-    }
-    words_.clear();
-    return pos;
-  }
-
- private:
-  std::vector<std::string> words_;
-};
-
-// Loads SCENE (or the default) and prints its warnings and errors. nullopt when it has errors.
-std::optional<Scene> load_or_report(const std::string& arg) {
-  LoadResult r = load_scene_arg(arg);
-  for (const Diagnostic& w : r.warnings) std::cerr << "warning: " << w.to_string() << "\n";
-  if (!r.ok()) {
-    std::cerr << r.error_text() << "\n";
-    return std::nullopt;
-  }
-  return std::move(*r.scene);
-}
-
-std::string default_scene_name() { return std::string(embedded_scenes().front().name); }
 
 int cmd_render(Args& args) {
   const auto out = args.take_value("-o");
@@ -186,13 +97,13 @@ int cmd_render(Args& args) {
   if (height) scene->height = *height;
   if (max_depth) scene->max_depth = *max_depth;
   if (fov_y) scene->camera.fov_y_deg = *fov_y;
-  prepare_scene(*scene);
+  const PreparedScene prepared(*scene);
   const double build_ms = ms_since(t_build);
 
   Accumulator accum;
   accum.reset(scene->width, scene->height);
   const auto t_render = Clock::now();
-  const PassStats total = render_passes(*scene, options, accum, spp.value_or(1));
+  const PassStats total = render_passes(prepared, options, accum, spp.value_or(1));
   const double render_ms = ms_since(t_render);
 
   Image image = mean_image(accum);
@@ -252,9 +163,9 @@ int cmd_probe(Args& args) {
     throw UsageError{"--pixel " + *pixel + " is outside the " + std::to_string(scene->width) + "x" +
                      std::to_string(scene->height) + " image"};
   }
-  prepare_scene(*scene);
-  const PixelProbe probe = probe_pixel(*scene, scene->width, scene->height, x, y);
-  std::cout << (as_json ? probe_to_json(*scene, probe) : probe_to_text(*scene, probe));
+  const PreparedScene prepared(*scene);
+  const PixelProbe probe = probe_pixel(prepared, scene->width, scene->height, x, y);
+  std::cout << (as_json ? probe_to_json(prepared.scene(), probe) : probe_to_text(prepared.scene(), probe));
   return kExitOk;
 }
 
@@ -269,8 +180,7 @@ int cmd_figure(Args& args) {
   if (!out) throw UsageError{"figure needs -o OUT.png"};
   std::optional<Scene> scene = load_or_report(scene_arg);
   if (!scene) return kExitBadInput;
-  prepare_scene(*scene);
-  if (std::string err = write_figure(*out, *scene, options); !err.empty()) {
+  if (std::string err = write_figure(*out, PreparedScene(*scene), options); !err.empty()) {
     std::cerr << *out << ": " << err << "\n";
     return kExitBadInput;
   }
@@ -303,62 +213,19 @@ int cmd_scenes(Args& args) {
   return kExitOk;
 }
 
-int cmd_bench(Args& args) {
-  const auto frames = args.take_int("--frames", 1, 10000);
-  const auto width = args.take_int("--width", 1, 16384);
-  const auto height = args.take_int("--height", 1, 16384);
-  const auto threads = args.take_int("--threads", 0, 1024);
-  const auto out_dir = args.take_value("--out");
-  const bool quick = args.take_flag("--quick");
-  const auto only = args.take_value("--only");
-  const bool scalar = args.take_flag("--scalar");
-  const auto positional = args.take_positional();
-  if (only) {
-    if (*only != "accel" || positional) throw UsageError{"bench --only takes 'accel' and no SCENE"};
-    return write_accel_report(AccelBenchOptions{quick, threads.value_or(0)}, out_dir.value_or("bench-out"));
+// `phonglab-cli bench ...` is phonglab-bench (apps/bench), installed beside phonglab-cli: the
+// bench links the numerics experiments and Embree, which the CLI itself never does.
+int cmd_bench(char** argv) {
+  std::string self = "phonglab-cli";
+  if (char* path = realpath("/proc/self/exe", nullptr)) {
+    self = path;
+    std::free(path);
   }
-  if (!positional) {  // no SCENE: the whole speed-versus-error report
-    BenchReportOptions report;
-    report.out_dir = out_dir.value_or(report.out_dir);
-    report.quick = quick;
-    report.threads = threads.value_or(0);
-    return run_bench_report(report);
-  }
-  const std::string& scene_arg = *positional;
-  std::optional<Scene> scene = load_or_report(scene_arg);
-  if (!scene) return kExitBadInput;
-  scene->width = width.value_or(1280);
-  scene->height = height.value_or(720);
-  prepare_scene(*scene);
-  RenderOptions options;
-  options.threads = threads.value_or(0);
-  options.packets = !scalar;
-  std::vector<double> ms;
-  std::vector<double> mrays;
-  RayCounts rays;
-  for (int f = 0; f < frames.value_or(15); ++f) {
-    Accumulator accum;
-    accum.reset(scene->width, scene->height);
-    const PassStats pass = render_pass(*scene, options, accum);
-    ms.push_back(pass.seconds * 1000);
-    mrays.push_back(static_cast<double>(pass.rays.total()) / pass.seconds / 1e6);
-    rays = pass.rays;
-  }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  };
-  std::printf("scene %s, %dx%d, 1 spp, %d threads, %zu frames, %s tracer\n", scene_arg.c_str(), scene->width,
-              scene->height, resolve_thread_count(options.threads), ms.size(),
-              options.packets && packet_tracing_applies(*scene) ? "packet (AVX2)" : "scalar");
-  std::printf("rays per frame: %llu (primary %llu, shadow %llu, reflection %llu, refraction %llu)\n",
-              static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
-              static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.reflection),
-              static_cast<unsigned long long>(rays.refraction));
-  std::printf("median frame: %.2f ms, median %.1f Mrays/s (min %.2f ms, max %.2f ms)\n", median(ms), median(mrays),
-              *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()));
-  return kExitOk;
+  const std::string bench = self.substr(0, self.rfind('/') + 1) + "phonglab-bench";
+  argv[0] = const_cast<char*>("phonglab-bench");
+  execv(bench.c_str(), argv);
+  std::cerr << "phonglab-cli bench: cannot run " << bench << ": " << std::strerror(errno) << "\n";
+  return kExitUsage;
 }
 
 }  // namespace
@@ -378,6 +245,7 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   const std::string command = words[0];
+  if (command == "bench") return cmd_bench(argv + 1);
   words.erase(words.begin());
   if (std::find(words.begin(), words.end(), "--help") != words.end()) {
     std::cout << kUsage;
@@ -390,7 +258,6 @@ int main(int argc, char** argv) {
     if (command == "figure") return cmd_figure(args);
     if (command == "validate") return cmd_validate(args);
     if (command == "scenes") return cmd_scenes(args);
-    if (command == "bench") return cmd_bench(args);
     throw UsageError{"unknown command '" + command + "'"};
   } catch (const UsageError& e) {
     std::cerr << "phonglab-cli: " << e.message << "\n(see phonglab-cli --help)\n";

@@ -475,7 +475,7 @@ void Viewer::pick(ImVec2 mouse) {
     picked_text_ = "the background";
     return;
   }
-  const Scene& scene = *snapshot_;
+  const Scene& scene = snapshot_->scene();
   selected_material_ = hit->material;
   open_materials_ = true;
   std::ostringstream text;
@@ -557,7 +557,7 @@ void Viewer::apply_edits(double frame_start) {
   }
   const bool resized = width != render_width_ || height != render_height_;
   // A new window aspect may widen or narrow the fitted field of view: a new camera.
-  if (snapshot_ && !same_camera(view_camera(), snapshot_->camera)) camera_changed_ = true;
+  if (snapshot_ && !same_camera(view_camera(), snapshot_->scene().camera)) camera_changed_ = true;
   const bool edited = scene_edited_ || camera_changed_ || scene_replaced_ || view_changed_ || !snapshot_;
   if (edited && !change_deferred_) deferred_since_ = frame_start;
   const bool scene_changed = edited || change_deferred_;
@@ -571,12 +571,11 @@ void Viewer::apply_edits(double frame_start) {
   change_deferred_ = defer;
   if ((scene_changed && !defer) || resized) {
     if (scene_changed) {
-      auto snapshot = std::make_shared<Scene>(scene);
-      snapshot->camera = view_camera();
+      Scene snapshot = scene;
+      snapshot.camera = view_camera();
       // The depth cut changes what is rendered, never the scene: history and file keep max_depth.
-      apply_depth_cut(*snapshot, ui::depth_cut_of(rays_));
-      prepare_scene(*snapshot);
-      snapshot_ = std::move(snapshot);
+      apply_depth_cut(snapshot, ui::depth_cut_of(rays_));
+      snapshot_ = std::make_shared<const PreparedScene>(std::move(snapshot));
     }
     render_width_ = width;
     render_height_ = height;

@@ -223,7 +223,7 @@ class Viewer {
   bool upload_pending_ = false;          // shown_ is newer than the texture
   std::uint64_t drawn_generation_ = 0;   // generation of the image last put on screen
   std::uint64_t drawn_serial_ = 0;       // its FrameStats::serial
-  std::shared_ptr<const Scene> snapshot_;  // the prepared scene the renderer has (for picking)
+  std::shared_ptr<const PreparedScene> snapshot_;  // the prepared scene the renderer has (for picking)
 
   // Edits gathered during a UI frame, applied once at its end.
   bool scene_edited_ = false;      // materials, lights, shading: restart and mark unsaved

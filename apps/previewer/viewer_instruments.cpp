@@ -54,9 +54,9 @@ void Viewer::refresh_probe() {
   probe_y_ = std::clamp(probe_y_, 0, render_height_ - 1);
   // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
   probe_ = probe_pixel(*snapshot_, render_width_, render_height_, probe_x_, probe_y_, shading_eye_);
-  probe_report_ = probe_to_text(*snapshot_, *probe_, probe_precision_ ? 17 : 4);
+  probe_report_ = probe_to_text(snapshot_->scene(), *probe_, probe_precision_ ? 17 : 4);
   probe_occluders_.clear();
-  for (const ProbeLight& light : probe_->root.lights) probe_occluders_.push_back(object_name(*snapshot_, light.occluder));
+  for (const ProbeLight& light : probe_->root.lights) probe_occluders_.push_back(object_name(snapshot_->scene(), light.occluder));
 }
 
 void Viewer::undo() {

@@ -93,7 +93,7 @@ void Viewer::draw_overlays() {
   }
   draw_ray_tree_lines();
   if (probe_ && rays_.overlay && rays_.legend && !tree_segments_.empty()) {
-    const bool blinn = snapshot_ && snapshot_->specular_model == SpecularModel::kBlinn;
+    const bool blinn = snapshot_ && snapshot_->scene().specular_model == SpecularModel::kBlinn;
     // The legend must not hide the tree it explains: top right, unless the probed point is there,
     // then bottom right, then bottom left.
     ImVec2 anchor = top_right, pivot(1, 0);
@@ -177,7 +177,7 @@ std::vector<std::string> Viewer::captions() const {
   }
   if (snapshot_ && rays_.depth_cut) {
     char caption[96];
-    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", snapshot_->max_depth,
+    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", snapshot_->scene().max_depth,
                   doc_.scene().max_depth);
     lines.emplace_back(caption);
   }
@@ -214,13 +214,13 @@ void Viewer::draw_head_plot() {
   // "Move your head": the highlight against the head angle.
   ui::HeadPlotView plot;
   plot.hit = probe_ ? &probe_->root : nullptr;
-  plot.eye_at_zero = snapshot_->camera.position;
-  plot.axis = glm::normalize(make_camera_frame(snapshot_->camera, 1, 1).up);
+  plot.eye_at_zero = snapshot_->scene().camera.position;
+  plot.axis = glm::normalize(make_camera_frame(snapshot_->scene().camera, 1, 1).up);
   if (probe_ && probe_->root.hit && probe_->root.material >= 0 &&
-      probe_->root.material < static_cast<int>(snapshot_->materials.size())) {
-    plot.shininess = snapshot_->materials[static_cast<std::size_t>(probe_->root.material)].n;
+      probe_->root.material < static_cast<int>(snapshot_->scene().materials.size())) {
+    plot.shininess = snapshot_->scene().materials[static_cast<std::size_t>(probe_->root.material)].n;
   }
-  plot.blinn = snapshot_->specular_model == SpecularModel::kBlinn;
+  plot.blinn = snapshot_->scene().specular_model == SpecularModel::kBlinn;
   plot.angle_deg = instruments_.head_angle_deg;
   plot.width = 340 * platform_.ui_scale();
   ui::head_plot(plot);
@@ -312,14 +312,14 @@ void Viewer::draw_ray_tree_lines() {
   options.secondary_rays = rays_.secondary_rays;
   options.arrows = rays_.arrows;
   // The probe was taken in snapshot_ at the render size: project with that camera and size.
-  const CameraFrame frame = make_camera_frame(snapshot_->camera, render_width_, render_height_);
-  tree_segments_ = project_ray_tree(frame, ray_tree_segments(*snapshot_, probe_->root, options),
-                                    ray_tree_near(*snapshot_, probe_->root));
+  const CameraFrame frame = make_camera_frame(snapshot_->scene().camera, render_width_, render_height_);
+  tree_segments_ = project_ray_tree(frame, ray_tree_segments(snapshot_->scene(), probe_->root, options),
+                                    ray_tree_near(snapshot_->scene(), probe_->root));
   int lit_lights = 0;
   for (const ProbeLight& light : probe_->root.lights) lit_lights += light.lit_side ? 1 : 0;
   const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(render_width_),
                                              c.height / static_cast<float>(render_height_))};
-  const bool blinn = snapshot_->specular_model == SpecularModel::kBlinn;
+  const bool blinn = snapshot_->scene().specular_model == SpecularModel::kBlinn;
   ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), tree_segments_, rect, platform_.ui_scale(), blinn, lit_lights);
 }
 

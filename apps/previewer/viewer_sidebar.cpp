@@ -124,7 +124,7 @@ void Viewer::sidebar_probe() {
   const float height = ImGui::GetTextLineHeightWithSpacing() * 15;
   if (ImGui::BeginChild("##probe", ImVec2(0, height), true, ImGuiWindowFlags_HorizontalScrollbar)) {
     ui::ProbeView view;
-    view.scene = snapshot_.get();
+    view.scene = snapshot_ ? &snapshot_->scene() : nullptr;
     view.probe = probe_ ? &*probe_ : nullptr;
     view.image_width = render_width_;
     view.image_height = render_height_;

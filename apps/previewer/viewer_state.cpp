@@ -48,7 +48,7 @@ void Viewer::write_state(const std::string& path) const {
       << "camera_position=" << vec(scene.camera.position) << "\n"
       << "camera_look_at=" << vec(scene.camera.look_at) << "\n"
       << "camera_up=" << vec(scene.camera.up) << "\n"
-      << "camera_fov=" << std::setprecision(17) << (snapshot_ ? snapshot_->camera.fov_y_deg : view_camera().fov_y_deg)
+      << "camera_fov=" << std::setprecision(17) << (snapshot_ ? snapshot_->scene().camera.fov_y_deg : view_camera().fov_y_deg)
       << std::setprecision(6) << "\n"
       << "generation=" << status.generation << "\n"
       << "drawn_generation=" << drawn_generation_ << "\n"
@@ -119,7 +119,7 @@ void Viewer::write_state(const std::string& path) const {
       << "depth_cut=" << (rays_.depth_cut ? rays_.cut_depth : -1) << "\n"
       << "depth_cut_label=" << depth_cut_label() << "\n"
       << "scene_max_depth=" << scene.max_depth << "\n"
-      << "render_max_depth=" << (snapshot_ ? snapshot_->max_depth : -1) << "\n"
+      << "render_max_depth=" << (snapshot_ ? snapshot_->scene().max_depth : -1) << "\n"
       << "heat=" << (heat_shown() ? 1 : 0) << "\n"
       << "heat_max=" << heat_max_ << "\n";
   if (probe_) {

@@ -1,13 +1,14 @@
 #include "experiments/numerics_variants.h"
 
-#include "core/accel/accel.h"
-
 #include <limits>
-#include <thread>
+#include <memory>
 #include <utility>
 #include <vector>
 
+#include "core/accel/accel.h"
 #include "core/render/render.h"
+#include "core/render/threads.h"
+#include "core/shading/experiment.h"
 
 namespace phonglab {
 
@@ -110,9 +111,8 @@ R sphere_root(const Sphere& s, bool textbook, const V3<R>& o, const V3<R>& d, R 
 }
 
 template <typename R>
-std::optional<Hit> nearest(const Scene& scene, const Ray& ray, double t_max) {
+std::optional<Hit> nearest(const Scene& scene, bool textbook, const Ray& ray, double t_max) {
   const V3<R> o(ray.origin), d(ray.dir);
-  const bool textbook = scene.numerics.textbook_sphere;
   R best = limit_in<R>(t_max);
   R best_b1 = 0, best_b2 = 0;
   ObjectRef obj;
@@ -177,9 +177,8 @@ std::optional<Hit> nearest(const Scene& scene, const Ray& ray, double t_max) {
 }
 
 template <typename R>
-bool any_hit(const Scene& scene, const Ray& ray, double t_max) {
+bool any_hit(const Scene& scene, bool textbook, const Ray& ray, double t_max) {
   const V3<R> o(ray.origin), d(ray.dir);
-  const bool textbook = scene.numerics.textbook_sphere;
   const R limit = limit_in<R>(t_max);
   for (const Sphere& s : scene.spheres) {
     if (sphere_root(s, textbook, o, d, limit) > 0) return true;
@@ -202,14 +201,65 @@ std::optional<double> as_optional(R t) {
 
 }  // namespace
 
-std::optional<Hit> intersect_variant(const Scene& scene, const Ray& ray, double t_max) {
-  return scene.numerics.float_geometry ? nearest<float>(scene, ray, t_max) : nearest<double>(scene, ray, t_max);
+std::optional<Hit> intersect_variant(const Scene& scene, const NumericsVariant& variant, const Ray& ray,
+                                     double t_max) {
+  return variant.float_geometry ? nearest<float>(scene, variant.textbook_sphere, ray, t_max)
+                                : nearest<double>(scene, variant.textbook_sphere, ray, t_max);
 }
 
-bool occluded_variant(const Scene& scene, const Ray& ray, double t_max) {
-  // intersect() itself takes the variant geometry when one is selected.
-  if (scene.numerics.nearest_hit_shadows) return intersect(scene, ray, t_max).has_value();
-  return scene.numerics.float_geometry ? any_hit<float>(scene, ray, t_max) : any_hit<double>(scene, ray, t_max);
+namespace {
+
+// The variant's geometry behind the Accelerator interface; queries it does not change go to
+// the production accelerator (`base`, null: brute force).
+class VariantAccelerator final : public Accelerator {
+ public:
+  VariantAccelerator(const NumericsVariant& variant, std::shared_ptr<const Accelerator> base)
+      : variant_(variant), base_(std::move(base)) {}
+
+  std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) const override {
+    if (variant_.geometry()) return intersect_variant(scene, variant_, ray, t_max);
+    return base_ ? base_->intersect(scene, ray, t_max) : intersect_all(scene, ray, t_max);
+  }
+  bool occluded(const Scene& scene, const Ray& ray, double t_max) const override {
+    if (variant_.nearest_hit_shadows) return intersect(scene, ray, t_max).has_value();
+    if (variant_.geometry()) {
+      return variant_.float_geometry ? any_hit<float>(scene, variant_.textbook_sphere, ray, t_max)
+                                     : any_hit<double>(scene, variant_.textbook_sphere, ray, t_max);
+    }
+    return base_ ? base_->occluded(scene, ray, t_max) : occluded_all(scene, ray, t_max);
+  }
+  bool matches(const Scene& scene) const override { return !base_ || base_->matches(scene); }
+
+ private:
+  NumericsVariant variant_;
+  std::shared_ptr<const Accelerator> base_;
+};
+
+// The variant's shading behind the Experiment interface.
+class VariantShading final : public Experiment {
+ public:
+  explicit VariantShading(const NumericsVariant& variant) : variant_(variant) {}
+  double fresnel(double cos_i, double eta) const override {
+    return variant_.schlick_fresnel ? fresnel_schlick(cos_i, eta) : fresnel_exact(cos_i, eta);
+  }
+  double offset(const Scene& scene, const Hit& hit) const override {
+    return variant_.fixed_offset > 0 ? variant_.fixed_offset : surface_offset(scene, hit);
+  }
+  bool shadow_rays_behind() const override { return variant_.shadow_rays_behind; }
+  bool refraction_for_opaque() const override { return variant_.refraction_for_opaque; }
+
+ private:
+  NumericsVariant variant_;
+};
+
+}  // namespace
+
+PreparedScene prepare_variant(Scene scene, const NumericsVariant& variant) {
+  if (variant.production()) return PreparedScene(std::move(scene));
+  const auto make_accel = [&variant](const Scene& s) -> std::shared_ptr<const Accelerator> {
+    return std::make_shared<VariantAccelerator>(variant, build_scene_accel(s));
+  };
+  return PreparedScene(std::move(scene), make_accel, std::make_shared<VariantShading>(variant));
 }
 
 std::optional<double> intersect_sphere_textbook(const Sphere& s, const Ray& ray, double t_min) {
@@ -262,23 +312,19 @@ std::uint64_t acne_rays(const ProbeNode& node) {
 
 }  // namespace
 
-AcneCount count_acne(const Scene& scene, int width, int height, int threads) {
+AcneCount count_acne(const PreparedScene& prepared, int width, int height, int threads) {
   const int n = std::max(1, std::min(resolve_thread_count(threads), height));
   std::vector<AcneCount> parts(static_cast<std::size_t>(n));
-  auto work = [&](int part) {
+  run_workers(n, [&](int part) {
     AcneCount& c = parts[static_cast<std::size_t>(part)];
     for (int y = part; y < height; y += n) {
       for (int x = 0; x < width; ++x) {
-        const std::uint64_t rays = acne_rays(probe_pixel(scene, width, height, x, y).root);
+        const std::uint64_t rays = acne_rays(probe_pixel(prepared, width, height, x, y).root);
         c.rays += rays;
         c.pixels += rays > 0 ? 1 : 0;
       }
     }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < n; ++i) pool.emplace_back(work, i);
-  work(0);
-  for (std::thread& t : pool) t.join();
+  });
   AcneCount total;
   for (const AcneCount& c : parts) {
     total.pixels += c.pixels;

@@ -24,7 +24,7 @@ constexpr std::size_t kQuadBytes = 64;  // stb_easy_font: 4 vertices of 16 bytes
 const glm::vec3 kLabelBackground{0.0f};
 const glm::vec3 kLabelColor{1.0f};
 
-Image render_term(const Scene& scene, Term term, const FigureOptions& options) {
+Image render_term(const PreparedScene& scene, Term term, const FigureOptions& options) {
   RenderOptions render;
   render.term = term;
   render.threads = options.threads;
@@ -81,7 +81,7 @@ void draw_label(Image& image, int x, int y, std::string_view text, int scale, gl
   }
 }
 
-Image make_figure(const Scene& scene, const FigureOptions& options) {
+Image make_figure(const PreparedScene& scene, const FigureOptions& options) {
   const int cell_w = std::max(options.cell_width, 1);
   const int cell_h = std::max(options.cell_height, 1);
   const int label_h = figure_label_height();
@@ -112,7 +112,7 @@ Image make_figure(const Scene& scene, const FigureOptions& options) {
   return figure;
 }
 
-std::string write_figure(const std::string& path, const Scene& scene, const FigureOptions& options) {
+std::string write_figure(const std::string& path, const PreparedScene& scene, const FigureOptions& options) {
   return write_image(path, make_figure(scene, options));
 }
 

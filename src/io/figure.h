@@ -30,10 +30,10 @@ std::string_view figure_label(Term term);
 // Height in pixels of the label strip under every cell.
 int figure_label_height();
 
-// Renders the six term images of a prepared scene (prepare_scene) and lays them out as
+// Renders the six term images of a prepared scene and lays them out as
 // 3 columns x 2 rows, each cell with its label strip below: the montage is
 // 3*cell_width x 2*(cell_height + figure_label_height()) pixels, linear RGB.
-Image make_figure(const Scene& scene, const FigureOptions& options);
+Image make_figure(const PreparedScene& scene, const FigureOptions& options);
 
 // Draws `text` in a built-in bitmap font (stb_easy_font) into `image`, top-left at (x, y),
 // each font unit `scale` pixels, in linear colour `color`. Clipped to the image and to
@@ -44,6 +44,6 @@ void draw_label(Image& image, int x, int y, std::string_view text, int scale, gl
 int label_width(std::string_view text, int scale);
 
 // make_figure written as an 8-bit sRGB PNG (or a PFM by extension). Empty string or the error.
-std::string write_figure(const std::string& path, const Scene& scene, const FigureOptions& options);
+std::string write_figure(const std::string& path, const PreparedScene& scene, const FigureOptions& options);
 
 }  // namespace phonglab

@@ -11,10 +11,12 @@
 #include <sstream>
 #include <thread>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/accel/accel.h"
 #include "core/accel/bvh.h"
+#include "core/accel/prepared_scene.h"
 #include "core/geometry/geometry.h"
 #include "io/obj_io.h"
 #include "core/scene/scene.h"
@@ -85,7 +87,6 @@ RandomScene make_random_scene(std::uint32_t seed) {
   for (const Sphere& sp : s.spheres) r.boxes.push_back(sphere_bounds(sp));
   for (const Triangle& t : s.triangles) r.boxes.push_back(triangle_bounds(t));
   for (const Triangle& t : mesh.geometry->triangles) r.boxes.push_back(triangle_bounds(t));
-  prepare_scene(s);
   return r;
 }
 
@@ -227,13 +228,13 @@ TEST(SceneBvh, AParallelBuildOfALargeMeshKeepsEveryTriangleOnceAndEqualsBruteFor
   for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "face " << i;
   scene.meshes.push_back(std::move(mesh));
   scene.mesh_object.push_back(0);
-  prepare_scene(scene);
-  ASSERT_TRUE(scene.accel);
+  const PreparedScene prepared(std::move(scene));
+  ASSERT_TRUE(prepared.accel());
   std::uniform_real_distribution<double> dir(-1, 1);
   for (int i = 0; i < 300; ++i) {
     const Ray ray = make_ray(Vec3(pos(rng), pos(rng), pos(rng)), glm::normalize(Vec3(dir(rng), dir(rng), dir(rng))));
-    const auto fast = intersect(scene, ray);
-    const auto slow = intersect_all(scene, ray);
+    const auto fast = intersect(prepared, ray);
+    const auto slow = intersect_all(prepared.scene(), ray);
     ASSERT_EQ(fast.has_value(), slow.has_value()) << "seed " << seed << ", ray " << i;
     if (fast) {
       EXPECT_EQ(fast->t, slow->t) << "seed " << seed << ", ray " << i;

@@ -15,8 +15,10 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "core/accel/prepared_scene.h"
 #include "core/scene/camera.h"
 #include "core/geometry/geometry.h"
 #include "core/scene/math.h"
@@ -88,7 +90,7 @@ void complete_frame(const Vec3& w, Vec3& e1, Vec3& e2) {
 }
 
 // One glass sphere (kt 1, nothing else) alone in an empty scene, unpruned, prepared.
-Scene bare_glass_sphere(const Vec3& c, double r, double ior, bool fresnel, int max_depth) {
+PreparedScene bare_glass_sphere(const Vec3& c, double r, double ior, bool fresnel, int max_depth) {
   Scene scene;
   Material glass;
   glass.kt = Color(1);
@@ -98,8 +100,7 @@ Scene bare_glass_sphere(const Vec3& c, double r, double ior, bool fresnel, int m
   scene.spheres = {Sphere{c, r, 0}};
   scene.max_depth = max_depth;
   scene.min_weight = 0;
-  prepare_scene(scene);
-  return scene;
+  return PreparedScene(std::move(scene));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -259,7 +260,8 @@ struct Rendered {
 };
 
 // Renders `passes` samples per pixel (pass 1 is the pixel-centre image).
-Rendered render_image(const Scene& scene, Term term = Term::kFull, std::uint32_t passes = 1) {
+Rendered render_image(const PreparedScene& prepared, Term term = Term::kFull, std::uint32_t passes = 1) {
+  const Scene& scene = prepared.scene();
   Accumulator acc;
   acc.reset(scene.width, scene.height);
   RenderOptions options;
@@ -268,7 +270,7 @@ Rendered render_image(const Scene& scene, Term term = Term::kFull, std::uint32_t
   out.width = scene.width;
   out.height = scene.height;
   for (std::uint32_t i = 0; i < passes; ++i) {
-    const PassStats s = render_pass(scene, options, acc);
+    const PassStats s = render_pass(prepared, options, acc);
     out.stats.rays += s.rays;
     out.stats.nan_count += s.nan_count;
   }
@@ -379,9 +381,9 @@ struct Probed {
   RayCounts counts;
   Color radiance{0};
 };
-void probe_ray(const Scene& scene, const Ray& ray, Probed& out) {
-  const TraceLimits limits{scene.max_depth, scene.min_weight};
-  out.radiance = trace(scene, limits, ray, 0, 1.0, out.counts, &out.root);
+void probe_ray(const PreparedScene& prepared, const Ray& ray, Probed& out) {
+  const TraceLimits limits{prepared.scene().max_depth, prepared.scene().min_weight};
+  out.radiance = trace(prepared, limits, ray, 0, 1.0, out.counts, &out.root);
 }
 
 // A plane with normal (1,2,3)/sqrt(14) through (s,s,s) seen by a camera 10 above it looking
@@ -447,7 +449,7 @@ TEST(HardCases, S1_DistantSphereHitMissAndDistance) {
         const LV du = (1 / d_len) * to_ld(d);
         const LD miss_distance = ref_line_distance(to_ld(sphere.center), LV{}, du);
         const bool ref_hit = miss_distance <= 1;
-        const std::optional<Hit> hit = intersect(scene, ray);
+        const std::optional<Hit> hit = intersect_all(scene, ray);
         const std::optional<double> ts[2] = {intersect_sphere(sphere, ray),
                                              hit ? std::optional<double>(hit->t) : std::nullopt};
         for (int path = 0; path < 2; ++path) {
@@ -513,7 +515,7 @@ TEST(HardCases, S4_NoReHitsOfTheSameSphereAtAnyScale) {
           if (glm::dot(u, w) < 0.3) u = glm::normalize(u + w);
           if (glm::dot(u, w) < 0.3) continue;
           const Vec3 dir = glm::normalize(c + r * u - origin);
-          const std::optional<Hit> hit = intersect(scene, make_ray(origin, dir));
+          const std::optional<Hit> hit = intersect_all(scene, make_ray(origin, dir));
           if (!hit) {
             ++primary_misses;
             continue;
@@ -531,7 +533,7 @@ TEST(HardCases, S4_NoReHitsOfTheSameSphereAtAnyScale) {
             ++outward_rehits;
             if (example.empty()) example = "outward re-hit at t = " + std::to_string(*t);
           }
-          if (occluded(scene, out_ray, std::numeric_limits<double>::infinity())) {
+          if (occluded_all(scene, out_ray, std::numeric_limits<double>::infinity())) {
             ++outward_rehits;
             if (example.empty()) example = "outward re-hit by the any-hit query";
           }
@@ -542,7 +544,7 @@ TEST(HardCases, S4_NoReHitsOfTheSameSphereAtAnyScale) {
           const double chord = 2 * r * -glm::dot(g, ng);
           const Ray in_ray = make_ray(offset_origin(hit->p, ng, g, offset), g);
           const std::optional<double> t_in = intersect_sphere(scene.spheres[0], in_ray);
-          const std::optional<Hit> hit_in = intersect(scene, in_ray);
+          const std::optional<Hit> hit_in = intersect_all(scene, in_ray);
           if (hit_in.has_value() != t_in.has_value() || (t_in && hit_in->t != *t_in)) {
             ++inward_wrong;
             if (example.empty()) example = "intersect_sphere and intersect(scene) differ on an inward ray";
@@ -583,7 +585,7 @@ TEST(HardCases, S5_GlassSphereChordLength) {
   Vec3 u, v;
   complete_frame(w, u, v);
   for (const Case& cs : cases) {
-    const Scene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 2);
+    const PreparedScene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 2);
     for (const double b_over_r : {0.0, 0.5, 0.9, 0.999}) {
       SCOPED_TRACE("centre " + str(cs.c) + ", r = " + std::to_string(cs.r) + ", b/r = " + std::to_string(b_over_r));
       const Vec3 origin = cs.c - 3 * cs.r * w + b_over_r * cs.r * u;
@@ -628,7 +630,7 @@ TEST(HardCases, S6_TangentRaysGiveNoNaN) {
                     directional_light(Vec3(1, -1, 0.5), Color(0.5))};
     scene.max_depth = 4;
     scene.min_weight = 0;
-    prepare_scene(scene);
+    const PreparedScene prepared(scene);
     const TraceLimits limits{scene.max_depth, scene.min_weight};
     int wrong = 0;
     std::string example;
@@ -641,11 +643,11 @@ TEST(HardCases, S6_TangentRaysGiveNoNaN) {
         const Ray ray = make_ray(origin, w);
         const std::optional<double> t = intersect_sphere(scene.spheres[0], ray);
         if (t) { ASSERT_TRUE(std::isfinite(*t)) << "factor " << factor; }
-        const std::optional<Hit> hit = intersect(scene, ray);
+        const std::optional<Hit> hit = intersect(prepared, ray);
         if (hit) { ASSERT_TRUE(hit_is_finite(*hit)) << "factor " << factor; }
         ASSERT_EQ(t.has_value(), hit.has_value()) << "intersect_sphere vs intersect(scene), factor " << factor;
         RayCounts counts;
-        const Color c = trace(scene, limits, ray, 0, 1.0, counts);
+        const Color c = trace(prepared, limits, ray, 0, 1.0, counts);
         ASSERT_TRUE(all_finite(c)) << "factor " << factor;
         const LD miss_distance = ref_line_distance(to_ld(cs.c), to_ld(origin), to_ld(w));
         if (factor == 1.0) continue;  // exactly tangent: either answer is right
@@ -682,10 +684,10 @@ TEST(HardCases, O1_LitPlaneFarFromOrigin) {
     scene.lights = {point_light(tp.p0 + 10.0 * tp.n + 7.0 * tp.t2 - 3.0 * tp.t1, Color(0.6)),
                     point_light(tp.p0 + 10.0 * tp.n + 5.0 * tp.t1 + 5.0 * tp.t2, Color(0.3)),
                     directional_light(-tp.n - 0.3 * tp.t1, Color(0.2))};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
     EXPECT_EQ(img.stats.nan_count, 0u);
-    const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(scene));
+    const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(prepared.scene()));
     EXPECT_EQ(check.compared, scene.width * scene.height);
     EXPECT_EQ(check.darker, 0) << "acne: " << check.first_bad;
     EXPECT_EQ(check.mismatched, 0) << check.first_bad << " (max relative error "
@@ -702,9 +704,9 @@ TEST(HardCases, O2_LitPlaneAtModerateDistances) {
     Scene& scene = tp.scene;
     scene.lights = {point_light(tp.p0 + 10.0 * tp.n + 7.0 * tp.t2 - 3.0 * tp.t1, Color(0.6)),
                     directional_light(-tp.n - 0.3 * tp.t1, Color(0.3))};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
-    const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(scene));
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
+    const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(prepared.scene()));
     EXPECT_EQ(check.darker, 0) << "acne: " << check.first_bad;
     EXPECT_EQ(check.mismatched, 0) << check.first_bad;
     // The largest offset of the image: its farthest hit (a corner).
@@ -714,7 +716,7 @@ TEST(HardCases, O2_LitPlaneAtModerateDistances) {
         {0, 0}, {scene.width - 1, 0}, {0, scene.height - 1}, {scene.width - 1, scene.height - 1}};
     for (const auto& [x, y] : corners) {
       const LV d = ref_pixel_dir(cam, x, y);
-      const RefHit h = ref_intersect(scene, cam.origin, d);
+      const RefHit h = ref_intersect(prepared.scene(), cam.origin, d);
       ASSERT_TRUE(h.hit);
       worst = std::max(worst, surface_offset(to_d(h.p), static_cast<double>(h.t)));
     }
@@ -741,14 +743,13 @@ TEST(HardCases, O3_TinyAndHugeScenesMatchUnitScale) {
     scene.lights = {point_light(s * Vec3(0.3, 4, 0.2), Color(0.8)),
                     directional_light(Vec3(-0.2, -1, -0.3), Color(0.3))};
     scene.camera = Camera{s * Vec3(0, 0.8, 1.6), s * Vec3(0, 0.1, 0), Vec3(0, 1, 0), 50};
-    prepare_scene(scene);
-    return scene;
+    return PreparedScene(std::move(scene));
   };
-  const Scene unit_scene = make(1);
+  const PreparedScene unit_scene = make(1);
   const Rendered unit = render_image(unit_scene);
   for (const double s : {1e-5, 1e-4, 1e-3, 1e-2, 0.1, 10.0, 1e3, 1e5}) {
     SCOPED_TRACE("s = " + std::to_string(s));
-    const Scene scaled_scene = make(s);
+    const PreparedScene scaled_scene = make(s);
     const Rendered scaled = render_image(scaled_scene);
     EXPECT_EQ(scaled.stats.nan_count, 0u);
     int differing = 0;
@@ -784,19 +785,20 @@ TEST(HardCases, O4_GrazingShadowRays) {
         const Vec3 horizontal = std::cos(a) * tp.t1 + std::sin(a) * tp.t2;
         const Vec3 towards_light = std::cos(e) * horizontal + std::sin(e) * tp.n;
         scene.lights = {directional_light(-towards_light, Color(1))};
-        prepare_scene(scene);
+        const PreparedScene prepared(scene);
         {
-          const Rendered img = render_image(scene);
-          const ImageCheck check = check_image(img, 1e-6L, 1e-12L, local_reference(scene));
+          const Rendered img = render_image(prepared);
+          const ImageCheck check = check_image(img, 1e-6L, 1e-12L, local_reference(prepared.scene()));
           EXPECT_EQ(check.darker, 0) << "directional light, acne: " << check.first_bad;
           EXPECT_EQ(check.mismatched, 0) << check.first_bad;
         }
         // A point light 2000 away in the same direction (elevation about the same from the
         // viewed part of the plane).
         scene.lights = {point_light(tp.p0 + 5.0 * tp.t1 + 2000.0 * towards_light, Color(1))};
+        const PreparedScene relit(scene);
         {
-          const Rendered img = render_image(scene);
-          const ImageCheck check = check_image(img, 1e-6L, 1e-12L, local_reference(scene));
+          const Rendered img = render_image(relit);
+          const ImageCheck check = check_image(img, 1e-6L, 1e-12L, local_reference(relit.scene()));
           EXPECT_EQ(check.darker, 0) << "point light, acne: " << check.first_bad;
           EXPECT_EQ(check.mismatched, 0) << check.first_bad;
         }
@@ -836,7 +838,7 @@ TEST(HardCases, O6_RayJustOutsideSphereGetsNearHit) {
         const RefRoots ref = ref_sphere_roots(to_ld(cs.c), cs.r, to_ld(origin), to_ld(dir));
         if (!ref.hit || !(ref.t0 > 0)) continue;  // aimed past the sphere by rounding
         const std::optional<double> t = intersect_sphere(scene.spheres[0], make_ray(origin, dir));
-        const std::optional<Hit> hit = intersect(scene, make_ray(origin, dir));
+        const std::optional<Hit> hit = intersect_all(scene, make_ray(origin, dir));
         auto near = [&](double t_got) { return std::abs(t_got - ref.t0) <= 1e-6L * ref.t0; };
         const bool ok = t && hit && near(*t) && near(hit->t);
         if (!ok) {
@@ -866,10 +868,10 @@ TEST(HardCases, O7_LightOnOrJustAboveASurface) {
     scene.planes = {Plane{Vec3(0), Vec3(0, 1, 0), 0}};
     scene.lights = {point_light(Vec3(0.25, 1e-6, -0.5), Color(1))};
     scene.camera = Camera{Vec3(0, 3, 4), Vec3(0, 0, 0), Vec3(0, 1, 0), 60};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
     EXPECT_EQ(img.stats.nan_count, 0u);
-    const ImageCheck check = check_image(img, 1e-6L, 1e-15L, local_reference(scene));
+    const ImageCheck check = check_image(img, 1e-6L, 1e-15L, local_reference(prepared.scene()));
     EXPECT_EQ(check.darker, 0) << "self-shadowed: " << check.first_bad;
     EXPECT_EQ(check.mismatched, 0) << check.first_bad;
   }
@@ -884,11 +886,11 @@ TEST(HardCases, O7_LightOnOrJustAboveASurface) {
     scene.planes = {Plane{Vec3(0), Vec3(0, 1, 0), 0}};
     scene.lights = {point_light(Vec3(0.25, 0, -0.5), Color(1))};
     scene.camera = Camera{Vec3(0, 3, 4), Vec3(0, 0, 0), Vec3(0, 1, 0), 60};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
     EXPECT_EQ(img.stats.nan_count, 0u);
     // N.L = 0 on the whole plane: ambient only.
-    const ImageCheck check = check_image(img, 1e-9L, 1e-12L, local_reference(scene));
+    const ImageCheck check = check_image(img, 1e-9L, 1e-12L, local_reference(prepared.scene()));
     EXPECT_EQ(check.mismatched, 0) << check.first_bad;
   }
   struct OnSphere {
@@ -908,10 +910,10 @@ TEST(HardCases, O7_LightOnOrJustAboveASurface) {
     // segment stays below the sphere's horizontal tangent plane); every sphere point has N.L <= 0.
     scene.lights = {point_light(os.c - Vec3(0, os.r, 0), Color(1))};
     scene.camera = Camera{Vec3(0.5, 2.5, 5), Vec3(0, 0.8, 0), Vec3(0, 1, 0), 60};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
     EXPECT_EQ(img.stats.nan_count, 0u);
-    const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(scene));
+    const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(prepared.scene()));
     EXPECT_EQ(check.darker, 0) << "self-shadowed: " << check.first_bad;
     EXPECT_EQ(check.mismatched, 0) << check.first_bad;
   }
@@ -945,10 +947,10 @@ TEST(HardCases, O8_TotalInternalReflectionHitsTheSameSphere) {
         scene.planes = {Plane{cs.c - 2 * cs.r * w, w, 1}};
         scene.max_depth = 24;
         scene.min_weight = 0;
-        prepare_scene(scene);
+        const PreparedScene prepared(scene);
         const Vec3 origin = cs.c + b_over_r * cs.r * u;
         Probed pr;
-        probe_ray(scene, make_ray(origin, w), pr);
+        probe_ray(prepared, make_ray(origin, w), pr);
         const LD b = ref_line_distance(to_ld(cs.c), to_ld(origin), to_ld(w));
         const ProbeNode* node = &pr.root;
         for (int depth = 0; depth <= scene.max_depth; ++depth) {
@@ -991,10 +993,10 @@ TEST(HardCases, N1_ZeroShininessDoesNotLightTheDarkSide) {
     Material m = phong_material(0, 0.5, 1, 0);
     scene.materials = {m};
     scene.planes = {Plane{Vec3(0), Vec3(0, 1, 0), 0}};
-    prepare_scene(scene);
+    const PreparedScene prepared(scene);
     // Hits (0, 0, 0) exactly (t = 0.6 / 0.6), so N.L = 0 is exact for lights in the plane.
     const Ray ray = make_ray(Vec3(0, 0.6, 0.8), Vec3(0, -0.6, -0.8));
-    const std::optional<Hit> hit = intersect(scene, ray);
+    const std::optional<Hit> hit = intersect(prepared, ray);
     ASSERT_TRUE(hit);
     ASSERT_EQ(hit->p, Vec3(0));
     const TraceLimits limits{0, 0};
@@ -1014,9 +1016,9 @@ TEST(HardCases, N1_ZeroShininessDoesNotLightTheDarkSide) {
       SCOPED_TRACE(lc.what);
       Scene s = scene;
       s.lights = {lc.light};
-      prepare_scene(s);
+      const PreparedScene s_prepared(s);
       RayCounts counts;
-      const Terms t = shade(s, limits, ray, *hit, 0, 1.0, counts);
+      const Terms t = shade(s_prepared, limits, ray, *hit, 0, 1.0, counts);
       EXPECT_EQ(t.specular, Color(lc.expected_specular));
       if (lc.expected_specular == 0) {
         EXPECT_EQ(t.diffuse, Color(0));
@@ -1033,18 +1035,18 @@ TEST(HardCases, N1_ZeroShininessDoesNotLightTheDarkSide) {
     scene.spheres = {Sphere{Vec3(0), 1, 0}};
     scene.lights = {point_light(Vec3(4, 1, 0), Color(0.75))};
     scene.camera = Camera{Vec3(0, 0, 4), Vec3(0), Vec3(0, 1, 0), 40};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene, Term::kSpecular);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared, Term::kSpecular);
     const RefCamera cam = ref_camera(scene.camera, scene.width, scene.height);
     int dark = 0;
     const ImageCheck check = check_image(img, 1e-12L, 1e-12L, [&](int x, int y, LV& out) {
       const LV d = ref_pixel_dir(cam, x, y);
-      const RefHit h = ref_intersect(scene, cam.origin, d);
+      const RefHit h = ref_intersect(prepared.scene(), cam.origin, d);
       if (!h.hit) {
         out = LV{};
         return true;
       }
-      const RefLocal local = ref_local(scene, h, d);
+      const RefLocal local = ref_local(prepared.scene(), h, d);
       if (local.min_abs_n_dot_l < 1e-9L) return false;  // on the terminator: either is right
       dark += local.lit_lights == 0 ? 1 : 0;
       out = local.specular;
@@ -1074,12 +1076,12 @@ TEST(HardCases, N2_NegativeCosineWithFractionalShininess) {
       scene.materials = {phong_material(0, 0, 0.5, n)};
       scene.planes = {Plane{Vec3(0), Vec3(0, 1, 0), 0}};
       scene.lights = {point_light(p + 10.0 * Vec3(0.6, 0.8, 0), Color(1))};
-      prepare_scene(scene);
-      const std::optional<Hit> hit = intersect(scene, ray);
+      const PreparedScene prepared(scene);
+      const std::optional<Hit> hit = intersect(prepared, ray);
       ASSERT_TRUE(hit);
       RayCounts counts;
       ProbeNode probe;
-      const Terms t = shade(scene, TraceLimits{0, 0}, ray, *hit, 0, 1.0, counts, &probe);
+      const Terms t = shade(prepared, TraceLimits{0, 0}, ray, *hit, 0, 1.0, counts, &probe);
       ASSERT_EQ(probe.lights.size(), 1u);
       EXPECT_NEAR(probe.lights[0].r_dot_v, -0.5, 1e-12);
       EXPECT_TRUE(terms_are_finite(t));
@@ -1095,14 +1097,14 @@ TEST(HardCases, N2_NegativeCosineWithFractionalShininess) {
     scene.spheres = {Sphere{Vec3(0), 1, 0}};
     scene.lights = {point_light(Vec3(3, 2, 1), Color(1)), directional_light(Vec3(0.5, -0.2, -1), Color(0.5))};
     scene.camera = Camera{Vec3(0, 0, 4), Vec3(0), Vec3(0, 1, 0), 40};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene, Term::kSpecular);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared, Term::kSpecular);
     EXPECT_EQ(img.stats.nan_count, 0u);
     const RefCamera cam = ref_camera(scene.camera, scene.width, scene.height);
     const ImageCheck check = check_image(img, 1e-6L, 1e-12L, [&](int x, int y, LV& out) {
       const LV d = ref_pixel_dir(cam, x, y);
-      const RefHit h = ref_intersect(scene, cam.origin, d);
-      out = h.hit ? ref_local(scene, h, d).specular : LV{};
+      const RefHit h = ref_intersect(prepared.scene(), cam.origin, d);
+      out = h.hit ? ref_local(prepared.scene(), h, d).specular : LV{};
       return true;
     });
     EXPECT_EQ(check.mismatched, 0) << check.first_bad;
@@ -1122,8 +1124,8 @@ TEST(HardCases, N3_LightAtShadedPointAndCameraOnSurface) {
     scene.planes = {Plane{Vec3(0), Vec3(0, 1, 0), 0}};
     scene.lights = {point_light(Vec3(0), Color(1))};
     scene.camera = Camera{Vec3(0, 1, 0), Vec3(0), Vec3(0, 0, -1), 60};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
     EXPECT_EQ(img.stats.nan_count, 0u);
     // The light lies in the plane: N.L = 0 at every other point, so ambient only.
     for (int y = 0; y < scene.height; ++y) {
@@ -1133,12 +1135,12 @@ TEST(HardCases, N3_LightAtShadedPointAndCameraOnSurface) {
     }
     // shade() with the light exactly at the hit point.
     const Ray ray = make_ray(Vec3(0, 1, 0), Vec3(0, -1, 0));
-    const std::optional<Hit> hit = intersect(scene, ray);
+    const std::optional<Hit> hit = intersect(prepared, ray);
     ASSERT_TRUE(hit);
     ASSERT_EQ(hit->p, Vec3(0));
     RayCounts counts;
     ProbeNode probe;
-    const Terms t = shade(scene, TraceLimits{0, 0}, ray, *hit, 0, 1.0, counts, &probe);
+    const Terms t = shade(prepared, TraceLimits{0, 0}, ray, *hit, 0, 1.0, counts, &probe);
     EXPECT_TRUE(terms_are_finite(t));
   }
   {
@@ -1150,8 +1152,8 @@ TEST(HardCases, N3_LightAtShadedPointAndCameraOnSurface) {
     scene.spheres = {Sphere{Vec3(0, -1, 0), 1, 0}};
     scene.lights = {point_light(Vec3(0), Color(1)), point_light(Vec3(0, 2, 0), Color(0.5))};
     scene.camera = Camera{Vec3(0, 1, 0), Vec3(0), Vec3(0, 0, -1), 60};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
     EXPECT_EQ(img.stats.nan_count, 0u);
   }
   // The camera on a plane or a sphere, looking along, into and away from it, with mirrors and
@@ -1177,8 +1179,8 @@ TEST(HardCases, N3_LightAtShadedPointAndCameraOnSurface) {
       SCOPED_TRACE("camera at " + str(pos) + " looking at " + str(target));
       Scene scene = base;
       scene.camera = Camera{pos, target, Vec3(0, 1, 0), 90};
-      prepare_scene(scene);
-      const Rendered img = render_image(scene);
+      const PreparedScene prepared(scene);
+      const Rendered img = render_image(prepared);
       EXPECT_EQ(img.stats.nan_count, 0u);
     }
   }
@@ -1218,13 +1220,14 @@ TEST(HardCases, N4_OutOfRangeCosinesAreClamped) {
     scene.lights = {point_light(a, Color(1))};
     scene.max_depth = 1;
     scene.min_weight = 0;
-    prepare_scene(scene);
-    const Ray ray = make_ray(scene.planes[0].normal, -scene.planes[0].normal);
-    const std::optional<Hit> hit = intersect(scene, ray);
+    const PreparedScene prepared(scene);
+    const Plane& plane = prepared.scene().planes[0];  // its normal normalised, as the renderer takes it
+    const Ray ray = make_ray(plane.normal, -plane.normal);
+    const std::optional<Hit> hit = intersect(prepared, ray);
     ASSERT_TRUE(hit);
     RayCounts counts;
     ProbeNode probe;
-    const Terms t = shade(scene, TraceLimits{1, 0}, ray, *hit, 0, 1.0, counts, &probe);
+    const Terms t = shade(prepared, TraceLimits{1, 0}, ray, *hit, 0, 1.0, counts, &probe);
     EXPECT_TRUE(terms_are_finite(t));
     ASSERT_EQ(probe.lights.size(), 1u);
     EXPECT_LE(probe.lights[0].spec_factor, 1.0);
@@ -1232,10 +1235,10 @@ TEST(HardCases, N4_OutOfRangeCosinesAreClamped) {
     ASSERT_NE(probe.refraction, nullptr);
     EXPECT_NEAR(glm::length(probe.refraction->dir), 1.0, 1e-15);
     // The same with the ray leaving the glass (from below the plane).
-    const Ray up = make_ray(-scene.planes[0].normal, scene.planes[0].normal);
-    const std::optional<Hit> hit_up = intersect(scene, up);
+    const Ray up = make_ray(-plane.normal, plane.normal);
+    const std::optional<Hit> hit_up = intersect(prepared, up);
     ASSERT_TRUE(hit_up);
-    const Terms t_up = shade(scene, TraceLimits{1, 0}, up, *hit_up, 0, 1.0, counts);
+    const Terms t_up = shade(prepared, TraceLimits{1, 0}, up, *hit_up, 0, 1.0, counts);
     EXPECT_TRUE(terms_are_finite(t_up));
   }
   EXPECT_GT(found, 0);
@@ -1245,7 +1248,7 @@ namespace {
 
 // A random scene within the valid ranges of docs/scene-format.md, including the awkward values: n in
 // {0, 0.5, 1, 10, 10.5, 1e4}, ior in (0.1, 3), Fresnel, lights and the camera on surfaces.
-Scene random_scene(std::mt19937_64& rng) {
+PreparedScene random_scene(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> uni(0, 1);
   auto range = [&](double a, double b) { return a + (b - a) * uni(rng); };
   auto coin = [&](double p) { return uni(rng) < p; };
@@ -1337,8 +1340,7 @@ Scene random_scene(std::mt19937_64& rng) {
     if (glm::length(glm::cross(glm::normalize(view), s.camera.up)) < 0.2) continue;
     break;
   }
-  prepare_scene(s);
-  return s;
+  return PreparedScene(std::move(s));
 }
 
 }  // namespace
@@ -1356,12 +1358,12 @@ TEST(HardCases, N5_NoNaNOrInfInRandomScenes) {
     scene.spheres = {Sphere{Vec3(0), 1, 0}};
     scene.lights = {point_light(Vec3(0, 0, 5), Color(std::numeric_limits<double>::quiet_NaN()))};
     scene.camera = Camera{Vec3(0, 0, 5), Vec3(0), Vec3(0, 1, 0), 10};  // the sphere fills the view
-    prepare_scene(scene);
-    EXPECT_EQ(render_image(scene).stats.nan_count, 16u * 12u);
+    const PreparedScene prepared(scene);
+    EXPECT_EQ(render_image(prepared).stats.nan_count, 16u * 12u);
     scene.lights.clear();
     scene.camera.fov_y_deg = 90;
     scene.background = Color(std::numeric_limits<double>::infinity());
-    const Rendered img = render_image(scene);
+    const Rendered img = render_image(PreparedScene(scene));
     EXPECT_GT(img.stats.nan_count, 0u);
     EXPECT_LT(img.stats.nan_count, 16u * 12u);
   }
@@ -1370,7 +1372,7 @@ TEST(HardCases, N5_NoNaNOrInfInRandomScenes) {
   for (std::uint64_t seed = 5000; seed < 5200; ++seed) {
     SCOPED_TRACE(seed_trace(seed));
     std::mt19937_64 rng(seed);
-    const Scene scene = random_scene(rng);
+    const PreparedScene scene = random_scene(rng);
     const Rendered full = render_image(scene, Term::kFull, 2);
     ASSERT_EQ(full.stats.nan_count, 0u);
     if (seed % 4 == 0) {
@@ -1398,7 +1400,7 @@ TEST(HardCases, T1_RaysParallelToAPlane) {
   scene.materials = {phong_material(0.1, 0.5, 0.5, 10.5)};
   scene.planes = {Plane{Vec3(0), Vec3(0, 1, 0), 0}};
   scene.lights = {point_light(Vec3(1, 1, 1), Color(1))};
-  prepare_scene(scene);
+  const PreparedScene prepared(scene);
   const TraceLimits limits{2, 0};
   for (const double height : {1.0, 0.0, -1.0, 1e-300}) {
     for (const double dn : {0.0, 1e-30, -1e-30, 1e-8, -1e-8, 1e-300, -1e-300}) {
@@ -1408,17 +1410,17 @@ TEST(HardCases, T1_RaysParallelToAPlane) {
         const Vec3 dir(std::cos(phi), dn, std::sin(phi));  // unit to within rounding
         const Vec3 origin(0.25 * i - 2, height, 0.5 * i);
         const Ray ray = make_ray(origin, dir);
-        const std::optional<double> t = intersect_plane(scene.planes[0], ray);
+        const std::optional<double> t = intersect_plane(prepared.scene().planes[0], ray);
         const bool expect_hit = ((height > 0 && dn < 0) || (height < 0 && dn > 0)) && std::isfinite(-height / dn);
         ASSERT_EQ(t.has_value(), expect_hit);
         if (t) {
           ASSERT_TRUE(std::isfinite(*t));
           EXPECT_DOUBLE_EQ(*t, -height / dn);
         }
-        const std::optional<Hit> hit = intersect(scene, ray);
+        const std::optional<Hit> hit = intersect(prepared, ray);
         if (hit) { ASSERT_TRUE(hit_is_finite(*hit)); }
         RayCounts counts;
-        ASSERT_TRUE(all_finite(trace(scene, limits, ray, 0, 1.0, counts)));
+        ASSERT_TRUE(all_finite(trace(prepared, limits, ray, 0, 1.0, counts)));
       }
     }
   }
@@ -1436,14 +1438,14 @@ TEST(HardCases, T1_RaysParallelToAPlane) {
     Vec3 t1, t2;
     complete_frame(hc.n, t1, t2);
     s2.camera = Camera{hc.p0 + hc.n, hc.p0 + hc.n + t1, hc.n, 1};
-    prepare_scene(s2);
-    const Rendered depth = render_image(s2, Term::kDepth);
+    const PreparedScene s2_prepared(s2);
+    const Rendered depth = render_image(s2_prepared, Term::kDepth);
     const RefCamera cam = ref_camera(s2.camera, s2.width, s2.height);
     int gaps = 0, below = 0;
     LD farthest = 0;
     const ImageCheck check = check_image(depth, 1e-6L, 1e-12L, [&](int x, int y, LV& out) {
       const LV d = ref_pixel_dir(cam, x, y);
-      const RefHit h = ref_intersect(s2, cam.origin, d);
+      const RefHit h = ref_intersect(s2_prepared.scene(), cam.origin, d);
       out = h.hit ? LV{h.t, h.t, h.t} : LV{};
       if (h.hit) {
         ++below;
@@ -1502,7 +1504,7 @@ TEST(HardCases, T2_WatertightFanAndClosedMesh) {
       }
       const Vec3 dir = glm::normalize(target - origin);
       ++rays;
-      if (!intersect(scene, make_ray(origin, dir))) {
+      if (!intersect_all(scene, make_ray(origin, dir))) {
         ++leaks;
         if (example.empty()) example = "origin " + str(origin) + " towards " + str(target);
       }
@@ -1539,7 +1541,7 @@ TEST(HardCases, T2_WatertightFanAndClosedMesh) {
       } else {
         dir = random_unit(rng);
       }
-      if (!intersect(scene, make_ray(origin, dir))) {
+      if (!intersect_all(scene, make_ray(origin, dir))) {
         ++leaks;
         if (example.empty()) example = "origin " + str(origin) + " direction " + str(dir);
       }
@@ -1566,7 +1568,7 @@ TEST(HardCases, T4_SliverTrianglesHaveNoFalseHitsAndNoNaN) {
       tri.v2 = shift + Vec3(0.5, height, 0);
       scene.triangles = {tri};
       scene.lights = {point_light(shift + Vec3(0.5, 1, 1), Color(1))};
-      prepare_scene(scene);
+      const PreparedScene prepared(scene);
       int wrong = 0;
       std::string example;
       for (int i = 0; i < 4000; ++i) {
@@ -1591,7 +1593,7 @@ TEST(HardCases, T4_SliverTrianglesHaveNoFalseHitsAndNoNaN) {
         }
         if (t) {
           ASSERT_TRUE(std::isfinite(*t) && std::isfinite(b1) && std::isfinite(b2));
-          const std::optional<Hit> hit = intersect(scene, make_ray(origin, dir));
+          const std::optional<Hit> hit = intersect(prepared, make_ray(origin, dir));
           ASSERT_TRUE(hit);
           ASSERT_TRUE(hit_is_finite(*hit));
           EXPECT_NEAR(glm::length(hit->ng), 1.0, 1e-12);
@@ -1624,7 +1626,7 @@ TEST(HardCases, T4_ZeroAreaTrianglesAreNeverHit) {
     scene.materials = {phong_material(0.1, 0.5, 0.5, 10)};
     scene.triangles = {tri};
     scene.lights = {point_light(Vec3(3, 3, 3), Color(1))};
-    prepare_scene(scene);
+    const PreparedScene prepared(scene);
     int hits = 0, nan_hits = 0;
     std::string example;
     for (int i = 0; i < 2000; ++i) {
@@ -1641,13 +1643,14 @@ TEST(HardCases, T4_ZeroAreaTrianglesAreNeverHit) {
           example = "hit at t = " + std::to_string(*t) + " from " + str(origin) + " towards " + str(target);
         }
       }
-      if (auto hit = intersect(scene, ray); hit && !hit_is_finite(*hit)) ++nan_hits;
+      if (auto hit = intersect(prepared, ray); hit && !hit_is_finite(*hit)) ++nan_hits;
     }
     EXPECT_EQ(hits, 0) << example;
     EXPECT_EQ(nan_hits, 0) << "hits with a NaN normal";
     // Looking straight at it.
     scene.camera = Camera{tri.v0 + Vec3(0.3, -0.2, 4), 0.5 * (tri.v0 + tri.v2), Vec3(0, 1, 0), 30};
-    EXPECT_EQ(render_image(scene).stats.nan_count, 0u);
+    const PreparedScene looking(scene);
+    EXPECT_EQ(render_image(looking).stats.nan_count, 0u);
   }
 }
 
@@ -1691,7 +1694,7 @@ TEST(HardCases, R1_CriticalAngleSnellAndTotalInternalReflection) {
   };
   const Case cases[] = {{{0, 0, 0}, 1}, {{10, -20, 30}, 2.5}};
   for (const Case& cs : cases) {
-    const Scene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 1);
+    const PreparedScene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 1);
     for (const bool is_above : {false, true}) {
       for (const double theta_deg : is_above ? above : below) {
         SCOPED_TRACE("centre " + str(cs.c) + ", theta " + std::to_string(theta_deg) + " deg");
@@ -1739,7 +1742,7 @@ TEST(HardCases, R3_DeviationThroughASphere) {
   Vec3 u, v;
   complete_frame(w, u, v);
   for (const Case& cs : cases) {
-    const Scene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 2);
+    const PreparedScene scene = bare_glass_sphere(cs.c, cs.r, 1.5, false, 2);
     for (int i = 0; i < 100; ++i) {
       const double b_over_r = i / 100.0;
       SCOPED_TRACE("centre " + str(cs.c) + ", b/r = " + std::to_string(b_over_r));
@@ -1821,14 +1824,14 @@ TEST(HardCases, R4_ExactFresnelBothSides) {
   Vec3 u, v;
   complete_frame(w, u, v);
   for (const double ior : {1.33, 1.5, 2.42}) {
-    const Scene scene = bare_glass_sphere(Vec3(1, 2, 3), 2, ior, true, 2);
+    const PreparedScene scene = bare_glass_sphere(Vec3(1, 2, 3), 2, ior, true, 2);
     for (const double b_over_r : {0.0, 0.3, 0.6, 0.9, 0.99, 0.999}) {
       SCOPED_TRACE("ior " + std::to_string(ior) + ", b/r = " + std::to_string(b_over_r));
-      const Vec3 origin = scene.spheres[0].center - 6.0 * w + b_over_r * 2.0 * u;
+      const Vec3 origin = scene.scene().spheres[0].center - 6.0 * w + b_over_r * 2.0 * u;
       Probed pr;
       probe_ray(scene, make_ray(origin, w), pr);
       ASSERT_TRUE(pr.root.hit);
-      const LD b = ref_line_distance(to_ld(scene.spheres[0].center), to_ld(origin), to_ld(w));
+      const LD b = ref_line_distance(to_ld(scene.scene().spheres[0].center), to_ld(origin), to_ld(w));
       const LD sin_i = b / 2;
       const LD cos_i = std::sqrt(1 - sin_i * sin_i);
       EXPECT_NEAR(pr.root.fresnel, static_cast<double>(ref_fresnel(cos_i, 1, ior)), 1e-6);
@@ -1860,8 +1863,8 @@ TEST(HardCases, L1_InsideSphereWithLightAtCentre) {
       scene.spheres = {Sphere{c, 2, 0}};
       scene.lights = {point_light(c, Color(1))};
       scene.camera = Camera{c + eye, c + Vec3(1, 0.5, -1), Vec3(0, 1, 0), 120};
-      prepare_scene(scene);
-      const Rendered img = render_image(scene);
+      const PreparedScene prepared(scene);
+      const Rendered img = render_image(prepared);
       EXPECT_EQ(img.stats.nan_count, 0u);
       const ImageCheck check = check_image(img, 1e-6L, 1e-6L, [](int, int, LV& out) {
         out = LV{0.5L, 0.5L, 0.5L};
@@ -1905,14 +1908,14 @@ TEST(HardCases, L2_OneLightEqualsFourQuarterLights) {
     SCOPED_TRACE(light.type == LightType::kPoint ? "point light" : "directional light");
     Scene one = scene;
     one.lights = {light};
-    prepare_scene(one);
+    const PreparedScene one_prepared(one);
     Scene four = scene;
     Light quarter = light;
     quarter.intensity = light.intensity / 4.0;
     four.lights = {quarter, quarter, quarter, quarter};
-    prepare_scene(four);
-    const Rendered a = render_image(one);
-    const Rendered b = render_image(four);
+    const PreparedScene four_prepared(four);
+    const Rendered a = render_image(one_prepared);
+    const Rendered b = render_image(four_prepared);
     int differing = 0;
     double worst = 0;
     for (std::size_t i = 0; i < a.px.size(); ++i) {
@@ -1947,17 +1950,17 @@ TEST(HardCases, L3_ShadowRaysOnlyForLitSideLights) {
                   point_light(Vec3(0, 3, -2), Color(0.6)), point_light(Vec3(0.5, -0.5, 5), Color(0.2)),
                   directional_light(Vec3(0, 0, 1), Color(1))};  // from behind: never on the lit side
   scene.camera = Camera{Vec3(0, 0, 4), Vec3(0), Vec3(0, 1, 0), 40};
-  prepare_scene(scene);
-  const Rendered img = render_image(scene);
+  const PreparedScene prepared(scene);
+  const Rendered img = render_image(prepared);
   const RefCamera cam = ref_camera(scene.camera, scene.width, scene.height);
   std::uint64_t expected_shadow = 0, hits = 0, ambiguous = 0;
   for (int y = 0; y < scene.height; ++y) {
     for (int x = 0; x < scene.width; ++x) {
       const LV d = ref_pixel_dir(cam, x, y);
-      const RefHit h = ref_intersect(scene, cam.origin, d);
+      const RefHit h = ref_intersect(prepared.scene(), cam.origin, d);
       if (!h.hit) continue;
       ++hits;
-      const RefLocal local = ref_local(scene, h, d);
+      const RefLocal local = ref_local(prepared.scene(), h, d);
       expected_shadow += static_cast<std::uint64_t>(local.lit_lights);
       if (local.min_abs_n_dot_l < 1e-9L) ++ambiguous;
     }
@@ -1968,7 +1971,7 @@ TEST(HardCases, L3_ShadowRaysOnlyForLitSideLights) {
   EXPECT_LE(img.stats.rays.shadow, expected_shadow + ambiguous);
   EXPECT_GE(img.stats.rays.shadow + ambiguous, expected_shadow);
   EXPECT_EQ(img.stats.rays.primary, static_cast<std::uint64_t>(scene.width * scene.height));
-  const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(scene));
+  const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(prepared.scene()));
   EXPECT_EQ(check.mismatched, 0) << check.first_bad;
 }
 
@@ -1993,8 +1996,8 @@ TEST(HardCases, S2_DistantSphereSilhouetteHasNoHoles) {
       // The sphere's angular radius asin(1 / D) spans 100 of the 240 rows.
       const double h = std::tan(std::asin(1 / dist)) * scene.height / 200.0;
       scene.camera = Camera{Vec3(0), dist * axis, Vec3(0, 1, 0), 2 * std::atan(h) * 180 / kPi};
-      prepare_scene(scene);
-      const Rendered depth = render_image(scene, Term::kDepth);
+      const PreparedScene prepared(scene);
+      const Rendered depth = render_image(prepared, Term::kDepth);
       EXPECT_EQ(depth.stats.nan_count, 0u);
       const RefCamera cam = ref_camera(scene.camera, scene.width, scene.height);
       auto hits = [&](int x, int y) { return depth.at(x, y).x > 0; };
@@ -2063,7 +2066,7 @@ TEST(HardCases, S3_HugeGroundSphere) {
       // dip is at most sqrt(2 / R) = 2.6 degrees).
       const double down = 35 * kPi / 180;
       scene.camera = Camera{up, up + std::cos(down) * t1 - std::sin(down) * up, up, 40};
-      prepare_scene(scene);
+      const PreparedScene prepared(scene);
       const LV c = to_ld(scene.spheres[0].center);
       int off_sphere = 0, off_ray = 0, misses = 0;
       LD worst_radial = 0;
@@ -2074,7 +2077,7 @@ TEST(HardCases, S3_HugeGroundSphere) {
         const double az = 2 * kPi * uni(rng);
         const Vec3 dir = glm::normalize(std::cos(elev) * (std::cos(az) * t1 + std::sin(az) * t2) + std::sin(elev) * up);
         const Ray ray = make_ray(scene.camera.position, dir);
-        const std::optional<Hit> hit = intersect(scene, ray);
+        const std::optional<Hit> hit = intersect(prepared, ray);
         const std::optional<LD> t_ref = ref_sphere_t(c, radius, to_ld(ray.origin), to_ld(dir));
         ASSERT_TRUE(t_ref);
         if (!hit) {
@@ -2091,9 +2094,9 @@ TEST(HardCases, S3_HugeGroundSphere) {
       EXPECT_EQ(misses, 0);
       EXPECT_EQ(off_sphere, 0) << "worst ||p - C| - R| = " << static_cast<double>(worst_radial);
       EXPECT_EQ(off_ray, 0);
-      const Rendered img = render_image(scene);
+      const Rendered img = render_image(prepared);
       EXPECT_EQ(img.stats.nan_count, 0u);
-      const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(scene));
+      const ImageCheck check = check_image(img, 1e-6L, 1e-9L, local_reference(prepared.scene()));
       EXPECT_EQ(check.darker, 0) << "acne: " << check.first_bad;
       EXPECT_EQ(check.mismatched, 0) << check.first_bad;
     }
@@ -2152,7 +2155,7 @@ TEST(HardCases, S7_DegenerateAndExtremeSpheres) {
     LoadResult r = load_scene_text(sphere_scene_json(cs.center, cs.radius, cs.eye), "s7.json");
     ASSERT_TRUE(r.ok()) << r.error_text();
     Scene scene = *r.scene;
-    prepare_scene(scene);
+    const PreparedScene prepared(scene);
     ASSERT_EQ(scene.spheres.size(), 1u);
     const Sphere& sphere = scene.spheres[0];
     const LV c = to_ld(sphere.center);
@@ -2181,8 +2184,8 @@ TEST(HardCases, S7_DegenerateAndExtremeSpheres) {
       if (!all_finite(dir)) dir = random_unit(rng);
       const Ray ray = make_ray(eye, dir);
       const std::optional<double> t = intersect_sphere(sphere, ray);
-      const std::optional<Hit> hit = intersect(scene, ray);
-      const bool blocked = occluded(scene, ray, std::numeric_limits<double>::infinity());
+      const std::optional<Hit> hit = intersect(prepared, ray);
+      const bool blocked = occluded(prepared, ray, std::numeric_limits<double>::infinity());
       if (t) { ASSERT_TRUE(std::isfinite(*t) && *t > 0) << "t = " << *t; }
       if (hit) { ASSERT_TRUE(hit_is_finite(*hit)) << "direction " << str(dir); }
       if (t.has_value() != hit.has_value() || blocked != t.has_value() || (t && hit->t != *t)) {
@@ -2191,7 +2194,7 @@ TEST(HardCases, S7_DegenerateAndExtremeSpheres) {
       }
       hits += t ? 1 : 0;
       RayCounts counts;
-      ASSERT_TRUE(all_finite(trace(scene, limits, ray, 0, 1.0, counts))) << "direction " << str(dir);
+      ASSERT_TRUE(all_finite(trace(prepared, limits, ray, 0, 1.0, counts))) << "direction " << str(dir);
       // The reference: a hit when the line passes within r of the centre and the sphere is ahead.
       const LV o = to_ld(eye), d = normalized(to_ld(dir));
       const bool ref_hit = ref_sphere_t(c, radius, o, d).has_value();
@@ -2208,7 +2211,7 @@ TEST(HardCases, S7_DegenerateAndExtremeSpheres) {
     }
     EXPECT_EQ(inconsistent, 0) << example;
     EXPECT_EQ(far_wrong, 0) << example << " (" << hits << " hits)";
-    const Rendered img = render_image(scene, Term::kFull, 2);
+    const Rendered img = render_image(prepared, Term::kFull, 2);
     EXPECT_EQ(img.stats.nan_count, 0u);
   }
 }
@@ -2253,8 +2256,8 @@ TEST(HardCases, O5_LectureSceneAtAnyScaleAndPlace) {
   Scene unit_scene = *loaded.scene;
   unit_scene.width = 320;
   unit_scene.height = 180;
-  prepare_scene(unit_scene);
-  const Rendered unit = render_image(unit_scene);
+  const PreparedScene unit_scene_prepared(unit_scene);
+  const Rendered unit = render_image(unit_scene_prepared);
   ASSERT_EQ(unit.stats.nan_count, 0u);
   struct Case {
     double s;
@@ -2266,7 +2269,7 @@ TEST(HardCases, O5_LectureSceneAtAnyScaleAndPlace) {
   const int allowed = static_cast<int>(1e-4 * unit.width * unit.height);
   for (const Case& cs : cases) {
     SCOPED_TRACE("scale " + std::to_string(cs.s) + ", shift " + str(cs.shift));
-    const Scene scene = transformed(unit_scene, cs.s, cs.shift);
+    const PreparedScene scene(transformed(unit_scene, cs.s, cs.shift));
     const Rendered img = render_image(scene);
     EXPECT_EQ(img.stats.nan_count, 0u);
     std::string example;
@@ -2285,12 +2288,12 @@ TEST(HardCases, O5_LectureSceneFarAwayAtHighResolution) {
   Scene unit_scene = *loaded.scene;
   unit_scene.width = 1280;
   unit_scene.height = 720;
-  prepare_scene(unit_scene);
-  const Rendered unit = render_image(unit_scene);
+  const PreparedScene unit_scene_prepared(unit_scene);
+  const Rendered unit = render_image(unit_scene_prepared);
   const int allowed = static_cast<int>(1e-4 * unit.width * unit.height);
   for (const double shift : {1e5, 1e6}) {
     SCOPED_TRACE("shift " + std::to_string(shift));
-    const Rendered img = render_image(transformed(unit_scene, 1, Vec3(shift)));
+    const Rendered img = render_image(PreparedScene(transformed(unit_scene, 1, Vec3(shift))));
     EXPECT_EQ(img.stats.nan_count, 0u);
     std::string example;
     EXPECT_LE(pixels_differing(img, unit, 1.0 / 255, &example), allowed) << example;
@@ -2324,8 +2327,8 @@ TEST(HardCases, R2_CameraInsideGlassSphere) {
   for (const Vec3& eye : eyes) {
     SCOPED_TRACE("eye " + str(eye));
     scene.camera = Camera{eye, Vec3(0, 0.3, -3), Vec3(0, 1, 0), 90};
-    prepare_scene(scene);
-    const Rendered img = render_image(scene);
+    const PreparedScene prepared(scene);
+    const Rendered img = render_image(prepared);
     EXPECT_EQ(img.stats.nan_count, 0u);
     int lit = 0;
     for (const Color& p : img.px) lit += max_channel(p) > 0.05 ? 1 : 0;
@@ -2371,7 +2374,7 @@ TEST(HardCases, R2_CameraInsideGlassSphere) {
     };
     for (int y = 1; y < scene.height; y += 6) {
       for (int x = 2; x < scene.width; x += 6) {
-        const PixelProbe probe = probe_pixel(scene, scene.width, scene.height, x, y);
+        const PixelProbe probe = probe_pixel(prepared, scene.width, scene.height, x, y);
         EXPECT_FALSE(probe.root.entering);
         EXPECT_EQ(probe.root.eta, 1.5);
         walk(probe.root);
@@ -2432,12 +2435,11 @@ TEST(HardCases, R6_TotalInternalReflectionTrapConvergesWithDepth) {
     scene.materials = {glass};
     scene.spheres = {Sphere{Vec3(0.5, -1, 2), 1.5, 0}};
     scene.camera = Camera{Vec3(0.5, -1, 2), Vec3(0, 0, 0), Vec3(0, 1, 0), 100};
-    prepare_scene(scene);
     const LD f0 = (0.5L / 2.5L) * (0.5L / 2.5L);
     for (int depth = 0; depth <= 32; ++depth) {
       SCOPED_TRACE("max_depth " + std::to_string(depth));
       scene.max_depth = depth;
-      const Rendered img = render_image(scene);
+      const Rendered img = render_image(PreparedScene(scene));
       const LD factor = 1 - std::pow(f0, static_cast<LD>(depth));
       const ImageCheck check = check_image(img, 1e-9L, 1e-12L, [&](int, int, LV& out) {
         out = factor * to_ld(scene.background);
@@ -2459,9 +2461,8 @@ TEST(HardCases, R6_TotalInternalReflectionTrapConvergesWithDepth) {
   scene.planes = {Plane{Vec3(0, -0.2, 0), Vec3(0, 1, 0), 1}};
   scene.lights = {point_light(Vec3(2, 5, 3), Color(0.9)), directional_light(Vec3(-1, -1, -0.5), Color(0.3))};
   scene.camera = Camera{Vec3(0.55, 1.2, 0.3), Vec3(-1, 0.9, -3), Vec3(0, 1, 0), 100};
-  prepare_scene(scene);
   scene.max_depth = 64;
-  const Rendered reference = render_image(scene);
+  const Rendered reference = render_image(PreparedScene(scene));
   EXPECT_EQ(reference.stats.nan_count, 0u);
   double previous_max = std::numeric_limits<double>::infinity();
   double previous_rms = std::numeric_limits<double>::infinity();
@@ -2472,7 +2473,7 @@ TEST(HardCases, R6_TotalInternalReflectionTrapConvergesWithDepth) {
   for (const int depth : {2, 4, 8, 16, 32}) {
     SCOPED_TRACE("max_depth " + std::to_string(depth));
     scene.max_depth = depth;
-    images.push_back(render_image(scene));
+    images.push_back(render_image(PreparedScene(scene)));
     const Rendered& img = images.back();
     EXPECT_EQ(img.stats.nan_count, 0u);
     double max_err = 0, sum_sq = 0;
@@ -2544,7 +2545,7 @@ TEST(HardCases, T3_NoReHitsOfTrianglesAtAnyScale) {
           if (side * glm::dot(w, n) < 0.2) w = glm::normalize(w + (0.2 - side * glm::dot(w, n) + 0.1) * side * n);
           const Vec3 origin = target + 3 * size * w;
           const Ray ray = make_ray(origin, glm::normalize(target - origin));
-          const std::optional<Hit> hit = intersect(scene, ray);
+          const std::optional<Hit> hit = intersect_all(scene, ray);
           if (!hit || hit->object.index != 0) {
             if (resolvable && b0 > 1e-5) {
               ++primary_wrong;
@@ -2570,8 +2571,8 @@ TEST(HardCases, T3_NoReHitsOfTrianglesAtAnyScale) {
             ++rays;
             const std::optional<double> ta = intersect_triangle(tri_a, out);
             const std::optional<double> tb = intersect_triangle(tri_b, out);
-            const std::optional<Hit> again = intersect(scene, out);
-            const bool blocked = occluded(scene, out, std::numeric_limits<double>::infinity());
+            const std::optional<Hit> again = intersect_all(scene, out);
+            const bool blocked = occluded_all(scene, out, std::numeric_limits<double>::infinity());
             if (ta || tb || again || blocked) {
               ++rehits;
               if (example.empty()) {
@@ -2643,10 +2644,10 @@ TEST(HardCases, T5_ZeroDirectionComponentsAndOriginsOnSurfaces) {
     scene.lights = {point_light(Vec3(3, 3, 3), Color(1)), directional_light(Vec3(0, 0, -1), Color(0.5))};
     scene.max_depth = 3;
     scene.min_weight = 0;
-    prepare_scene(scene);
+    const PreparedScene prepared(scene);
     Scene square = scene;
     square.triangles = {tri, other};
-    prepare_scene(square);  // its acceleration structure must hold both halves
+    const PreparedScene square_prepared(square);  // its acceleration structure must hold both halves
     const TraceLimits limits{scene.max_depth, 0};
     // Targets in the triangle's (u, v) = (coord i - 0.5, coord j + 0.25): vertices, edge points,
     // inside, outside; inside means u >= 0, v >= 0, u + v <= 2.
@@ -2680,17 +2681,17 @@ TEST(HardCases, T5_ZeroDirectionComponentsAndOriginsOnSurfaces) {
           } else if (t && !touch && std::abs(*t - 4 * glm::length(d_raw)) > 1e-14 * *t) {
             fail(wrong, "t = " + std::to_string(*t) + ": " + what);
           }
-          const std::optional<Hit> hit = intersect(square, ray);
+          const std::optional<Hit> hit = intersect(square_prepared, ray);
           if (hit && !hit_is_finite(*hit)) fail(nan, "NaN hit: " + what);
           const bool touch_square = on_plane && hit && hit->t <= 1e-15;
           if (hit.has_value() != (crosses && in_square) && !touch_square) {
             fail(wrong, std::string(hit ? "false hit (square): " : "false miss (square): ") + what);
           }
-          if (occluded(square, ray, std::numeric_limits<double>::infinity()) != hit.has_value()) {
+          if (occluded(square_prepared, ray, std::numeric_limits<double>::infinity()) != hit.has_value()) {
             fail(wrong, "any-hit disagrees: " + what);
           }
           RayCounts counts;
-          if (!all_finite(trace(square, limits, ray, 0, 1.0, counts))) fail(nan, "NaN radiance: " + what);
+          if (!all_finite(trace(square_prepared, limits, ray, 0, 1.0, counts))) fail(nan, "NaN radiance: " + what);
         }
       }
     }
@@ -2706,8 +2707,8 @@ TEST(HardCases, T5_ZeroDirectionComponentsAndOriginsOnSurfaces) {
     scene.lights = {point_light(Vec3(3, 3, 3), Color(1))};
     scene.max_depth = 3;
     scene.min_weight = 0;
-    prepare_scene(scene);
-    const Plane& pl = scene.planes[0];
+    const PreparedScene prepared(scene);
+    const Plane& pl = prepared.scene().planes[0];  // its normal normalised, as the renderer takes it
     const TraceLimits limits{scene.max_depth, 0};
     Vec3 e1, e2;
     complete_frame(pl.normal, e1, e2);
@@ -2728,10 +2729,10 @@ TEST(HardCases, T5_ZeroDirectionComponentsAndOriginsOnSurfaces) {
           const LD t_ref = std::abs(h / dn);
           if (!(std::abs(*t - t_ref) <= 1e-12L * t_ref)) fail(wrong, "t = " + std::to_string(*t) + ": " + what);
         }
-        const std::optional<Hit> hit = intersect(scene, ray);
+        const std::optional<Hit> hit = intersect(prepared, ray);
         if (hit && !hit_is_finite(*hit)) fail(nan, "NaN hit: " + what);
         RayCounts counts;
-        if (!all_finite(trace(scene, limits, ray, 0, 1.0, counts))) fail(nan, "NaN radiance: " + what);
+        if (!all_finite(trace(prepared, limits, ray, 0, 1.0, counts))) fail(nan, "NaN radiance: " + what);
       }
     }
   }
@@ -2757,9 +2758,8 @@ TEST(HardCases, L4_MirrorCorridorPruningErrorBound) {
   for (Scene* scene : {&mirrors, &across}) {
     SCOPED_TRACE(scene == &mirrors ? "mirrors scene" : "looking across the corridor");
     scene->max_depth = 64;
-    prepare_scene(*scene);
     scene->min_weight = 0;
-    const Rendered exact = render_image(*scene);
+    const Rendered exact = render_image(PreparedScene(*scene));
     EXPECT_EQ(exact.stats.nan_count, 0u);
     double max_radiance = 0;
     for (const Color& p : exact.px) max_radiance = std::max(max_radiance, max_channel(p));
@@ -2768,7 +2768,7 @@ TEST(HardCases, L4_MirrorCorridorPruningErrorBound) {
     for (const double min_weight : {1e-3, 1e-2}) {
       SCOPED_TRACE("min_weight " + std::to_string(min_weight));
       scene->min_weight = min_weight;
-      const Rendered pruned = render_image(*scene);
+      const Rendered pruned = render_image(PreparedScene(*scene));
       EXPECT_EQ(pruned.stats.nan_count, 0u);
       double worst = 0;
       for (std::size_t i = 0; i < pruned.px.size(); ++i) {

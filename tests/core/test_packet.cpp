@@ -6,11 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "core/accel/accel.h"
+#include "core/accel/prepared_scene.h"
 #include "experiments/numerics_variants.h"
 #include "core/packet/packet.h"
 #include "core/render/render.h"
@@ -26,7 +29,7 @@ struct Frame {
   std::uint64_t nan_count = 0;
 };
 
-Frame render(const Scene& scene, int w, int h, int passes, bool packets, int threads = 1, std::uint32_t seed = 0,
+Frame render(const PreparedScene& scene, int w, int h, int passes, bool packets, int threads = 1, std::uint32_t seed = 0,
              Term term = Term::kFull, std::optional<Vec3> eye = std::nullopt) {
   Frame f;
   f.accum.reset(w, h);
@@ -147,9 +150,13 @@ void add_meshes(Scene& s, std::uint32_t seed, double scale) {
   }
 }
 
+// The forced hierarchy over every primitive (a SceneBvh even where brute force would serve).
+std::shared_ptr<const Accelerator> forced_bvh(const Scene& s) { return build_scene_accel(s, /*force_bvh=*/true); }
+
 // A random scene the brute-force path traces (few spheres and triangles, no mesh); with
 // `hierarchy`, the same one traced through a SceneBvh, with meshes and more spheres in it.
-Scene random_scene(std::uint32_t seed, bool hierarchy = false) {
+// Unprepared: random_scene prepares it.
+Scene random_scene_data(std::uint32_t seed, bool hierarchy = false) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, 1), c(-3, 3);
   Scene s;
@@ -215,15 +222,18 @@ Scene random_scene(std::uint32_t seed, bool hierarchy = false) {
     l.position = s.spheres[0].center + Vec3(0, s.spheres[0].radius, 0);
   }
   if (hierarchy) add_meshes(s, seed, scale);
-  prepare_scene(s);
   return s;
+}
+
+PreparedScene random_scene(std::uint32_t seed, bool hierarchy = false) {
+  return PreparedScene(random_scene_data(seed, hierarchy));
 }
 
 TEST(PacketTracer, EmbeddedScenesAreBitIdenticalToTheScalarRenderer) {
   REQUIRE_PACKETS();
   for (const char* name : {"lecture", "shininess", "lights", "mirrors", "glass", "cornell", "cornell-sphere"}) {
     SCOPED_TRACE(name);
-    const Scene scene = load_prepared(name);
+    const PreparedScene scene = load_prepared(name);
     ASSERT_TRUE(packet_tracing_applies(scene));
     // Odd sizes leave partial tiles and lanes; three passes take jittered samples too.
     const Frame packets = render(scene, 157, 91, 3, true);
@@ -238,7 +248,7 @@ TEST(PacketTracer, RandomScenesAreBitIdenticalToTheScalarRenderer) {
   RayCounts seen;
   for (std::uint32_t seed = 1; seed <= 300; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const Scene scene = random_scene(seed);
+    const PreparedScene scene = random_scene(seed);
     if (!packet_tracing_applies(scene)) continue;
     const Frame packets = render(scene, 29, 17, 2, true, 1, seed);
     const Frame scalar = render(scene, 29, 17, 2, false, 1, seed);
@@ -259,15 +269,15 @@ TEST(PacketTracer, HierarchyScenesAreBitIdenticalToTheScalarRenderer) {
   std::uint64_t far_shadow = 0;
   for (std::uint32_t seed = 1; seed <= 200; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    Scene scene = random_scene(seed, seed % 4 != 0);
-    // Every fifth scene far from the origin (docs/accuracy.md O5): coordinates 1e5 times its size.
+    Scene data = random_scene_data(seed, seed % 4 != 0);
+    // Every fifth scene far from the origin (docs/accuracy.md O5): coordinates 1e5 times its size
+    // (moved once prepared, then prepared again).
     if (seed % 5 == 0) {
-      scene = transformed_scene(scene, 1, Vec3(1e5, -4e4, 3e4) * glm::length(scene.camera.position));
-      prepare_scene(scene);
+      data = transformed_scene(PreparedScene(data).scene(), 1, Vec3(1e5, -4e4, 3e4) * glm::length(data.camera.position));
     }
-    if (!scene.accel) scene.accel = build_scene_accel(scene, /*force_bvh=*/true);
+    const PreparedScene scene(std::move(data), forced_bvh);
     ASSERT_TRUE(packet_tracing_applies(scene));
-    with_meshes += !scene.meshes.empty();
+    with_meshes += !scene.scene().meshes.empty();
     const Frame packets = render(scene, 37, 23, 2, true, 1, seed);
     const Frame scalar = render(scene, 37, 23, 2, false, 1, seed);
     ASSERT_TRUE(same_bits(packets, scalar));
@@ -314,11 +324,13 @@ TEST(PacketTracer, RaysThroughSharedEdgesGetTheScalarRenderersTriangle) {
   sun.type = LightType::kDirectional;
   sun.direction = Vec3(0.3, -1, 0.2);
   s.lights = {sun};
-  prepare_scene(s);
-  ASSERT_TRUE(packet_tracing_applies(s));
-  for (const int size : {63, 65, 127}) {
-    SCOPED_TRACE("size " + std::to_string(size));
-    EXPECT_TRUE(same_bits(render(s, size, size, 1, true), render(s, size, size, 1, false)));
+  {
+    const PreparedScene p(s);
+    ASSERT_TRUE(packet_tracing_applies(p));
+    for (const int size : {63, 65, 127}) {
+      SCOPED_TRACE("size " + std::to_string(size));
+      EXPECT_TRUE(same_bits(render(p, size, size, 1, true), render(p, size, size, 1, false)));
+    }
   }
   // The middle pixel's ray runs along the diagonal (-1, -1, -1) exactly through the vertex at the
   // origin: all six triangles around it are met at the same t, and a walk along the negative
@@ -326,8 +338,9 @@ TEST(PacketTracer, RaysThroughSharedEdgesGetTheScalarRenderersTriangle) {
   for (const Vec3& eye : {Vec3(1, 1, 1), Vec3(0.5, 1, 0.5), Vec3(-1, 1, 1)}) {
     s.camera.position = eye;
     s.camera.up = Vec3(0, 1, 0);
-    const Frame packets = render(s, 31, 31, 1, true);
-    const Frame scalar = render(s, 31, 31, 1, false);
+    const PreparedScene p(s);
+    const Frame packets = render(p, 31, 31, 1, true);
+    const Frame scalar = render(p, 31, 31, 1, false);
     EXPECT_TRUE(same_bits(packets, scalar));
   }
 }
@@ -336,7 +349,7 @@ TEST(PacketTracer, RaysThroughSharedEdgesGetTheScalarRenderersTriangle) {
 // scalar renderer's too, through brute force and through the hierarchy.
 TEST(PacketTracer, TermImagesAndAMovedEyeAreBitIdenticalToTheScalarRenderer) {
   REQUIRE_PACKETS();
-  std::vector<std::pair<std::string, Scene>> scenes;
+  std::vector<std::pair<std::string, PreparedScene>> scenes;
   for (const char* name : {"lecture", "glass", "cornell-sphere"}) scenes.emplace_back(name, load_prepared(name));
   for (std::uint32_t seed = 1; seed <= 40; ++seed) {
     scenes.emplace_back("seed " + std::to_string(seed), random_scene(seed, seed % 2 == 0));
@@ -345,7 +358,7 @@ TEST(PacketTracer, TermImagesAndAMovedEyeAreBitIdenticalToTheScalarRenderer) {
                         Term::kRefraction};
   for (const auto& [name, scene] : scenes) {
     SCOPED_TRACE(name);
-    const Camera& c = scene.camera;
+    const Camera& c = scene.scene().camera;
     const double reach = glm::length(c.position - c.look_at);
     const std::optional<Vec3> eyes[] = {std::nullopt, c.position + reach * Vec3(0.4, 0.3, -0.1),
                                         c.look_at + reach * Vec3(-0.5, 0.2, 0.6)};
@@ -391,10 +404,10 @@ TEST(PacketTracer, CullingNeverDropsASphereARayMeets) {
     sun.type = LightType::kDirectional;
     sun.direction = Vec3(c(rng), -1, c(rng));
     s.lights = {point, sun};
-    prepare_scene(s);
-    ASSERT_TRUE(packet_tracing_applies(s));
-    const Frame packets = render(s, 96, 64, 2, true, 1, seed);
-    const Frame scalar = render(s, 96, 64, 2, false, 1, seed);
+    const PreparedScene p(std::move(s));
+    ASSERT_TRUE(packet_tracing_applies(p));
+    const Frame packets = render(p, 96, 64, 2, true, 1, seed);
+    const Frame scalar = render(p, 96, 64, 2, false, 1, seed);
     ASSERT_TRUE(same_bits(packets, scalar));
     shadow_rays += packets.rays.shadow;
   }
@@ -403,20 +416,20 @@ TEST(PacketTracer, CullingNeverDropsASphereARayMeets) {
 
 TEST(PacketTracer, TheImageDoesNotDependOnTheThreadCount) {
   REQUIRE_PACKETS();
-  const Scene scene = load_prepared("glass");
+  const PreparedScene scene = load_prepared("glass");
   EXPECT_TRUE(same_bits(render(scene, 200, 120, 2, true, 1), render(scene, 200, 120, 2, true, 3)));
 }
 
 TEST(PacketTracer, ServesOnlyWhatItCanTraceExactly) {
-  Scene scene = load_prepared("lecture");
+  const Scene loaded = load_scene_or_fail("lecture");
+  const PreparedScene scene(loaded);
   // The debug views stay with the scalar renderer (render() checks PassStats::packets).
   EXPECT_FALSE(PacketTracer::draws(Term::kNormal));
   EXPECT_FALSE(PacketTracer::draws(Term::kDepth));
   EXPECT_FALSE(PacketTracer::draws(Term::kRays));
   render(scene, 8, 8, 1, true, 1, 0, Term::kRays);
   EXPECT_EQ(packet_tracing_applies(scene), packet_cpu_supported());
-  Scene with_bvh = scene;
-  with_bvh.accel = build_scene_accel(with_bvh, /*force_bvh=*/true);
+  const PreparedScene with_bvh(loaded, forced_bvh);
   EXPECT_EQ(packet_tracing_applies(with_bvh), packet_cpu_supported());  // it walks the SceneBvh
   // Any other accelerator (Embree's) is queried ray by ray.
   struct Other final : Accelerator {
@@ -424,14 +437,15 @@ TEST(PacketTracer, ServesOnlyWhatItCanTraceExactly) {
     bool occluded(const Scene& s, const Ray& r, double t_max) const override { return occluded_all(s, r, t_max); }
     bool matches(const Scene&) const override { return true; }
   };
-  Scene other = scene;
-  other.accel = std::make_shared<Other>();
+  const PreparedScene other(loaded, [](const Scene&) { return std::make_shared<Other>(); });
   EXPECT_FALSE(packet_tracing_applies(other));
-  Scene variant = scene;
-  variant.numerics.schlick_fresnel = true;
+  NumericsVariant schlick;
+  schlick.schlick_fresnel = true;
+  PreparedScene variant = prepare_variant(loaded, schlick);
   EXPECT_FALSE(packet_tracing_applies(variant));
-  variant = scene;
-  variant.numerics.fixed_offset = 1e-4;
+  NumericsVariant fixed;
+  fixed.fixed_offset = 1e-4;
+  variant = prepare_variant(loaded, fixed);
   EXPECT_FALSE(packet_tracing_applies(variant));
   EXPECT_EQ(packet_tracing_applies(load_prepared("cornell")), packet_cpu_supported());  // a mesh, through the SceneBvh
 }

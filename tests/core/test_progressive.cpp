@@ -8,11 +8,13 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "core/render/progressive.h"
 #include "core/render/render.h"
 #include "io/scene/scene_io.h"
+#include "tests/support/test_support.h"
 
 using namespace phonglab;
 using namespace std::chrono_literals;
@@ -23,21 +25,16 @@ constexpr auto kLongWait = 60s;  // generous: TSan slows rendering by an order o
 
 // Only the background shows; `decoys` spheres behind the camera make passes slow without
 // changing a pixel, so restarts land in the middle of passes.
-std::shared_ptr<const Scene> background_scene(const Color& background, int decoys) {
-  auto s = std::make_shared<Scene>();
-  s->background = background;
-  s->materials.push_back(Material{});
-  for (int i = 0; i < decoys; ++i) s->spheres.push_back(Sphere{Vec3(i % 10, i / 10, 40), 0.25, 0});
-  prepare_scene(*s);
-  return s;
+std::shared_ptr<const PreparedScene> background_scene(const Color& background, int decoys) {
+  Scene s;
+  s.background = background;
+  s.materials.push_back(Material{});
+  for (int i = 0; i < decoys; ++i) s.spheres.push_back(Sphere{Vec3(i % 10, i / 10, 40), 0.25, 0});
+  return std::make_shared<const PreparedScene>(std::move(s));
 }
 
-std::shared_ptr<const Scene> lecture_scene() {
-  LoadResult loaded = load_scene_arg("lecture");
-  EXPECT_TRUE(loaded.ok()) << loaded.error_text();
-  auto s = std::make_shared<Scene>(*loaded.scene);
-  prepare_scene(*s);
-  return s;
+std::shared_ptr<const PreparedScene> lecture_scene() {
+  return std::make_shared<const PreparedScene>(load_prepared("lecture"));
 }
 
 bool all_pixels_are(const ProgressiveFrame& frame, const glm::vec3& color) {

@@ -35,7 +35,7 @@ std::string describe(const Camera& c) {
 // Cameras of every kind: the embedded scenes', tilted ones, narrow and wide, far from the origin.
 std::vector<Camera> test_cameras() {
   std::vector<Camera> cameras;
-  for (const EmbeddedScene& e : embedded_scenes()) cameras.push_back(load_prepared(e.name).camera);
+  for (const EmbeddedScene& e : embedded_scenes()) cameras.push_back(load_scene_or_fail(e.name).camera);
   cameras.push_back(Camera{{3, 4, -5}, {0, 0.5, 0}, {0.2, 1, 0.1}, 60});
   cameras.push_back(Camera{{0, 10, 0.5}, {0, 0, 0}, {0, 1, 0}, 10});
   cameras.push_back(Camera{{-2, 0.3, 1}, {1, 0.2, -3}, {0, 0, 1}, 150});
@@ -75,15 +75,16 @@ int count_kind(const std::vector<TreeSegment>& segments, TreeSegmentKind kind) {
 }
 
 TEST(RayTreeProjection, PrimaryHitProjectsOntoThePixelCentreForManyPixelsAndCameras) {
-  Scene scene = load_prepared("lecture");
+  Scene scene = load_scene_or_fail("lecture");
   for (const Camera& camera : test_cameras()) {
     scene.camera = camera;
+    const PreparedScene prepared(scene);
     for (const auto& [w, h] : {std::pair{kWidth, kHeight}, std::pair{31, 64}}) {
       const CameraFrame frame = make_camera_frame(camera, w, h);
       int hits = 0;
       for (int y = 0; y < h; y += 2) {
         for (int x = 0; x < w; x += 2) {
-          const PixelProbe probe = probe_pixel(scene, w, h, x, y);
+          const PixelProbe probe = probe_pixel(prepared, w, h, x, y);
           if (!probe.root.hit) continue;
           ++hits;
           const std::optional<ImagePoint> p = project_point(frame, probe.root.p);
@@ -141,11 +142,12 @@ TEST(RayTreeProjection, SegmentCrossingTheCameraPlaneIsCutAtTheNearPlane) {
 }
 
 TEST(RayTreeProjection, EveryProjectedSegmentLiesInsideTheImage) {
-  const Scene scene = load_prepared("glass");
+  const PreparedScene prepared = load_prepared("glass");
+  const Scene& scene = prepared.scene();
   const CameraFrame frame = make_camera_frame(scene.camera, kWidth, kHeight);
   for (int y = 0; y < kHeight; y += 3) {
     for (int x = 0; x < kWidth; x += 3) {
-      const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, x, y);
+      const PixelProbe probe = probe_pixel(prepared, kWidth, kHeight, x, y);
       const auto screen =
           project_ray_tree(frame, ray_tree_segments(scene, probe.root), ray_tree_near(scene, probe.root));
       for (const ScreenSegment& s : screen) {
@@ -162,9 +164,10 @@ TEST(RayTreeProjection, EveryProjectedSegmentLiesInsideTheImage) {
 }
 
 TEST(RayTreeProjection, EndsInsideTheImageAreMarkedVisibleAndExact) {
-  const Scene scene = load_prepared("lecture");
+  const PreparedScene prepared = load_prepared("lecture");
+  const Scene& scene = prepared.scene();
   const CameraFrame frame = make_camera_frame(scene.camera, kWidth, kHeight);
-  const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, kWidth / 2, kHeight / 2);
+  const PixelProbe probe = probe_pixel(prepared, kWidth, kHeight, kWidth / 2, kHeight / 2);
   ASSERT_TRUE(probe.root.hit);
   const auto screen = project_ray_tree(frame, ray_tree_segments(scene, probe.root), ray_tree_near(scene, probe.root));
   ASSERT_FALSE(screen.empty());
@@ -176,10 +179,11 @@ TEST(RayTreeProjection, EndsInsideTheImageAreMarkedVisibleAndExact) {
 
 TEST(RayTreeSegments, KindsAndCountsMatchTheProbedTreeInEveryEmbeddedScene) {
   for (const EmbeddedScene& e : embedded_scenes()) {
-    const Scene scene = load_prepared(e.name);
+    const PreparedScene prepared = load_prepared(e.name);
+    const Scene& scene = prepared.scene();
     for (int y = 0; y < kHeight; y += 2) {
       for (int x = 0; x < kWidth; x += 2) {
-        const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, x, y);
+        const PixelProbe probe = probe_pixel(prepared, kWidth, kHeight, x, y);
         const std::vector<TreeSegment> segments = ray_tree_segments(scene, probe.root);
         TreeCounts c;
         count_tree(probe.root, c);
@@ -211,8 +215,9 @@ TEST(RayTreeSegments, KindsAndCountsMatchTheProbedTreeInEveryEmbeddedScene) {
 }
 
 TEST(RayTreeSegments, OptionsLeaveOutShadowsSecondaryRaysAndArrows) {
-  const Scene scene = load_prepared("lecture");
-  const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, kWidth / 2, kHeight / 2);
+  const PreparedScene prepared = load_prepared("lecture");
+  const Scene& scene = prepared.scene();
+  const PixelProbe probe = probe_pixel(prepared, kWidth, kHeight, kWidth / 2, kHeight / 2);
   RayTreeViewOptions options;
   options.shadow_rays = options.secondary_rays = options.arrows = false;
   const std::vector<TreeSegment> segments = ray_tree_segments(scene, probe.root, options);
@@ -222,7 +227,7 @@ TEST(RayTreeSegments, OptionsLeaveOutShadowsSecondaryRaysAndArrows) {
 
 // A sphere between a floor point and a point light, a second light beside it that sees the
 // point, and a directional light from the side; every position times `scale`.
-Scene shadow_scene(double scale = 1) {
+PreparedScene shadow_scene(double scale = 1) {
   Scene scene;
   scene.camera = Camera{Vec3(0, 3, 8) * scale, {0, 0, 0}, {0, 1, 0}, 40};
   Material floor;
@@ -241,17 +246,17 @@ Scene shadow_scene(double scale = 1) {
   sun.type = LightType::kDirectional;
   sun.direction = Vec3(0, -1, -1);
   scene.lights = {above, beside, sun};
-  prepare_scene(scene);
-  return scene;
+  return PreparedScene(std::move(scene));
 }
 
 TEST(RayTreeSegments, ShadowRaysEndAtTheLightOrAtTheOccluder) {
-  const Scene scene = shadow_scene();
+  const PreparedScene prepared = shadow_scene();
+  const Scene& scene = prepared.scene();
   const CameraFrame frame = make_camera_frame(scene.camera, 320, 180);
   // The pixel whose ray hits the floor at the origin, right under the sphere.
   const std::optional<ImagePoint> origin = project_point(frame, Vec3(0));
   ASSERT_TRUE(origin.has_value());
-  const PixelProbe probe = probe_pixel(scene, 320, 180, static_cast<int>(origin->x), static_cast<int>(origin->y));
+  const PixelProbe probe = probe_pixel(prepared, 320, 180, static_cast<int>(origin->x), static_cast<int>(origin->y));
   ASSERT_TRUE(probe.root.hit);
   ASSERT_LT(glm::length(probe.root.p), 0.1);
   const std::vector<TreeSegment> segments = ray_tree_segments(scene, probe.root);
@@ -279,8 +284,9 @@ TEST(RayTreeSegments, ShadowRaysEndAtTheLightOrAtTheOccluder) {
 
 TEST(RayTreeSegments, ArrowsAreUnitVectorsScaledByTheHitDistance) {
   for (const double scale : {1e-4, 1.0, 1e5}) {
-    const Scene scene = shadow_scene(scale);
-    const PixelProbe probe = probe_pixel(scene, 64, 36, 20, 30);
+    const PreparedScene prepared = shadow_scene(scale);
+    const Scene& scene = prepared.scene();
+    const PixelProbe probe = probe_pixel(prepared, 64, 36, 20, 30);
     ASSERT_TRUE(probe.root.hit) << scale;
     for (const TreeSegment& s : ray_tree_segments(scene, probe.root)) {
       if (s.kind < TreeSegmentKind::kArrowN) continue;
@@ -298,7 +304,7 @@ TEST(RayTreeSegments, ArrowsAreUnitVectorsScaledByTheHitDistance) {
 
 // The pixel of 'mirrors' with the longest chain of reflections (several bounces between the
 // facing mirrors).
-PixelProbe deepest_mirror_pixel(const Scene& scene) {
+PixelProbe deepest_mirror_pixel(const PreparedScene& scene) {
   PixelProbe best = probe_pixel(scene, kWidth, kHeight, 0, 0);
   int best_depth = -1;
   for (int y = 0; y < kHeight; ++y) {
@@ -316,8 +322,9 @@ PixelProbe deepest_mirror_pixel(const Scene& scene) {
 }
 
 TEST(RayTreeSegments, ReflectionsChainFromHitToHit) {
-  const Scene scene = load_prepared("mirrors");
-  const PixelProbe probe = deepest_mirror_pixel(scene);
+  const PreparedScene prepared = load_prepared("mirrors");
+  const Scene& scene = prepared.scene();
+  const PixelProbe probe = deepest_mirror_pixel(prepared);
   ASSERT_TRUE(probe.root.reflection);
   RayTreeViewOptions options;
   options.shadow_rays = options.arrows = false;
@@ -338,7 +345,7 @@ TEST(RayTreeSegments, ReflectionsChainFromHitToHit) {
 
 TEST(DepthCut, ImageCutAtDepthDIsTheRenderWithMaxDepthD) {
   for (const char* name : {"mirrors", "glass", "lecture"}) {
-    const Scene scene = load_prepared(name);
+    const Scene scene = load_scene_or_fail(name);
     std::vector<Color> previous;
     for (int cut = 0; cut <= scene.max_depth + 1; ++cut) {
       Scene shown = scene;
@@ -348,8 +355,8 @@ TEST(DepthCut, ImageCutAtDepthDIsTheRenderWithMaxDepthD) {
       Accumulator a, b;
       a.reset(kWidth, kHeight);
       b.reset(kWidth, kHeight);
-      render_pass(shown, RenderOptions{}, a);
-      render_pass(limited, RenderOptions{}, b);
+      render_pass(PreparedScene(shown), RenderOptions{}, a);
+      render_pass(PreparedScene(limited), RenderOptions{}, b);
       ASSERT_EQ(a.sum, b.sum) << name << " cut " << cut;  // bit-exact
       if (std::string_view(name) == "mirrors" && cut >= 1 && cut <= scene.max_depth) {
         EXPECT_NE(a.sum, previous) << "one more bounce shows in the facing mirrors at cut " << cut;
@@ -368,11 +375,11 @@ TEST(DepthCut, NoCutKeepsTheScenesDepthAndACutNeverDeepens) {
 }
 
 TEST(DepthCut, ProbedTreeAtCutDHasNoRayDeeperThanD) {
-  Scene scene = load_prepared("mirrors");
+  const Scene scene = load_scene_or_fail("mirrors");
   for (int cut = 0; cut <= 3; ++cut) {
     Scene shown = scene;
     apply_depth_cut(shown, cut);
-    const PixelProbe probe = deepest_mirror_pixel(shown);
+    const PixelProbe probe = deepest_mirror_pixel(PreparedScene(shown));
     TreeCounts c;
     count_tree(probe.root, c);
     EXPECT_EQ(c.deepest, cut) << "some pixel of 'mirrors' bounces at least 3 times";
@@ -396,7 +403,7 @@ TEST(HeatMap, RampRisesInLuminanceFromNearBlackToPaleYellow) {
 }
 
 TEST(HeatMap, ScaleTopIsTheLargestRayCountOfTheImage) {
-  const Scene scene = load_prepared("glass");
+  const PreparedScene scene = load_prepared("glass");
   RenderOptions options;
   options.term = Term::kRays;
   Accumulator accum;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "core/render/render.h"
 
@@ -11,7 +12,7 @@ using namespace phonglab;
 namespace {
 
 // A small scene with every term present: a mirror, glass with Fresnel, plastic, a floor.
-Scene busy_scene() {
+PreparedScene busy_scene() {
   Scene s;
   s.camera.position = Vec3(0, 1.5, 6);
   s.camera.look_at = Vec3(0, 0.8, 0);
@@ -49,11 +50,10 @@ Scene busy_scene() {
   b.direction = Vec3(-1, -1, -0.5);
   b.intensity = Color(0.2);
   s.lights = {a, b};
-  prepare_scene(s);
-  return s;
+  return PreparedScene(std::move(s));
 }
 
-Accumulator render(const Scene& s, int w, int h, int spp, Term term, int threads) {
+Accumulator render(const PreparedScene& s, int w, int h, int spp, Term term, int threads) {
   Accumulator acc;
   acc.reset(w, h);
   RenderOptions opt;
@@ -70,18 +70,19 @@ Accumulator render(const Scene& s, int w, int h, int spp, Term term, int threads
 }  // namespace
 
 TEST(TermImages, FiveTermsAddUpToTheFullImage) {
-  const Scene s = busy_scene();
+  const PreparedScene prepared = busy_scene();
+  const Scene& s = prepared.scene();
   const int w = 64, h = 40;
-  const Accumulator full = render(s, w, h, 1, Term::kFull, 2);
+  const Accumulator full = render(prepared, w, h, 1, Term::kFull, 2);
   std::vector<Accumulator> parts;
   for (Term t : {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection, Term::kRefraction}) {
-    parts.push_back(render(s, w, h, 1, t, 2));
+    parts.push_back(render(prepared, w, h, 1, t, 2));
   }
   const CameraFrame frame = make_camera_frame(s.camera, w, h);
   int hits = 0, misses = 0;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      const bool hit = intersect(s, camera_ray(frame, x, y, 0.5, 0.5)).has_value();
+      const bool hit = intersect(prepared, camera_ray(frame, x, y, 0.5, 0.5)).has_value();
       Color sum(0);
       for (const Accumulator& p : parts) sum += p.mean(x, y);
       if (!hit) {
@@ -103,7 +104,8 @@ TEST(TermImages, FiveTermsAddUpToTheFullImage) {
 // hit for those), and each pixel is still that term of the fully shaded hit, bit for bit; by
 // either tracer.
 TEST(TermImages, EachCastsOnlyTheRaysItsTermNeedsAndKeepsItsValue) {
-  const Scene s = busy_scene();
+  const PreparedScene prepared = busy_scene();
+  const Scene& s = prepared.scene();
   const int w = 48, h = 32;
   const CameraFrame frame = make_camera_frame(s.camera, w, h);
   const TraceLimits limits{s.max_depth, s.min_weight};
@@ -118,7 +120,7 @@ TEST(TermImages, EachCastsOnlyTheRaysItsTermNeedsAndKeepsItsValue) {
       RenderOptions opt;
       opt.term = t;
       opt.packets = packets;
-      const RayCounts rays = render_pass(s, opt, acc).rays;
+      const RayCounts rays = render_pass(prepared, opt, acc).rays;
       if (t == Term::kFull) full_rays = rays;
       EXPECT_EQ(rays.primary, static_cast<std::uint64_t>(w * h));
       switch (t) {
@@ -145,11 +147,11 @@ TEST(TermImages, EachCastsOnlyTheRaysItsTermNeedsAndKeepsItsValue) {
       for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
           const Ray ray = camera_ray(frame, x, y, 0.5, 0.5);
-          const std::optional<Hit> hit = intersect(s, ray);
+          const std::optional<Hit> hit = intersect(prepared, ray);
           if (!hit) continue;
           ++hits;
           RayCounts counts;
-          const Color want = term_value(shade(s, limits, ray, *hit, 0, 1.0, counts), t);
+          const Color want = term_value(shade(prepared, limits, ray, *hit, 0, 1.0, counts), t);
           ASSERT_EQ(acc.mean(x, y), want) << x << "," << y;
         }
       }
@@ -159,7 +161,7 @@ TEST(TermImages, EachCastsOnlyTheRaysItsTermNeedsAndKeepsItsValue) {
 }
 
 TEST(TermImages, EveryTermIsNonZeroSomewhereInTheBusyScene) {
-  const Scene s = busy_scene();
+  const PreparedScene s = busy_scene();
   for (Term t : {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection, Term::kRefraction}) {
     const Accumulator a = render(s, 48, 32, 1, t, 1);
     double total = 0;
@@ -169,7 +171,7 @@ TEST(TermImages, EveryTermIsNonZeroSomewhereInTheBusyScene) {
 }
 
 TEST(Threads, ImageIsBitIdenticalForAnyThreadCount) {
-  const Scene s = busy_scene();
+  const PreparedScene s = busy_scene();
   for (int spp : {1, 3}) {
     const Accumulator one = render(s, 37, 23, spp, Term::kFull, 1);
     for (int threads : {2, 3, 8}) {
@@ -240,14 +242,14 @@ TEST(Camera, TopLeftPixelLooksUpAndLeft) {
 }
 
 TEST(Progressive, MeanOfSamplesIsSumOverCount) {
-  const Scene s = busy_scene();
+  const PreparedScene s = busy_scene();
   const Accumulator a = render(s, 16, 16, 4, Term::kFull, 2);
   EXPECT_EQ(a.samples, 4u);
   EXPECT_EQ(a.mean(3, 3), a.sum[3 * 16 + 3] / 4.0);
 }
 
 TEST(Progressive, CancelledPassDoesNotCountAsASample) {
-  const Scene s = busy_scene();
+  const PreparedScene s = busy_scene();
   Accumulator acc;
   acc.reset(32, 32);
   std::atomic<bool> cancel{true};

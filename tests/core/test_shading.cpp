@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "core/render/render.h"
 #include "core/shading/shading.h"
@@ -32,13 +33,14 @@ Light point_light(Vec3 pos, Color intensity) {
 }
 
 // Terms of the ray from (0, 0, 5) straight down -z, which hits (0, 0, 1) with N = V = +z.
-Terms terms_at_pole(Scene s, RayCounts* counts_out = nullptr) {
-  prepare_scene(s);
+Terms terms_at_pole(Scene scene, RayCounts* counts_out = nullptr) {
+  const PreparedScene p(std::move(scene));
+  const Scene& s = p.scene();
   const Ray ray = make_ray({0, 0, 5}, {0, 0, -1});
-  const auto hit = intersect(s, ray);
+  const auto hit = intersect(p, ray);
   EXPECT_TRUE(hit.has_value());
   RayCounts counts;
-  Terms t = shade(s, TraceLimits{s.max_depth, s.min_weight}, ray, *hit, 0, 1.0, counts);
+  Terms t = shade(p, TraceLimits{s.max_depth, s.min_weight}, ray, *hit, 0, 1.0, counts);
   if (counts_out) *counts_out = counts;
   return t;
 }
@@ -113,7 +115,7 @@ TEST(PhongShading, DirectionalLightUsesNegatedDirection) {
   Scene s = unit_sphere_scene(plastic());
   Light l;
   l.type = LightType::kDirectional;
-  l.direction = Vec3(0, -3, -3);  // not unit: prepare_scene normalises it
+  l.direction = Vec3(0, -3, -3);  // not unit: PreparedScene normalises it
   l.intensity = Color(1);
   s.lights = {l};
   const double c = 1 / std::sqrt(2.0);
@@ -134,8 +136,7 @@ TEST(PhongShading, OccluderBlocksDiffuseAndSpecularButNotAmbient) {
   s.lights = {point_light({0, 0, 10}, Color(1))};
   s.spheres.push_back(Sphere{{0, 0, 3}, 0.5, 0});  // between P = (0,0,1) and the light
   s.sphere_object.push_back(1);
-  Scene shade_scene = s;  // the primary ray starts in the gap, below the occluder
-  prepare_scene(shade_scene);
+  const PreparedScene shade_scene(s);  // the primary ray starts in the gap, below the occluder
   const Ray ray = make_ray({0, 0, 1.5}, {0, 0, -1});
   const auto hit = intersect(shade_scene, ray);
   ASSERT_TRUE(hit.has_value());
@@ -239,7 +240,7 @@ TEST(Recursion, TotalInternalReflectionSendsKtAlongMirrorDirection) {
   m.ior = 1.5;
   Scene s = unit_sphere_scene(m);
   s.max_depth = 1;
-  prepare_scene(s);
+  const PreparedScene p(s);
   // A chord from A to B on the sphere meets the normal at B at (pi - angle AOB) / 2.
   const double aob = M_PI - 2 * (M_PI / 3);  // angle with the normal 60 degrees
   const Vec3 A(0, 0, 1);
@@ -248,7 +249,7 @@ TEST(Recursion, TotalInternalReflectionSendsKtAlongMirrorDirection) {
   const Ray ray = make_ray(A + 1e-6 * d, d);
   RayCounts counts;
   ProbeNode probe;
-  trace(s, TraceLimits{s.max_depth, s.min_weight}, ray, 0, 1.0, counts, &probe);
+  trace(p, TraceLimits{s.max_depth, s.min_weight}, ray, 0, 1.0, counts, &probe);
   ASSERT_TRUE(probe.hit);
   EXPECT_FALSE(probe.entering);
   EXPECT_TRUE(probe.tir);

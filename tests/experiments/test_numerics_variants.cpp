@@ -1,4 +1,4 @@
-// The numerics variants and ablations of Scene::numerics do what they say: the textbook and
+// The numerics variants and ablations of NumericsVariant do what they say: the textbook and
 // float sphere tests lose a far small sphere, a fixed offset gives acne in float far out and
 // loses contact shadows in a tiny scene, Schlick differs from exact Fresnel by its known amount,
 // and the "model only what a scene needs" ablations cast more rays for a bit-identical image.
@@ -12,19 +12,18 @@
 #include "core/render/render.h"
 #include "io/scene/scene_io.h"
 #include "core/shading/shading.h"
+#include "tests/support/test_support.h"
 
 namespace phonglab {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The lecture scene at width x height, unprepared (prepare_variant or PreparedScene prepares it).
 Scene lecture(int width, int height) {
-  LoadResult loaded = load_scene_arg("lecture");
-  EXPECT_TRUE(loaded.ok()) << loaded.error_text();
-  Scene scene = *loaded.scene;
+  Scene scene = load_scene_or_fail("lecture");
   scene.width = width;
   scene.height = height;
-  prepare_scene(scene);
   return scene;
 }
 
@@ -33,11 +32,12 @@ struct Image {
   PassStats stats;
 };
 
-Image render_centres(const Scene& scene) {
+Image render_centres(const PreparedScene& prepared) {
+  const Scene& scene = prepared.scene();
   Accumulator acc;
   acc.reset(scene.width, scene.height);
   Image img;
-  img.stats = render_pass(scene, RenderOptions{}, acc);
+  img.stats = render_pass(prepared, RenderOptions{}, acc);
   img.sum = acc.sum;
   return img;
 }
@@ -93,8 +93,10 @@ TEST(NumericsVariants, TextbookSphereHitPointsLeaveTheSphereFarAway) {
   scene.materials = {Material{}};
   const Vec3 axis = glm::normalize(Vec3(0.48, 0.6, 0.64));
   scene.spheres = {Sphere{1e4 * axis, 1, 0}};
-  Scene textbook = scene;
-  textbook.numerics.textbook_sphere = true;
+  const PreparedScene production(scene);
+  NumericsVariant variant;
+  variant.textbook_sphere = true;
+  const PreparedScene textbook = prepare_variant(scene, variant);
   const Vec3 e1 = glm::normalize(glm::cross(axis, Vec3(0, 0, 1)));
   const Vec3 e2 = glm::cross(axis, e1);
   double worst_production = 0, worst_textbook = 0;
@@ -102,7 +104,7 @@ TEST(NumericsVariants, TextbookSphereHitPointsLeaveTheSphereFarAway) {
     const double rho = 0.99 * i / 200, phi = 0.1 * i;
     const Vec3 target = scene.spheres[0].center + rho * (std::cos(phi) * e1 + std::sin(phi) * e2);
     const Ray ray = make_ray(Vec3(0), glm::normalize(target));
-    const auto a = intersect(scene, ray);
+    const auto a = intersect(production, ray);
     const auto b = intersect(textbook, ray);
     ASSERT_TRUE(a && b);
     worst_production = std::max(worst_production, std::abs(glm::length(a->p - scene.spheres[0].center) - 1));
@@ -116,11 +118,13 @@ TEST(NumericsVariants, FloatGeometryWithFixedOffsetHasAcneFarOutProductionHasNon
   // The lecture scaled by 1e4: float coordinates of 1e4 are rounded to about 1e-3, ten times
   // the common 1e-4 offset, so surfaces shadow themselves. Double with the production offsets
   // has no acne there.
-  const Scene big = transformed_scene(lecture(96, 54), 1e4, Vec3(0));
+  const Scene big_scene = transformed_scene(lecture(96, 54), 1e4, Vec3(0));
+  const PreparedScene big(big_scene);
   EXPECT_EQ(count_acne(big, 96, 54).pixels, 0u);
-  Scene naive = big;
-  naive.numerics.float_geometry = true;
-  naive.numerics.fixed_offset = 1e-4;
+  NumericsVariant variant;
+  variant.float_geometry = true;
+  variant.fixed_offset = 1e-4;
+  const PreparedScene naive = prepare_variant(big_scene, variant);
   const AcneCount acne = count_acne(naive, 96, 54);
   EXPECT_GT(acne.pixels, 100u) << acne.rays << " acne rays";
 }
@@ -129,11 +133,13 @@ TEST(NumericsVariants, FixedOffsetLosesContactShadowsInATinyScene) {
   // The lecture scaled by 1e-4 (spheres of radius 0.5e-4): a shadow ray moved 1e-3 off the floor
   // starts above the spheres, so their shadows vanish. The production offset keeps the image.
   const Scene unit = lecture(160, 90);
-  const Image reference = render_centres(unit);
-  const Scene tiny = transformed_scene(unit, 1e-4, Vec3(0));
+  const Image reference = render_centres(PreparedScene(unit));
+  const Scene tiny_scene = transformed_scene(unit, 1e-4, Vec3(0));
+  const PreparedScene tiny(tiny_scene);
   EXPECT_EQ(pixels_off(render_centres(tiny), reference, 1.0 / 255), 0);
-  Scene fixed = tiny;
-  fixed.numerics.fixed_offset = 1e-3;
+  NumericsVariant variant;
+  variant.fixed_offset = 1e-3;
+  const PreparedScene fixed = prepare_variant(tiny_scene, variant);
   EXPECT_GT(pixels_off(render_centres(fixed), reference, 1.0 / 255), 500);
   EXPECT_EQ(count_acne(fixed, 160, 90).pixels, 0u);  // too far off the surface, never onto it
 }
@@ -154,10 +160,11 @@ TEST(NumericsVariants, SchlickDiffersFromExactFresnelByItsKnownAmount) {
 }
 
 TEST(NumericsVariants, SchlickChangesOnlyFresnelMaterials) {
-  Scene scene = lecture(96, 54);
-  const Image exact = render_centres(scene);
-  scene.numerics.schlick_fresnel = true;
-  const Image schlick = render_centres(scene);
+  const Scene scene = lecture(96, 54);
+  const Image exact = render_centres(PreparedScene(scene));
+  NumericsVariant variant;
+  variant.schlick_fresnel = true;
+  const Image schlick = render_centres(prepare_variant(scene, variant));
   EXPECT_GT(pixels_off(schlick, exact, 0), 0);  // the glass sphere changes
   EXPECT_EQ(schlick.stats.nan_count, 0u);
 }
@@ -170,25 +177,24 @@ TEST(ModelOnlyWhatIsNeeded, AblationsCastMoreRaysForABitIdenticalImage) {
     Scene scene = *loaded.scene;
     scene.width = 96;
     scene.height = 54;
-    prepare_scene(scene);
-    const Image base = render_centres(scene);
+    const Image base = render_centres(PreparedScene(scene));
 
-    Scene behind = scene;
-    behind.numerics.shadow_rays_behind = true;
-    const Image b = render_centres(behind);
+    NumericsVariant behind;
+    behind.shadow_rays_behind = true;
+    const Image b = render_centres(prepare_variant(scene, behind));
     EXPECT_EQ(b.sum, base.sum);
     EXPECT_GT(b.stats.rays.shadow, base.stats.rays.shadow);
     EXPECT_EQ(b.stats.rays.primary, base.stats.rays.primary);
 
-    Scene opaque = scene;
-    opaque.numerics.refraction_for_opaque = true;
-    const Image o = render_centres(opaque);
+    NumericsVariant opaque;
+    opaque.refraction_for_opaque = true;
+    const Image o = render_centres(prepare_variant(scene, opaque));
     EXPECT_EQ(o.sum, base.sum);
     EXPECT_GT(o.stats.rays.refraction, base.stats.rays.refraction);
 
-    Scene nearest = scene;
-    nearest.numerics.nearest_hit_shadows = true;
-    const Image n = render_centres(nearest);
+    NumericsVariant nearest;
+    nearest.nearest_hit_shadows = true;
+    const Image n = render_centres(prepare_variant(scene, nearest));
     EXPECT_EQ(n.sum, base.sum);
     EXPECT_EQ(n.stats.rays.total(), base.stats.rays.total());
   }
@@ -197,11 +203,12 @@ TEST(ModelOnlyWhatIsNeeded, AblationsCastMoreRaysForABitIdenticalImage) {
 TEST(NumericsVariants, FloatGeometryWithAFloatSizedOffsetStaysCloseAtUnitScale) {
   // Near the origin, float geometry with the usual 1e-3 offset is a working renderer: no NaN
   // and under 2 % of the pixels visibly different (edges, contact shadows).
-  Scene scene = lecture(96, 54);
-  const Image base = render_centres(scene);
-  scene.numerics.float_geometry = true;
-  scene.numerics.fixed_offset = 1e-3;
-  const Image f = render_centres(scene);
+  const Scene scene = lecture(96, 54);
+  const Image base = render_centres(PreparedScene(scene));
+  NumericsVariant variant;
+  variant.float_geometry = true;
+  variant.fixed_offset = 1e-3;
+  const Image f = render_centres(prepare_variant(scene, variant));
   EXPECT_EQ(f.stats.nan_count, 0u);
   EXPECT_LT(pixels_off(f, base, 1.0 / 255), 96 * 54 / 50);
 }

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include "core/render/render.h"
 #include "io/scene/scene_io.h"
@@ -23,13 +24,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // Render a few pixels of every accepted scene: no valid input may produce NaN or Inf.
   Scene scene = *result.scene;
   scene.max_depth = std::min(scene.max_depth, 6);  // bound the ray tree of glass in glass
-  prepare_scene(scene);
+  const PreparedScene prepared(std::move(scene));
   Accumulator accum;
   accum.reset(5, 4);
   RenderOptions options;
   options.threads = 1;
   for (int pass = 0; pass < 2; ++pass) {
-    if (render_pass(scene, options, accum).nan_count != 0) std::abort();
+    if (render_pass(prepared, options, accum).nan_count != 0) std::abort();
   }
   return 0;
 }

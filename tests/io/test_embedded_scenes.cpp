@@ -4,22 +4,20 @@
 #include "io/embedded_scenes.h"
 #include "core/render/render.h"
 #include "io/scene/scene_io.h"
+#include "tests/support/test_support.h"
 
 using namespace phonglab;
 
 namespace {
 
-Scene load(std::string_view name) {
+// An embedded scene, loaded with the mesh files compiled in beside it, and prepared.
+PreparedScene load(std::string_view name) {
   const EmbeddedScene* e = find_embedded_scene(name);
   EXPECT_NE(e, nullptr) << name;
-  LoadResult r = load_scene_arg(std::string(name));  // with the mesh files compiled in beside it
-  EXPECT_TRUE(r.ok()) << r.error_text();
-  Scene s = r.ok() ? *r.scene : Scene{};
-  prepare_scene(s);
-  return s;
+  return load_prepared(name);
 }
 
-Accumulator render(const Scene& s, Term term, int spp, PassStats* total = nullptr) {
+Accumulator render(const PreparedScene& s, Term term, int spp, PassStats* total = nullptr) {
   Accumulator acc;
   acc.reset(96, 54);
   RenderOptions opt;
@@ -54,7 +52,7 @@ TEST(EmbeddedScenes, ThereAreTheFiveOfTheLectureAndLectureIsFirst) {
 
 TEST(EmbeddedScenes, EveryOneRendersWithoutNaN) {
   for (const EmbeddedScene& e : embedded_scenes()) {
-    const Scene s = load(e.name);
+    const PreparedScene s = load(e.name);
     PassStats stats;
     const Accumulator a = render(s, Term::kFull, 4, &stats);
     EXPECT_EQ(stats.nan_count, 0u) << e.name;
@@ -64,7 +62,7 @@ TEST(EmbeddedScenes, EveryOneRendersWithoutNaN) {
 }
 
 TEST(EmbeddedScenes, MirrorsSceneRecursesDeeply) {
-  const Scene s = load("mirrors");
+  const PreparedScene s = load("mirrors");
   PassStats stats;
   render(s, Term::kFull, 1, &stats);
   // Facing mirrors: many primary rays spawn several generations of reflections.
@@ -72,12 +70,12 @@ TEST(EmbeddedScenes, MirrorsSceneRecursesDeeply) {
 }
 
 TEST(EmbeddedScenes, GlassSceneRefracts) {
-  const Scene s = load("glass");
+  const PreparedScene s = load("glass");
   EXPECT_GT(sum_of(render(s, Term::kRefraction, 1)), 0);
 }
 
 TEST(EmbeddedScenes, LecturesSceneHasEveryTerm) {
-  const Scene s = load("lecture");
+  const PreparedScene s = load("lecture");
   for (Term t : {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection, Term::kRefraction}) {
     EXPECT_GT(sum_of(render(s, t, 1)), 0) << term_name(t);
   }

@@ -9,6 +9,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -27,7 +28,7 @@ namespace {
 constexpr int kWidth = 64;   // small images: every embedded scene, many pixels, still quick
 constexpr int kHeight = 36;
 
-Accumulator render_once(const Scene& scene, Term term) {
+Accumulator render_once(const PreparedScene& scene, Term term) {
   RenderOptions options;
   options.term = term;
   Accumulator accum;
@@ -45,7 +46,7 @@ std::string read_bytes(const std::filesystem::path& path) {
 
 TEST(PixelProbe, TotalEqualsTheRenderedLinearPixelInEveryEmbeddedScene) {
   for (const EmbeddedScene& embedded : embedded_scenes()) {
-    const Scene scene = load_prepared(embedded.name);
+    const PreparedScene scene = load_prepared(embedded.name);
     const Accumulator image = render_once(scene, Term::kFull);
     for (int y = 0; y < kHeight; ++y) {
       for (int x = 0; x < kWidth; ++x) {
@@ -58,8 +59,9 @@ TEST(PixelProbe, TotalEqualsTheRenderedLinearPixelInEveryEmbeddedScene) {
 }
 
 TEST(PixelProbe, TextWithFourDigitsHasNoLongerNumberAndTheCliDefaultIsUnchanged) {
-  const Scene scene = load_prepared("lecture");
-  const PixelProbe probe = probe_pixel(scene, 320, 180, 200, 120);
+  const PreparedScene prepared = load_prepared("lecture");
+  const Scene& scene = prepared.scene();
+  const PixelProbe probe = probe_pixel(prepared, 320, 180, 200, 120);
   const std::string four = probe_to_text(scene, probe, 4);
   // No number in the text carries more than four significant digits ("0.1234", "1.235e-07").
   const std::regex long_number("[0-9]\\.?[0-9]{4,}");
@@ -80,7 +82,7 @@ TEST(PixelProbe, TextWithFourDigitsHasNoLongerNumberAndTheCliDefaultIsUnchanged)
 }
 
 TEST(PixelProbe, TermsAndLightsAddUpToTheTotal) {
-  const Scene scene = load_prepared("lights");
+  const PreparedScene scene = load_prepared("lights");
   const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, kWidth / 2, kHeight / 2);
   ASSERT_TRUE(probe.root.hit);
   Color diffuse(0), specular(0);
@@ -95,7 +97,7 @@ TEST(PixelProbe, TermsAndLightsAddUpToTheTotal) {
 
 TEST(TermViews, FiveTermImagesAddUpToTheFullImageInEveryEmbeddedScene) {
   for (const EmbeddedScene& embedded : embedded_scenes()) {
-    const Scene scene = load_prepared(embedded.name);
+    const PreparedScene scene = load_prepared(embedded.name);
     const Accumulator full = render_once(scene, Term::kFull);
     Accumulator sum;
     sum.reset(kWidth, kHeight);
@@ -115,11 +117,11 @@ TEST(TermViews, FiveTermImagesAddUpToTheFullImageInEveryEmbeddedScene) {
 }
 
 TEST(TermViews, MutingALightRemovesItsDiffuseAndSoloKeepsOnlyIt) {
-  Scene scene = load_prepared("lights");
+  Scene scene = load_scene_or_fail("lights");
   ASSERT_GE(scene.lights.size(), 2u);
   ui::LightSolo solo;
   ui::toggle_solo(scene.lights, solo, 1);
-  const PixelProbe probe = probe_pixel(scene, kWidth, kHeight, kWidth / 2, kHeight / 2);
+  const PixelProbe probe = probe_pixel(PreparedScene(scene), kWidth, kHeight, kWidth / 2, kHeight / 2);
   for (const ProbeLight& light : probe.root.lights) EXPECT_EQ(light.index, 1) << "only the soloed light shades";
 }
 
@@ -147,7 +149,7 @@ TEST(Figure, IsDeterministicAndHasTheGridSize) {
 }
 
 TEST(Figure, CellsAreTheTermImagesAndLabelsAreDrawn) {
-  const Scene scene = load_prepared("lecture");
+  const PreparedScene scene = load_prepared("lecture");
   FigureOptions options;
   options.cell_width = kWidth;
   options.cell_height = kHeight;
@@ -241,7 +243,7 @@ Vec3 moved_eye(const Camera& camera, double degrees) {
   return camera.look_at + rotated;
 }
 
-Accumulator render_with_eye(const Scene& scene, Term term, const std::optional<Vec3>& eye) {
+Accumulator render_with_eye(const PreparedScene& scene, Term term, const std::optional<Vec3>& eye) {
   RenderOptions options;
   options.term = term;
   options.shading_eye = eye;
@@ -253,9 +255,10 @@ Accumulator render_with_eye(const Scene& scene, Term term, const std::optional<V
 
 TEST(MoveYourHead, EyeOnlyMovesKeepDiffuseExactlyAndChangeSpecular) {
   for (const SpecularModel model : {SpecularModel::kPhong, SpecularModel::kBlinn}) {
-    Scene scene = load_prepared("lecture");
-    scene.specular_model = model;
-    const Vec3 eye = moved_eye(scene.camera, 35);
+    Scene data = load_scene_or_fail("lecture");
+    data.specular_model = model;
+    const Vec3 eye = moved_eye(data.camera, 35);
+    const PreparedScene scene(std::move(data));
     for (const Term term : {Term::kAmbient, Term::kDiffuse}) {
       const Accumulator still = render_with_eye(scene, term, std::nullopt);
       const Accumulator moved = render_with_eye(scene, term, eye);
@@ -279,13 +282,13 @@ TEST(MoveYourHead, EyeOnlyMovesKeepDiffuseExactlyAndChangeSpecular) {
 
 TEST(MoveYourHead, NoOverrideIsBitIdenticalToThePlainRender) {
   for (const EmbeddedScene& embedded : embedded_scenes()) {
-    const Scene scene = load_prepared(embedded.name);
+    const PreparedScene scene = load_prepared(embedded.name);
     for (const Term term : {Term::kFull, Term::kSpecular, Term::kReflection, Term::kRays}) {
       const Accumulator plain = render_once(scene, term);
       const Accumulator defaulted = render_with_eye(scene, term, std::nullopt);
       ASSERT_EQ(plain.sum, defaulted.sum) << embedded.name << " " << term_name(term);
       // Each pixel is render_sample's value without an eye.
-      const CameraFrame frame = make_camera_frame(scene.camera, kWidth, kHeight);
+      const CameraFrame frame = make_camera_frame(scene.scene().camera, kWidth, kHeight);
       RayCounts counts;
       for (int y = 0; y < kHeight; y += 3) {
         for (int x = 0; x < kWidth; x += 3) {
@@ -296,7 +299,7 @@ TEST(MoveYourHead, NoOverrideIsBitIdenticalToThePlainRender) {
     }
     // The eye at the camera's own position gives -D up to rounding: the same image, nearly.
     const Accumulator plain = render_once(scene, Term::kFull);
-    const Accumulator at_camera = render_with_eye(scene, Term::kFull, scene.camera.position);
+    const Accumulator at_camera = render_with_eye(scene, Term::kFull, scene.scene().camera.position);
     for (std::size_t i = 0; i < plain.sum.size(); ++i) {
       ASSERT_NEAR(plain.sum[i].x, at_camera.sum[i].x, 1e-6) << embedded.name << " " << i;
     }

@@ -116,16 +116,14 @@ std::optional<Vec3> hinted_light(const std::string& warnings) {
   return p;
 }
 
-Scene prepared(LoadResult r) {
+PreparedScene prepared(LoadResult r) {
   EXPECT_TRUE(r.ok()) << r.error_text();
-  Scene s = r.ok() ? *r.scene : Scene{};
-  prepare_scene(s);
-  return s;
+  return PreparedScene(r.ok() ? *r.scene : Scene{});
 }
 
 // The nearest hit of the ray from `o` along `d` (normalised here).
-std::optional<Hit> shoot(const Scene& s, const Vec3& o, const Vec3& d) {
-  return intersect(s, make_ray(o, glm::normalize(d)));
+std::optional<Hit> shoot(const PreparedScene& p, const Vec3& o, const Vec3& d) {
+  return intersect(p, make_ray(o, glm::normalize(d)));
 }
 
 const char* const kUnitTriangleObj =
@@ -230,17 +228,18 @@ TEST(MeshCornell, BothSceneFilesLoadFromDiskWithMeshPathsRelativeToTheSceneFile)
 }
 
 TEST(MeshCornell, RendersWithoutNaNAndTheLitWallsHaveTheirColours) {
-  const Scene s = prepared(load_scene_arg("cornell"));
+  const PreparedScene p = prepared(load_scene_arg("cornell"));
+  const Scene& s = p.scene();
   constexpr int kSize = 64;
   Accumulator acc;
   acc.reset(kSize, kSize);
-  const PassStats stats = render_pass(s, RenderOptions{}, acc);
+  const PassStats stats = render_pass(p, RenderOptions{}, acc);
   EXPECT_EQ(stats.nan_count, 0u);
   for (const Color& c : acc.sum) ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
   // Pixels a tenth of the width in from either side, half-way down, look at the side walls.
   const auto wall = [&](int x, const char* material, int dominant) {
     SCOPED_TRACE(material);
-    const PixelProbe probe = probe_pixel(s, kSize, kSize, x, kSize / 2);
+    const PixelProbe probe = probe_pixel(p, kSize, kSize, x, kSize / 2);
     ASSERT_TRUE(probe.root.hit);
     EXPECT_EQ(s.materials.at(static_cast<std::size_t>(probe.root.material)).name, material);
     const Color c = acc.mean(x, kSize / 2);
@@ -444,12 +443,13 @@ TEST(MeshNormals, VertexNormalsAreInterpolatedForShadingAndNgStillDecidesEnterin
         "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
         "vn 0 0 1\nvn 0.6 0 0.8\nvn 0 0.6 0.8\n"
         "f 1//1 2//2 3//3\n");
-  const Scene s = prepared(load_in(dir, mesh_scene("n.obj")));
+  const PreparedScene p = prepared(load_in(dir, mesh_scene("n.obj")));
+  const Scene& s = p.scene();
   ASSERT_EQ(geometry(s).triangles.size(), 1u);
   EXPECT_TRUE(geometry(s).triangles[0].has_vertex_normals);
   // At (0.25, 0.25) the weights are b0 = 0.5, b1 = b2 = 0.25.
   const Vec3 expected = glm::normalize(0.5 * Vec3(0, 0, 1) + 0.25 * Vec3(0.6, 0, 0.8) + 0.25 * Vec3(0, 0.6, 0.8));
-  const auto hit = shoot(s, {0.25, 0.25, 2}, {0, 0, -1});
+  const auto hit = shoot(p, {0.25, 0.25, 2}, {0, 0, -1});
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->t, 2);
   expect_near(hit->ns, expected, 1e-15, "ns");
@@ -458,11 +458,11 @@ TEST(MeshNormals, VertexNormalsAreInterpolatedForShadingAndNgStillDecidesEnterin
   // Seen from behind: N faces the ray, Ng (from the winding) says the ray is leaving.
   ProbeNode node;
   RayCounts counts;
-  trace(s, TraceLimits{}, make_ray({0.25, 0.25, -2}, {0, 0, 1}), 0, 1, counts, &node);
+  trace(p, TraceLimits{}, make_ray({0.25, 0.25, -2}, {0, 0, 1}), 0, 1, counts, &node);
   ASSERT_TRUE(node.hit);
   EXPECT_FALSE(node.entering);
   expect_near(node.n, -expected, 1e-15, "N from behind");
-  trace(s, TraceLimits{}, make_ray({0.25, 0.25, 2}, {0, 0, -1}), 0, 1, counts, &node);
+  trace(p, TraceLimits{}, make_ray({0.25, 0.25, 2}, {0, 0, -1}), 0, 1, counts, &node);
   EXPECT_TRUE(node.entering);
   expect_near(node.n, expected, 1e-15, "N from the front");
   fs::remove_all(dir);
@@ -474,10 +474,11 @@ TEST(MeshNormals, WithoutVertexNormalsShadingIsFlat) {
   write(dir / "f.obj",
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 -1\nv 1 0 -1\nv 0 1 -1\nvn 1 0 0\n"
         "f 1 2 3\nf 4//1 5//1 6\n");
-  const Scene s = prepared(load_in(dir, mesh_scene("f.obj")));
+  const PreparedScene p = prepared(load_in(dir, mesh_scene("f.obj")));
+  const Scene& s = p.scene();
   for (const Triangle& t : geometry(s).triangles) EXPECT_FALSE(t.has_vertex_normals);
   for (const double z : {2.0, -0.5}) {
-    const auto hit = shoot(s, {0.2, 0.3, z}, {0, 0, -1});
+    const auto hit = shoot(p, {0.2, 0.3, z}, {0, 0, -1});
     ASSERT_TRUE(hit);
     EXPECT_TRUE(same_bits(hit->ns, hit->ng));
     EXPECT_TRUE(same_bits(hit->ng, Vec3(0, 0, 1)));
@@ -543,14 +544,14 @@ TEST(MeshTransform, NormalsFollowTheInverseTransposeUnderNonUniformScale) {
         "v 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0.5773502691896258 0.5773502691896258 0.5773502691896258\nf 1//1 2//1 3//1\n");
   // Scaled by (2, 1, 1) the plane is x/2 + y + z = 1, normal (0.5, 1, 1) / 1.5; a normal
   // transformed like the vertices would point along (2, 1, 1) instead.
-  const Scene s = prepared(load_in(dir, mesh_scene("n.obj", R"(, "transform": {"scale": [2, 1, 1]})")));
+  const PreparedScene p = prepared(load_in(dir, mesh_scene("n.obj", R"(, "transform": {"scale": [2, 1, 1]})")));
   const Vec3 expected(1.0 / 3, 2.0 / 3, 2.0 / 3);
-  const auto hit = shoot(s, {0, 0, 0}, {0.5, 0.25, 0.25});
+  const auto hit = shoot(p, {0, 0, 0}, {0.5, 0.25, 0.25});
   ASSERT_TRUE(hit);
   expect_near(hit->ng, expected, 1e-15, "Ng from the placed vertices");
   expect_near(hit->ns, expected, 1e-15, "N from the placed vertex normals");
   // With a rotation too: still the placed plane's normal.
-  const Scene r = prepared(
+  const PreparedScene r = prepared(
       load_in(dir, mesh_scene("n.obj", R"(, "transform": {"scale": [2, 1, 1], "rotate_deg": [0, 0, 90]})")));
   const auto h2 = shoot(r, {0, 0, 0}, {-0.25, 0.5, 0.25});
   ASSERT_TRUE(h2);
@@ -767,8 +768,8 @@ TEST(MeshOpenedAlone, AnObjGetsACameraThatFramesItAndALightThatLightsIt) {
   write(dir / "cube.obj", kCubeObj);
   const LoadResult r = load_scene_file((dir / "cube.obj").string());
   ASSERT_TRUE(r.ok()) << r.error_text();
-  Scene s = *r.scene;
-  prepare_scene(s);
+  const PreparedScene p(*r.scene);
+  const Scene& s = p.scene();
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].file, "cube.obj");
   EXPECT_EQ(geometry(s).triangles.size(), 12u);
@@ -779,7 +780,7 @@ TEST(MeshOpenedAlone, AnObjGetsACameraThatFramesItAndALightThatLightsIt) {
   // The ray through the image centre hits the mesh...
   const CameraFrame frame = make_camera_frame(s.camera, s.width, s.height);
   const Ray centre = camera_ray(frame, s.width / 2, s.height / 2, 0, 0);
-  const auto hit = intersect(s, centre);
+  const auto hit = intersect(p, centre);
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->object.kind, ObjectRef::Kind::kMesh);
   // ... every vertex is in view ...
@@ -793,7 +794,7 @@ TEST(MeshOpenedAlone, AnObjGetsACameraThatFramesItAndALightThatLightsIt) {
     }
   }
   // ... and the centre pixel is lit by the light (diffuse > 0).
-  const PixelProbe probe = probe_pixel(s, s.width, s.height, s.width / 2, s.height / 2);
+  const PixelProbe probe = probe_pixel(p, s.width, s.height, s.width / 2, s.height / 2);
   ASSERT_TRUE(probe.root.hit);
   EXPECT_GT(probe.root.terms.diffuse.x, 0);
   fs::remove_all(dir);
@@ -802,13 +803,13 @@ TEST(MeshOpenedAlone, AnObjGetsACameraThatFramesItAndALightThatLightsIt) {
 TEST(MeshOpenedAlone, TheCornellObjOpensWithItsMtlAndItsEmitterHint) {
   const LoadResult r = load_scene_file(std::string(PHONGLAB_SOURCE_DIR) + "/assets/scenes/cornell/CornellBox-Original.obj");
   ASSERT_TRUE(r.ok()) << r.error_text();
-  Scene s = *r.scene;
-  prepare_scene(s);
+  const PreparedScene p(*r.scene);
+  const Scene& s = p.scene();
   EXPECT_EQ(s.materials.size(), 8u);
   EXPECT_NE(material_named(s, "CornellBox-Original/leftWall"), nullptr);
   EXPECT_TRUE(hinted_light(all_warnings(r)).has_value());
   const CameraFrame frame = make_camera_frame(s.camera, s.width, s.height);
-  EXPECT_TRUE(intersect(s, camera_ray(frame, s.width / 2, s.height / 2, 0, 0)));
+  EXPECT_TRUE(intersect(p, camera_ray(frame, s.width / 2, s.height / 2, 0, 0)));
   // A broken OBJ opened alone names its line too.
   const fs::path dir = temp_dir("alone_bad");
   write(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 inf\nf 1 2 3\n");
@@ -828,21 +829,22 @@ TEST(MeshProbe, AMeshHitIsNamedByItsObjectAndTheObjsFaceNumber) {
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
         "v 2 0 0\nv 3 0 0\nv 2 1 0\nf 4 5 6\n"
         "v 4 -1 0\nv 6 -1 0\nv 6 1 0\nv 4 1 0\nf 7 8 9 10\n");
-  const Scene s = prepared(load_in(dir, R"({
+  const PreparedScene p = prepared(load_in(dir, R"({
       "camera": {"position": [5, 0, 5], "look_at": [5, 0, 0], "fov_y": 10},
       "image": {"width": 32, "height": 32},
       "materials": {"m": {"kd": 0.5}},
       "lights": [{"type": "point", "position": [5, 0, 3]}],
       "objects": [{"type": "sphere", "center": [-10, 0, 0], "radius": 1, "material": "m"},
                   {"type": "mesh", "file": "three.obj"}]})"));
+  const Scene& s = p.scene();
   // Faces count from 1 in file order, as OBJ indices and the loader's messages do.
   for (const double y : {-0.5, 0.5}) {  // either triangle of the quad
-    const auto hit = shoot(s, {4.5 + std::abs(y), y, 1}, {0, 0, -1});
+    const auto hit = shoot(p, {4.5 + std::abs(y), y, 1}, {0, 0, -1});
     ASSERT_TRUE(hit);
     EXPECT_EQ(object_name(s, hit->object), "objects[1] face 3");
   }
-  EXPECT_EQ(object_name(s, shoot(s, {0.2, 0.2, 1}, {0, 0, -1})->object), "objects[1] face 1");
-  const PixelProbe probe = probe_pixel(s, 32, 32, 16, 16);
+  EXPECT_EQ(object_name(s, shoot(p, {0.2, 0.2, 1}, {0, 0, -1})->object), "objects[1] face 1");
+  const PixelProbe probe = probe_pixel(p, 32, 32, 16, 16);
   ASSERT_TRUE(probe.root.hit);
   EXPECT_TRUE(contains(probe_to_json(s, probe), R"("object": "objects[1] face 3")")) << probe_to_json(s, probe);
   EXPECT_TRUE(contains(probe_to_text(s, probe), "hits objects[1] face 3 (material \"three/default\")"))
@@ -868,15 +870,16 @@ Vec3 random_direction(std::mt19937_64& rng) {
 
 // Nearest hits and shadow queries of `rays` random rays through the accelerator equal the
 // brute-force ones: the same primitive, t bit for bit.
-void expect_bvh_equals_brute_force(const Scene& s, const Vec3& lo, const Vec3& hi, int rays, std::uint64_t seed) {
-  ASSERT_NE(s.accel, nullptr);
+void expect_bvh_equals_brute_force(const PreparedScene& p, const Vec3& lo, const Vec3& hi, int rays, std::uint64_t seed) {
+  const Scene& s = p.scene();
+  ASSERT_NE(p.accel(), nullptr);
   SCOPED_TRACE("seed " + std::to_string(seed) + " (rerun with PHONGLAB_TEST_SEED=" + std::to_string(seed) + ")");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> ux(lo.x, hi.x), uy(lo.y, hi.y), uz(lo.z, hi.z), u01(0, 1);
   int hits = 0;
   for (int i = 0; i < rays; ++i) {
     const Ray ray = make_ray({ux(rng), uy(rng), uz(rng)}, random_direction(rng));
-    const auto a = intersect(s, ray);
+    const auto a = intersect(p, ray);
     const auto b = intersect_all(s, ray);
     ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << i;
     if (a) {
@@ -887,17 +890,17 @@ void expect_bvh_equals_brute_force(const Scene& s, const Vec3& lo, const Vec3& h
       ASSERT_EQ(a->object.prim, b->object.prim) << "ray " << i;
       ASSERT_TRUE(same_bits(a->p, b->p) && same_bits(a->ns, b->ns)) << "ray " << i;
       const double t_max = a->t * u01(rng) * 1.5;
-      ASSERT_EQ(occluded(s, ray, t_max), occluded_all(s, ray, t_max)) << "ray " << i << " t_max " << t_max;
+      ASSERT_EQ(occluded(p, ray, t_max), occluded_all(s, ray, t_max)) << "ray " << i << " t_max " << t_max;
     } else {
-      ASSERT_FALSE(occluded(s, ray, 1e30)) << "ray " << i;
+      ASSERT_FALSE(occluded(p, ray, 1e30)) << "ray " << i;
     }
   }
   EXPECT_GT(hits, rays / 5);  // the rest leave through open sides or start outside
 }
 
 TEST(MeshAccel, TheCornellSphereBoxThroughTheBvhEqualsBruteForceForRandomRays) {
-  const Scene s = prepared(load_scene_arg("cornell-sphere"));
-  expect_bvh_equals_brute_force(s, {-1.5, -0.5, -1.5}, {1.5, 2.5, 4}, 20000, test_seed());
+  const PreparedScene p = prepared(load_scene_arg("cornell-sphere"));
+  expect_bvh_equals_brute_force(p, {-1.5, -0.5, -1.5}, {1.5, 2.5, 4}, 20000, test_seed());
 }
 
 TEST(MeshAccel, TransformedMeshesAmongOtherObjectsThroughTheBvhEqualBruteForce) {
@@ -918,14 +921,14 @@ TEST(MeshAccel, TransformedMeshesAmongOtherObjectsThroughTheBvhEqualBruteForce) 
   }
   const fs::path dir = temp_dir("soup");
   write(dir / "soup.obj", obj);
-  const Scene s = prepared(load_in(dir, R"({"materials": {"m": {"kd": 0.5}}, "objects": [
+  const PreparedScene p = prepared(load_in(dir, R"({"materials": {"m": {"kd": 0.5}}, "objects": [
       {"type": "mesh", "file": "soup.obj", "transform": {"scale": [1, 2, 0.5], "rotate_deg": [10, 20, 30], "translate": [0.5, 0, 0]}},
       {"type": "sphere", "center": [0, 0, 0], "radius": 0.4, "material": "m"},
       {"type": "mesh", "file": "soup.obj", "transform": {"scale": -0.7, "translate": [-1, 1, 0]}},
       {"type": "triangle", "vertices": [[-2, -2, -2], [2, -2, -2], [0, 2, -2]], "material": "m"},
       {"type": "plane", "point": [0, -3, 0], "normal": [0, 1, 0], "material": "m"}]})"));
   fs::remove_all(dir);
-  expect_bvh_equals_brute_force(s, {-2.5, -2.5, -2.5}, {2.5, 2.5, 2.5}, 20000, seed);
+  expect_bvh_equals_brute_force(p, {-2.5, -2.5, -2.5}, {2.5, 2.5, 2.5}, 20000, seed);
 }
 
 }  // namespace

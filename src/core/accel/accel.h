@@ -1,4 +1,4 @@
-// Acceleration: each mesh keeps its own BVH, built once when it is loaded; prepare_scene builds
+// Acceleration: each mesh keeps its own BVH, built once when it is loaded; PreparedScene builds
 // a small top-level BVH over the spheres, loose triangles and mesh boxes, so an edit rebuilds
 // only that. Planes are infinite and stay outside every box.
 #pragma once

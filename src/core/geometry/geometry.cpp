@@ -3,7 +3,6 @@
 #include <utility>
 
 #include "core/accel/accel.h"
-#include "experiments/numerics_variants.h"
 
 namespace phonglab {
 
@@ -62,18 +61,6 @@ bool any_triangle(const std::vector<Triangle>& tris, const Ray& ray, const Trian
     if (auto t = intersect_triangle(tri, ray, shear, nullptr, nullptr); t && *t < t_max) return true;
   }
   return false;
-}
-
-std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) {
-  if (scene.numerics.geometry()) [[unlikely]] return intersect_variant(scene, ray, t_max);  // bench only
-  if (scene.accel) return scene.accel->intersect(scene, ray, t_max);
-  return intersect_all(scene, ray, t_max);
-}
-
-bool occluded(const Scene& scene, const Ray& ray, double t_max) {
-  if (scene.numerics.occlusion()) [[unlikely]] return occluded_variant(scene, ray, t_max);  // bench only
-  if (scene.accel) return scene.accel->occluded(scene, ray, t_max);
-  return occluded_all(scene, ray, t_max);
 }
 
 std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray, double t_max) {

@@ -123,7 +123,7 @@ inline bool replaces(double t, const ObjectRef& ref, double best, const ObjectRe
   return ref.prim < obj.prim;
 }
 
-// Nearest-hit and any-hit queries over a prepared scene (built by prepare_scene, or by a
+// Nearest-hit and any-hit queries over a scene's primitives (built by PreparedScene, or by a
 // benchmark that compares acceleration structures). Answers must equal the brute-force ones.
 class Accelerator {
  public:
@@ -132,20 +132,14 @@ class Accelerator {
   virtual std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) const = 0;
   // Whether anything lies on the ray with t in (0, t_max).
   virtual bool occluded(const Scene& scene, const Ray& ray, double t_max) const = 0;
-  // Whether it was built over this scene's primitives as they are now (a cheap check, run
-  // once per pass: a scene edited after prepare_scene is re-prepared, never traced stale).
+  // Whether it was built over this scene's primitives as they are now (a cheap check: the
+  // tests compare accelerators built apart).
   virtual bool matches(const Scene& scene) const = 0;
 };
 
-// Nearest hit with t in (0, t_max), through scene.accel when there is one.
-std::optional<Hit> intersect(const Scene& scene, const Ray& ray,
-                             double t_max = std::numeric_limits<double>::infinity());
-
-// Whether anything lies on the ray with t in (0, t_max). Stops at the first hit found.
-bool occluded(const Scene& scene, const Ray& ray, double t_max);
-
-// The same queries testing every primitive (mesh triangles one by one): the reference the
-// acceleration structures are tested against.
+// The nearest-hit and any-hit queries testing every primitive (mesh triangles one by one): the
+// brute force of scenes without an accelerator, and the reference the acceleration structures
+// are tested against. The queries of a prepared scene are in core/accel/prepared_scene.h.
 std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray,
                                  double t_max = std::numeric_limits<double>::infinity());
 bool occluded_all(const Scene& scene, const Ray& ray, double t_max);

@@ -22,9 +22,10 @@ bool packet_cpu_supported() {
 #endif
 }
 
-bool packet_tracing_applies(const Scene& scene) {
-  const bool walkable = scene.accel ? dynamic_cast<const SceneBvh*>(scene.accel.get()) != nullptr : scene.meshes.empty();
-  return scene.numerics.production() && walkable && packet_cpu_supported();
+bool packet_tracing_applies(const PreparedScene& prepared) {
+  const Accelerator* accel = prepared.accel();
+  const bool walkable = accel ? dynamic_cast<const SceneBvh*>(accel) != nullptr : prepared.scene().meshes.empty();
+  return !prepared.experiment() && walkable && packet_cpu_supported();
 }
 
 namespace {
@@ -154,6 +155,7 @@ struct MaterialInfo {
 }  // namespace
 
 struct PacketTracer::Impl {
+  const PreparedScene& prepared;
   const Scene& scene;
   TraceLimits limits;
   // The scene's spheres and planes as arrays for the kernels.
@@ -182,7 +184,7 @@ struct PacketTracer::Impl {
   TermsWanted primary_wanted;
   const Vec3* shading_eye = nullptr;
 
-  explicit Impl(const Scene& s) : scene(s), limits{s.max_depth, s.min_weight} {
+  explicit Impl(const PreparedScene& p) : prepared(p), scene(p.scene()), limits{scene.max_depth, scene.min_weight} {
     for (const Sphere& sp : scene.spheres) {
       cx.push_back(sp.center.x);
       cy.push_back(sp.center.y);
@@ -225,7 +227,7 @@ struct PacketTracer::Impl {
     }
     levels.resize(at(std::max(0, limits.max_depth)) + 1);
     mesh_id = static_cast<int>(prim_material.size());
-    if (const auto* bvh = dynamic_cast<const SceneBvh*>(scene.accel.get())) set_up_hierarchy(*bvh);
+    if (const auto* bvh = dynamic_cast<const SceneBvh*>(prepared.accel())) set_up_hierarchy(*bvh);
   }
 
   void set_up_hierarchy(const SceneBvh& bvh) {
@@ -605,7 +607,7 @@ struct PacketTracer::Impl {
   }
 };
 
-PacketTracer::PacketTracer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+PacketTracer::PacketTracer(const PreparedScene& prepared) : impl_(std::make_unique<Impl>(prepared)) {}
 PacketTracer::~PacketTracer() = default;
 
 bool PacketTracer::draws(Term term) {

@@ -29,12 +29,12 @@ namespace phonglab {
 bool packet_cpu_supported();
 
 // Whether the packet tracer can render `scene` (prepared) on this CPU.
-bool packet_tracing_applies(const Scene& scene);
+bool packet_tracing_applies(const PreparedScene& prepared);
 
 // Traces tiles of one scene. One per thread: it owns its batch buffers, reused tile to tile.
 class PacketTracer {
  public:
-  explicit PacketTracer(const Scene& scene);  // the scene must outlive the tracer
+  explicit PacketTracer(const PreparedScene& prepared);  // the scene must outlive the tracer
   ~PacketTracer();
   PacketTracer(const PacketTracer&) = delete;
   PacketTracer& operator=(const PacketTracer&) = delete;

@@ -79,13 +79,13 @@ std::uint64_t ProgressiveRenderer::restart_locked() {
   return generation_;
 }
 
-std::uint64_t ProgressiveRenderer::set_scene(std::shared_ptr<const Scene> scene) {
+std::uint64_t ProgressiveRenderer::set_scene(std::shared_ptr<const PreparedScene> scene) {
   const std::lock_guard lock(mutex_);
   scene_ = std::move(scene);
   return restart_locked();
 }
 
-std::uint64_t ProgressiveRenderer::set_scene(std::shared_ptr<const Scene> scene, int width, int height) {
+std::uint64_t ProgressiveRenderer::set_scene(std::shared_ptr<const PreparedScene> scene, int width, int height) {
   const std::lock_guard lock(mutex_);
   scene_ = std::move(scene);
   width_ = std::max(width, 0);
@@ -151,7 +151,7 @@ void ProgressiveRenderer::run() {
   }
   // The state of the generation being rendered; only this thread touches it.
   std::uint64_t generation = 0;
-  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const PreparedScene> scene;
   std::vector<Level> levels;
   std::size_t level = 0;
   Accumulator accum;

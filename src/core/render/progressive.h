@@ -78,12 +78,12 @@ class ProgressiveRenderer {
   ProgressiveRenderer(const ProgressiveRenderer&) = delete;
   ProgressiveRenderer& operator=(const ProgressiveRenderer&) = delete;
 
-  // Hands over an immutable, prepared (prepare_scene) snapshot and restarts. Returns the new
+  // Hands over an immutable, prepared snapshot (PreparedScene) and restarts. Returns the new
   // generation. A null scene stops rendering.
-  std::uint64_t set_scene(std::shared_ptr<const Scene> scene);
+  std::uint64_t set_scene(std::shared_ptr<const PreparedScene> scene);
   // The same with a new full-resolution size: one restart for both (a UI frame that both
   // edits the scene and resizes the window restarts once).
-  std::uint64_t set_scene(std::shared_ptr<const Scene> scene, int width, int height);
+  std::uint64_t set_scene(std::shared_ptr<const PreparedScene> scene, int width, int height);
   // Full-resolution image size in pixels; restarts when it changes. Returns the generation.
   std::uint64_t set_resolution(int width, int height);
   // Applies settings; only a term change restarts (samples do not depend on threads, and a
@@ -109,7 +109,7 @@ class ProgressiveRenderer {
   std::condition_variable idle_cv_;    // wait_idle sleeps on it
   std::atomic<bool> cancel_{false};    // raised by a restart; the running pass stops between tiles
   // Guarded by mutex_:
-  std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<const PreparedScene> scene_;
   int width_ = 0;
   int height_ = 0;
   ProgressiveSettings settings_;

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <chrono>
-#include <thread>
 
 #include "core/packet/packet.h"
 
@@ -35,27 +34,22 @@ Color Accumulator::mean(int x, int y) const {
   return sum[static_cast<std::size_t>(y) * width + x] / static_cast<double>(samples);
 }
 
-int resolve_thread_count(int requested) {
-  if (requested > 0) return requested;
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw > 0 ? static_cast<int>(hw) : 1;
-}
-
-Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
+Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
                     std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed,
                     const Vec3* shading_eye) {
   double u, v;
   sample_offset(x, y, sample_index, u, v, seed);
   const Ray ray = camera_ray(frame, x, y, u, v);
   ++counts.primary;
+  const Scene& scene = prepared.scene();
   const TraceLimits limits{scene.max_depth, scene.min_weight};
-  if (term == Term::kFull) return trace(scene, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
+  if (term == Term::kFull) return trace(prepared, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
   if (term == Term::kRays) {
     const std::uint64_t before = counts.total() - 1;
-    trace(scene, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
+    trace(prepared, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
     return Color(static_cast<double>(counts.total() - before));
   }
-  const std::optional<Hit> hit = intersect(scene, ray);
+  const std::optional<Hit> hit = intersect(prepared, ray);
   if (!hit) return Color(0);  // term and debug images are 0 where the primary ray misses
   switch (term) {
     case Term::kNormal: {
@@ -67,7 +61,7 @@ Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int
     default:
       break;
   }
-  return term_value(shade(scene, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, terms_wanted(term)), term);
+  return term_value(shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, terms_wanted(term)), term);
 }
 
 TermsWanted terms_wanted(Term term) {
@@ -92,24 +86,10 @@ Color term_value(const Terms& t, Term term) {
   }
 }
 
-namespace {
-
-// The scene itself, or, when its geometry was edited after prepare_scene, a re-prepared copy
-// in `holder`: a stale acceleration structure would silently miss or invent hits.
-const Scene& up_to_date(const Scene& scene, std::optional<Scene>& holder) {
-  if (!scene.accel || scene.accel->matches(scene)) return scene;
-  holder = scene;
-  prepare_scene(*holder);
-  return *holder;
-}
-
-}  // namespace
-
-PassStats render_pass(const Scene& given, const RenderOptions& options, Accumulator& accum,
+PassStats render_pass(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
                       const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
-  std::optional<Scene> refreshed;
-  const Scene& scene = up_to_date(given, refreshed);
+  const Scene& scene = prepared.scene();
   const CameraFrame frame = make_camera_frame(scene.camera, accum.width, accum.height);
   const int tile = options.tile_size > 0 ? options.tile_size : 16;
   const int tiles_x = (accum.width + tile - 1) / tile;
@@ -125,12 +105,12 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
 
   // Each tile is written by exactly one thread and each pixel's value depends only on
   // (x, y, sample_index), so the image is the same for any thread count or tile order.
-  const bool packets = options.packets && PacketTracer::draws(options.term) && packet_tracing_applies(scene);
+  const bool packets = options.packets && PacketTracer::draws(options.term) && packet_tracing_applies(prepared);
   auto worker = [&](PassStats& stats) {
     std::optional<PacketTracer> tracer;
     std::vector<Color> tile_radiance;
     if (packets) {
-      tracer.emplace(scene);
+      tracer.emplace(prepared);
       tile_radiance.resize(static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile));
     }
     const auto add = [&](Color* row, int x, Color c) {
@@ -164,22 +144,14 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
       for (int y = y0; y < y1; ++y) {
         Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
         for (int x = x0; x < x1; ++x) {
-          add(row, x, render_sample(scene, frame, options.term, x, y, sample_index, stats.rays, options.seed,
+          add(row, x, render_sample(prepared, frame, options.term, x, y, sample_index, stats.rays, options.seed,
                                     shading_eye));
         }
       }
     }
   };
 
-  if (thread_count == 1) {
-    worker(per_thread[0]);
-  } else {
-    std::vector<std::thread> threads;
-    threads.reserve(static_cast<std::size_t>(thread_count - 1));
-    for (int i = 1; i < thread_count; ++i) threads.emplace_back(worker, std::ref(per_thread[static_cast<std::size_t>(i)]));
-    worker(per_thread[0]);
-    for (std::thread& th : threads) th.join();
-  }
+  run_workers(thread_count, [&](int i) { worker(per_thread[static_cast<std::size_t>(i)]); });
 
   PassStats total;
   for (const PassStats& s : per_thread) {
@@ -193,10 +165,10 @@ PassStats render_pass(const Scene& given, const RenderOptions& options, Accumula
   return total;
 }
 
-PassStats render_passes(const Scene& scene, const RenderOptions& options, Accumulator& accum, int passes) {
+PassStats render_passes(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum, int passes) {
   PassStats total;
   for (int i = 0; i < passes; ++i) {
-    const PassStats pass = render_pass(scene, options, accum);
+    const PassStats pass = render_pass(prepared, options, accum);
     total.rays += pass.rays;
     total.nan_count += pass.nan_count;
     total.seconds += pass.seconds;
@@ -209,10 +181,9 @@ PassStats render_passes(const Scene& scene, const RenderOptions& options, Accumu
 
 namespace phonglab {
 
-PixelProbe probe_pixel(const Scene& given, int width, int height, int x, int y,
+PixelProbe probe_pixel(const PreparedScene& prepared, int width, int height, int x, int y,
                        const std::optional<Vec3>& shading_eye) {
-  std::optional<Scene> refreshed;
-  const Scene& scene = up_to_date(given, refreshed);
+  const Scene& scene = prepared.scene();
   PixelProbe probe;
   probe.x = x;
   probe.y = y;
@@ -221,7 +192,7 @@ PixelProbe probe_pixel(const Scene& given, int width, int height, int x, int y,
   sample_offset(x, y, 0, u, v);
   const Ray ray = camera_ray(frame, x, y, u, v);
   ++probe.rays.primary;
-  trace(scene, TraceLimits{scene.max_depth, scene.min_weight}, ray, 0, 1.0, probe.rays, &probe.root,
+  trace(prepared, TraceLimits{scene.max_depth, scene.min_weight}, ray, 0, 1.0, probe.rays, &probe.root,
         shading_eye ? &*shading_eye : nullptr);
   return probe;
 }

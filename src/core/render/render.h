@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/accel/prepared_scene.h"
+#include "core/render/threads.h"
 #include "core/scene/camera.h"
 #include "core/scene/scene.h"
 #include "core/shading/shading.h"
@@ -69,21 +71,18 @@ struct PassStats {
 };
 
 // The radiance (or term, or debug value) of one primary ray.
-Color render_sample(const Scene& scene, const CameraFrame& frame, Term term, int x, int y,
+Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
                     std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed = 0,
                     const Vec3* shading_eye = nullptr);
 
-// Adds sample number `accum.samples` to every pixel. The scene must be prepared
-// (prepare_scene). When `cancel` becomes true the pass stops between tiles; `accum` is then
+// Adds sample number `accum.samples` to every pixel. When `cancel` becomes true the pass stops between tiles; `accum` is then
 // partly updated and must be reset before further use. Returns the pass's statistics.
-PassStats render_pass(const Scene& scene, const RenderOptions& options, Accumulator& accum,
+PassStats render_pass(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
                       const std::atomic<bool>* cancel = nullptr);
 
 // `passes` passes in a row (no cancel); their statistics summed (rays, NaNs, seconds).
-PassStats render_passes(const Scene& scene, const RenderOptions& options, Accumulator& accum, int passes);
+PassStats render_passes(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum, int passes);
 
-// Number of threads a pass uses for `requested` (0 = all hardware threads).
-int resolve_thread_count(int requested);
 
 }  // namespace phonglab
 
@@ -98,7 +97,7 @@ struct PixelProbe {
 
 // Replays pixel (x, y)'s centre ray of a width x height image, recording everything
 // (`shading_eye` as in RenderOptions).
-PixelProbe probe_pixel(const Scene& scene, int width, int height, int x, int y,
+PixelProbe probe_pixel(const PreparedScene& prepared, int width, int height, int x, int y,
                        const std::optional<Vec3>& shading_eye = std::nullopt);
 
 }  // namespace phonglab

@@ -1,5 +1,6 @@
-// The scene as plain data: what a scene file says, with the defaults of docs/scene-format.md.
-// Objects refer to materials by index. Copying a Scene is a cheap snapshot.
+// The scene as plain data: what a scene file says, with the defaults of docs/scene-format.md,
+// and nothing derived from it (the accelerator lives in PreparedScene, core/accel). Objects refer
+// to materials by index. Copying a Scene is a cheap snapshot (meshes are shared).
 #pragma once
 
 #include <cstdint>
@@ -103,32 +104,6 @@ struct ObjectRef {
   int prim = -1;   // kMesh: the triangle's index in its MeshGeometry
 };
 
-// Nearest-hit and any-hit queries over a scene's primitives, built by prepare_scene.
-class Accelerator;
-
-// Switches for measuring the numerics and the "model only what a scene needs" savings (the
-// bench's precision and savings tables, and their tests). All off is the production renderer;
-// the scene loader never sets them. Any geometry switch routes intersect() and occluded() to
-// src/experiments/numerics_variants.cpp through one branch at their top.
-struct NumericsVariant {
-  bool float_geometry = false;   // intersection tests and hit points in float (shading stays double)
-  bool textbook_sphere = false;  // b^2 - 4ac with (-b -+ sqrt)/2a roots, hit point not re-projected
-  // Ablations of work the production renderer skips; the image stays the same, only rays grow.
-  bool nearest_hit_shadows = false;    // shadow rays as nearest-hit queries, not any-hit
-  bool shadow_rays_behind = false;     // cast shadow rays also to lights with N.L <= 0
-  bool refraction_for_opaque = false;  // trace a refraction ray for opaque materials (kt = 0) too
-  bool schlick_fresnel = false;  // Schlick's approximation, cos(theta_i) on both sides
-  double fixed_offset = 0;       // > 0: secondary rays start this far (world units) along the normal
-  // Bitwise, not ||: one test of adjacent bytes at the top of every query, no extra branches.
-  bool geometry() const { return float_geometry | textbook_sphere; }
-  bool occlusion() const { return float_geometry | textbook_sphere | nearest_hit_shadows; }
-  // Every switch off: the production renderer (the packet tracer serves only this).
-  bool production() const {
-    return !geometry() && !occlusion() && !shadow_rays_behind && !refraction_for_opaque && !schlick_fresnel &&
-           !(fixed_offset > 0);
-  }
-};
-
 struct Scene {
   Camera camera;
   int width = 960;                    // image width, pixels
@@ -146,9 +121,6 @@ struct Scene {
   std::vector<Mesh> meshes;
   // Index of the scene-file object each sphere/plane/triangle/mesh came from ("objects[i]").
   std::vector<int> sphere_object, plane_object, triangle_object, mesh_object;
-  // Built from the primitives above by prepare_scene; null: queries test every primitive.
-  std::shared_ptr<const Accelerator> accel;
-  NumericsVariant numerics;  // experiments only (bench, tests); all off when loaded
 };
 
 }  // namespace phonglab

@@ -1,17 +1,8 @@
 #include "core/shading/shading.h"
 
-#include "core/accel/accel.h"
-#include "experiments/numerics_variants.h"
+#include "core/shading/experiment.h"
 
 namespace phonglab {
-
-void prepare_scene(Scene& scene) {
-  for (Plane& pl : scene.planes) pl.normal = glm::normalize(pl.normal);
-  for (Light& l : scene.lights) {
-    if (l.type == LightType::kDirectional) l.direction = glm::normalize(l.direction);
-  }
-  scene.accel = build_scene_accel(scene);
-}
 
 double fresnel_exact(double cos_i, double eta) {
   cos_i = clamp_unit(cos_i);
@@ -25,25 +16,6 @@ double fresnel_exact(double cos_i, double eta) {
   return f > 1 ? 1 : (f < 0 ? 0 : f);
 }
 
-Bounce bounce(const Scene& scene, const Material& m, const Vec3& d, const Vec3& n, bool entering,
-              bool force_refraction) {
-  Bounce b;
-  const double cos_i = clamp_unit(-glm::dot(d, n));
-  b.eta = entering ? 1.0 / m.ior : m.ior;
-  const double k = 1 - b.eta * b.eta * (1 - cos_i * cos_i);
-  b.tir = k < 0;
-  if (uses_fresnel(m)) {
-    b.fresnel = b.tir ? 1.0
-                      : (scene.numerics.schlick_fresnel ? fresnel_schlick(cos_i, b.eta) : fresnel_exact(cos_i, b.eta));
-  }
-  set_bounce_weights(m, b);
-  b.mirror = reflect_dir(d, n);
-  if (!is_zero(b.kt) || force_refraction) {
-    b.refracted = b.tir ? b.mirror : glm::normalize(b.eta * d + (b.eta * cos_i - std::sqrt(k)) * n);
-  }
-  return b;
-}
-
 namespace {
 
 // What blocks a shadow ray, for the probe only.
@@ -52,77 +24,143 @@ struct Occluder {
   double distance = 0;  // from the shaded point P to the blocker's hit
 };
 
-// The nearest object strictly between the ends of a shadow ray from P (for the probe only).
-Occluder find_occluder(const Scene& scene, const Ray& ray, double t_max, const Vec3& p) {
-  if (auto hit = intersect(scene, ray, t_max)) return Occluder{hit->object, glm::length(hit->p - p)};
-  return {};
+// The probe's record of a hit: where, which normals, which V.
+void record_hit(ProbeNode& probe, const Hit& hit, const HitSide& side, const Vec3& v) {
+  probe.hit = true;
+  probe.t = hit.t;
+  probe.p = hit.p;
+  probe.ng = hit.ng;
+  probe.n = side.n;
+  probe.v = v;
+  probe.entering = side.entering;
+  probe.material = hit.material;
+  probe.object = hit.object;
 }
 
-// Shadow ray for one light from a surface point. Returns vis_l. Always inlined: shade's light
-// loop is the hot path, and the bench ablation's second call site must not move it out of line.
-[[gnu::always_inline]] inline bool light_visible(const Scene& scene, const Light& light, const Hit& hit, const Vec3& ng_facing,
-                   const Vec3& l, double offset, RayCounts& counts, Occluder* occluder) {
-  ++counts.shadow;
-  const Vec3 origin = offset_origin(hit.p, ng_facing, l, offset);
-  if (light.type == LightType::kDirectional) {
-    const Ray ray = make_ray(origin, l);
-    const double t_max = std::numeric_limits<double>::infinity();
-    if (occluder) *occluder = find_occluder(scene, ray, t_max, hit.p);
-    return !occluded(scene, ray, t_max);
-  }
-  // The open segment to the light, pulled in at the light's end by the same relative amount
-  // as the origin is pushed off the surface: a light lying on a surface does not shadow itself.
-  const Vec3 to_light = light.position - origin;
-  const double dist = glm::length(to_light);
-  const double t_max = dist - surface_offset(light.position, 0);
-  if (!(t_max > 0)) return true;  // the light is within rounding distance of the surface
-  const Ray ray = make_ray(origin, to_light / dist);
-  if (occluder) *occluder = find_occluder(scene, ray, t_max, hit.p);
-  return !occluded(scene, ray, t_max);
-}
-
-}  // namespace
-
-Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
-            double weight, RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye,
-            const TermsWanted& wanted) {
-  const Material& m = scene.materials[hit.material];
-  const Vec3& d = ray.dir;
-  const HitSide side = hit_side(hit, d);
-  const bool entering = side.entering;
-  const Vec3& ng_facing = side.ng;
-  const Vec3& n = side.n;
-  // V: towards the real eye (-D), or towards a moved eye ("move your head"); an eye exactly at
-  // P has no direction and falls back to -D.
-  Vec3 v = -d;
+// V at a hit: towards the real eye (-D), or towards a moved eye ("move your head"); an eye
+// exactly at P has no direction and falls back to -D.
+Vec3 view_direction(const Hit& hit, const Vec3& d, const Vec3* shading_eye) {
   if (shading_eye) {
     const Vec3 to_eye = *shading_eye - hit.p;
     const double len = glm::length(to_eye);
-    if (len > 0) v = to_eye / len;
+    if (len > 0) return to_eye / len;
   }
-  const double offset =
-      scene.numerics.fixed_offset > 0 ? scene.numerics.fixed_offset : surface_offset(scene, hit);
+  return -d;
+}
 
-  Terms terms;
-  terms.ambient = m.ka * scene.ambient;
-  if (probe) {
-    probe->hit = true;
-    probe->t = hit.t;
-    probe->p = hit.p;
-    probe->ng = hit.ng;
-    probe->n = n;
-    probe->v = v;
-    probe->entering = entering;
-    probe->material = hit.material;
-    probe->object = hit.object;
+// The specular cosine under the scene's model: R.V (Phong; `r` = R) or N.H (Blinn; `r` = H).
+double specular_cosine(SpecularModel model, const Vec3& n, const Vec3& l, const Vec3& v, double n_dot_l, Vec3& r) {
+  if (model == SpecularModel::kPhong) {
+    r = 2.0 * n_dot_l * n - l;
+    return glm::dot(r, v);
+  }
+  const Vec3 h = l + v;
+  const double len = glm::length(h);
+  r = len > 0 ? h / len : n;  // L = -V only at grazing: any H then gives N.H <= 0
+  return len > 0 ? glm::dot(n, r) : 0;
+}
+
+// The equation, compiled twice. Equation<false> is the production renderer: it never asks for
+// an experiment, and the hooks below fold to the production rules. Equation<true> routes them
+// through prepared.experiment() (the bench's ablations and numerics, core/shading/experiment.h).
+template <bool kExperiment>
+class Equation {
+ public:
+  Equation(const PreparedScene& prepared, const TraceLimits& limits, RayCounts& counts)
+      : prepared_(prepared), scene_(prepared.scene()), limits_(limits), counts_(counts) {}
+
+  Color trace(const Ray& ray, int depth, double weight, ProbeNode* probe, const Vec3* shading_eye) {
+    if (probe) {
+      probe->depth = depth;
+      probe->weight = weight;
+      probe->origin = ray.origin;
+      probe->dir = ray.dir;
+    }
+    const std::optional<Hit> hit = intersect(prepared_, ray);
+    if (!hit) {
+      if (probe) probe->total = scene_.background;
+      return scene_.background;
+    }
+    return shade(ray, *hit, depth, weight, probe, shading_eye, TermsWanted{}).sum();
   }
 
-  // Local term: lights are skipped where no term can come back (kd = ks = 0, N.L <= 0).
-  const bool has_diffuse = !is_zero(m.kd);
-  const bool has_specular = !is_zero(m.ks);
-  if (wanted.lights && (has_diffuse || has_specular || probe)) {
-    for (std::size_t li = 0; li < scene.lights.size(); ++li) {
-      const Light& light = scene.lights[li];
+  Terms shade(const Ray& ray, const Hit& hit, int depth, double weight, ProbeNode* probe, const Vec3* shading_eye,
+              const TermsWanted& wanted) {
+    const Material& m = scene_.materials[hit.material];
+    const HitSide side = hit_side(hit, ray.dir);
+    const Vec3 v = view_direction(hit, ray.dir, shading_eye);
+    const double offset = offset_of(hit);
+    Terms terms;
+    terms.ambient = m.ka * scene_.ambient;
+    if (probe) record_hit(*probe, hit, side, v);
+    // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0).
+    if (wanted.lights && (!is_zero(m.kd) || !is_zero(m.ks) || probe)) {
+      light_terms(m, hit, side, v, offset, probe, terms);
+    }
+    mirror_and_glass_terms(m, ray, hit, side, depth, weight, offset, probe, wanted, terms);
+    if (probe) {
+      probe->terms = terms;
+      probe->total = terms.sum();
+    }
+    return terms;
+  }
+
+ private:
+  // The hooks: production rules, or the experiment's.
+  double fresnel(double cos_i, double eta) const {
+    if constexpr (kExperiment) return prepared_.experiment()->fresnel(cos_i, eta);
+    return fresnel_exact(cos_i, eta);
+  }
+  double offset_of(const Hit& hit) const {
+    if constexpr (kExperiment) return prepared_.experiment()->offset(scene_, hit);
+    return surface_offset(scene_, hit);
+  }
+  bool shadow_rays_behind() const {
+    if constexpr (kExperiment) return prepared_.experiment()->shadow_rays_behind();
+    return false;
+  }
+  bool refraction_for_opaque() const {
+    if constexpr (kExperiment) return prepared_.experiment()->refraction_for_opaque();
+    return false;
+  }
+
+  // The nearest object strictly between the ends of a shadow ray from P (for the probe only).
+  Occluder find_occluder(const Ray& ray, double t_max, const Vec3& p) const {
+    if (auto hit = intersect(prepared_, ray, t_max)) return Occluder{hit->object, glm::length(hit->p - p)};
+    return {};
+  }
+
+  // Shadow ray for one light from a surface point. Returns vis_l. Always inlined: the light
+  // loop is the hot path.
+  [[gnu::always_inline]] inline bool light_visible(const Light& light, const Hit& hit, const Vec3& ng_facing,
+                                                   const Vec3& l, double offset, Occluder* occluder) {
+    ++counts_.shadow;
+    const Vec3 origin = offset_origin(hit.p, ng_facing, l, offset);
+    if (light.type == LightType::kDirectional) {
+      const Ray ray = make_ray(origin, l);
+      const double t_max = std::numeric_limits<double>::infinity();
+      if (occluder) *occluder = find_occluder(ray, t_max, hit.p);
+      return !occluded(prepared_, ray, t_max);
+    }
+    // The open segment to the light, pulled in at the light's end by the same relative amount
+    // as the origin is pushed off the surface: a light lying on a surface does not shadow itself.
+    const Vec3 to_light = light.position - origin;
+    const double dist = glm::length(to_light);
+    const double t_max = dist - surface_offset(light.position, 0);
+    if (!(t_max > 0)) return true;  // the light is within rounding distance of the surface
+    const Ray ray = make_ray(origin, to_light / dist);
+    if (occluder) *occluder = find_occluder(ray, t_max, hit.p);
+    return !occluded(prepared_, ray, t_max);
+  }
+
+  // Diffuse and specular: the sum over the lights, each behind its shadow ray.
+  void light_terms(const Material& m, const Hit& hit, const HitSide& side, const Vec3& v, double offset,
+                   ProbeNode* probe, Terms& terms) {
+    const bool has_diffuse = !is_zero(m.kd);
+    const bool has_specular = !is_zero(m.ks);
+    const Vec3& n = side.n;
+    for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
+      const Light& light = scene_.lights[li];
       if (!light.enabled) continue;
       Vec3 l;
       double dist = std::numeric_limits<double>::infinity();
@@ -144,25 +182,13 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
         pl->distance = dist;
       }
       if (!(n_dot_l > 0)) {  // light behind the surface: neither diffuse nor specular
-        if (scene.numerics.shadow_rays_behind) [[unlikely]]  // bench ablation: a ray for nothing
-          light_visible(scene, light, hit, ng_facing, l, offset, counts, nullptr);
+        if (shadow_rays_behind()) light_visible(light, hit, side.ng, l, offset, nullptr);  // a ray for nothing
         continue;
       }
-      if (!has_diffuse && !has_specular && !probe) continue;
-
       double spec = 0;
       if (has_specular || probe) {
-        double cos_spec;
         Vec3 r;
-        if (scene.specular_model == SpecularModel::kPhong) {
-          r = 2.0 * n_dot_l * n - l;
-          cos_spec = glm::dot(r, v);
-        } else {
-          const Vec3 h = l + v;
-          const double len = glm::length(h);
-          r = len > 0 ? h / len : n;  // L = -V only at grazing: any H then gives N.H <= 0
-          cos_spec = len > 0 ? glm::dot(n, r) : 0;
-        }
+        const double cos_spec = specular_cosine(scene_.specular_model, n, l, v, n_dot_l, r);
         spec = specular_factor(cos_spec, m.n);
         if (pl) {
           pl->r = r;
@@ -171,8 +197,7 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
         }
       }
       Occluder occluder;
-      const bool visible =
-          light_visible(scene, light, hit, ng_facing, l, offset, counts, probe ? &occluder : nullptr);
+      const bool visible = light_visible(light, hit, side.ng, l, offset, probe ? &occluder : nullptr);
       if (pl) {
         pl->lit_side = true;
         pl->visible = visible;
@@ -191,65 +216,73 @@ Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const
     }
   }
 
-  // Recursion for mirrors and glass.
-  // Bench ablation: also a refraction ray for opaque materials (kt = 0), as a naive tracer casts.
-  const bool force_refraction = scene.numerics.refraction_for_opaque && is_zero(m.kt);
-  if (depth < limits.max_depth && (!is_zero(m.kr) || !is_zero(m.kt) || force_refraction)) {
-    const Bounce bn = bounce(scene, m, d, n, entering, force_refraction);
-    const Color& kr = bn.kr;
-    const Color& kt = bn.kt;
+  // One child ray with weight kw along dir; nothing when kw = 0 or the path weight is too low.
+  Color child(const Color& kw, const Hit& hit, const Vec3& ng_facing, const Vec3& dir, double offset, int depth,
+              double weight, std::uint64_t& count, ProbeNode* probe, std::unique_ptr<ProbeNode>& probe_child) {
+    if (is_zero(kw)) return Color(0);
+    const double w = weight * max_channel(kw);
+    if (w < limits_.min_weight) return Color(0);
+    ++count;
+    if (probe) probe_child = std::make_unique<ProbeNode>();
+    const Ray ray_out = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
+    return kw * trace(ray_out, depth + 1, w, probe_child.get(), nullptr);
+  }
+
+  // Reflection and refraction: Whitted recursion for mirrors and glass.
+  void mirror_and_glass_terms(const Material& m, const Ray& ray, const Hit& hit, const HitSide& side, int depth,
+                              double weight, double offset, ProbeNode* probe, const TermsWanted& wanted,
+                              Terms& terms) {
+    // The ablation: also a refraction ray for opaque materials (kt = 0), as a naive tracer casts.
+    const bool force_refraction = refraction_for_opaque() && is_zero(m.kt);
+    if (!(depth < limits_.max_depth && (!is_zero(m.kr) || !is_zero(m.kt) || force_refraction))) return;
+    const Bounce bn = bounce(m, ray.dir, side.n, side.entering, force_refraction,
+                             [this](double cos_i, double eta) { return fresnel(cos_i, eta); });
     if (probe) {
-      probe->kr_eff = kr;
-      probe->kt_eff = kt;
+      probe->kr_eff = bn.kr;
+      probe->kt_eff = bn.kt;
       probe->fresnel = bn.fresnel;
       probe->tir = bn.tir;
       probe->eta = bn.eta;
     }
-    // One child ray with weight k along dir; nothing when k = 0 or the path weight is too low.
-    auto child = [&](const Color& kw, const Vec3& dir, std::uint64_t& count,
-                     std::unique_ptr<ProbeNode>& probe_child) -> Color {
-      if (is_zero(kw)) return Color(0);
-      const double w = weight * max_channel(kw);
-      if (w < limits.min_weight) return Color(0);
-      ++count;
-      if (probe) probe_child = std::make_unique<ProbeNode>();
-      const Ray ray_out = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
-      return kw * trace(scene, limits, ray_out, depth + 1, w, counts, probe_child.get());
-    };
     std::unique_ptr<ProbeNode> no_probe;
-    if (wanted.reflection) terms.reflection = child(kr, bn.mirror, counts.reflection, probe ? probe->reflection : no_probe);
-    if (wanted.refraction && (!is_zero(kt) || force_refraction)) {
-      const Vec3& dir = bn.refracted;
-      if (!is_zero(kt)) {
-        terms.refraction = child(kt, dir, counts.refraction, probe ? probe->refraction : no_probe);
-      } else {  // the ablation: traced at the parent's path weight, and multiplied by kt' = 0
-        ++counts.refraction;
-        const Ray ray_out = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
-        terms.refraction = kt * trace(scene, limits, ray_out, depth + 1, weight, counts);
-      }
+    if (wanted.reflection) {
+      terms.reflection = child(bn.kr, hit, side.ng, bn.mirror, offset, depth, weight, counts_.reflection, probe,
+                               probe ? probe->reflection : no_probe);
+    }
+    if (!wanted.refraction) return;
+    if (!is_zero(bn.kt)) {
+      terms.refraction = child(bn.kt, hit, side.ng, bn.refracted, offset, depth, weight, counts_.refraction, probe,
+                               probe ? probe->refraction : no_probe);
+    } else if (force_refraction) {  // the ablation: traced at the parent's path weight, times kt' = 0
+      ++counts_.refraction;
+      const Ray ray_out = make_ray(offset_origin(hit.p, side.ng, bn.refracted, offset), bn.refracted);
+      terms.refraction = bn.kt * trace(ray_out, depth + 1, weight, nullptr, nullptr);
     }
   }
-  if (probe) {
-    probe->terms = terms;
-    probe->total = terms.sum();
+
+  const PreparedScene& prepared_;
+  const Scene& scene_;
+  const TraceLimits& limits_;
+  RayCounts& counts_;
+};
+
+}  // namespace
+
+Terms shade(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
+            double weight, RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye,
+            const TermsWanted& wanted) {
+  if (prepared.experiment()) [[unlikely]] {
+    return Equation<true>(prepared, limits, counts).shade(ray, hit, depth, weight, probe, shading_eye, wanted);
   }
-  return terms;
+  return Equation<false>(prepared, limits, counts).shade(ray, hit, depth, weight, probe, shading_eye, wanted);
 }
 
-Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
+Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, int depth, double weight,
             RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye) {
-  if (probe) {
-    probe->depth = depth;
-    probe->weight = weight;
-    probe->origin = ray.origin;
-    probe->dir = ray.dir;
+  if (prepared.experiment()) [[unlikely]] {
+    return Equation<true>(prepared, limits, counts).trace(ray, depth, weight, probe, shading_eye);
   }
-  const std::optional<Hit> hit = intersect(scene, ray);
-  if (!hit) {
-    if (probe) probe->total = scene.background;
-    return scene.background;
-  }
-  return shade(scene, limits, ray, *hit, depth, weight, counts, probe, shading_eye).sum();
+  return Equation<false>(prepared, limits, counts).trace(ray, depth, weight, probe, shading_eye);
 }
 
 }  // namespace phonglab

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/accel/prepared_scene.h"
 #include "core/geometry/geometry.h"
 #include "core/scene/math.h"
 #include "core/scene/scene.h"
@@ -38,11 +39,6 @@ struct RayCounts {
     return *this;
   }
 };
-
-// Normalises the scene's direction vectors (plane normals, directional lights) in place and
-// builds its acceleration structure (scene.accel); run it again after any geometry edit.
-// Every function below expects a prepared scene.
-void prepare_scene(Scene& scene);
 
 // Exact unpolarised Fresnel reflectance for a ray arriving with cos_i = -D.N >= 0, where
 // eta = n_incident / n_transmitted. 1 under total internal reflection.
@@ -89,9 +85,24 @@ inline void set_bounce_weights(const Material& m, Bounce& b) {
     b.kt = m.kt;
   }
 }
-// For a ray with direction d meeting material m with facing normal n.
-Bounce bounce(const Scene& scene, const Material& m, const Vec3& d, const Vec3& n, bool entering,
-              bool force_refraction = false);
+// For a ray with direction d meeting material m with facing normal n. `fresnel(cos_i, eta)`
+// gives F: fresnel_exact, except in the bench's experiments.
+template <class Fresnel = double (*)(double, double)>
+Bounce bounce(const Material& m, const Vec3& d, const Vec3& n, bool entering, bool force_refraction = false,
+              Fresnel fresnel = fresnel_exact) {
+  Bounce b;
+  const double cos_i = clamp_unit(-glm::dot(d, n));
+  b.eta = entering ? 1.0 / m.ior : m.ior;
+  const double k = 1 - b.eta * b.eta * (1 - cos_i * cos_i);
+  b.tir = k < 0;
+  if (uses_fresnel(m)) b.fresnel = b.tir ? 1.0 : fresnel(cos_i, b.eta);
+  set_bounce_weights(m, b);
+  b.mirror = reflect_dir(d, n);
+  if (!is_zero(b.kt) || force_refraction) {
+    b.refracted = b.tir ? b.mirror : glm::normalize(b.eta * d + (b.eta * cos_i - std::sqrt(k)) * n);
+  }
+  return b;
+}
 
 // One light's part in a probed hit.
 struct ProbeLight {
@@ -150,12 +161,12 @@ struct TraceLimits {
 // `shading_eye`, when given, is the eye used for V at this ray's hit only ("move your head":
 // V = normalize(eye - P) instead of -D); the reflected and refracted children still follow the
 // real ray and use their own -D. Without it the result is bit-identical to the plain equation.
-Color trace(const Scene& scene, const TraceLimits& limits, const Ray& ray, int depth, double weight,
+Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, int depth, double weight,
             RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
 
 // Shading of a known hit, term by term (`shading_eye` as for trace: V at this hit only). Terms
 // that `wanted` leaves out are 0.
-Terms shade(const Scene& scene, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
+Terms shade(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
             double weight, RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr,
             const TermsWanted& wanted = {});
 

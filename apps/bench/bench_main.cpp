@@ -1,0 +1,110 @@
+// phonglab-bench: the speed-versus-error report and the frame timer, run as `phonglab-cli bench`
+// (the CLI executes this program, installed beside it). Usage in phonglab-cli --help.
+// Exit codes: 0 success, 1 bad input, 2 bad usage.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/bench/bench_accel.h"
+#include "apps/bench/bench_report.h"
+#include "apps/common/args.h"
+#include "core/packet/packet.h"
+#include "core/render/render.h"
+
+namespace {
+
+using namespace phonglab;
+using namespace phonglab::cli;
+
+constexpr const char* kUsage = R"(usage: phonglab-cli bench [--out DIR] [--quick] [--threads N] [--only accel]
+       phonglab-cli bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
+  The speed-versus-error report: report.md, CSV files and SVG plots in DIR
+  (default bench-out/); --quick finishes in about a minute. --only accel: the
+  acceleration section alone (accel.md, accel.csv). With SCENE: time Whitted
+  frames (1 spp) of one scene and print the median; --scalar: without the packet
+  tracer (the same image, traced ray by ray).
+)";
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Frames of one scene, timed.
+int time_frames(const std::string& scene_arg, int frames, int width, int height, int threads, bool scalar) {
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  scene->width = width;
+  scene->height = height;
+  const PreparedScene prepared(std::move(*scene));
+  RenderOptions options;
+  options.threads = threads;
+  options.packets = !scalar;
+  std::vector<double> ms;
+  std::vector<double> mrays;
+  RayCounts rays;
+  for (int f = 0; f < frames; ++f) {
+    Accumulator accum;
+    accum.reset(width, height);
+    const PassStats pass = render_pass(prepared, options, accum);
+    ms.push_back(pass.seconds * 1000);
+    mrays.push_back(static_cast<double>(pass.rays.total()) / pass.seconds / 1e6);
+    rays = pass.rays;
+  }
+  std::printf("scene %s, %dx%d, 1 spp, %d threads, %zu frames, %s tracer\n", scene_arg.c_str(), width, height,
+              resolve_thread_count(options.threads), ms.size(),
+              options.packets && packet_tracing_applies(prepared) ? "packet (AVX2)" : "scalar");
+  std::printf("rays per frame: %llu (primary %llu, shadow %llu, reflection %llu, refraction %llu)\n",
+              static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
+              static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.reflection),
+              static_cast<unsigned long long>(rays.refraction));
+  std::printf("median frame: %.2f ms, median %.1f Mrays/s (min %.2f ms, max %.2f ms)\n", median(ms), median(mrays),
+              *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()));
+  return kExitOk;
+}
+
+int run(Args& args) {
+  const auto frames = args.take_int("--frames", 1, 10000);
+  const auto width = args.take_int("--width", 1, 16384);
+  const auto height = args.take_int("--height", 1, 16384);
+  const auto threads = args.take_int("--threads", 0, 1024);
+  const auto out_dir = args.take_value("--out");
+  const bool quick = args.take_flag("--quick");
+  const auto only = args.take_value("--only");
+  const bool scalar = args.take_flag("--scalar");
+  const auto positional = args.take_positional();
+  if (only) {
+    if (*only != "accel" || positional) throw UsageError{"bench --only takes 'accel' and no SCENE"};
+    return write_accel_report(AccelBenchOptions{quick, threads.value_or(0)}, out_dir.value_or("bench-out"));
+  }
+  if (!positional) {  // no SCENE: the whole speed-versus-error report
+    BenchReportOptions report;
+    report.out_dir = out_dir.value_or(report.out_dir);
+    report.quick = quick;
+    report.threads = threads.value_or(0);
+    return run_bench_report(report);
+  }
+  return time_frames(*positional, frames.value_or(15), width.value_or(1280), height.value_or(720),
+                     threads.value_or(0), scalar);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> words(argv + 1, argv + argc);
+  if (std::find(words.begin(), words.end(), "--help") != words.end()) {
+    std::cout << kUsage;
+    return kExitOk;
+  }
+  Args args(std::move(words));
+  try {
+    return run(args);
+  } catch (const UsageError& e) {
+    std::cerr << "phonglab-cli bench: " << e.message << "\n(see phonglab-cli --help)\n";
+    return kExitUsage;
+  }
+}

@@ -1,0 +1,45 @@
+// A scene made ready for rendering, once per snapshot: the file's data with its directions
+// normalised, the accelerator built over its primitives and, for the bench only, an experiment.
+// Immutable: an edit makes a new one, so no copy can carry a stale accelerator.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "core/geometry/geometry.h"
+#include "core/scene/scene.h"
+
+namespace phonglab {
+
+class Experiment;  // core/shading/experiment.h
+
+class PreparedScene {
+ public:
+  using AccelFactory = std::function<std::shared_ptr<const Accelerator>(const Scene&)>;
+
+  // The production renderer's: the default accelerator (build_scene_accel), no experiment.
+  explicit PreparedScene(Scene scene);
+  // With the accelerator `make_accel` builds over the normalised scene (benchmarks, tests: a
+  // forced BVH, Embree, the experiments' geometry), and optionally an experiment.
+  PreparedScene(Scene scene, const AccelFactory& make_accel, std::shared_ptr<const Experiment> experiment = nullptr);
+
+  const Scene& scene() const { return scene_; }
+  const Accelerator* accel() const { return accel_.get(); }  // null: queries test every primitive
+  const Experiment* experiment() const { return experiment_.get(); }  // null: the production renderer
+
+ private:
+  Scene scene_;
+  std::shared_ptr<const Accelerator> accel_;
+  std::shared_ptr<const Experiment> experiment_;
+};
+
+// Nearest hit with t in (0, t_max), through the accelerator when there is one.
+std::optional<Hit> intersect(const PreparedScene& prepared, const Ray& ray,
+                             double t_max = std::numeric_limits<double>::infinity());
+
+// Whether anything lies on the ray with t in (0, t_max). Stops at the first hit found.
+bool occluded(const PreparedScene& prepared, const Ray& ray, double t_max);
+
+}  // namespace phonglab

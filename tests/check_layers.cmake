@@ -1,0 +1,69 @@
+# The layering rule (docs/architecture.md), checked on every #include of the tree:
+#   cmake -DROOT=<source dir> -P tests/check_layers.cmake
+# Each folder may include the project's headers of the layers listed for it, and none of the
+# libraries listed as forbidden. Link lines enforce the same for code; this catches a header
+# reached without linking (an inline helper, a type) that the link lines cannot see.
+set(_rules
+  "src/core|core/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"
+  "src/io|core/ io/|imgui GL/ glad GLFW embree3"
+  "src/experiments|core/ experiments/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"
+  "src/interaction|core/ interaction/|imgui GL/ glad GLFW embree3"
+  "src/ui|core/ io/ interaction/ ui/|GL/ glad GLFW embree3"
+  "apps/common|core/ io/ apps/common/|imgui GL/ glad GLFW embree3"
+  "apps/cli|core/ io/ apps/common/ apps/cli/|imgui GL/ glad GLFW embree3"
+  "apps/previewer|core/ io/ interaction/ ui/ apps/common/ apps/previewer/|embree3"
+  "apps/bench|core/ io/ experiments/ apps/common/ apps/bench/|imgui GL/ glad GLFW"
+)
+set(_project_prefixes core/ io/ experiments/ interaction/ ui/ apps/)
+set(_errors 0)
+foreach(rule IN LISTS _rules)
+  string(REPLACE "|" ";" parts "${rule}")
+  list(GET parts 0 folder)
+  list(GET parts 1 allowed)
+  list(GET parts 2 forbidden)
+  separate_arguments(allowed)
+  separate_arguments(forbidden)
+  file(GLOB_RECURSE files "${ROOT}/${folder}/*.h" "${ROOT}/${folder}/*.cpp")
+  foreach(f IN LISTS files)
+    file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
+    foreach(line IN LISTS lines)
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[<\"]([^>\"]+)[>\"].*" "\\1" header "${line}")
+      set(project_header FALSE)
+      foreach(p IN LISTS _project_prefixes)
+        string(FIND "${header}" "${p}" at)
+        if(at EQUAL 0)
+          set(project_header TRUE)
+        endif()
+      endforeach()
+      set(bad "")
+      if(project_header)
+        set(ok FALSE)
+        foreach(p IN LISTS allowed)
+          string(FIND "${header}" "${p}" at)
+          if(at EQUAL 0)
+            set(ok TRUE)
+          endif()
+        endforeach()
+        if(NOT ok)
+          set(bad "a layer ${folder} may not see")
+        endif()
+      else()
+        foreach(p IN LISTS forbidden)
+          string(FIND "${header}" "${p}" at)
+          if(at EQUAL 0)
+            set(bad "a library ${folder} may not use")
+          endif()
+        endforeach()
+      endif()
+      if(bad)
+        file(RELATIVE_PATH rel "${ROOT}" "${f}")
+        message("${rel}: includes ${header}: ${bad}")
+        math(EXPR _errors "${_errors} + 1")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(_errors GREATER 0)
+  message(FATAL_ERROR "${_errors} include(s) break the layering rule (docs/architecture.md)")
+endif()
+message(STATUS "layering: every include follows docs/architecture.md")
