@@ -1,4 +1,5 @@
 #include "apps/bench/bench_accel.h"
+#include "apps/bench/bench_common.h"
 
 #include <algorithm>
 #include <atomic>
@@ -28,25 +29,10 @@
 namespace phonglab {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using namespace bench;
 
 constexpr double kTargetRatioVsEmbree = 3.0;  // issue 6: lecture at least 3x Embree single-ray
 constexpr double kTargetMeshVsLecture = 3.0;  // issue 6: the big mesh frame within 3x lecture's
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-std::string fmt(const char* format, double a) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, a);
-  return buf;
-}
 
 std::string mib(std::size_t bytes) { return fmt("%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0)); }
 
@@ -150,10 +136,6 @@ PrimaryCast cast_primary_packets(const PreparedScene& scene, int w, int h, int t
       hits += static_cast<std::uint64_t>(tracer.cast_primary(frame, x0, y0, x1, y1));
     }
   });
-}
-
-Scene load_embedded(std::string_view name) {
-  return *load_scene_arg(std::string(name)).scene;  // embedded scenes always load (tests check it)
 }
 
 // Timings of one scene's Whitted frame by contender and thread count.

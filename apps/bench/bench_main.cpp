@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "apps/bench/bench_accel.h"
+#include "apps/bench/bench_common.h"
 #include "apps/bench/bench_report.h"
 #include "apps/common/args.h"
 #include "core/packet/packet.h"
@@ -18,6 +19,7 @@ namespace {
 
 using namespace phonglab;
 using namespace phonglab::cli;
+using bench::median;
 
 constexpr const char* kUsage = R"(usage: phonglab-cli bench [--out DIR] [--quick] [--threads N] [--only accel]
        phonglab-cli bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
@@ -27,12 +29,6 @@ constexpr const char* kUsage = R"(usage: phonglab-cli bench [--out DIR] [--quick
   frames (1 spp) of one scene and print the median; --scalar: without the packet
   tracer (the same image, traced ray by ray).
 )";
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Frames of one scene, timed.
 int time_frames(const std::string& scene_arg, int frames, int width, int height, int threads, bool scalar) {

@@ -214,12 +214,7 @@ class EmbreeAccel final : public Accelerator {
   std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) const override {
     double best = t_max;
     ObjectRef obj;
-    for (std::size_t i = 0; i < scene.planes.size(); ++i) {
-      if (auto t = intersect_plane(scene.planes[i], ray); t && *t < best) {
-        best = *t;
-        obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
-      }
-    }
+    if (const int i = nearest_plane(scene.planes, ray, best); i >= 0) obj = {ObjectRef::Kind::kPlane, i};
     SphereQuery q = make_sphere_query(ray, spheres_.data(), best);
     RTCRayHit rh = make_rtc_ray_hit(ray, best);
     rtcIntersect1(embree_.scene(), &q.context, &rh);
@@ -244,9 +239,7 @@ class EmbreeAccel final : public Accelerator {
   }
 
   bool occluded(const Scene& scene, const Ray& ray, double t_max) const override {
-    for (const Plane& pl : scene.planes) {
-      if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
-    }
+    if (any_plane(scene.planes, ray, t_max)) return true;
     SphereQuery q = make_sphere_query(ray, spheres_.data(), t_max);
     RTCRayHit rh = make_rtc_ray_hit(ray, t_max);
     rh.ray.tfar = round_down(t_max);  // never an occluder at or beyond the end of the segment

@@ -203,6 +203,12 @@ class Viewer {
   void step_script(double now);                  // injects this frame's input, runs commands until one waits
   bool script_wait_done(double now);             // whether the current wait is over (fails on timeout)
   bool run_script_command(const ScriptCommand& command, double now);  // false: the script failed
+  struct ScriptStep;  // one command being run (viewer_script.cpp)
+  std::optional<bool> script_wait_command(ScriptStep& step);
+  std::optional<bool> script_input_command(ScriptStep& step);
+  std::optional<bool> script_item_command(ScriptStep& step);
+  std::optional<bool> script_file_command(ScriptStep& step);
+  std::optional<bool> script_other_command(ScriptStep& step);
   bool script_set(const std::vector<std::string>& words);             // the `set` command
   void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
   void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input

@@ -245,34 +245,63 @@ bool Viewer::script_wait_done(double now) {
   return false;
 }
 
-bool Viewer::run_script_command(const ScriptCommand& command, double now) {
-  const std::vector<std::string>& w = command.words;
-  const std::string& name = w[0];
-  const auto fail = [&](const std::string& message) {
-    fail_script(command, message);
+// One command of a script being run: its words, when it started, and the ways it ends.
+struct Viewer::ScriptStep {
+  Viewer& viewer;
+  const ScriptCommand& command;
+  const std::vector<std::string>& w;
+  double now;
+  bool fail(const std::string& message) {
+    viewer.fail_script(command, message);
     return false;
-  };
-  const auto wait_for = [&](ScriptWait kind, std::size_t timeout_word) {
+  }
+  // Waits for `kind`, with the timeout in word `timeout_word` when there is one.
+  bool wait_for(ScriptWait kind, std::size_t timeout_word) {
     double timeout = kDefaultWaitSeconds;
     if (w.size() > timeout_word && !parse_double(w[timeout_word], timeout)) return fail("bad timeout");
-    script_wait_ = kind;
-    wait_deadline_ = now + timeout;
+    viewer.script_wait_ = kind;
+    viewer.wait_deadline_ = now + timeout;
     return true;
-  };
+  }
+};
 
+// Waits: for frames, the renderer, an image, a file, and the edit benchmark. nullopt: not one of them.
+std::optional<bool> Viewer::script_wait_command(ScriptStep& step) {
+  const std::vector<std::string>& w = step.w;
+  const std::string& name = w[0];
   if (name == "wait_frames") {
     int frames = 0;
-    if (w.size() != 2 || !parse_int(w[1], frames)) return fail("usage: wait_frames N");
+    if (w.size() != 2 || !parse_int(w[1], frames)) return step.fail("usage: wait_frames N");
     wait_frames_left_ = frames;
-    return wait_for(ScriptWait::kFrames, 99);
+    return step.wait_for(ScriptWait::kFrames, 99);
   }
-  if (name == "wait_idle") return wait_for(ScriptWait::kIdle, 1);
-  if (name == "wait_image") return wait_for(ScriptWait::kImage, 1);
+  if (name == "wait_idle") return step.wait_for(ScriptWait::kIdle, 1);
+  if (name == "wait_image") return step.wait_for(ScriptWait::kImage, 1);
   if (name == "wait_file") {
-    if (w.size() < 2) return fail("usage: wait_file FILE [TIMEOUT]");
+    if (w.size() < 2) return step.fail("usage: wait_file FILE [TIMEOUT]");
     wait_file_ = w[1];
-    return wait_for(ScriptWait::kFile, 2);
+    return step.wait_for(ScriptWait::kFile, 2);
   }
+  if (name == "bench_edits") {
+    int count = 0;
+    if (w.size() != 3 || !parse_int(w[1], count) || count < 1 || (w[2] != "material" && w[2] != "camera")) {
+      return step.fail("usage: bench_edits N material|camera");
+    }
+    bench_left_ = count;
+    bench_kind_ = w[2];
+    bench_gap_frames_ = 0;
+    bench_waiting_image_ = false;
+    script_wait_ = ScriptWait::kBench;
+    wait_deadline_ = step.now + 10.0 * count + kDefaultWaitSeconds;
+    return true;
+  }
+  return std::nullopt;
+}
+
+// Real input: drags, clicks, scrolls, keys, probes, the window size. nullopt: not one of them.
+std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
+  const std::vector<std::string>& w = step.w;
+  const std::string& name = w[0];
   if (name == "drag") {
     // drag BUTTON X0 Y0 X1 Y1 [STEPS] [shift]
     int button = w.size() >= 6 ? mouse_button(w[1]) : -1;
@@ -280,12 +309,12 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     int steps = 10;
     if (button < 0 || !parse_double(w[2], x0) || !parse_double(w[3], y0) || !parse_double(w[4], x1) ||
         !parse_double(w[5], y1) || (w.size() > 6 && !parse_int(w[6], steps)) || steps < 1) {
-      return fail("usage: drag left|right|middle X0 Y0 X1 Y1 [STEPS] [shift]");
+      return step.fail("usage: drag left|right|middle X0 Y0 X1 Y1 [STEPS] [shift]");
     }
     const bool shift = w.size() > 7 && w[7] == "shift";
     push_drag(button, ImVec2(static_cast<float>(x0), static_cast<float>(y0)),
               ImVec2(static_cast<float>(x1), static_cast<float>(y1)), steps, shift);
-    return wait_for(ScriptWait::kInput, 99);
+    return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "drag_light") {
     // drag_light I DX DY: grabs light I's marker where it is drawn and drags it by (DX, DY).
@@ -294,21 +323,21 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     const std::vector<Light>& lights = doc_.scene().lights;
     if (w.size() != 4 || !parse_int(w[1], index) || !parse_double(w[2], dx) || !parse_double(w[3], dy) ||
         index < 0 || index >= static_cast<int>(lights.size())) {
-      return fail("usage: drag_light I DX DY");
+      return step.fail("usage: drag_light I DX DY");
     }
     // Where its marker (or its arrow at the edge) was drawn last frame: what a user would grab.
     const auto marker = std::find_if(markers_.begin(), markers_.end(),
                                      [&](const ui::LightMarker& m) { return m.index == index; });
-    if (marker == markers_.end()) return fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
+    if (marker == markers_.end()) return step.fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
     const ImVec2 from = marker->pos;
     push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), 10, false);
-    return wait_for(ScriptWait::kInput, 99);
+    return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "click" || name == "scroll") {
     double x = 0, y = 0, amount = 0;
     if (w.size() < 3 || !parse_double(w[1], x) || !parse_double(w[2], y) ||
         (name == "scroll" && (w.size() != 4 || !parse_double(w[3], amount)))) {
-      return fail("usage: click X Y | scroll X Y CLICKS");
+      return step.fail("usage: click X Y | scroll X Y CLICKS");
     }
     const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
     if (name == "click") {
@@ -322,17 +351,17 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
       input_steps_.push_back(act);
       input_steps_.push_back(hover);
     }
-    return wait_for(ScriptWait::kInput, 99);
+    return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "key") {
     const int key = w.size() >= 2 ? key_code(w[1]) : -1;
-    if (key < 0) return fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
+    if (key < 0) return step.fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
     InputStep press;
     press.pos = ImGui::GetIO().MousePos;
     for (std::size_t i = 2; i < w.size(); ++i) {
       if (w[i] == "ctrl") press.ctrl = true;
       else if (w[i] == "shift") press.shift = true;
-      else return fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
+      else return step.fail("usage: key F|R|H|ESCAPE|<letter> [ctrl] [shift]");
     }
     press.key = key;
     press.key_down = true;
@@ -343,23 +372,38 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     // The press also arrives as a key event, as GLFW's callback delivers it (the viewer's
     // shortcuts read events; ImGui's widgets read the key state above).
     platform_.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
-    return wait_for(ScriptWait::kInput, 99);
+    return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "probe" || name == "ctrl_click") {
     double x = 0, y = 0;
-    if (w.size() != 3 || !parse_double(w[1], x) || !parse_double(w[2], y)) return fail("usage: probe|ctrl_click X Y");
+    if (w.size() != 3 || !parse_double(w[1], x) || !parse_double(w[2], y)) return step.fail("usage: probe|ctrl_click X Y");
     const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
     if (name == "probe") {
       probe_at(at);
-      if (!probe_) return fail("nothing to probe (no scene yet)");
+      if (!probe_) return step.fail("nothing to probe (no scene yet)");
       return true;
     }
     push_click(at, true);
     InputStep after;  // Ctrl released again
     after.pos = at;
     input_steps_.push_back(after);
-    return wait_for(ScriptWait::kInput, 99);
+    return step.wait_for(ScriptWait::kInput, 99);
   }
+  if (name == "resize") {
+    int width = 0, height = 0;
+    if (w.size() != 3 || !parse_int(w[1], width) || !parse_int(w[2], height) || width < 1 || height < 1) {
+      return step.fail("usage: resize W H");
+    }
+    glfwSetWindowSize(platform_.window(), width, height);
+    return true;
+  }
+  return std::nullopt;
+}
+
+// Widgets found by name, edits (set, undo, redo, solo). nullopt: not one of them.
+std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
+  const std::vector<std::string>& w = step.w;
+  const std::string& name = w[0];
   if (name == "undo" || name == "redo" || name == "snapshot_a") {
     if (name == "undo") undo();
     else if (name == "redo") redo();
@@ -370,91 +414,26 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
     int index = 0;
     if (w.size() != 2 || !parse_int(w[1], index) || index < 0 ||
         index >= static_cast<int>(doc_.scene().lights.size())) {
-      return fail("usage: solo I");
+      return step.fail("usage: solo I");
     }
     ui::toggle_solo(doc_.scene().lights, solo_, index);
     scene_edited_ = true;
     return true;
   }
-  if (name == "figure") {
-    if (w.size() != 2) return fail("usage: figure FILE.png");
-    save_figure(w[1]);
-    if (figure_status_.rfind("saved ", 0) != 0) return fail(figure_status_);
-    return true;
-  }
   if (name == "set") {
-    if (!script_set(w)) return fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
+    if (!script_set(w)) return step.fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
                                     "position|direction|intensity|enabled V.. | set camera position|look_at|up|fov V.. | "
                                     "set render target_spp|resolution_scale|threads|term V | set display exposure|srgb|stats V | "
                                     "set instruments probe_mode|multiples|compare|wipe|gain|head|head_angle|ray_tree|tree_shadows|"
                                     "tree_secondary|tree_arrows|tree_legend|depth_cut|heat V");
     return true;
   }
-  if (name == "resize") {
-    int width = 0, height = 0;
-    if (w.size() != 3 || !parse_int(w[1], width) || !parse_int(w[2], height) || width < 1 || height < 1) {
-      return fail("usage: resize W H");
-    }
-    glfwSetWindowSize(platform_.window(), width, height);
-    return true;
-  }
-  if (name == "screenshot") {
-    if (w.size() != 2) return fail("usage: screenshot FILE.png");
-    screenshot_request_ = w[1];
-    // Taken when this frame is drawn: later commands wait for the next frame so they
-    // cannot change what it shows (or resize the window under it).
-    wait_frames_left_ = 1;
-    return wait_for(ScriptWait::kFrames, 99);
-  }
-  if (name == "save_png" || name == "save_pfm") {
-    if (w.size() != 2) return fail("usage: save_png|save_pfm FILE");
-    if (name == "save_png") save_png(w[1]);
-    else save_pfm(w[1]);
-    if (screenshot_state_.status.rfind("saved ", 0) != 0) return fail(screenshot_state_.status);
-    return true;
-  }
-  if (name == "open") {
-    if (w.size() != 2) return fail("usage: open SCENE");
-    request(PendingAction{PendingAction::Kind::kOpen, w[1]});
-    return true;
-  }
-  if (name == "save_as") {
-    if (w.size() != 2) return fail("usage: save_as FILE");
-    file_state_.path_field = w[1];
-    save_scene(true);
-    if (doc_.dirty()) return fail(file_state_.error_text);
-    return true;
-  }
-  if (name == "close") {
-    glfwSetWindowShouldClose(platform_.window(), GLFW_TRUE);  // as the window manager's close button
-    return true;
-  }
-  if (name == "modal") {
-    constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload";
-    if (w.size() != 2) return fail(kUsage);
-    if (!guard_visible_ && !conflict_visible_) return fail("no unsaved-changes or changed-on-disk dialog is open");
-    if (w[1] == "save") scripted_choice_ = ui::GuardChoice::kSave;
-    else if (w[1] == "save_as") scripted_choice_ = ui::GuardChoice::kSaveAs;
-    else if (w[1] == "discard") scripted_choice_ = ui::GuardChoice::kDiscard;
-    else if (w[1] == "cancel") scripted_choice_ = ui::GuardChoice::kCancel;
-    else if (w[1] == "overwrite") scripted_choice_ = ui::GuardChoice::kOverwrite;
-    else if (w[1] == "reload") scripted_choice_ = ui::GuardChoice::kReload;
-    else return fail(kUsage);
-    return true;
-  }
-  if (name == "save") {
-    // The Save button, through the same checks: a file changed on disk opens its dialog, a
-    // refusal (an embedded scene, an OBJ) shows in the Scene panel and in dump_state's error.
-    if (w.size() != 1) return fail("usage: save");
-    save_scene(false);
-    return true;
-  }
   if (name == "show_item") {
     // show_item NAME: scrolls the sidebar until the widget is in view (nothing is clicked).
-    if (w.size() != 2) return fail("usage: show_item NAME");
+    if (w.size() != 2) return step.fail("usage: show_item NAME");
     item_locations_.scroll_to = w[1];
     wait_frames_left_ = 3;
-    return wait_for(ScriptWait::kFrames, 99);
+    return step.wait_for(ScriptWait::kFrames, 99);
   }
   if (name == "click_item" || name == "drag_item" || name == "type_item") {
     // Real (injected) mouse input on a widget found by name (docs/previewer.md lists the names):
@@ -473,35 +452,93 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
       ok = w.size() == 3;
       if (ok) action.text = w[2];
     }
-    if (!ok) return fail("usage: click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT");
+    if (!ok) return step.fail("usage: click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT");
     item_action_ = action;
     item_locations_.scroll_to = action.name;
     wait_frames_left_ = 3;  // the scroll lands, the widget is drawn where it will be clicked
-    return wait_for(ScriptWait::kItem, 99);
+    return step.wait_for(ScriptWait::kItem, 99);
+  }
+  return std::nullopt;
+}
+
+// Files: figures, screenshots, images, scenes, dialogs, dump_state. nullopt: not one of them.
+std::optional<bool> Viewer::script_file_command(ScriptStep& step) {
+  const std::vector<std::string>& w = step.w;
+  const std::string& name = w[0];
+  if (name == "figure") {
+    if (w.size() != 2) return step.fail("usage: figure FILE.png");
+    save_figure(w[1]);
+    if (figure_status_.rfind("saved ", 0) != 0) return step.fail(figure_status_);
+    return true;
+  }
+  if (name == "screenshot") {
+    if (w.size() != 2) return step.fail("usage: screenshot FILE.png");
+    screenshot_request_ = w[1];
+    // Taken when this frame is drawn: later commands wait for the next frame so they
+    // cannot change what it shows (or resize the window under it).
+    wait_frames_left_ = 1;
+    return step.wait_for(ScriptWait::kFrames, 99);
+  }
+  if (name == "save_png" || name == "save_pfm") {
+    if (w.size() != 2) return step.fail("usage: save_png|save_pfm FILE");
+    if (name == "save_png") save_png(w[1]);
+    else save_pfm(w[1]);
+    if (screenshot_state_.status.rfind("saved ", 0) != 0) return step.fail(screenshot_state_.status);
+    return true;
+  }
+  if (name == "open") {
+    if (w.size() != 2) return step.fail("usage: open SCENE");
+    request(PendingAction{PendingAction::Kind::kOpen, w[1]});
+    return true;
+  }
+  if (name == "save_as") {
+    if (w.size() != 2) return step.fail("usage: save_as FILE");
+    file_state_.path_field = w[1];
+    save_scene(true);
+    if (doc_.dirty()) return step.fail(file_state_.error_text);
+    return true;
+  }
+  if (name == "close") {
+    glfwSetWindowShouldClose(platform_.window(), GLFW_TRUE);  // as the window manager's close button
+    return true;
+  }
+  if (name == "modal") {
+    constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload";
+    if (w.size() != 2) return step.fail(kUsage);
+    if (!guard_visible_ && !conflict_visible_) return step.fail("no unsaved-changes or changed-on-disk dialog is open");
+    if (w[1] == "save") scripted_choice_ = ui::GuardChoice::kSave;
+    else if (w[1] == "save_as") scripted_choice_ = ui::GuardChoice::kSaveAs;
+    else if (w[1] == "discard") scripted_choice_ = ui::GuardChoice::kDiscard;
+    else if (w[1] == "cancel") scripted_choice_ = ui::GuardChoice::kCancel;
+    else if (w[1] == "overwrite") scripted_choice_ = ui::GuardChoice::kOverwrite;
+    else if (w[1] == "reload") scripted_choice_ = ui::GuardChoice::kReload;
+    else return step.fail(kUsage);
+    return true;
+  }
+  if (name == "save") {
+    // The Save button, through the same checks: a file changed on disk opens its dialog, a
+    // refusal (an embedded scene, an OBJ) shows in the Scene panel and in dump_state's error.
+    if (w.size() != 1) return step.fail("usage: save");
+    save_scene(false);
+    return true;
   }
   if (name == "dump_state") {
-    if (w.size() != 2) return fail("usage: dump_state FILE");
+    if (w.size() != 2) return step.fail("usage: dump_state FILE");
     write_state(w[1]);
     return true;
   }
   if (name == "touch") {
-    if (w.size() != 2) return fail("usage: touch FILE");
+    if (w.size() != 2) return step.fail("usage: touch FILE");
     std::ofstream(w[1]) << "\n";
     return true;
   }
-  if (name == "bench_edits") {
-    int count = 0;
-    if (w.size() != 3 || !parse_int(w[1], count) || count < 1 || (w[2] != "material" && w[2] != "camera")) {
-      return fail("usage: bench_edits N material|camera");
-    }
-    bench_left_ = count;
-    bench_kind_ = w[2];
-    bench_gap_frames_ = 0;
-    bench_waiting_image_ = false;
-    script_wait_ = ScriptWait::kBench;
-    wait_deadline_ = now + 10.0 * count + kDefaultWaitSeconds;
-    return true;
-  }
+  return std::nullopt;
+}
+
+// The script itself: log lines, statistics, fail and quit. nullopt: not one of them.
+std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
+  const std::vector<std::string>& w = step.w;
+  const std::string& name = w[0];
   if (name == "log") {
     std::string text;
     for (std::size_t i = 1; i < w.size(); ++i) text += (i > 1 ? " " : "") + w[i];
@@ -520,13 +557,22 @@ bool Viewer::run_script_command(const ScriptCommand& command, double now) {
   if (name == "fail") {
     std::string text;
     for (std::size_t i = 1; i < w.size(); ++i) text += (i > 1 ? " " : "") + w[i];
-    return fail(text.empty() ? "fail command reached" : text);
+    return step.fail(text.empty() ? "fail command reached" : text);
   }
   if (name == "quit") {
     quit_ = true;
     return true;
   }
-  return fail("unknown command");
+  return std::nullopt;
+}
+
+bool Viewer::run_script_command(const ScriptCommand& command, double now) {
+  ScriptStep step{*this, command, command.words, now};
+  for (const auto group : {&Viewer::script_wait_command, &Viewer::script_input_command, &Viewer::script_item_command,
+                           &Viewer::script_file_command, &Viewer::script_other_command}) {
+    if (const std::optional<bool> done = (this->*group)(step)) return *done;
+  }
+  return step.fail("unknown command");
 }
 
 bool Viewer::script_set(const std::vector<std::string>& w) {

@@ -18,17 +18,6 @@
 
 namespace phonglab {
 
-std::string ObjProblem::to_string() const {
-  std::string s = file;
-  if (line > 0) {
-    s += ':';
-    s += std::to_string(line);
-  }
-  s += ": ";
-  s += message;
-  return s;
-}
-
 Material default_mesh_material() {
   Material m;
   m.name = "default";
@@ -49,7 +38,7 @@ struct Prescan {
   std::vector<int> face_lines;  // line of each face with 3 or more vertices, in file order
   std::vector<double> vertices;  // x, y, z of each `v`, correctly rounded (std::from_chars)
   std::size_t max_triangles = 0;  // of the fans of those faces
-  std::vector<ObjProblem> errors;
+  std::vector<Diagnostic> errors;
 };
 
 // Checks one face vertex ("v", "v/t", "v//n", "v/t/n") where tinyobjloader would stop at the
@@ -119,7 +108,7 @@ Prescan prescan(std::string_view text, const std::string& name) {
         while (j < l.size() && !is_blank(l[j])) ++j;
         if (problem.empty()) problem = check_face_vertex(l.substr(begin, j - begin), read);
       }
-      if (!problem.empty()) out.errors.push_back({name, line, problem});
+      if (!problem.empty()) out.errors.push_back(line_diagnostic(name, line, problem));
       if (vertices >= 3) {
         out.face_lines.push_back(line);
         out.max_triangles += static_cast<std::size_t>(vertices - 2);
@@ -138,10 +127,10 @@ Prescan prescan(std::string_view text, const std::string& name) {
         const auto [after, ec] = std::from_chars(number, token_end, x);
         if (ec != std::errc() || after != token_end || !std::isfinite(x)) {
           const std::string token(p, token_end);
-          out.errors.push_back({name, line,
+          out.errors.push_back(line_diagnostic(name, line,
                                 "vertex coordinate " + std::to_string(k + 1) +
                                     " must be a finite number (got " + (token.empty() ? "nothing" : "'" + token + "'") +
-                                    ")"});
+                                    ")"));
           break;
         }
         out.vertices.push_back(x);
@@ -164,7 +153,7 @@ class TextStreamBuf final : public std::streambuf {
 
 // tinyobjloader's messages end in "(line N.)", "line N.)" or "line: N"; split them into our
 // problems, with N as their line.
-void add_messages(const std::string& text, const std::string& file, std::vector<ObjProblem>& to) {
+void add_messages(const std::string& text, const std::string& file, std::vector<Diagnostic>& to) {
   std::istringstream in(text);
   std::string msg;
   while (std::getline(in, msg)) {
@@ -182,7 +171,7 @@ void add_messages(const std::string& text, const std::string& file, std::vector<
       }
       if (digits > 0) line = static_cast<int>(n);
     }
-    to.push_back({file, line, msg});
+    to.push_back(line_diagnostic(file, line, msg));
   }
 }
 
@@ -190,7 +179,7 @@ void add_messages(const std::string& text, const std::string& file, std::vector<
 // could not be read (a warning each, then the default material).
 class MtlReader final : public tinyobj::MaterialReader {
  public:
-  MtlReader(const FileReader& read, std::vector<ObjProblem>& warnings, const std::string& obj_name)
+  MtlReader(const FileReader& read, std::vector<Diagnostic>& warnings, const std::string& obj_name)
       : read_(read), warnings_(warnings), obj_name_(obj_name) {}
 
   bool operator()(const std::string& mat_id, std::vector<tinyobj::material_t>* materials,
@@ -198,9 +187,9 @@ class MtlReader final : public tinyobj::MaterialReader {
     std::string error;
     const std::optional<std::string> text = read_ ? read_(mat_id, error) : std::nullopt;
     if (!text) {
-      warnings_.push_back({obj_name_, 0, "cannot read material library '" + mat_id + "'" +
+      warnings_.push_back(line_diagnostic(obj_name_, 0, "cannot read material library '" + mat_id + "'" +
                                              (error.empty() ? "" : ": " + error) +
-                                             "; its faces get the default material"});
+                                             "; its faces get the default material"));
       return false;
     }
     std::istringstream stream(*text);
@@ -213,25 +202,25 @@ class MtlReader final : public tinyobj::MaterialReader {
 
  private:
   const FileReader& read_;
-  std::vector<ObjProblem>& warnings_;
+  std::vector<Diagnostic>& warnings_;
   const std::string& obj_name_;
 };
 
 // A coefficient from the MTL: finite and >= 0, else 0 with a warning.
-double coefficient(double x, const std::string& what, const std::string& material, std::vector<ObjProblem>& warnings) {
+double coefficient(double x, const std::string& what, const std::string& material, std::vector<Diagnostic>& warnings) {
   if (std::isfinite(x) && x >= 0) return x;
-  warnings.push_back({"", 0, "material '" + material + "': " + what + " must be finite and >= 0; using 0"});
+  warnings.push_back(line_diagnostic("", 0, "material '" + material + "': " + what + " must be finite and >= 0; using 0"));
   return 0;
 }
 
 Color mtl_color(const double c[3], const std::string& what, const std::string& material,
-                std::vector<ObjProblem>& warnings) {
+                std::vector<Diagnostic>& warnings) {
   return Color(coefficient(c[0], what, material, warnings), coefficient(c[1], what, material, warnings),
                coefficient(c[2], what, material, warnings));
 }
 
 // The MTL mapping (docs/scene-format.md has it as a table).
-Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<ObjProblem>& warnings) {
+Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<Diagnostic>& warnings) {
   Material out;
   out.name = m.name;
   out.ka = mtl_color(m.ambient, "Ka", m.name, warnings);
@@ -270,112 +259,137 @@ std::string index_error(const char* what, const char* plural, int index, std::si
          std::to_string(count) + " " + (count == 1 ? what : plural) + ")";
 }
 
-}  // namespace
-
-ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
-                                NsMapping ns, const TriangleCountHook& on_prescan) {
-  ObjIndexedMesh out;
-  // The prescan and tinyobjloader read the same text and nothing else: on two threads at once.
-  // A file the prescan rejects is parsed for nothing, but it is then reported as before, with
-  // the prescan's errors only.
+// tinyobjloader's parse and the prescan of the same text, on two threads at once.
+struct Parsed {
   Prescan pre;
-  std::exception_ptr prescan_error;
-  std::thread prescan_thread([&] {
-    try {
-      pre = prescan(obj_text, obj_name);
-      if (pre.errors.empty() && on_prescan) on_prescan(pre.max_triangles);
-    } catch (...) {
-      prescan_error = std::current_exception();  // out of memory, say: rethrown below
-    }
-  });
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> mtl;
   std::string warn, err;
   bool ok = false;
+};
+
+// A file the prescan rejects is parsed for nothing, but it is then reported as before, with
+// the prescan's errors only. MTL warnings go to `mtl_warnings`.
+Parsed parse_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
+                 const TriangleCountHook& on_prescan, std::vector<Diagnostic>& mtl_warnings) {
+  Parsed p;
+  std::exception_ptr prescan_error;
+  std::thread prescan_thread([&] {
+    try {
+      p.pre = prescan(obj_text, obj_name);
+      if (p.pre.errors.empty() && on_prescan) on_prescan(p.pre.max_triangles);
+    } catch (...) {
+      prescan_error = std::current_exception();  // out of memory, say: rethrown below
+    }
+  });
   try {
     TextStreamBuf buffer(obj_text);
     std::istream stream(&buffer);
-    MtlReader reader(read_mtl, out.warnings, obj_name);
-    ok = tinyobj::LoadObj(&attrib, &shapes, &mtl, &warn, &err, &stream, &reader,
-                          /*triangulate=*/false, /*default_vcols_fallback=*/false);
+    MtlReader reader(read_mtl, mtl_warnings, obj_name);
+    p.ok = tinyobj::LoadObj(&p.attrib, &p.shapes, &p.mtl, &p.warn, &p.err, &stream, &reader,
+                            /*triangulate=*/false, /*default_vcols_fallback=*/false);
   } catch (...) {
     prescan_thread.join();
     throw;
   }
   prescan_thread.join();
   if (prescan_error) std::rethrow_exception(prescan_error);
-  if (!pre.errors.empty()) {
-    out.warnings.clear();  // the MTL's: only the errors of a file the prescan rejects
-    out.errors = std::move(pre.errors);
-    return out;
-  }
-  if (!ok) {
-    add_messages(err.empty() ? "cannot parse the file" : err, obj_name, out.errors);
-    return out;
-  }
-  for (ObjProblem& w : out.warnings) {
+  return p;
+}
+
+// tinyobjloader's own warnings (a `usemtl` naming no material of the MTL, faces of fewer than 3
+// vertices), once each; index bounds are errors below and unreadable MTLs have one warning
+// already. Then the warnings of mapping the MTL's materials.
+void add_parse_warnings(const Parsed& p, const std::string& obj_name, NsMapping ns, ObjIndexedMesh& out) {
+  for (Diagnostic& w : out.warnings) {
     if (w.file.empty()) w.file = obj_name;
   }
-  // tinyobjloader's own number parser is off by up to a few ulps for about half of all decimal
-  // coordinates ("-1.9159" reads as -1.9158999999999997); the prescan's from_chars values are the
-  // doubles nearest to what the file says.
-  if (pre.vertices.size() == attrib.vertices.size()) attrib.vertices = std::move(pre.vertices);
-  // tinyobjloader's own warnings (a `usemtl` naming no material of the MTL, faces of fewer
-  // than 3 vertices), once each; index bounds are errors below and unreadable MTLs have one
-  // warning already.
-  std::vector<ObjProblem> parse_warnings;
-  add_messages(warn, obj_name, parse_warnings);
-  for (ObjProblem& w : parse_warnings) {
+  std::vector<Diagnostic> parse_warnings;
+  add_messages(p.warn, obj_name, parse_warnings);
+  for (Diagnostic& w : parse_warnings) {
     if (w.message.find("out of bounds") != std::string::npos ||
         w.message.starts_with("Failed to load material file")) {
       continue;
     }
     const bool seen = std::any_of(out.warnings.begin(), out.warnings.end(),
-                                  [&](const ObjProblem& o) { return o.message == w.message; });
+                                  [&](const Diagnostic& o) { return o.message == w.message; });
     if (!seen) out.warnings.push_back(std::move(w));
   }
-
-  std::vector<ObjProblem> mapping_warnings;
-  for (const tinyobj::material_t& m : mtl) out.materials.push_back(map_material(m, ns, mapping_warnings));
-  for (ObjProblem& w : mapping_warnings) w.file = obj_name;
+  std::vector<Diagnostic> mapping_warnings;
+  for (const tinyobj::material_t& m : p.mtl) out.materials.push_back(map_material(m, ns, mapping_warnings));
+  for (Diagnostic& w : mapping_warnings) w.file = obj_name;
   out.warnings.insert(out.warnings.end(), mapping_warnings.begin(), mapping_warnings.end());
-  int default_material = -1;
+}
 
-  const std::size_t vertex_count = attrib.vertices.size() / 3;
-  const std::size_t normal_count = attrib.normals.size() / 3;
-  out.vertices.resize(vertex_count);
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    out.vertices[i] = Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+// Per material: the area, area-weighted centroid and face count of its faces (for emitters).
+struct EmitterSums {
+  std::vector<double> area;
+  std::vector<Vec3> sum;
+  std::vector<int> faces;
+  explicit EmitterSums(std::size_t n) : area(n, 0.0), sum(n, Vec3(0)), faces(n, 0) {}
+  void add_material() {
+    area.push_back(0);
+    sum.emplace_back(0);
+    faces.push_back(0);
   }
-  out.normals.resize(normal_count);
-  for (std::size_t i = 0; i < normal_count; ++i) {
-    out.normals[i] = Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+};
+
+// A fan from the first vertex of the face at `offset` (n corners): exact for the convex quads
+// and polygons real files hold.
+void add_fan(const std::vector<tinyobj::index_t>& indices, std::size_t offset, std::size_t n, bool smooth,
+             int material, int face, ObjIndexedMesh& out, EmitterSums& emitters) {
+  const tinyobj::index_t i0 = indices[offset];
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    const tinyobj::index_t i1 = indices[offset + k];
+    const tinyobj::index_t i2 = indices[offset + k + 1];
+    ObjIndexedTriangle tri;
+    tri.v = {static_cast<std::uint32_t>(i0.vertex_index), static_cast<std::uint32_t>(i1.vertex_index),
+             static_cast<std::uint32_t>(i2.vertex_index)};
+    tri.n = smooth ? std::array<std::int32_t, 3>{i0.normal_index, i1.normal_index, i2.normal_index}
+                   : std::array<std::int32_t, 3>{-1, -1, -1};
+    tri.material = material;
+    tri.face = face;
+    const Vec3& v0 = out.vertices[tri.v[0]];
+    const Vec3& v1 = out.vertices[tri.v[1]];
+    const Vec3& v2 = out.vertices[tri.v[2]];
+    const Vec3 cross = glm::cross(v1 - v0, v2 - v0);
+    const double area2 = glm::length(cross);
+    if (!(area2 > 0) || !std::isfinite(area2)) {
+      ++out.skipped_degenerate;
+      continue;
+    }
+    const auto m = static_cast<std::size_t>(material);
+    emitters.area[m] += area2;
+    emitters.sum[m] += area2 * (v0 + v1 + v2) / 3.0;
+    out.triangles.push_back(tri);
   }
-  attrib = {};
-  const std::vector<Vec3>& vertex = out.vertices;
+}
+
+// The faces of every shape as fans of triangles, zero-area ones left out. Returns false when
+// enough errors were found to stop.
+bool add_faces(const Parsed& p, const std::string& obj_name, ObjIndexedMesh& out, EmitterSums& emitters) {
+  const std::size_t vertex_count = out.vertices.size();
+  const std::size_t normal_count = out.normals.size();
   std::size_t total_faces = 0;
-  for (const tinyobj::shape_t& s : shapes) total_faces += s.mesh.num_face_vertices.size();
-  // Our count of face lines matches tinyobjloader's faces unless the file uses a syntax we
-  // do not scan (line continuations): then errors name the face number instead of a line.
-  const bool lines_known = total_faces == pre.face_lines.size();
-  std::vector<double> emitter_area(out.materials.size(), 0.0);
-  std::vector<Vec3> emitter_sum(out.materials.size(), Vec3(0));
-  std::vector<int> emitter_faces(out.materials.size(), 0);
-
   std::size_t triangle_count = 0;
-  for (const tinyobj::shape_t& s : shapes) {
+  for (const tinyobj::shape_t& s : p.shapes) {
+    total_faces += s.mesh.num_face_vertices.size();
     for (const unsigned char n : s.mesh.num_face_vertices) triangle_count += n >= 3 ? n - 2u : 0u;
   }
+  // Our count of face lines matches tinyobjloader's faces unless the file uses a syntax we
+  // do not scan (line continuations): then errors name the face number instead of a line.
+  const bool lines_known = total_faces == p.pre.face_lines.size();
   out.triangles.reserve(triangle_count);
+  int default_material = -1;
   int face = 0;
-  for (const tinyobj::shape_t& s : shapes) {
+  for (const tinyobj::shape_t& s : p.shapes) {
     std::size_t offset = 0;
     for (std::size_t f = 0; f < s.mesh.num_face_vertices.size(); ++f, ++face) {
       const std::size_t n = s.mesh.num_face_vertices[f];
-      const int line = lines_known ? pre.face_lines[static_cast<std::size_t>(face)] : 0;
+      const int line = lines_known ? p.pre.face_lines[static_cast<std::size_t>(face)] : 0;
       const auto fail = [&](const std::string& message) {
-        out.errors.push_back({obj_name, line, lines_known ? message : "face " + std::to_string(face + 1) + ": " + message});
+        out.errors.push_back(line_diagnostic(obj_name, line, lines_known ? message : "face " + std::to_string(face + 1) + ": " + message));
       };
       bool face_ok = true;
       bool smooth = true;
@@ -393,7 +407,7 @@ ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& 
         }
         if (idx.normal_index < 0) smooth = false;
       }
-      if (out.errors.size() >= 20) return out;  // enough to go on
+      if (out.errors.size() >= 20) return false;  // enough to go on
       if (!face_ok) {
         offset += n;
         continue;
@@ -403,58 +417,66 @@ ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& 
         if (default_material < 0) {
           default_material = static_cast<int>(out.materials.size());
           out.materials.push_back(default_mesh_material());
-          emitter_area.push_back(0);
-          emitter_sum.emplace_back(0);
-          emitter_faces.push_back(0);
+          emitters.add_material();
         }
         material = default_material;
       }
-      // A fan from the first vertex: exact for the convex quads and polygons real files hold.
-      const tinyobj::index_t i0 = s.mesh.indices[offset];
-      for (std::size_t k = 1; k + 1 < n; ++k) {
-        const tinyobj::index_t i1 = s.mesh.indices[offset + k];
-        const tinyobj::index_t i2 = s.mesh.indices[offset + k + 1];
-        ObjIndexedTriangle tri;
-        tri.v = {static_cast<std::uint32_t>(i0.vertex_index), static_cast<std::uint32_t>(i1.vertex_index),
-                 static_cast<std::uint32_t>(i2.vertex_index)};
-        tri.n = smooth ? std::array<std::int32_t, 3>{i0.normal_index, i1.normal_index, i2.normal_index}
-                       : std::array<std::int32_t, 3>{-1, -1, -1};
-        tri.material = material;
-        tri.face = face;
-        const Vec3& v0 = vertex[tri.v[0]];
-        const Vec3& v1 = vertex[tri.v[1]];
-        const Vec3& v2 = vertex[tri.v[2]];
-        const Vec3 cross = glm::cross(v1 - v0, v2 - v0);
-        const double area2 = glm::length(cross);
-        if (!(area2 > 0) || !std::isfinite(area2)) {
-          ++out.skipped_degenerate;
-          continue;
-        }
-        const auto m = static_cast<std::size_t>(material);
-        emitter_area[m] += area2;
-        emitter_sum[m] += area2 * (v0 + v1 + v2) / 3.0;
-        out.triangles.push_back(tri);
-      }
-      const auto m = static_cast<std::size_t>(material);
-      ++emitter_faces[m];
+      add_fan(s.mesh.indices, offset, n, smooth, material, face, out, emitters);
+      ++emitters.faces[static_cast<std::size_t>(material)];
       offset += n;
     }
   }
-  if (out.skipped_degenerate > 0) {
-    out.warnings.push_back({obj_name, 0, std::to_string(out.skipped_degenerate) +
-                                             " zero-area triangles left out"});
+  return true;
+}
+
+}  // namespace
+
+ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
+                                NsMapping ns, const TriangleCountHook& on_prescan) {
+  ObjIndexedMesh out;
+  const auto finish = [&out]() -> ObjIndexedMesh {
+    set_severity(out.warnings, Diagnostic::Severity::kWarning);
+    return std::move(out);
+  };
+  Parsed p = parse_obj(obj_text, obj_name, read_mtl, on_prescan, out.warnings);
+  if (!p.pre.errors.empty()) {
+    out.warnings.clear();  // the MTL's: only the errors of a file the prescan rejects
+    out.errors = std::move(p.pre.errors);
+    return finish();
   }
-  for (std::size_t i = 0; i < mtl.size(); ++i) {
-    const Color ke(mtl[i].emission[0], mtl[i].emission[1], mtl[i].emission[2]);
-    if (!(max_channel(ke) > 0) || !(emitter_area[i] > 0)) continue;
+  if (!p.ok) {
+    add_messages(p.err.empty() ? "cannot parse the file" : p.err, obj_name, out.errors);
+    return finish();
+  }
+  // tinyobjloader's own number parser is off by up to a few ulps for about half of all decimal
+  // coordinates ("-1.9159" reads as -1.9158999999999997); the prescan's from_chars values are the
+  // doubles nearest to what the file says.
+  if (p.pre.vertices.size() == p.attrib.vertices.size()) p.attrib.vertices = std::move(p.pre.vertices);
+  add_parse_warnings(p, obj_name, ns, out);
+  const std::vector<double>& xyz = p.attrib.vertices;
+  out.vertices.resize(xyz.size() / 3);
+  for (std::size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  const std::vector<double>& nxyz = p.attrib.normals;
+  out.normals.resize(nxyz.size() / 3);
+  for (std::size_t i = 0; i < out.normals.size(); ++i) out.normals[i] = Vec3(nxyz[3 * i], nxyz[3 * i + 1], nxyz[3 * i + 2]);
+  p.attrib = {};
+  EmitterSums emitters(out.materials.size());
+  if (!add_faces(p, obj_name, out, emitters)) return finish();
+  if (out.skipped_degenerate > 0) {
+    out.warnings.push_back(line_diagnostic(obj_name, 0, std::to_string(out.skipped_degenerate) +
+                                             " zero-area triangles left out"));
+  }
+  for (std::size_t i = 0; i < p.mtl.size(); ++i) {
+    const Color ke(p.mtl[i].emission[0], p.mtl[i].emission[1], p.mtl[i].emission[2]);
+    if (!(max_channel(ke) > 0) || !(emitters.area[i] > 0)) continue;
     Emitter e;
-    e.material = mtl[i].name;
+    e.material = p.mtl[i].name;
     e.ke = ke;
-    e.centroid = emitter_sum[i] / emitter_area[i];
-    e.faces = emitter_faces[i];
+    e.centroid = emitters.sum[i] / emitters.area[i];
+    e.faces = emitters.faces[i];
     out.emitters.push_back(e);
   }
-  return out;
+  return finish();
 }
 
 Triangle ObjIndexedMesh::triangle(std::size_t i) const {

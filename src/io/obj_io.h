@@ -11,19 +11,13 @@
 #include <vector>
 
 #include "core/scene/scene.h"
+#include "io/diagnostic.h"
 
 namespace phonglab {
 
 // Reads a file named relative to the OBJ's folder (an MTL); nullopt and `error` when it cannot.
 using FileReader = std::function<std::optional<std::string>(const std::string& path, std::string& error)>;
 
-// One problem in an OBJ or MTL file.
-struct ObjProblem {
-  std::string file;  // the OBJ's or MTL's name as given
-  int line = 0;      // 1-based; 0 when unknown
-  std::string message;
-  std::string to_string() const;  // "file:line: message"
-};
 
 // An emissive MTL material (Ke > 0): phonglab has point lights only, so it is a hint.
 struct Emitter {
@@ -39,8 +33,8 @@ struct ObjMesh {
   std::vector<Material> materials;  // from the MTL, plus a default one when a face has none
   std::vector<Emitter> emitters;
   int skipped_degenerate = 0;       // zero-area triangles left out
-  std::vector<ObjProblem> warnings;
-  std::vector<ObjProblem> errors;   // a mesh with errors must not be used
+  std::vector<Diagnostic> warnings;
+  std::vector<Diagnostic> errors;   // a mesh with errors must not be used
 };
 
 // A triangle of an ObjIndexedMesh: indices of its corners in `vertices` and of their normals in
@@ -62,8 +56,8 @@ struct ObjIndexedMesh {
   std::vector<Material> materials;
   std::vector<Emitter> emitters;
   int skipped_degenerate = 0;
-  std::vector<ObjProblem> warnings;
-  std::vector<ObjProblem> errors;
+  std::vector<Diagnostic> warnings;
+  std::vector<Diagnostic> errors;
   Triangle triangle(std::size_t i) const;  // triangles[i] as load_obj gives it
 };
 

@@ -339,6 +339,34 @@ TEST(MeshFaces, ZeroAreaFacesAreLeftOutWithAWarning) {
   fs::remove_all(dir);
 }
 
+// One diagnostic type for every input format: an OBJ's problems are Diagnostics with the file,
+// the line (no column, no JSON path) and their severity; a scene's name the JSON path too.
+TEST(Diagnostics, OneTypeForSceneObjAndMtlWithItsSeverity) {
+  const ObjMesh obj = load_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 1 2 9\n", "m.obj", nullptr);
+  ASSERT_EQ(obj.errors.size(), 1u);
+  EXPECT_EQ(obj.errors[0].severity, Diagnostic::Severity::kError);
+  EXPECT_EQ(obj.errors[0].file, "m.obj");
+  EXPECT_EQ(obj.errors[0].line, 7);
+  EXPECT_EQ(obj.errors[0].column, 0);
+  EXPECT_EQ(obj.errors[0].to_string(), "m.obj:7: vertex index 9 is out of range (the file has 4 vertices)");
+  const ObjMesh zero = load_obj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n", "z.obj", nullptr);
+  ASSERT_EQ(zero.warnings.size(), 1u);
+  EXPECT_EQ(zero.warnings[0].severity, Diagnostic::Severity::kWarning);
+  EXPECT_EQ(zero.warnings[0].to_string(), "z.obj: 1 zero-area triangles left out");
+  const LoadResult bad = load_scene_text(R"({"objects": [{"type": "sphere", "radius": -1}]})", "s.json");
+  ASSERT_FALSE(bad.errors.empty());
+  EXPECT_EQ(bad.errors[0].severity, Diagnostic::Severity::kError);
+  EXPECT_GT(bad.errors[0].column, 0);
+  EXPECT_TRUE(bad.errors[0].to_string().starts_with("s.json:1:")) << bad.errors[0].to_string();
+  const fs::path dir = temp_dir("severity");
+  write(dir / "d.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n");
+  const LoadResult r = load_in(dir, mesh_scene("d.obj"));
+  ASSERT_TRUE(r.ok()) << r.error_text();
+  ASSERT_FALSE(r.warnings.empty());
+  for (const Diagnostic& w : r.warnings) EXPECT_EQ(w.severity, Diagnostic::Severity::kWarning) << w.to_string();
+  fs::remove_all(dir);
+}
+
 // ----- Errors name the OBJ's line ---------------------------------------------------------------
 
 const char* const kThreeVertices =

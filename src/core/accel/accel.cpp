@@ -173,12 +173,7 @@ std::optional<Hit> SceneBvh::intersect(const Scene& scene, const Ray& ray, doubl
   double best = t_max;
   ObjectRef obj;
   double best_b1 = 0, best_b2 = 0;
-  for (std::size_t i = 0; i < scene.planes.size(); ++i) {
-    if (auto t = intersect_plane(scene.planes[i], ray); t && *t < best) {
-      best = *t;
-      obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
-    }
-  }
+  if (const int i = nearest_plane(scene.planes, ray, best); i >= 0) obj = {ObjectRef::Kind::kPlane, i};
   const BoxRay box_ray(ray);
   const TriangleShear shear = has_triangles_ ? make_shear(ray.dir) : TriangleShear{};
   const auto test_triangle = [&](const Triangle& tri, ObjectRef ref) {
@@ -224,9 +219,7 @@ std::optional<Hit> SceneBvh::intersect(const Scene& scene, const Ray& ray, doubl
 }
 
 bool SceneBvh::occluded(const Scene& scene, const Ray& ray, double t_max) const {
-  for (const Plane& pl : scene.planes) {
-    if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
-  }
+  if (any_plane(scene.planes, ray, t_max)) return true;
   const BoxRay box_ray(ray);
   const TriangleShear shear = has_triangles_ ? make_shear(ray.dir) : TriangleShear{};
   const auto blocks = [&](const Triangle& tri) {

@@ -41,6 +41,24 @@ std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, do
   return intersect_triangle(tri, ray, make_shear(ray.dir), b1, b2, t_min);
 }
 
+int nearest_plane(const std::vector<Plane>& planes, const Ray& ray, double& best) {
+  int nearest = -1;
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    if (auto t = intersect_plane(planes[i], ray); t && *t < best) {
+      best = *t;
+      nearest = static_cast<int>(i);
+    }
+  }
+  return nearest;
+}
+
+bool any_plane(const std::vector<Plane>& planes, const Ray& ray, double t_max) {
+  for (const Plane& pl : planes) {
+    if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
+  }
+  return false;
+}
+
 int nearest_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double& best,
                      double& b1, double& b2) {
   int nearest = -1;
@@ -73,12 +91,7 @@ std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray, double t_ma
       obj = {ObjectRef::Kind::kSphere, static_cast<int>(i)};
     }
   }
-  for (std::size_t i = 0; i < scene.planes.size(); ++i) {
-    if (auto t = intersect_plane(scene.planes[i], ray); t && *t < best) {
-      best = *t;
-      obj = {ObjectRef::Kind::kPlane, static_cast<int>(i)};
-    }
-  }
+  if (const int i = nearest_plane(scene.planes, ray, best); i >= 0) obj = {ObjectRef::Kind::kPlane, i};
   if (scene.triangles.empty() && scene.meshes.empty()) {
     if (obj.kind == ObjectRef::Kind::kNone) return std::nullopt;
     return make_hit(scene, ray, obj, best, 0, 0);
@@ -101,9 +114,7 @@ bool occluded_all(const Scene& scene, const Ray& ray, double t_max) {
   for (const Sphere& s : scene.spheres) {
     if (sphere_root(s, ray.origin, ray.dir, 0, t_max) > 0) return true;
   }
-  for (const Plane& pl : scene.planes) {
-    if (auto t = intersect_plane(pl, ray); t && *t < t_max) return true;
-  }
+  if (any_plane(scene.planes, ray, t_max)) return true;
   if (scene.triangles.empty() && scene.meshes.empty()) return false;
   const TriangleShear shear = make_shear(ray.dir);
   if (any_triangle(scene.triangles, ray, shear, t_max)) return true;

@@ -103,6 +103,12 @@ inline double sphere_root(const Sphere& s, const Vec3& o, const Vec3& d, double 
   return 0;
 }
 
+// The nearest of `planes` with t in (0, best), the first in order on a tie: its index, with
+// best updated; -1 (nothing changed) when none is nearer. Every nearest-hit query starts here.
+int nearest_plane(const std::vector<Plane>& planes, const Ray& ray, double& best);
+// Whether any of `planes` lies on the ray with t in (0, t_max).
+bool any_plane(const std::vector<Plane>& planes, const Ray& ray, double t_max);
+
 // The nearest of `tris` with t in (0, best), the first in order on a tie: its index, with best
 // and the barycentric weights b1, b2 updated; -1 (nothing changed) when none is nearer.
 int nearest_triangle(const std::vector<Triangle>& tris, const Ray& ray, const TriangleShear& shear, double& best,

@@ -212,8 +212,8 @@ struct PacketTracer::Impl {
     for (const Material& m : scene.materials) {
       MaterialInfo mi;
       mi.specular = !is_zero(m.ks);
-      mi.lit = !is_zero(m.kd) || mi.specular;
-      mi.bounces = !is_zero(m.kr) || !is_zero(m.kt);
+      mi.lit = is_lit(m);
+      mi.bounces = has_children(m);
       mi.n = m.n;
       mi.ior = m.ior;
       mi.ambient = m.ka * scene.ambient;
@@ -484,7 +484,7 @@ struct PacketTracer::Impl {
       const std::size_t u = at(i);
       const std::int32_t id = lv.id[u];
       if (id < 0) {
-        out[i] = depth == 0 && primary_term != Term::kFull ? Color(0) : scene.background;
+        out[i] = depth == 0 ? miss_value(scene, primary_term) : scene.background;
         lv.lit[u] = lv.bounces[u] = 0;
         continue;
       }
@@ -532,11 +532,8 @@ struct PacketTracer::Impl {
   // eye exactly at P has no direction and keeps -D.
   void look_from_eye(Level& lv, int i) const {
     const std::size_t u = at(i);
-    const Vec3 to_eye = *shading_eye - Vec3(lv.px[u], lv.py[u], lv.pz[u]);
-    const double len = glm::length(to_eye);
-    if (!(len > 0)) return;
-    const Vec3 v = to_eye / len;
-    lv.vx[u] = v.x, lv.vy[u] = v.y, lv.vz[u] = v.z;
+    const std::optional<Vec3> v = towards_eye(Vec3(lv.px[u], lv.py[u], lv.pz[u]), *shading_eye);
+    if (v) lv.vx[u] = v->x, lv.vy[u] = v->y, lv.vz[u] = v->z;
   }
 
   // A triangle's hit record (loose or a mesh's), by the scalar functions (the kernel does spheres
@@ -588,12 +585,11 @@ struct PacketTracer::Impl {
       const double weight = rays.weight[u];
       const double offset = lv.offset[u];
       const auto send = [&](const Color& kw, const Vec3& dir, RayBatch& batch, int& index, std::uint64_t& count) {
-        if (is_zero(kw)) return;
-        const double w = weight * max_channel(kw);
-        if (w < limits.min_weight) return;
+        const std::optional<double> w = child_weight(kw, weight, limits.min_weight);
+        if (!w) return;
         ++count;
         index = batch.n;
-        batch.push(offset_origin(p, ng, dir, offset), dir, w);
+        batch.push(offset_origin(p, ng, dir, offset), dir, *w);
       };
       if (wanted.reflection) send(bn.kr, bn.mirror, lv.reflected, lv.reflected_index[u], counts.reflection);
       if (wanted.refraction && !is_zero(bn.kt)) {

@@ -50,7 +50,7 @@ Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Ter
     return Color(static_cast<double>(counts.total() - before));
   }
   const std::optional<Hit> hit = intersect(prepared, ray);
-  if (!hit) return Color(0);  // term and debug images are 0 where the primary ray misses
+  if (!hit) return miss_value(scene, term);
   switch (term) {
     case Term::kNormal: {
       const Vec3 n = glm::dot(hit->ns, ray.dir) < 0 ? hit->ns : -hit->ns;

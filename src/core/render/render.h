@@ -30,6 +30,10 @@ enum class Term : std::uint8_t {
   kRays,    // rays cast for the sample, all kinds (a heat map input)
 };
 
+// What a primary ray that meets nothing gives for `term`: the background in the full image, 0
+// in a term or debug image.
+inline Color miss_value(const Scene& scene, Term term) { return term == Term::kFull ? scene.background : Color(0); }
+
 // The value a shaded primary hit gives for `term`: one of its five terms, else their sum.
 Color term_value(const Terms& terms, Term term);
 // What shading a primary hit must compute for `term`: a term image needs only its own term.

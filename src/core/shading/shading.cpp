@@ -41,9 +41,7 @@ void record_hit(ProbeNode& probe, const Hit& hit, const HitSide& side, const Vec
 // exactly at P has no direction and falls back to -D.
 Vec3 view_direction(const Hit& hit, const Vec3& d, const Vec3* shading_eye) {
   if (shading_eye) {
-    const Vec3 to_eye = *shading_eye - hit.p;
-    const double len = glm::length(to_eye);
-    if (len > 0) return to_eye / len;
+    if (const std::optional<Vec3> v = towards_eye(hit.p, *shading_eye)) return *v;
   }
   return -d;
 }
@@ -94,7 +92,7 @@ class Equation {
     terms.ambient = m.ka * scene_.ambient;
     if (probe) record_hit(*probe, hit, side, v);
     // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0).
-    if (wanted.lights && (!is_zero(m.kd) || !is_zero(m.ks) || probe)) {
+    if (wanted.lights && (is_lit(m) || probe)) {
       light_terms(m, hit, side, v, offset, probe, terms);
     }
     mirror_and_glass_terms(m, ray, hit, side, depth, weight, offset, probe, wanted, terms);
@@ -156,7 +154,6 @@ class Equation {
   // Diffuse and specular: the sum over the lights, each behind its shadow ray.
   void light_terms(const Material& m, const Hit& hit, const HitSide& side, const Vec3& v, double offset,
                    ProbeNode* probe, Terms& terms) {
-    const bool has_diffuse = !is_zero(m.kd);
     const bool has_specular = !is_zero(m.ks);
     const Vec3& n = side.n;
     for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
@@ -219,13 +216,12 @@ class Equation {
   // One child ray with weight kw along dir; nothing when kw = 0 or the path weight is too low.
   Color child(const Color& kw, const Hit& hit, const Vec3& ng_facing, const Vec3& dir, double offset, int depth,
               double weight, std::uint64_t& count, ProbeNode* probe, std::unique_ptr<ProbeNode>& probe_child) {
-    if (is_zero(kw)) return Color(0);
-    const double w = weight * max_channel(kw);
-    if (w < limits_.min_weight) return Color(0);
+    const std::optional<double> w = child_weight(kw, weight, limits_.min_weight);
+    if (!w) return Color(0);
     ++count;
     if (probe) probe_child = std::make_unique<ProbeNode>();
     const Ray ray_out = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
-    return kw * trace(ray_out, depth + 1, w, probe_child.get(), nullptr);
+    return kw * trace(ray_out, depth + 1, *w, probe_child.get(), nullptr);
   }
 
   // Reflection and refraction: Whitted recursion for mirrors and glass.
@@ -234,7 +230,7 @@ class Equation {
                               Terms& terms) {
     // The ablation: also a refraction ray for opaque materials (kt = 0), as a naive tracer casts.
     const bool force_refraction = refraction_for_opaque() && is_zero(m.kt);
-    if (!(depth < limits_.max_depth && (!is_zero(m.kr) || !is_zero(m.kt) || force_refraction))) return;
+    if (!(depth < limits_.max_depth && (has_children(m) || force_refraction))) return;
     const Bounce bn = bounce(m, ray.dir, side.n, side.entering, force_refraction,
                              [this](double cos_i, double eta) { return fresnel(cos_i, eta); });
     if (probe) {

@@ -63,6 +63,27 @@ inline double specular_factor(double cos_spec, double n) {
   return (base == 0 && n > 0) ? 0.0 : std::pow(base, n);
 }
 
+// The rules both tracers share, one definition each.
+// Lights are evaluated at a hit only where a term can come back: kd or ks non-zero.
+inline bool is_lit(const Material& m) { return !is_zero(m.kd) || !is_zero(m.ks); }
+// Children (reflected, refracted rays) may follow only from mirrors and glass: kr or kt non-zero.
+inline bool has_children(const Material& m) { return !is_zero(m.kr) || !is_zero(m.kt); }
+// Pruning: the path weight of a child ray with weight k from a ray of path weight `weight`, or
+// nothing when the child is not traced (k = 0, or the weight falls below min_weight).
+inline std::optional<double> child_weight(const Color& k, double weight, double min_weight) {
+  if (is_zero(k)) return std::nullopt;
+  const double w = weight * max_channel(k);
+  if (w < min_weight) return std::nullopt;
+  return w;
+}
+// "Move your head": V at P towards a moved eye; nothing when the eye is exactly at P (V stays -D).
+inline std::optional<Vec3> towards_eye(const Vec3& p, const Vec3& eye) {
+  const Vec3 to_eye = eye - p;
+  const double len = glm::length(to_eye);
+  if (len > 0) return to_eye / len;
+  return std::nullopt;
+}
+
 // What a mirror or glass hit passes on to its children.
 struct Bounce {
   Color kr{0}, kt{0};    // kr', kt': with Fresnel, kr + kt F and kt (1 - F)

@@ -109,8 +109,8 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   // on the prescan's thread, which finishes well before tinyobjloader's parse on this one.
   std::vector<Triangle> room;
   ObjIndexedMesh obj = load_obj_indexed(*text, file, read_mtl, ns, [&](std::size_t n) { room.resize(n); });
-  for (const ObjProblem& w : obj.warnings) out.warnings.push_back(w.to_string());
-  for (const ObjProblem& e : obj.errors) out.errors.push_back(e.to_string());
+  for (const Diagnostic& w : obj.warnings) out.warnings.push_back(w.to_string());
+  for (const Diagnostic& e : obj.errors) out.errors.push_back(e.to_string());
   if (!out.errors.empty()) return out;
   if (obj.triangles.empty()) {
     out.errors.push_back(file + ": no faces (a mesh needs at least one triangle of non-zero area)");

@@ -47,8 +47,10 @@ std::string Diagnostic::to_string() const {
     // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "x" + std::string here.
     s += ':';
     s += std::to_string(line);
-    s += ':';
-    s += std::to_string(column);
+    if (column > 0) {
+      s += ':';
+      s += std::to_string(column);
+    }
   }
   s += ": ";
   if (!path.empty()) s += path + ": ";
@@ -92,6 +94,7 @@ LoadResult load_obj_scene(const std::string& path) {
     return d;
   };
   for (std::string& w : loaded.warnings) r.warnings.push_back(diagnostic(std::move(w)));
+  set_severity(r.warnings, Diagnostic::Severity::kWarning);
   for (std::string& e : loaded.errors) r.errors.push_back(diagnostic(std::move(e)));
   if (!r.errors.empty()) return r;
   Scene scene;

@@ -7,18 +7,11 @@
 #include <vector>
 
 #include "core/scene/scene.h"
+#include "io/diagnostic.h"
 
 namespace phonglab {
 
 // One problem found in a scene file, printed as `file:line:col: json.path: message`.
-struct Diagnostic {
-  std::string file;     // file name as given (or the embedded scene's name)
-  int line = 0;         // 1-based; 0 when unknown
-  int column = 0;       // 1-based; 0 when unknown
-  std::string path;     // JSON path such as `objects[2].radius`; empty for syntax errors
-  std::string message;  // what is wrong, with the offending value: `must be > 0 (got -1)`
-  std::string to_string() const;
-};
 
 struct LoadResult {
   std::optional<Scene> scene;            // set when there are no errors

@@ -741,6 +741,7 @@ LoadResult load_text(const std::string& text, const std::string& file_name, cons
     const bool truncated = issues.full();
     r.errors = to_diagnostics(text, std::move(issues.list()), truncated, file_name);
     r.warnings = to_diagnostics(text, std::move(warnings.list()), false, file_name);
+    set_severity(r.warnings, Diagnostic::Severity::kWarning);
     if (r.errors.empty()) r.scene = std::move(scene);
     return r;
   };
