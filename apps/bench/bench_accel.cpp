@@ -286,27 +286,74 @@ Scene make_mesh_scene(std::vector<Triangle> triangles) {
   return s;
 }
 
-AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
-  AccelBenchResult out;
-  const bool quick = options.quick;
-  const int threads = resolve_thread_count(options.threads);
-  const int w = quick ? 640 : 1280, h = quick ? 360 : 720;
-  const int frames_multi = quick ? 3 : 9, frames_single = quick ? 1 : 5;
+namespace {
+
+// The acceleration section: every contender on every embedded scene and on a large generated
+// mesh, the primary rays alone, and the mesh's build, memory and load from OBJ.
+class AccelBench {
+ public:
+  explicit AccelBench(const AccelBenchOptions& options)
+      : quick_(options.quick),
+        threads_(resolve_thread_count(options.threads)),
+        w_(quick_ ? 640 : 1280),
+        h_(quick_ ? 360 : 720),
+        frames_multi_(quick_ ? 3 : 9),
+        frames_single_(quick_ ? 1 : 5) {}
+
+  AccelBenchResult run() {
+    std::printf("acceleration: %dx%d, median of %d frames (%d threads) and %d (1 thread)%s\n", w_, h_, frames_multi_,
+                threads_, frames_single_, kEmbree ? "" : "; Embree not built");
+    std::vector<SceneRun> runs;
+    for (const EmbeddedScene& e : embedded_scenes()) {
+      runs.push_back(run_frames(std::string(e.name), contenders(load_embedded(e.name)), w_, h_, threads_, frames_multi_,
+                                frames_single_));
+      std::printf("  %-10s %s %.1f ms (%d threads)\n", runs.back().scene.c_str(), runs.back().names[0].c_str(),
+                  runs.back().ms[1][0], threads_);
+    }
+    build_mesh();
+    load_mesh_obj();
+    const std::string mesh_name = "bumpy sphere (" + std::to_string(mesh_.triangles) + " triangles)";
+    runs.push_back(run_frames(mesh_name, mesh_.contenders, w_, h_, threads_, frames_multi_, frames_single_));
+    whitted_table(runs);
+    primary_table();
+    big_mesh_table();
+    out_.markdown = md_.str();
+    return out_;
+  }
+
+ private:
 #ifdef PHONGLAB_HAVE_EMBREE
-  constexpr bool kEmbree = true;
+  static constexpr bool kEmbree = true;
 #else
-  constexpr bool kEmbree = false;
+  static constexpr bool kEmbree = false;
 #endif
-  const auto fail = [&](const std::string& what) {
-    std::printf("CHECK FAILED: %s\n", what.c_str());
-    out.checks_passed = false;
+
+  // The generated mesh and its contenders.
+  struct MeshRun {
+    int rings = 0, segments = 0;
+    std::size_t triangles = 0;
+    double build_s = 0;
+    std::size_t bytes = 0;
+    std::optional<PreparedScene> scene;
+    std::vector<Contender> contenders;
+#ifdef PHONGLAB_HAVE_EMBREE
+    EmbreeBuildStats embree_multi, embree_single;
+#endif
   };
-  std::printf("acceleration: %dx%d, median of %d frames (%d threads) and %d (1 thread)%s\n", w, h, frames_multi,
-              threads, frames_single, kEmbree ? "" : "; Embree not built");
+  // The same mesh loaded from an OBJ file.
+  struct ObjRun {
+    double load_s = 0, build_s = 0;
+    std::size_t bytes = 0, triangles = 0;
+  };
+
+  void fail(const std::string& what) {
+    std::printf("CHECK FAILED: %s\n", what.c_str());
+    out_.checks_passed = false;
+  }
 
   // Contenders for a scene: the default path, the scalar renderer where the default is the
   // packet tracer, the BVH forced, Embree single-ray. Each prepares the scene as loaded.
-  const auto contenders = [&](const Scene& raw) {
+  std::vector<Contender> contenders(const Scene& raw) const {
     std::vector<Contender> cs;
     const PreparedScene s(raw);
     const std::string structure = s.accel() ? "BVH" : "brute force";
@@ -322,61 +369,56 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
       cs.push_back({packets ? "BVH forced (packets)" : "BVH forced", std::move(b)});
     }
 #ifdef PHONGLAB_HAVE_EMBREE
-    cs.push_back({"Embree rtcIntersect1/rtcOccluded1", PreparedScene(raw, [](const Scene& x) { return make_embree_accel(x); })});
+    cs.push_back(
+        {"Embree rtcIntersect1/rtcOccluded1", PreparedScene(raw, [](const Scene& x) { return make_embree_accel(x); })});
 #endif
     return cs;
-  };
-
-  std::vector<SceneRun> runs;
-  for (const EmbeddedScene& e : embedded_scenes()) {
-    runs.push_back(run_frames(std::string(e.name), contenders(load_embedded(e.name)), w, h, threads, frames_multi,
-                              frames_single));
-    std::printf("  %-10s %s %.1f ms (%d threads)\n", runs.back().scene.c_str(), runs.back().names[0].c_str(),
-                runs.back().ms[1][0], threads);
   }
 
   // The generated mesh: build times and memory, ours against Embree's.
-  const int rings = quick ? 128 : 636, segments = quick ? 256 : 1024;
-  std::vector<Triangle> tris = make_bumpy_sphere(rings, segments, 1);
-  const std::size_t tri_count = tris.size();
-  auto t0 = Clock::now();
-  const Scene mesh_raw = make_mesh_scene(std::move(tris));
-  const PreparedScene mesh_scene(mesh_raw);
-  const double our_build_s = seconds_since(t0);
-  const std::size_t our_bytes = mesh_raw.meshes[0].geometry->memory_bytes();
-  std::printf("  mesh: %zu triangles, our build %.2f s, %s\n", tri_count, our_build_s, mib(our_bytes).c_str());
-  std::vector<Contender> mesh_cs;
-  if (packet_tracing_applies(mesh_scene)) {
-    mesh_cs.push_back({"default (packets, BVH)", mesh_scene});
-    mesh_cs.push_back({"scalar BVH", mesh_scene, false});
-  } else {
-    mesh_cs.push_back({"default (BVH)", mesh_scene});
-  }
+  void build_mesh() {
+    mesh_.rings = quick_ ? 128 : 636;
+    mesh_.segments = quick_ ? 256 : 1024;
+    std::vector<Triangle> tris = make_bumpy_sphere(mesh_.rings, mesh_.segments, 1);
+    mesh_.triangles = tris.size();
+    auto t0 = Clock::now();
+    const Scene mesh_raw = make_mesh_scene(std::move(tris));
+    const PreparedScene& scene = mesh_.scene.emplace(mesh_raw);
+    mesh_.build_s = seconds_since(t0);
+    mesh_.bytes = mesh_raw.meshes[0].geometry->memory_bytes();
+    std::printf("  mesh: %zu triangles, our build %.2f s, %s\n", mesh_.triangles, mesh_.build_s,
+                mib(mesh_.bytes).c_str());
+    if (packet_tracing_applies(scene)) {
+      mesh_.contenders.push_back({"default (packets, BVH)", scene});
+      mesh_.contenders.push_back({"scalar BVH", scene, false});
+    } else {
+      mesh_.contenders.push_back({"default (BVH)", scene});
+    }
 #ifdef PHONGLAB_HAVE_EMBREE
-  EmbreeBuildStats embree_multi, embree_single;
-  make_embree_accel(mesh_scene.scene(), EmbreeOptions{1}, &embree_single);
-  PreparedScene embree_mesh(mesh_raw, [&](const Scene& x) { return make_embree_accel(x, EmbreeOptions{threads}, &embree_multi); });
-  mesh_cs.push_back({"Embree rtcIntersect1/rtcOccluded1", std::move(embree_mesh)});
-  std::printf("  mesh: Embree build %.2f s (%d threads), %.2f s (1 thread), %s\n", embree_multi.total_seconds, threads,
-              embree_single.total_seconds, mib(embree_multi.memory_bytes).c_str());
+    make_embree_accel(scene.scene(), EmbreeOptions{1}, &mesh_.embree_single);
+    PreparedScene embree_mesh(
+        mesh_raw, [&](const Scene& x) { return make_embree_accel(x, EmbreeOptions{threads_}, &mesh_.embree_multi); });
+    mesh_.contenders.push_back({"Embree rtcIntersect1/rtcOccluded1", std::move(embree_mesh)});
+    std::printf("  mesh: Embree build %.2f s (%d threads), %.2f s (1 thread), %s\n", mesh_.embree_multi.total_seconds,
+                threads_, mesh_.embree_single.total_seconds, mib(mesh_.embree_multi.memory_bytes).c_str());
 #endif
+  }
+
   // The same mesh from an OBJ file: what `phonglab my.obj` or a scene's mesh object costs.
-  double obj_load_s = 0, obj_build_s = 0;
-  std::size_t obj_bytes = 0, obj_tris = 0;
-  {
+  void load_mesh_obj() {
     namespace fs = std::filesystem;
     const fs::path dir = fs::temp_directory_path() / ("phonglab-bench-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const std::string obj = (dir / "bumpy.obj").string();
-    if (write_bumpy_sphere_obj(obj, rings, segments)) {
+    if (write_bumpy_sphere_obj(obj, mesh_.rings, mesh_.segments)) {
       std::error_code size_ec;
-      obj_bytes = static_cast<std::size_t>(fs::file_size(obj, size_ec));
+      obj_.bytes = static_cast<std::size_t>(fs::file_size(obj, size_ec));
       const auto t_load = Clock::now();
       LoadResult loaded = load_scene_file(obj);
-      obj_load_s = seconds_since(t_load);
+      obj_.load_s = seconds_since(t_load);
       if (loaded.ok() && !loaded.scene->meshes.empty()) {
-        obj_build_s = loaded.scene->meshes[0].geometry->build_seconds;
-        obj_tris = loaded.scene->meshes[0].geometry->triangles.size();
+        obj_.build_s = loaded.scene->meshes[0].geometry->build_seconds;
+        obj_.triangles = loaded.scene->meshes[0].geometry->triangles.size();
       } else {
         fail("the generated OBJ did not load: " + loaded.error_text());
       }
@@ -385,86 +427,97 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
     }
     std::error_code rm_ec;
     fs::remove_all(dir, rm_ec);
-    std::printf("  mesh from OBJ: %zu triangles, %.1f MB file, load %.2f s (BVH build %.2f s of it)\n", obj_tris,
-                static_cast<double>(obj_bytes) / 1e6, obj_load_s, obj_build_s);
+    std::printf("  mesh from OBJ: %zu triangles, %.1f MB file, load %.2f s (BVH build %.2f s of it)\n", obj_.triangles,
+                static_cast<double>(obj_.bytes) / 1e6, obj_.load_s, obj_.build_s);
   }
-  const std::string mesh_name = "bumpy sphere (" + std::to_string(tri_count) + " triangles)";
-  runs.push_back(run_frames(mesh_name, mesh_cs, w, h, threads, frames_multi, frames_single));
 
-  // Whitted frames.
-  std::ostringstream md;
-  md << "\n## Acceleration\n\nThe Whitted frame at " << w << "x" << h << ", 1 spp, median of " << frames_multi
-     << " frames with " << threads << " threads and " << frames_single
-     << " with 1 thread, the contenders and the thread counts alternating frame by frame: the project's default path (PreparedScene:"
-        " brute force for a few spheres and triangles, else its BVH; traced by the packet tracer where the CPU has"
-        " AVX2, four rays at a time, through the BVH too), the scalar renderer where the default is the packet tracer"
-        " (the same image, ray by ray), its BVH forced on every scene, and "
-     << (kEmbree ? "Embree 3 single-ray queries (rtcIntersect1 for the nearest hit, rtcOccluded1 for shadow rays; "
-                   "float triangles, spheres as user geometry running the renderer's exact double test, planes in "
-                   "double outside Embree), all with the same shading and rays."
-                 : "(Embree not built: configure with Embree 3 installed to compare against it).")
-     << " Differences are against the default path's image (largest channel difference of the linear radiance,"
-        " and the number of pixels that differ at all).\n\n"
-     << "| scene | accelerator | rays | 1 thread ms | " << threads << " threads ms | Mrays/s (" << threads
-     << " threads) | scaling | speed vs Embree | max difference | pixels differing | same ray counts |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  out.csv = "scene,accelerator,width,height,threads,median_ms,mrays_per_s,rays,primary,shadow,reflection,refraction,"
-            "max_abs_diff,pixels_differing\n";
-  double lecture_ratio = 0, lecture_ms = 0, mesh_ms = 0;
-  for (const SceneRun& r : runs) {
-    const std::size_t n = r.names.size();
-    const double embree_ms = kEmbree ? r.ms[1][n - 1] : 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const RayCounts& rc = r.rays[i];
-      const double mrays = static_cast<double>(rc.total()) / r.ms[1][i] / 1e3;
-      const bool is_embree = kEmbree && i == n - 1;
-      const bool same = same_counts(rc, r.rays[0]);
-      md << "| " << r.scene << " | " << r.names[i] << " | " << rc.total() << " | " << fmt("%.1f", r.ms[0][i]) << " | "
-         << fmt("%.1f", r.ms[1][i]) << " | " << fmt("%.1f", mrays) << " | " << fmt("%.2fx", r.ms[0][i] / r.ms[1][i])
-         << " | " << (kEmbree ? fmt("%.2fx", embree_ms / r.ms[1][i]) : std::string("-")) << " | "
-         << fmt("%.3g", r.diff[i].first) << " | " << r.diff[i].second << " | " << (same ? "yes" : "**no**") << " |\n";
-      for (int k = 0; k < 2; ++k) {
-        const int tc = k == 0 ? 1 : threads;
-        out.csv += r.scene + "," + r.names[i] + "," + std::to_string(w) + "," + std::to_string(h) + "," +
-                   std::to_string(tc) + "," + fmt("%.3f", r.ms[k][i]) + "," +
-                   fmt("%.3f", static_cast<double>(rc.total()) / r.ms[k][i] / 1e3) + "," + std::to_string(rc.total()) +
-                   "," + std::to_string(rc.primary) + "," + std::to_string(rc.shadow) + "," +
-                   std::to_string(rc.reflection) + "," + std::to_string(rc.refraction) + "," +
-                   fmt("%.6e", r.diff[i].first) + "," + std::to_string(r.diff[i].second) + "\n";
+  // The Whitted frames of every scene and contender.
+  void whitted_table(const std::vector<SceneRun>& runs) {
+    md_ << "\n## Acceleration\n\nThe Whitted frame at " << w_ << "x" << h_ << ", 1 spp, median of " << frames_multi_
+        << " frames with " << threads_ << " threads_ and " << frames_single_
+        << " with 1 thread, the contenders and the thread counts alternating frame by frame: the project's default "
+           "path (PreparedScene:"
+           " brute force for a few spheres and triangles, else its BVH; traced by the packet tracer where the CPU has"
+           " AVX2, four rays at a time, through the BVH too), the scalar renderer where the default is the packet "
+           "tracer"
+           " (the same image, ray by ray), its BVH forced on every scene, and "
+        << (kEmbree ? "Embree 3 single-ray queries (rtcIntersect1 for the nearest hit, rtcOccluded1 for shadow rays; "
+                      "float triangles, spheres as user geometry running the renderer's exact double test, planes in "
+                      "double outside Embree), all with the same shading and rays."
+                    : "(Embree not built: configure with Embree 3 installed to compare against it).")
+        << " Differences are against the default path's image (largest channel difference of the linear radiance,"
+           " and the number of pixels that differ at all).\n\n"
+        << "| scene | accelerator | rays | 1 thread ms | " << threads_ << " threads_ ms | Mrays/s (" << threads_
+        << " threads_) | scaling | speed vs Embree | max difference | pixels differing | same ray counts |\n"
+        << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    out_.csv =
+        "scene,accelerator,width,height,threads_,median_ms,mrays_per_s,rays,primary,shadow,reflection,refraction,"
+        "max_abs_diff,pixels_differing\n";
+    double lecture_ratio = 0;
+    for (const SceneRun& r : runs) {
+      const std::size_t n = r.names.size();
+      const double embree_ms = kEmbree ? r.ms[1][n - 1] : 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const RayCounts& rc = r.rays[i];
+        const double mrays = static_cast<double>(rc.total()) / r.ms[1][i] / 1e3;
+        const bool is_embree = kEmbree && i == n - 1;
+        const bool same = same_counts(rc, r.rays[0]);
+        md_ << "| " << r.scene << " | " << r.names[i] << " | " << rc.total() << " | " << fmt("%.1f", r.ms[0][i])
+            << " | " << fmt("%.1f", r.ms[1][i]) << " | " << fmt("%.1f", mrays) << " | "
+            << fmt("%.2fx", r.ms[0][i] / r.ms[1][i]) << " | "
+            << (kEmbree ? fmt("%.2fx", embree_ms / r.ms[1][i]) : std::string("-")) << " | "
+            << fmt("%.3g", r.diff[i].first) << " | " << r.diff[i].second << " | " << (same ? "yes" : "**no**")
+            << " |\n";
+        for (int k = 0; k < 2; ++k) {
+          const int tc = k == 0 ? 1 : threads_;
+          out_.csv += r.scene + "," + r.names[i] + "," + std::to_string(w_) + "," + std::to_string(h_) + "," +
+                      std::to_string(tc) + "," + fmt("%.3f", r.ms[k][i]) + "," +
+                      fmt("%.3f", static_cast<double>(rc.total()) / r.ms[k][i] / 1e3) + "," +
+                      std::to_string(rc.total()) + "," + std::to_string(rc.primary) + "," + std::to_string(rc.shadow) +
+                      "," + std::to_string(rc.reflection) + "," + std::to_string(rc.refraction) + "," +
+                      fmt("%.6e", r.diff[i].first) + "," + std::to_string(r.diff[i].second) + "\n";
+        }
+        // The BVH and the scalar renderer must answer exactly as the default path: the same image
+        // and the same rays.
+        if (!is_embree && i > 0 && (!same || r.diff[i].second != 0))
+          fail(r.scene + ": " + r.names[i] + " differs from the default path");
       }
-      // The BVH and the scalar renderer must answer exactly as the default path: the same image
-      // and the same rays.
-      if (!is_embree && i > 0 && (!same || r.diff[i].second != 0)) fail(r.scene + ": " + r.names[i] + " differs from the default path");
+      if (r.scene == "lecture") {
+        lecture_ms_ = r.ms[1][0];
+        if (kEmbree) lecture_ratio = embree_ms / r.ms[1][0];
+      }
+      if (&r == &runs.back()) mesh_ms_ = r.ms[1][0];
     }
-    if (r.scene == "lecture") {
-      lecture_ms = r.ms[1][0];
-      if (kEmbree) lecture_ratio = embree_ms / r.ms[1][0];
+    if (kEmbree) {
+      md_ << "\nOn `lecture`, " << threads_ << " threads_: the default path is " << fmt("%.2fx", lecture_ratio)
+          << " the speed of Embree single-ray (target " << fmt("%.0fx", kTargetRatioVsEmbree) << ": "
+          << (lecture_ratio >= kTargetRatioVsEmbree ? "met" : "**not met**") << ").\n";
     }
-    if (&r == &runs.back()) mesh_ms = r.ms[1][0];
-  }
-  if (kEmbree) {
-    md << "\nOn `lecture`, " << threads << " threads: the default path is " << fmt("%.2fx", lecture_ratio)
-       << " the speed of Embree single-ray (target " << fmt("%.0fx", kTargetRatioVsEmbree) << ": "
-       << (lecture_ratio >= kTargetRatioVsEmbree ? "met" : "**not met**") << ").\n";
   }
 
   // Primary rays alone: how far single-ray double precision is from Embree's packets.
-  md << "\n### Primary rays alone\n\nThe " << w << "x" << h << " pixel-centre camera rays, nearest hit only, "
-     << threads << " threads, 4x4-pixel blocks, median of " << frames_multi
-     << " casts. "
-     << (kEmbree ? "Embree's packets use its own float primitives (spheres as sphere points, the plane as two"
-                   " triangles of a square 1e4 times the scene) and a coherent context: the limit to aim for.\n\n"
-                 : "(Embree not built: no packet figure.)\n\n")
-     << "| scene | query | Mrays/s | rays that hit | share of the packet figure |\n|---|---|---|---|---|\n";
-  out.csv += "\nprimary_scene,query,threads,median_ms,mrays_per_s,hits\n";
-  const auto primary_rows = [&](const std::string& name, const std::vector<Contender>& cs, const PreparedScene& base) {
+  void primary_table() {
+    // Primary rays alone: how far single-ray double precision is from Embree's packets.
+    md_ << "\n### Primary rays alone\n\nThe " << w_ << "x" << h_ << " pixel-centre camera rays, nearest hit only, "
+        << threads_ << " threads_, 4x4-pixel blocks, median of " << frames_multi_ << " casts. "
+        << (kEmbree ? "Embree's packets use its own float primitives (spheres as sphere points, the plane as two"
+                      " triangles of a square 1e4 times the scene) and a coherent context: the limit to aim for.\n\n"
+                    : "(Embree not built: no packet figure.)\n\n")
+        << "| scene | query | Mrays/s | rays that hit | share of the packet figure |\n|---|---|---|---|---|\n";
+    out_.csv += "\nprimary_scene,query,threads_,median_ms,mrays_per_s,hits\n";
+    const Scene lecture = load_embedded("lecture");
+    primary_rows("lecture", contenders(lecture), PreparedScene(lecture));
+    primary_rows("bumpy sphere", mesh_.contenders, *mesh_.scene);
+  }
+
+  void primary_rows(const std::string& name, const std::vector<Contender>& cs, const PreparedScene& base) {
     std::vector<std::pair<std::string, PrimaryCast>> rows;
     for (const Contender& c : cs) {
       if (c.packets && packet_tracing_applies(c.scene)) continue;  // single rays: the scalar contender's row
       std::vector<double> secs;
-      PrimaryCast last = cast_primary(c.scene, w, h, threads);  // warm-up
-      for (int f = 0; f < frames_multi; ++f) {
-        last = cast_primary(c.scene, w, h, threads);
+      PrimaryCast last = cast_primary(c.scene, w_, h_, threads_);  // warm-up
+      for (int f = 0; f < frames_multi_; ++f) {
+        last = cast_primary(c.scene, w_, h_, threads_);
         secs.push_back(last.seconds);
       }
       last.seconds = median(secs);
@@ -472,9 +525,9 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
     }
     if (packet_tracing_applies(base)) {
       std::vector<double> secs;
-      PrimaryCast last = cast_primary_packets(base, w, h, threads);  // warm-up
-      for (int f = 0; f < frames_multi; ++f) {
-        last = cast_primary_packets(base, w, h, threads);
+      PrimaryCast last = cast_primary_packets(base, w_, h_, threads_);  // warm-up
+      for (int f = 0; f < frames_multi_; ++f) {
+        last = cast_primary_packets(base, w_, h_, threads_);
         secs.push_back(last.seconds);
       }
       last.seconds = median(secs);
@@ -483,9 +536,10 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
 #ifdef PHONGLAB_HAVE_EMBREE
     {
       std::vector<double> secs;
-      const std::vector<PacketCast> casts = embree_cast_primary_packets(base.scene(), w, h, threads, frames_multi);
+      const std::vector<PacketCast> casts = embree_cast_primary_packets(base.scene(), w_, h_, threads_, frames_multi_);
       for (const PacketCast& pc : casts) secs.push_back(pc.seconds);
-      rows.push_back({"Embree rtcIntersect16 packets", PrimaryCast{median(secs), casts.back().rays, casts.back().hits}});
+      rows.push_back(
+          {"Embree rtcIntersect16 packets", PrimaryCast{median(secs), casts.back().rays, casts.back().hits}});
     }
 #else
     (void)base;
@@ -493,43 +547,54 @@ AccelBenchResult run_accel_bench(const AccelBenchOptions& options) {
     const double limit = static_cast<double>(rows.back().second.rays) / rows.back().second.seconds / 1e6;
     for (const auto& [query, pc] : rows) {
       const double mrays = static_cast<double>(pc.rays) / pc.seconds / 1e6;
-      md << "| " << name << " | " << query << " | " << fmt("%.1f", mrays) << " | " << pc.hits << " | "
-         << (kEmbree ? fmt("%.0f %%", 100 * mrays / limit) : std::string("-")) << " |\n";
-      out.csv += name + "," + query + "," + std::to_string(threads) + "," + fmt("%.3f", pc.seconds * 1000) + "," +
-                 fmt("%.3f", mrays) + "," + std::to_string(pc.hits) + "\n";
+      md_ << "| " << name << " | " << query << " | " << fmt("%.1f", mrays) << " | " << pc.hits << " | "
+          << (kEmbree ? fmt("%.0f %%", 100 * mrays / limit) : std::string("-")) << " |\n";
+      out_.csv += name + "," + query + "," + std::to_string(threads_) + "," + fmt("%.3f", pc.seconds * 1000) + "," +
+                  fmt("%.3f", mrays) + "," + std::to_string(pc.hits) + "\n";
       std::printf("  primary %-10s %-45s %.1f Mrays/s\n", name.c_str(), query.c_str(), mrays);
     }
-  };
-  {
-    const Scene lecture = load_embedded("lecture");
-    primary_rows("lecture", contenders(lecture), PreparedScene(lecture));
   }
-  primary_rows("bumpy sphere", mesh_cs, mesh_scene);
 
   // The big mesh: build, memory and frame time.
-  md << "\n### A large mesh\n\nA generated closed bumpy sphere of " << tri_count
-     << " triangles (the hook `make_mesh_scene` takes any triangles, e.g. an OBJ's) on a floor, with a mirror sphere,"
-        " a point and a directional light.\n\n| | ours | Embree |\n|---|---|---|\n"
-     << "| load from OBJ | " << fmt("%.2f s", obj_load_s) << " for a " << fmt("%.1f MB", static_cast<double>(obj_bytes) / 1e6)
-     << " file of " << obj_tris << " triangles (`load_scene_file`: read, tinyobjloader, transform, BVH; target < 2 s: "
-     << (obj_load_s < 2 ? "met" : "**not met**") << ") | - |\n"
-     << "| build | " << fmt("%.2f s", our_build_s) << " (make_mesh_geometry, 2 threads at the top two levels, double boxes, 16-bin SAH) | ";
+  void big_mesh_table() {
+    md_ << "\n### A large mesh\n\nA generated closed bumpy sphere of " << mesh_.triangles
+        << " triangles (the hook `make_mesh_scene` takes any triangles, e.g. an OBJ's) on a floor, with a mirror "
+           "sphere,"
+           " a point and a directional light.\n\n| | ours | Embree |\n|---|---|---|\n"
+        << "| load from OBJ | " << fmt("%.2f s", obj_.load_s) << " for a "
+        << fmt("%.1f MB", static_cast<double>(obj_.bytes) / 1e6) << " file of " << obj_.triangles
+        << " triangles (`load_scene_file`: read, tinyobjloader, transform, BVH; target < 2 s: "
+        << (obj_.load_s < 2 ? "met" : "**not met**") << ") | - |\n"
+        << "| build | " << fmt("%.2f s", mesh_.build_s)
+        << " (make_mesh_geometry, 2 threads_ at the top two levels, double boxes, 16-bin SAH) | ";
 #ifdef PHONGLAB_HAVE_EMBREE
-  md << fmt("%.2f s", embree_multi.total_seconds) << " with " << threads << " threads ("
-     << fmt("%.2f s", embree_multi.commit_seconds) << " in rtcCommitScene), " << fmt("%.2f s", embree_single.total_seconds)
-     << " with 1 thread |\n"
-     << "| memory | " << mib(our_bytes) << " (MeshGeometry::memory_bytes: double triangles, BVH) | "
-     << mib(embree_multi.memory_bytes) << " (the device's memory monitor: float vertices, indices, BVH) |\n";
+    md_ << fmt("%.2f s", mesh_.embree_multi.total_seconds) << " with " << threads_ << " threads_ ("
+        << fmt("%.2f s", mesh_.embree_multi.commit_seconds) << " in rtcCommitScene), "
+        << fmt("%.2f s", mesh_.embree_single.total_seconds) << " with 1 thread |\n"
+        << "| memory | " << mib(mesh_.bytes) << " (MeshGeometry::memory_bytes: double triangles, BVH) | "
+        << mib(mesh_.embree_multi.memory_bytes) << " (the device's memory monitor: float vertices, indices, BVH) |\n";
 #else
-  md << "Embree not built |\n| memory | " << mib(our_bytes) << " (MeshGeometry::memory_bytes) | Embree not built |\n";
+    md_ << "Embree not built |\n| memory | " << mib(mesh_.bytes)
+        << " (MeshGeometry::memory_bytes) | Embree not built |\n";
 #endif
-  md << "\nThe mesh frame with " << threads << " threads takes " << fmt("%.1f ms", mesh_ms) << ", "
-     << fmt("%.2fx", mesh_ms / lecture_ms) << " the lecture frame's " << fmt("%.1f ms", lecture_ms) << " (target <= "
-     << fmt("%.0fx", kTargetMeshVsLecture) << ": " << (mesh_ms <= kTargetMeshVsLecture * lecture_ms ? "met" : "**not met**")
-     << ").\n";
-  out.markdown = md.str();
-  return out;
-}
+    md_ << "\nThe mesh frame with " << threads_ << " threads_ takes " << fmt("%.1f ms", mesh_ms_) << ", "
+        << fmt("%.2fx", mesh_ms_ / lecture_ms_) << " the lecture frame's " << fmt("%.1f ms", lecture_ms_)
+        << " (target <= " << fmt("%.0fx", kTargetMeshVsLecture) << ": "
+        << (mesh_ms_ <= kTargetMeshVsLecture * lecture_ms_ ? "met" : "**not met**") << ").\n";
+  }
+
+  AccelBenchResult out_;
+  std::ostringstream md_;
+  bool quick_;
+  int threads_, w_, h_, frames_multi_, frames_single_;
+  MeshRun mesh_;
+  ObjRun obj_;
+  double lecture_ms_ = 0, mesh_ms_ = 0;
+};
+
+}  // namespace
+
+AccelBenchResult run_accel_bench(const AccelBenchOptions& options) { return AccelBench(options).run(); }
 
 int write_accel_report(const AccelBenchOptions& options, const std::string& out_dir) {
   std::error_code ec;

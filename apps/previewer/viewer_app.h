@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <fstream>
+#include <iosfwd>
 #include <map>
 #include <memory>
 #include <optional>
@@ -210,11 +211,21 @@ class Viewer {
   std::optional<bool> script_file_command(ScriptStep& step);
   std::optional<bool> script_other_command(ScriptStep& step);
   bool script_set(const std::vector<std::string>& words);             // the `set` command
+  bool set_material_field(const std::vector<std::string>& words);     // its parts (viewer_script_set.cpp)
+  bool set_light_field(const std::vector<std::string>& words);
+  bool set_camera_field(const std::vector<std::string>& words);
+  bool set_render_field(const std::vector<std::string>& words);
+  bool set_instrument(const std::vector<std::string>& words);
+  bool set_display_field(const std::vector<std::string>& words);
   void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
   void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
   void push_click(ImVec2 at, bool ctrl);          // queues a left click (hover, press, release)
   bool push_item_input();                        // queues item_action_'s input; false: no such widget
   void write_state(const std::string& path) const;                    // `dump_state`
+  void write_document_state(std::ostream& out) const;  // write_state's parts (viewer_state.cpp)
+  void write_layout_state(std::ostream& out) const;
+  void write_rays_state(std::ostream& out) const;
+  void write_probe_state(std::ostream& out) const;
   std::string depth_cut_label() const;                                // the depth-cut slider's text
   void write_stats_summary(const std::string& label);                 // percentiles into the stats log
 

@@ -19,15 +19,28 @@ std::string Viewer::depth_cut_label() const {
   return text;
 }
 
+namespace {
+
+std::string vec(const Vec3& v) {
+  std::ostringstream s;
+  s << v.x << " " << v.y << " " << v.z;
+  return s.str();
+}
+
+}  // namespace
+
 void Viewer::write_state(const std::string& path) const {
   std::ofstream out(path);
+  write_document_state(out);
+  write_layout_state(out);
+  write_rays_state(out);
+  write_probe_state(out);
+}
+
+// The document, the view and the renderer's progress.
+void Viewer::write_document_state(std::ostream& out) const {
   const Scene& scene = doc_.scene();
   const ProgressiveStatus status = renderer_.status();
-  const auto vec = [](const Vec3& v) {
-    std::ostringstream s;
-    s << v.x << " " << v.y << " " << v.z;
-    return s.str();
-  };
   const bool have_material = selected_material_ >= 0 && selected_material_ < static_cast<int>(scene.materials.size());
   int window_w = 0, window_h = 0, fb_w = 0, fb_h = 0;
   glfwGetWindowSize(platform_.window(), &window_w, &window_h);
@@ -73,6 +86,11 @@ void Viewer::write_state(const std::string& path) const {
       << "compare_caption=" << (instruments_.compare != 0 ? compare_caption() : "") << "\n"
       << "captions=" << caption_lines.size() << "\n";
   for (std::size_t i = 0; i < caption_lines.size(); ++i) out << "caption" << i << "=" << caption_lines[i] << "\n";
+}
+
+// Where things were drawn last frame, the lights and materials, history and instruments.
+void Viewer::write_layout_state(std::ostream& out) const {
+  const Scene& scene = doc_.scene();
   // The boxes over the image and the named widgets, where they were drawn last frame: x y width height.
   for (const auto& [id, rect] : overlay_rects_) {
     out << "overlay_" << id.substr(2) << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
@@ -103,6 +121,10 @@ void Viewer::write_state(const std::string& path) const {
       << "have_a=" << (image_a_.pixels.empty() ? 0 : 1) << "\n"
       << "head=" << (shading_eye_ ? 1 : 0) << "\n";
   if (shading_eye_) out << "head_eye=" << vec(*shading_eye_) << "\n";
+}
+
+void Viewer::write_rays_state(std::ostream& out) const {
+  const Scene& scene = doc_.scene();
   // Rays: the overlay as drawn in the last frame, the depth cut and the heat map.
   int tree_blocked = 0, tree_deepest = 0;
   for (const ScreenSegment& segment : tree_segments_) {
@@ -122,32 +144,35 @@ void Viewer::write_state(const std::string& path) const {
       << "render_max_depth=" << (snapshot_ ? snapshot_->scene().max_depth : -1) << "\n"
       << "heat=" << (heat_shown() ? 1 : 0) << "\n"
       << "heat_max=" << heat_max_ << "\n";
-  if (probe_) {
-    const Color total = probe_->root.total;
-    const ImVec2 on_screen = probe_point_in_cell(cells().count() - 1);
-    out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
-        << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
-        << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"
-        << "probe_total=" << vec(total) << "\n";
-    // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).
-    int blocked = 0;
-    std::vector<const ProbeNode*> stack{&probe_->root};
-    while (!stack.empty()) {
-      const ProbeNode* node = stack.back();
-      stack.pop_back();
-      for (const ProbeLight& light : node->lights) blocked += light.lit_side && !light.visible ? 1 : 0;
-      if (node->reflection) stack.push_back(node->reflection.get());
-      if (node->refraction) stack.push_back(node->refraction.get());
-    }
-    out << "probe_blocked=" << blocked << "\n"
-        << "probe_rays=" << probe_->rays.total() << "\n";
-    // The shown image's pixel there, when it is the full-resolution 1-spp image of this
-    // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
-    if (shown_.divisor == 1 && shown_.spp == 1 && shown_.width == render_width_ && shown_.height == render_height_) {
-      const glm::vec3 shown = shown_.pixels[static_cast<std::size_t>(probe_y_) * static_cast<std::size_t>(shown_.width) +
-                                            static_cast<std::size_t>(probe_x_)];
-      out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";
-    }
+}
+
+// The probed pixel: where, what it hit, its blocked shadow rays, and whether it matches the image.
+void Viewer::write_probe_state(std::ostream& out) const {
+  if (!probe_) return;
+  const Color total = probe_->root.total;
+  const ImVec2 on_screen = probe_point_in_cell(cells().count() - 1);
+  out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
+      << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
+      << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"
+      << "probe_total=" << vec(total) << "\n";
+  // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).
+  int blocked = 0;
+  std::vector<const ProbeNode*> stack{&probe_->root};
+  while (!stack.empty()) {
+    const ProbeNode* node = stack.back();
+    stack.pop_back();
+    for (const ProbeLight& light : node->lights) blocked += light.lit_side && !light.visible ? 1 : 0;
+    if (node->reflection) stack.push_back(node->reflection.get());
+    if (node->refraction) stack.push_back(node->refraction.get());
+  }
+  out << "probe_blocked=" << blocked << "\n"
+      << "probe_rays=" << probe_->rays.total() << "\n";
+  // The shown image's pixel there, when it is the full-resolution 1-spp image of this
+  // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
+  if (shown_.divisor == 1 && shown_.spp == 1 && shown_.width == render_width_ && shown_.height == render_height_) {
+    const glm::vec3 shown = shown_.pixels[static_cast<std::size_t>(probe_y_) * static_cast<std::size_t>(shown_.width) +
+                                          static_cast<std::size_t>(probe_x_)];
+    out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";
   }
 }
 

@@ -67,9 +67,8 @@ struct ObjectLine {
   std::string text;
 };
 
-}  // namespace
-
-std::string scene_to_json(const Scene& scene, const std::string& save_dir) {
+// The scene's objects, one line each, in the order of the file they came from.
+std::vector<ObjectLine> object_lines(const Scene& scene, const std::string& save_dir) {
   const auto material_name = [&](int m) {
     const bool valid = m >= 0 && static_cast<std::size_t>(m) < scene.materials.size();
     return json_string(valid ? scene.materials[static_cast<std::size_t>(m)].name : std::string());
@@ -129,25 +128,11 @@ std::string scene_to_json(const Scene& scene, const std::string& save_dir) {
   std::stable_sort(lines.begin(), lines.end(),
                    [](const ObjectLine& a, const ObjectLine& b) { return a.order < b.order; });
 
-  const Camera& c = scene.camera;
-  std::string out = "{\n";
-  out += "  \"camera\": {\n";
-  out += "    \"position\": " + vec_text(c.position) + ",\n";
-  out += "    \"look_at\": " + vec_text(c.look_at) + ",\n";
-  out += "    \"up\": " + vec_text(c.up) + ",\n";
-  out += "    \"fov_y\": " + number_text(c.fov_y_deg) + "\n";
-  out += "  },\n";
-  out += "  \"image\": {\n";
-  out += "    \"width\": " + std::to_string(scene.width) + ",\n";
-  out += "    \"height\": " + std::to_string(scene.height) + "\n";
-  out += "  },\n";
-  out += "  \"ambient\": " + vec_text(scene.ambient) + ",\n";
-  out += "  \"background\": " + vec_text(scene.background) + ",\n";
-  out += "  \"max_depth\": " + std::to_string(scene.max_depth) + ",\n";
-  out += "  \"min_weight\": " + number_text(scene.min_weight) + ",\n";
-  out += std::string("  \"specular_model\": ") +
-         (scene.specular_model == SpecularModel::kBlinn ? "\"blinn\"" : "\"phong\"") + ",\n";
+  return lines;
+}
 
+// The "lights" and "materials" members (an MTL's materials stay with their mesh).
+void append_lights_and_materials(const Scene& scene, std::string& out) {
   out += "  \"lights\": [";
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
@@ -181,7 +166,32 @@ std::string scene_to_json(const Scene& scene, const std::string& save_dir) {
     out += "    }";
   }
   out += first_material ? "},\n" : "\n  },\n";
+}
 
+}  // namespace
+
+std::string scene_to_json(const Scene& scene, const std::string& save_dir) {
+  const std::vector<ObjectLine> lines = object_lines(scene, save_dir);
+  const Camera& c = scene.camera;
+  std::string out = "{\n";
+  out += "  \"camera\": {\n";
+  out += "    \"position\": " + vec_text(c.position) + ",\n";
+  out += "    \"look_at\": " + vec_text(c.look_at) + ",\n";
+  out += "    \"up\": " + vec_text(c.up) + ",\n";
+  out += "    \"fov_y\": " + number_text(c.fov_y_deg) + "\n";
+  out += "  },\n";
+  out += "  \"image\": {\n";
+  out += "    \"width\": " + std::to_string(scene.width) + ",\n";
+  out += "    \"height\": " + std::to_string(scene.height) + "\n";
+  out += "  },\n";
+  out += "  \"ambient\": " + vec_text(scene.ambient) + ",\n";
+  out += "  \"background\": " + vec_text(scene.background) + ",\n";
+  out += "  \"max_depth\": " + std::to_string(scene.max_depth) + ",\n";
+  out += "  \"min_weight\": " + number_text(scene.min_weight) + ",\n";
+  out += std::string("  \"specular_model\": ") +
+         (scene.specular_model == SpecularModel::kBlinn ? "\"blinn\"" : "\"phong\"") + ",\n";
+
+  append_lights_and_materials(scene, out);
   out += "  \"objects\": [";
   for (std::size_t i = 0; i < lines.size(); ++i) {
     out += i == 0 ? "\n    " : ",\n    ";
