@@ -33,11 +33,6 @@ constexpr double kActivityWindow = 1.0;     // keep drawing this long after an i
 constexpr double kIdleWait = 0.5;           // idle wake-up period, seconds: also the file poll rate
 constexpr double kFilePollPeriod = 0.5;     // "poll mtime about twice a second"
 constexpr float kSidebarWidth = 400;        // panel width at UI scale 1, ImGui units
-constexpr float kDragThreshold = 3;         // pixels a press may move and still be a click
-constexpr double kOrbitRadPerPixel = 0.008; // about 1.4 turns across a 1280-pixel drag
-constexpr double kDollyPerPixel = 0.01;     // distance factor e^0.01 per pixel dragged
-constexpr double kDollyPerWheelClick = 0.85;
-constexpr float kMarkerGrabFactor = 1.8f;   // a marker can be grabbed a little outside its disc
 constexpr int kInteractiveDivisor = 4;      // while dragging, refine no further than 1/4 resolution
 constexpr double kMaxDeferral = 1.0;        // a drag's edit waits at most this long for the renderer, s
 
@@ -52,16 +47,6 @@ ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std:
   return p;
 }
 
-const char* object_kind_name(ObjectRef::Kind kind) {
-  switch (kind) {
-    case ObjectRef::Kind::kSphere: return "sphere";
-    case ObjectRef::Kind::kPlane: return "plane";
-    case ObjectRef::Kind::kTriangle: return "triangle";
-    case ObjectRef::Kind::kMesh: return "mesh";
-    case ObjectRef::Kind::kNone: break;
-  }
-  return "object";
-}
 
 bool same_camera(const Camera& a, const Camera& b) {
   return a.position == b.position && a.look_at == b.look_at && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
@@ -252,190 +237,6 @@ void Viewer::layout() {
   viewport_ = ViewportRect{0, 0, std::max(io.DisplaySize.x - sidebar, 0.0f), io.DisplaySize.y};
 }
 
-void Viewer::handle_viewport_input() {
-  ImGuiIO& io = ImGui::GetIO();
-  Scene& scene = doc_.scene();
-  Camera& camera = scene.camera;
-  const Camera view = view_camera();
-  // Where each button went down, from GLFW's event: ImGui 1.86 polls the cursor once a frame, so
-  // a press followed by a quick move in the same frame would otherwise start where the pointer
-  // already moved to (and miss the light marker it was pressed on).
-  const std::vector<MousePress> presses = platform_.take_mouse_presses();
-  const auto pressed_at = [&](int button) {
-    ImVec2 at = io.MousePos;
-    for (const MousePress& p : presses) {
-      if (p.button == button) at = ImVec2(static_cast<float>(p.x), static_cast<float>(p.y));
-    }
-    return at;
-  };
-  ImVec2 mouse = io.MousePos;
-  for (int button = 0; button < 3; ++button) {
-    if (ImGui::IsMouseClicked(button)) mouse = pressed_at(button);
-  }
-  const bool over_viewport = ImGui::IsMousePosValid(&mouse) && mouse.x >= viewport_.x &&
-                             mouse.x < viewport_.x + viewport_.width && mouse.y >= viewport_.y &&
-                             mouse.y < viewport_.y + viewport_.height;
-  const bool mouse_is_ours = over_viewport && !io.WantCaptureMouse && !help_visible_;
-  const int view_w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
-  const int view_h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
-
-  // The point light whose marker is under the mouse, where it was drawn last frame (an arrow at
-  // the edge for a light out of view): what the user sees is what the user grabs.
-  hovered_light_ = -1;
-  if (drag_.mode == DragMode::kNone && mouse_is_ours) {
-    const float grab = ui::light_marker_radius(platform_.ui_scale()) * kMarkerGrabFactor;
-    float best = grab * grab;
-    for (const ui::LightMarker& marker : markers_) {
-      const float dx = marker.pos.x - mouse.x;
-      const float dy = marker.pos.y - mouse.y;
-      if (dx * dx + dy * dy <= best) {
-        best = dx * dx + dy * dy;
-        hovered_light_ = marker.index;
-      }
-    }
-  }
-
-  if (drag_.mode == DragMode::kNone) {
-    if (mouse_is_ours) {
-      for (int button = 0; button < 3; ++button) {
-        if (!ImGui::IsMouseClicked(button)) continue;
-        drag_ = Drag{};
-        drag_.button = button;
-        drag_.start = mouse;
-        if (button == ImGuiMouseButton_Left && hovered_light_ >= 0 &&
-            hovered_light_ < static_cast<int>(scene.lights.size())) {
-          drag_.mode = DragMode::kLight;
-          drag_.light = hovered_light_;
-          drag_.light_depth = ui::view_depth(view, scene.lights[static_cast<std::size_t>(hovered_light_)].position);
-          selected_light_ = hovered_light_;
-        } else if (button == ImGuiMouseButton_Left) {
-          drag_.mode = io.KeyShift ? DragMode::kPan : DragMode::kOrbit;
-        } else {
-          drag_.mode = button == ImGuiMouseButton_Right ? DragMode::kDolly : DragMode::kPan;
-        }
-        break;
-      }
-      if (io.MouseWheel != 0) {
-        ui::dolly(camera, std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel)), dolly_limit_);
-        camera_changed_ = true;
-      }
-    }
-  } else if (ImGui::IsMouseDown(drag_.button)) {
-    if (!drag_.moved && ImGui::IsMouseDragging(drag_.button, kDragThreshold)) drag_.moved = true;
-    const ImVec2 d = io.MouseDelta;
-    // A grabbed light follows the pointer from the first pixel (an arrow at the edge brings the
-    // light into view at once); the camera waits for the drag threshold, so a click stays a click.
-    const bool moving = (drag_.moved || drag_.mode == DragMode::kLight) && (d.x != 0 || d.y != 0);
-    if (moving) drag_viewport(mouse, d, view, view_w, view_h);
-  } else {
-    if (drag_.mode == DragMode::kOrbit && !drag_.moved) {
-      // Plain click selects a material (as before); Ctrl+click, or any click in probe mode, probes.
-      if (instruments_.probe_mode || io.KeyCtrl) probe_at(drag_.start);
-      else pick(drag_.start);
-    }
-    drag_ = Drag{};
-  }
-  interacting_ = drag_.mode != DragMode::kNone && (drag_.moved || drag_.mode == DragMode::kLight);
-  handle_keys();
-}
-
-void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int view_w, int view_h) {
-  Scene& scene = doc_.scene();
-  Camera& camera = scene.camera;
-  const double per_px = kOrbitRadPerPixel / platform_.ui_scale();
-  switch (drag_.mode) {
-    case DragMode::kOrbit:
-      // The scene follows the hand: drag right, it turns right; drag down, it is seen from higher up.
-      ui::orbit(camera, -delta.x * per_px, delta.y * per_px);
-      camera_changed_ = true;
-      break;
-    case DragMode::kPan: {
-      Camera moved = view;  // the fitted field of view sets how far a pixel goes
-      ui::pan(moved, delta.x, delta.y, viewport_.height);
-      camera.position = moved.position;
-      camera.look_at = moved.look_at;
-      camera_changed_ = true;
-      break;
-    }
-    case DragMode::kDolly:
-      ui::dolly(camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
-      camera_changed_ = true;
-      break;
-    case DragMode::kLight:
-      if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size()) && drag_.light_depth > 0) {
-        const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
-        // Kept to float precision, as every value the panels edit: a saved file reads 1.8074448,
-        // not 1.8074447666598992.
-        const Vec3 p = ui::unproject(view, at, drag_.light_depth, view_w, view_h);
-        scene.lights[static_cast<std::size_t>(drag_.light)].position =
-            Vec3(ui::tidy_float(p.x), ui::tidy_float(p.y), ui::tidy_float(p.z));
-        scene_edited_ = true;
-      }
-      break;
-    case DragMode::kNone:
-      break;
-  }
-}
-
-void Viewer::handle_keys() {
-  const ImGuiIO& io = ImGui::GetIO();
-  // Presses come from GLFW's key events, not from the key state once per frame: a tap shorter
-  // than a frame still counts. A text field being edited keeps its keys.
-  for (const KeyPress& press : platform_.take_key_presses()) {
-    if (io.WantTextInput) continue;
-    const bool ctrl = (press.mods & GLFW_MOD_CONTROL) != 0;
-    const bool shift = (press.mods & GLFW_MOD_SHIFT) != 0;
-    if (ctrl) {
-      // Ctrl+Z is also a text field's own undo: taken only when no field has the keyboard.
-      if (press.key == GLFW_KEY_Z) shift ? redo() : undo();
-      if (press.key == GLFW_KEY_Y) redo();
-      continue;
-    }
-    if (press.key == GLFW_KEY_F1 || (press.key == GLFW_KEY_SLASH && shift)) {
-      help_visible_ = !help_visible_;
-      continue;
-    }
-    if (press.key == GLFW_KEY_ESCAPE && help_visible_) {
-      help_visible_ = false;
-      continue;
-    }
-    if (io.WantCaptureKeyboard && !help_visible_) continue;  // a widget is active
-    shortcut(press.key, shift);
-  }
-}
-
-void Viewer::shortcut(int key, bool shift) {
-  Scene& scene = doc_.scene();
-  if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
-    const int digit = key - GLFW_KEY_1;  // 0 for the key 1
-    if (shift) {
-      // Shift+1..9: solo light L0..L8 (again: end the solo).
-      if (digit < static_cast<int>(scene.lights.size())) {
-        ui::toggle_solo(scene.lights, solo_, digit);
-        selected_light_ = digit;
-        scene_edited_ = true;
-      }
-    } else if (digit < static_cast<int>(kShortcutTerms.size())) {
-      // 1 the full image, 2..6 its terms in the order of the equation.
-      if (render_settings_.term != kShortcutTerms[static_cast<std::size_t>(digit)]) {
-        render_settings_.term = kShortcutTerms[static_cast<std::size_t>(digit)];
-        settings_changed_ = true;
-      }
-    }
-    return;
-  }
-  switch (key) {
-    case GLFW_KEY_F: frame_requested_ = true; break;
-    case GLFW_KEY_R: reset_requested_ = true; break;
-    case GLFW_KEY_H: sidebar_visible_ = !sidebar_visible_; ++sidebar_toggles_; break;
-    case GLFW_KEY_M:
-      instruments_.small_multiples = !instruments_.small_multiples;
-      settings_changed_ = true;
-      break;
-    default: break;
-  }
-}
-
 Viewer::Cells Viewer::cells() const {
   Cells c;
   c.columns = instruments_.small_multiples ? kMultiplesColumns : 1;
@@ -457,34 +258,6 @@ Camera Viewer::view_camera() const {
   const Scene& scene = doc_.scene();
   const double framed = scene.height > 0 ? static_cast<double>(scene.width) / scene.height : 0;
   return ui::fit_to_view(scene.camera, framed, view_aspect());
-}
-
-void Viewer::pick(ImVec2 mouse) {
-  if (!snapshot_) return;
-  const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
-  const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
-  const double x = mouse.x - viewport_.x;
-  const double y = mouse.y - viewport_.y;
-  const int px = std::clamp(static_cast<int>(std::floor(x)), 0, w - 1);
-  const int py = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
-  // The same camera formula as the renderer, through the clicked point of the pixel.
-  const CameraFrame frame = make_camera_frame(view_camera(), w, h);
-  const Ray ray = camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0));
-  const std::optional<Hit> hit = intersect(*snapshot_, ray);
-  if (!hit) {
-    picked_text_ = "the background";
-    return;
-  }
-  const Scene& scene = snapshot_->scene();
-  selected_material_ = hit->material;
-  open_materials_ = true;
-  std::ostringstream text;
-  // The probe's naming: "objects[i]", and a mesh's OBJ face.
-  text << object_kind_name(hit->object.kind) << " " << object_name(scene, hit->object);
-  if (hit->material >= 0 && hit->material < static_cast<int>(scene.materials.size())) {
-    text << ", material '" << scene.materials[static_cast<std::size_t>(hit->material)].name << "'";
-  }
-  picked_text_ = text.str();
 }
 
 void Viewer::note_restart(std::uint64_t generation, double edit_time) {
