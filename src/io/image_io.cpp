@@ -46,46 +46,6 @@ std::string encode_pfm(const Image& image) {
   return out;
 }
 
-Image decode_pfm(const std::string& bytes, std::string* error) {
-  std::istringstream in(bytes);
-  std::string magic;
-  int w = 0, h = 0;
-  double scale = 0;
-  in >> magic >> w >> h >> scale;
-  if (!in || magic != "PF" || w <= 0 || h <= 0 || scale == 0) {
-    if (error) *error = "not a colour PFM file";
-    return {};
-  }
-  in.get();  // the single whitespace character after the scale
-  const std::size_t offset = static_cast<std::size_t>(in.tellg());
-  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3;
-  if (bytes.size() < offset + count * 4) {
-    if (error) *error = "PFM file is truncated";
-    return {};
-  }
-  Image img;
-  img.width = w;
-  img.height = h;
-  img.pixels.resize(static_cast<std::size_t>(w) * h);
-  const bool little = scale < 0;
-  std::size_t pos = offset;
-  for (int y = h - 1; y >= 0; --y) {
-    for (int x = 0; x < w; ++x) {
-      for (int c = 0; c < 3; ++c) {
-        std::uint32_t bits = 0;
-        for (int b = 0; b < 4; ++b) {
-          const auto byte = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[pos + (little ? b : 3 - b)]));
-          bits |= byte << (8 * b);
-        }
-        pos += 4;
-        float f;
-        std::memcpy(&f, &bits, sizeof f);
-        img.at(x, y)[c] = f;
-      }
-    }
-  }
-  return img;
-}
 
 std::string encode_png_srgb(const Image& image) {
   std::vector<unsigned char> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
@@ -123,15 +83,5 @@ std::string write_image(const std::string& path, const Image& image) {
   return write_file_atomically(path, bytes);
 }
 
-Image read_pfm(const std::string& path, std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (error) *error = "cannot open " + path;
-    return {};
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return decode_pfm(ss.str(), error);
-}
 
 }  // namespace phonglab

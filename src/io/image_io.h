@@ -26,15 +26,11 @@ unsigned char linear_to_srgb8(double linear);
 
 // Encodes as PFM: "PF\n<w> <h>\n-1.0\n", then float32 little-endian rows bottom to top.
 std::string encode_pfm(const Image& image);
-// Decodes a colour PFM of either endianness; empty optional-like result (width 0) on error.
-Image decode_pfm(const std::string& bytes, std::string* error = nullptr);
 // 8-bit sRGB PNG of clamp(image, 0, 1).
 std::string encode_png_srgb(const Image& image);
 
 // Writes `image` to `path` (format from the extension: .pfm or .png) through a temporary
 // file and a rename. Returns an empty string on success, else the error.
 std::string write_image(const std::string& path, const Image& image);
-// Reads a PFM file; on failure returns an image of width 0 and sets `error`.
-Image read_pfm(const std::string& path, std::string* error = nullptr);
 
 }  // namespace phonglab

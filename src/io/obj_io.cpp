@@ -495,21 +495,4 @@ Triangle ObjIndexedMesh::triangle(std::size_t i) const {
   return tri;
 }
 
-ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl, NsMapping ns) {
-  ObjIndexedMesh indexed = load_obj_indexed(obj_text, obj_name, read_mtl, ns);
-  ObjMesh out;
-  out.triangles.reserve(indexed.triangles.size());
-  out.source_face.reserve(indexed.triangles.size());
-  for (std::size_t i = 0; i < indexed.triangles.size(); ++i) {
-    out.triangles.push_back(indexed.triangle(i));
-    out.source_face.push_back(indexed.triangles[i].face);
-  }
-  out.materials = std::move(indexed.materials);
-  out.emitters = std::move(indexed.emitters);
-  out.skipped_degenerate = indexed.skipped_degenerate;
-  out.warnings = std::move(indexed.warnings);
-  out.errors = std::move(indexed.errors);
-  return out;
-}
-
 }  // namespace phonglab

@@ -27,16 +27,6 @@ struct Emitter {
   int faces = 0;
 };
 
-struct ObjMesh {
-  std::vector<Triangle> triangles;  // OBJ coordinates; material = index into `materials`
-  std::vector<int> source_face;     // each triangle's face number (0-based, file order)
-  std::vector<Material> materials;  // from the MTL, plus a default one when a face has none
-  std::vector<Emitter> emitters;
-  int skipped_degenerate = 0;       // zero-area triangles left out
-  std::vector<Diagnostic> warnings;
-  std::vector<Diagnostic> errors;   // a mesh with errors must not be used
-};
-
 // A triangle of an ObjIndexedMesh: indices of its corners in `vertices` and of their normals in
 // `normals` (all three -1 for a flat face).
 struct ObjIndexedTriangle {
@@ -46,7 +36,7 @@ struct ObjIndexedTriangle {
   int face = 0;      // the face it comes from (0-based, file order)
 };
 
-// An ObjMesh before its triangles are spelled out: shared vertices and normals and 32 bytes a
+// An OBJ's mesh with its triangles indexed: shared vertices and normals and 32 bytes a
 // triangle instead of 152. Scene loading places the vertices once and makes each Triangle once,
 // in its BVH leaf slot.
 struct ObjIndexedMesh {
@@ -58,20 +48,16 @@ struct ObjIndexedMesh {
   int skipped_degenerate = 0;
   std::vector<Diagnostic> warnings;
   std::vector<Diagnostic> errors;
-  Triangle triangle(std::size_t i) const;  // triangles[i] as load_obj gives it
+  Triangle triangle(std::size_t i) const;  // triangles[i] spelled out, in OBJ coordinates
 };
-
-// Parses OBJ text; `read_mtl` resolves its mtllib names. Quads and n-gons are split into fans,
-// negative (relative) indices are honoured, faces without normals are flat.
-ObjMesh load_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
-                 NsMapping ns = NsMapping::kAsIs);
 
 // Called on the prescan's thread, while tinyobjloader still parses the file on the caller's, with
 // the most triangles its faces can give (a fan for every face of 3 or more vertices; none when
 // the prescan finds errors): callers can make room for them there, off the parse's path.
 using TriangleCountHook = std::function<void(std::size_t max_triangles)>;
 
-// The same, indexed: load_obj spells out these triangles, in this order.
+// Parses OBJ text; `read_mtl` resolves its mtllib names. Quads and n-gons are split into fans,
+// negative (relative) indices are honoured, faces without normals are flat.
 ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
                                 NsMapping ns = NsMapping::kAsIs, const TriangleCountHook& on_prescan = {});
 

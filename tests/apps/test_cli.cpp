@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
+#include "tests/support/pfm_reader.h"
 #include "core/packet/packet.h"
 
 namespace fs = std::filesystem;

@@ -19,6 +19,7 @@
 #include "core/accel/prepared_scene.h"
 #include "core/geometry/geometry.h"
 #include "io/obj_io.h"
+#include "tests/support/obj_mesh.h"
 #include "core/scene/scene.h"
 #include "core/shading/shading.h"
 

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/geometry/geometry.h"
+#include "tests/support/test_support.h"
 
 using namespace phonglab;
 

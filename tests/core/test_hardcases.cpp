@@ -21,6 +21,7 @@
 #include "core/accel/prepared_scene.h"
 #include "core/scene/camera.h"
 #include "core/geometry/geometry.h"
+#include "tests/support/test_support.h"
 #include "core/scene/math.h"
 #include "experiments/numerics_variants.h"
 #include "core/render/render.h"

@@ -23,6 +23,7 @@
 #include "core/scene/camera.h"
 #include "core/geometry/geometry.h"
 #include "io/obj_io.h"
+#include "tests/support/obj_mesh.h"
 #include "io/probe_report.h"
 #include "core/render/render.h"
 #include "io/scene/scene_io.h"

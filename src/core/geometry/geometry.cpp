@@ -22,23 +22,12 @@ TriangleShear make_shear(const Vec3& dir) {
 }
 
 
-std::optional<double> intersect_sphere(const Sphere& s, const Ray& ray, double t_min) {
-  const double t = sphere_root(s, ray.origin, ray.dir, t_min, std::numeric_limits<double>::infinity());
-  if (t > 0) return t;
-  return std::nullopt;
-}
-
 std::optional<double> intersect_plane(const Plane& pl, const Ray& ray, double t_min) {
   const double denom = glm::dot(ray.dir, pl.normal);
   if (denom == 0) return std::nullopt;  // parallel: no gap guard, so no horizon gap
   const double t = glm::dot(pl.point - ray.origin, pl.normal) / denom;
   if (t > t_min && t < std::numeric_limits<double>::infinity()) return t;
   return std::nullopt;
-}
-
-std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, double* b1, double* b2,
-                                         double t_min) {
-  return intersect_triangle(tri, ray, make_shear(ray.dir), b1, b2, t_min);
 }
 
 int nearest_plane(const std::vector<Plane>& planes, const Ray& ray, double& best) {

@@ -40,13 +40,11 @@ struct Hit {
   double magnitude = 0;  // coordinate magnitude that sets the rounding error of p (see surface_offset)
 };
 
-// Per-primitive tests: distance t > t_min of the nearest hit, or nothing. Never NaN.
-std::optional<double> intersect_sphere(const Sphere& s, const Ray& ray, double t_min = 0);
+// Per-primitive tests: distance t > t_min of the nearest hit, or nothing. Never NaN. (Spheres:
+// sphere_root below.)
 std::optional<double> intersect_plane(const Plane& pl, const Ray& ray, double t_min = 0);
-// Also gives the barycentric weights of v1 and v2.
-std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, double* b1 = nullptr,
-                                         double* b2 = nullptr, double t_min = 0);
-// The same with the ray's shear computed once for many triangles.
+// The watertight triangle test with the ray's shear (make_shear) computed once for many
+// triangles; also gives the barycentric weights of v1 and v2.
 inline std::optional<double> intersect_triangle(const Triangle& tri, const Ray& ray, const TriangleShear& sh,
                                                 double* b1, double* b2, double t_min = 0) {
   // Watertight test (Woop, Benthin, Wald, JCGT 2013): vertices are moved into a space where
