@@ -434,7 +434,7 @@ class AccelBench {
   // The Whitted frames of every scene and contender.
   void whitted_table(const std::vector<SceneRun>& runs) {
     md_ << "\n## Acceleration\n\nThe Whitted frame at " << w_ << "x" << h_ << ", 1 spp, median of " << frames_multi_
-        << " frames with " << threads_ << " threads_ and " << frames_single_
+        << " frames with " << threads_ << " threads and " << frames_single_
         << " with 1 thread, the contenders and the thread counts alternating frame by frame: the project's default "
            "path (PreparedScene:"
            " brute force for a few spheres and triangles, else its BVH; traced by the packet tracer where the CPU has"
@@ -447,11 +447,11 @@ class AccelBench {
                     : "(Embree not built: configure with Embree 3 installed to compare against it).")
         << " Differences are against the default path's image (largest channel difference of the linear radiance,"
            " and the number of pixels that differ at all).\n\n"
-        << "| scene | accelerator | rays | 1 thread ms | " << threads_ << " threads_ ms | Mrays/s (" << threads_
-        << " threads_) | scaling | speed vs Embree | max difference | pixels differing | same ray counts |\n"
+        << "| scene | accelerator | rays | 1 thread ms | " << threads_ << " threads ms | Mrays/s (" << threads_
+        << " threads) | scaling | speed vs Embree | max difference | pixels differing | same ray counts |\n"
         << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     out_.csv =
-        "scene,accelerator,width,height,threads_,median_ms,mrays_per_s,rays,primary,shadow,reflection,refraction,"
+        "scene,accelerator,width,height,threads,median_ms,mrays_per_s,rays,primary,shadow,reflection,refraction,"
         "max_abs_diff,pixels_differing\n";
     double lecture_ratio = 0;
     for (const SceneRun& r : runs) {
@@ -489,7 +489,7 @@ class AccelBench {
       if (&r == &runs.back()) mesh_ms_ = r.ms[1][0];
     }
     if (kEmbree) {
-      md_ << "\nOn `lecture`, " << threads_ << " threads_: the default path is " << fmt("%.2fx", lecture_ratio)
+      md_ << "\nOn `lecture`, " << threads_ << " threads: the default path is " << fmt("%.2fx", lecture_ratio)
           << " the speed of Embree single-ray (target " << fmt("%.0fx", kTargetRatioVsEmbree) << ": "
           << (lecture_ratio >= kTargetRatioVsEmbree ? "met" : "**not met**") << ").\n";
     }
@@ -499,12 +499,12 @@ class AccelBench {
   void primary_table() {
     // Primary rays alone: how far single-ray double precision is from Embree's packets.
     md_ << "\n### Primary rays alone\n\nThe " << w_ << "x" << h_ << " pixel-centre camera rays, nearest hit only, "
-        << threads_ << " threads_, 4x4-pixel blocks, median of " << frames_multi_ << " casts. "
+        << threads_ << " threads, 4x4-pixel blocks, median of " << frames_multi_ << " casts. "
         << (kEmbree ? "Embree's packets use its own float primitives (spheres as sphere points, the plane as two"
                       " triangles of a square 1e4 times the scene) and a coherent context: the limit to aim for.\n\n"
                     : "(Embree not built: no packet figure.)\n\n")
         << "| scene | query | Mrays/s | rays that hit | share of the packet figure |\n|---|---|---|---|---|\n";
-    out_.csv += "\nprimary_scene,query,threads_,median_ms,mrays_per_s,hits\n";
+    out_.csv += "\nprimary_scene,query,threads,median_ms,mrays_per_s,hits\n";
     const Scene lecture = load_embedded("lecture");
     primary_rows("lecture", contenders(lecture), PreparedScene(lecture));
     primary_rows("bumpy sphere", mesh_.contenders, *mesh_.scene);
@@ -566,9 +566,9 @@ class AccelBench {
         << " triangles (`load_scene_file`: read, tinyobjloader, transform, BVH; target < 2 s: "
         << (obj_.load_s < 2 ? "met" : "**not met**") << ") | - |\n"
         << "| build | " << fmt("%.2f s", mesh_.build_s)
-        << " (make_mesh_geometry, 2 threads_ at the top two levels, double boxes, 16-bin SAH) | ";
+        << " (make_mesh_geometry, 2 threads at the top two levels, double boxes, 16-bin SAH) | ";
 #ifdef PHONGLAB_HAVE_EMBREE
-    md_ << fmt("%.2f s", mesh_.embree_multi.total_seconds) << " with " << threads_ << " threads_ ("
+    md_ << fmt("%.2f s", mesh_.embree_multi.total_seconds) << " with " << threads_ << " threads ("
         << fmt("%.2f s", mesh_.embree_multi.commit_seconds) << " in rtcCommitScene), "
         << fmt("%.2f s", mesh_.embree_single.total_seconds) << " with 1 thread |\n"
         << "| memory | " << mib(mesh_.bytes) << " (MeshGeometry::memory_bytes: double triangles, BVH) | "
@@ -577,7 +577,7 @@ class AccelBench {
     md_ << "Embree not built |\n| memory | " << mib(mesh_.bytes)
         << " (MeshGeometry::memory_bytes) | Embree not built |\n";
 #endif
-    md_ << "\nThe mesh frame with " << threads_ << " threads_ takes " << fmt("%.1f ms", mesh_ms_) << ", "
+    md_ << "\nThe mesh frame with " << threads_ << " threads takes " << fmt("%.1f ms", mesh_ms_) << ", "
         << fmt("%.2fx", mesh_ms_ / lecture_ms_) << " the lecture frame's " << fmt("%.1f ms", lecture_ms_)
         << " (target <= " << fmt("%.0fx", kTargetMeshVsLecture) << ": "
         << (mesh_ms_ <= kTargetMeshVsLecture * lecture_ms_ ? "met" : "**not met**") << ").\n";

@@ -100,7 +100,7 @@ std::string Viewer::init() {
   ImGui::GetIO().UserData = &item_locations_;
   std::string error = image_view_.init();
   if (!error.empty()) return error;
-  for (ImageView& view : term_views_) {
+  for (ImageView& view : terms_.views) {
     error = view.init();
     if (!error.empty()) return error;
   }
@@ -115,18 +115,18 @@ std::string Viewer::init() {
     file_state_.status = doc_.status();
     file_state_.path_field = doc_.file_path();
   }
-  scene_replaced_ = true;
+  edits_.replaced = true;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   if (!options_.script_path.empty()) {
     std::ifstream in(options_.script_path);
     if (!in) return "cannot read script " + options_.script_path;
     std::ostringstream text;
     text << in.rdbuf();
-    script_ = parse_script(text.str());
+    script_.commands = parse_script(text.str());
   }
   if (!options_.stats_log_path.empty()) {
-    stats_log_.open(options_.stats_log_path);
-    if (!stats_log_) return "cannot write " + options_.stats_log_path;
+    stats_.log.open(options_.stats_log_path);
+    if (!stats_.log) return "cannot write " + options_.stats_log_path;
   }
   update_title();
   return {};
@@ -134,21 +134,21 @@ std::string Viewer::init() {
 
 int Viewer::run() {
   GLFWwindow* window = platform_.window();
-  last_frame_start_ = glfwGetTime();
+  stats_.last_frame_start = glfwGetTime();
   while (!quit_) {
     wait_for_next_frame();
     const double frame_start = glfwGetTime();
-    const double frame_seconds = frame_start - last_frame_start_;
-    last_frame_start_ = frame_start;
+    const double frame_seconds = frame_start - stats_.last_frame_start;
+    stats_.last_frame_start = frame_start;
     // Frames after an idle sleep say nothing about drawing speed.
-    if (!slept_idle_) frame_times_.emplace_back(frame_start, frame_seconds);
-    while (!frame_times_.empty() && frame_times_.front().first < frame_start - 1.0) frame_times_.pop_front();
+    if (!stats_.slept_idle) stats_.frame_times.emplace_back(frame_start, frame_seconds);
+    while (!stats_.frame_times.empty() && stats_.frame_times.front().first < frame_start - 1.0) stats_.frame_times.pop_front();
     // Frames paced while the renderer works are the ones the 60 Hz target is about.
-    if (was_rendering_ && stats_log_) {
-      busy_frame_ms_.push_back(frame_seconds * 1e3);
-      stats_log_ << "frame " << frame_start * 1e3 << " " << frame_seconds * 1e3 << "\n";
+    if (stats_.was_rendering && stats_.log) {
+      stats_.busy_frame_ms.push_back(frame_seconds * 1e3);
+      stats_.log << "frame " << frame_start * 1e3 << " " << frame_seconds * 1e3 << "\n";
     }
-    was_rendering_ = !renderer_.status().idle;
+    stats_.was_rendering = !renderer_.status().idle;
 
     platform_.update_scale();
     if (glfwWindowShouldClose(window)) {
@@ -177,12 +177,12 @@ int Viewer::run() {
     after_swap();
   }
   write_stats_summary("session");
-  return script_failed_ ? 3 : 0;
+  return script_.failed ? 3 : 0;
 }
 
 bool Viewer::poll_render_frame() {
-  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
-    if (term_renderers_[i] && term_renderers_[i]->take_frame(term_frames_[i])) term_upload_pending_[i] = true;
+  for (std::size_t i = 0; i < terms_.renderers.size(); ++i) {
+    if (terms_.renderers[i] && terms_.renderers[i]->take_frame(terms_.frames[i])) terms_.upload_pending[i] = true;
   }
   if (!renderer_.take_frame(shown_)) return false;
   upload_pending_ = true;
@@ -192,10 +192,10 @@ bool Viewer::poll_render_frame() {
 void Viewer::wait_for_next_frame() {
   const ProgressiveStatus status = renderer_.status();
   const double now = glfwGetTime();
-  const bool script_running = script_index_ < script_.size() || !input_steps_.empty();
+  const bool script_running = script_.index < script_.commands.size() || !script_.input.empty();
   const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
-                    script_running || guard_visible_ || drag_.mode != DragMode::kNone || !terms_idle();
-  slept_idle_ = !busy;
+                    script_running || dialogs_.guard_visible || drag_.mode != DragMode::kNone || !terms_idle();
+  stats_.slept_idle = !busy;
   if (!busy) {
     // Nothing moves: sleep until an event, a new image (the render thread posts an empty
     // event) or the next file poll.
@@ -203,13 +203,13 @@ void Viewer::wait_for_next_frame() {
     poll_render_frame();
     return;
   }
-  const double deadline = last_frame_start_ + kFramePeriod;
+  const double deadline = stats_.last_frame_start + kFramePeriod;
   for (;;) {
     poll_render_frame();
     // The first image after an edit goes up at once: that is the latency users feel.
     const bool first_image = upload_pending_ && shown_.generation != drawn_generation_;
     const double t = glfwGetTime();
-    const double early = last_frame_start_ + kEarlyFrameGap;
+    const double early = stats_.last_frame_start + kEarlyFrameGap;
     if (first_image && t >= early) break;
     if (t >= deadline) break;
     glfwWaitEventsTimeout(first_image ? early - t : deadline - t);
@@ -264,32 +264,32 @@ void Viewer::note_restart(std::uint64_t generation, double edit_time) {
   restart_times_.emplace_back(generation, edit_time);
   constexpr std::size_t kKeep = 256;  // a few seconds of drag frames; older ones never show
   while (restart_times_.size() > kKeep) restart_times_.pop_front();
-  if (bench_expect_restart_) {
-    bench_generation_ = generation;
-    bench_expect_restart_ = false;
+  if (script_.bench_expect_restart) {
+    script_.bench_generation = generation;
+    script_.bench_expect_restart = false;
   }
 }
 
 void Viewer::apply_edits(double frame_start) {
   Scene& scene = doc_.scene();
   const ImGuiIO& io = ImGui::GetIO();
-  if (frame_requested_ && viewport_.height > 0) {
+  if (edits_.frame_requested && viewport_.height > 0) {
     // Framed for the scene's own image: the view's fitting keeps that in any window.
     const double framed = scene.height > 0 ? static_cast<double>(scene.width) / scene.height : 1;
-    if (ui::frame_scene(scene.camera, scene, framed)) camera_changed_ = true;
+    if (ui::frame_scene(scene.camera, scene, framed)) edits_.camera = true;
   }
-  if (reset_requested_) {
+  if (edits_.reset_requested) {
     scene.camera = doc_.loaded_camera();
-    camera_changed_ = true;
+    edits_.camera = true;
   }
-  frame_requested_ = reset_requested_ = false;
-  if (scene_edited_) doc_.update_dirty();
-  if (scene_replaced_) {
+  edits_.frame_requested = edits_.reset_requested = false;
+  if (edits_.scene) doc_.update_dirty();
+  if (edits_.replaced) {
     dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());
     history_.reset(scene);
     commit_pending_ = false;
     solo_ = ui::LightSolo{};
-  } else if (scene_edited_ && !restored_) {
+  } else if (edits_.scene && !restored_) {
     commit_pending_ = true;
   }
   restored_ = false;
@@ -303,10 +303,10 @@ void Viewer::apply_edits(double frame_start) {
   const std::optional<Vec3> eye = head_eye();
   if (eye != shading_eye_) {
     shading_eye_ = eye;
-    settings_changed_ = true;
-    if (probe_) refresh_probe();
+    edits_.settings = true;
+    if (probed_.tree) refresh_probe();
   }
-  if (settings_changed_) {
+  if (edits_.settings) {
     const std::uint64_t before = renderer_.status().generation;
     const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_, shading_eye_));
     if (generation != before) {
@@ -330,18 +330,18 @@ void Viewer::apply_edits(double frame_start) {
   }
   const bool resized = width != render_width_ || height != render_height_;
   // A new window aspect may widen or narrow the fitted field of view: a new camera.
-  if (snapshot_ && !same_camera(view_camera(), snapshot_->scene().camera)) camera_changed_ = true;
-  const bool edited = scene_edited_ || camera_changed_ || scene_replaced_ || view_changed_ || !snapshot_;
-  if (edited && !change_deferred_) deferred_since_ = frame_start;
-  const bool scene_changed = edited || change_deferred_;
+  if (snapshot_ && !same_camera(view_camera(), snapshot_->scene().camera)) edits_.camera = true;
+  const bool edited = edits_.scene || edits_.camera || edits_.replaced || edits_.view || !snapshot_;
+  if (edited && !edits_.deferred) edits_.deferred_since = frame_start;
+  const bool scene_changed = edited || edits_.deferred;
   // During a drag, a new snapshot waits until the renderer has shown the previous one:
   // restarting every UI frame would cancel each coarse pass before it finishes whenever a
   // pass takes longer than a frame, and the view would freeze until the drag ends.
-  const bool dragging = interacting_ || edited_while_active_;
+  const bool dragging = interacting_ || edits_.while_active;
   const bool first_image_pending = renderer_.status().published_generation < sent_generation_;
-  const bool defer = scene_changed && dragging && !resized && !scene_replaced_ && first_image_pending &&
-                     frame_start - deferred_since_ < kMaxDeferral;
-  change_deferred_ = defer;
+  const bool defer = scene_changed && dragging && !resized && !edits_.replaced && first_image_pending &&
+                     frame_start - edits_.deferred_since < kMaxDeferral;
+  edits_.deferred = defer;
   if ((scene_changed && !defer) || resized) {
     if (scene_changed) {
       Scene snapshot = scene;
@@ -356,15 +356,15 @@ void Viewer::apply_edits(double frame_start) {
     const std::uint64_t generation = renderer_.set_scene(snapshot_, width, height);
     sent_generation_ = generation;
     // Latency counts from the oldest edit this snapshot carries.
-    if (scene_changed) note_restart(generation, deferred_since_);
-    if (probe_) refresh_probe();
+    if (scene_changed) note_restart(generation, edits_.deferred_since);
+    if (probed_.tree) refresh_probe();
   }
   update_term_renderers((scene_changed && !defer) || resized);
-  renderer_.set_interacting(interacting_ || edited_while_active_);
-  for (const auto& term_renderer : term_renderers_) {
-    if (term_renderer) term_renderer->set_interacting(interacting_ || edited_while_active_);
+  renderer_.set_interacting(interacting_ || edits_.while_active);
+  for (const auto& term_renderer : terms_.renderers) {
+    if (term_renderer) term_renderer->set_interacting(interacting_ || edits_.while_active);
   }
-  scene_edited_ = camera_changed_ = scene_replaced_ = settings_changed_ = view_changed_ = false;
+  edits_.scene = edits_.camera = edits_.replaced = edits_.settings = edits_.view = false;
   take_a_when_final();
   update_title();
 }
@@ -400,13 +400,13 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
         continue;
       }
       const auto i = static_cast<std::size_t>(cell);
-      if (term_upload_pending_[i]) {
-        term_views_[i].upload(term_frames_[i].width, term_frames_[i].height, term_frames_[i].pixels);
-        term_upload_pending_[i] = false;
-        term_drawn_serial_[i] = term_frames_[i].stats.serial;
+      if (terms_.upload_pending[i]) {
+        terms_.views[i].upload(terms_.frames[i].width, terms_.frames[i].height, terms_.frames[i].pixels);
+        terms_.upload_pending[i] = false;
+        term_drawn_serial_[i] = terms_.frames[i].stats.serial;
       }
-      if (term_views_[i].has_image()) {
-        term_views_[i].draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, term_frames_[i].divisor > 1);
+      if (terms_.views[i].has_image()) {
+        terms_.views[i].draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, terms_.frames[i].divisor > 1);
       }
     }
   } else {
@@ -416,9 +416,9 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (!screenshot_request_.empty()) {
-    save_window_screenshot(screenshot_request_, fb_width, fb_height);
-    screenshot_request_.clear();
+  if (!script_.screenshot.empty()) {
+    save_window_screenshot(script_.screenshot, fb_width, fb_height);
+    script_.screenshot.clear();
   }
 }
 
@@ -427,11 +427,11 @@ void Viewer::after_swap() {
   const double now = glfwGetTime();
   for (const auto& [generation, edit_time] : restart_times_) {
     if (generation != first_image_generation_) continue;
-    last_latency_ms_ = (now - edit_time) * 1e3;
+    stats_.last_latency_ms = (now - edit_time) * 1e3;
     // The renderer's share: restart to publication of this image.
-    if (stats_log_) {
-      latencies_ms_.push_back(last_latency_ms_);
-      stats_log_ << "latency " << generation << " " << last_latency_ms_ << " 1/" << shown_.divisor << " render_ms "
+    if (stats_.log) {
+      stats_.latencies_ms.push_back(stats_.last_latency_ms);
+      stats_.log << "latency " << generation << " " << stats_.last_latency_ms << " 1/" << shown_.divisor << " render_ms "
                  << shown_.stats.ms_since_restart << " pass_ms " << shown_.stats.pass_ms << "\n";
     }
     break;
@@ -455,10 +455,10 @@ bool Viewer::image_is_final() const {
 }
 
 bool Viewer::terms_idle() const {
-  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
-    if (!term_renderers_[i]) continue;
-    const ProgressiveStatus status = term_renderers_[i]->status();
-    if (!status.idle || term_upload_pending_[i] || (status.serial > 0 && term_drawn_serial_[i] != status.serial)) {
+  for (std::size_t i = 0; i < terms_.renderers.size(); ++i) {
+    if (!terms_.renderers[i]) continue;
+    const ProgressiveStatus status = terms_.renderers[i]->status();
+    if (!status.idle || terms_.upload_pending[i] || (status.serial > 0 && term_drawn_serial_[i] != status.serial)) {
       return false;
     }
   }
@@ -467,36 +467,36 @@ bool Viewer::terms_idle() const {
 
 void Viewer::update_term_renderers(bool scene_changed) {
   if (!instruments_.small_multiples) {
-    for (auto& term_renderer : term_renderers_) term_renderer.reset();  // joins its thread
+    for (auto& term_renderer : terms_.renderers) term_renderer.reset();  // joins its thread
     return;
   }
-  const bool started = !term_renderers_[0];
+  const bool started = !terms_.renderers[0];
   ProgressiveSettings settings = progressive_settings(render_settings_, shading_eye_);
   // Five more renderers share the machine with the main one.
   settings.threads = std::max(1, resolve_thread_count(render_settings_.threads) / 3);
-  for (std::size_t i = 0; i < term_renderers_.size(); ++i) {
+  for (std::size_t i = 0; i < terms_.renderers.size(); ++i) {
     settings.term = kCellTerms[i];
-    if (!term_renderers_[i]) {
-      term_renderers_[i] = std::make_unique<ProgressiveRenderer>(settings, [] { glfwPostEmptyEvent(); });
-      term_frames_[i] = ProgressiveFrame{};
+    if (!terms_.renderers[i]) {
+      terms_.renderers[i] = std::make_unique<ProgressiveRenderer>(settings, [] { glfwPostEmptyEvent(); });
+      terms_.frames[i] = ProgressiveFrame{};
       term_drawn_serial_[i] = 0;
-      term_upload_pending_[i] = false;
+      terms_.upload_pending[i] = false;
     } else {
-      term_renderers_[i]->set_settings(settings);
+      terms_.renderers[i]->set_settings(settings);
     }
-    if ((started || scene_changed) && snapshot_) term_renderers_[i]->set_scene(snapshot_, render_width_, render_height_);
+    if ((started || scene_changed) && snapshot_) terms_.renderers[i]->set_scene(snapshot_, render_width_, render_height_);
   }
 }
 
 void Viewer::write_stats_summary(const std::string& label) {
-  if (!stats_log_) return;
-  stats_log_ << "summary " << label << " ui_frames " << busy_frame_ms_.size() << " mean_ms " << mean(busy_frame_ms_)
-             << " p50_ms " << percentile(busy_frame_ms_, 0.5) << " p95_ms " << percentile(busy_frame_ms_, 0.95)
-             << " p99_ms " << percentile(busy_frame_ms_, 0.99) << " max_ms " << percentile(busy_frame_ms_, 1.0) << "\n";
-  stats_log_ << "summary " << label << " edit_to_image n " << latencies_ms_.size() << " mean_ms " << mean(latencies_ms_)
-             << " p50_ms " << percentile(latencies_ms_, 0.5) << " p95_ms " << percentile(latencies_ms_, 0.95)
-             << " max_ms " << percentile(latencies_ms_, 1.0) << "\n";
-  stats_log_.flush();
+  if (!stats_.log) return;
+  stats_.log << "summary " << label << " ui_frames " << stats_.busy_frame_ms.size() << " mean_ms " << mean(stats_.busy_frame_ms)
+             << " p50_ms " << percentile(stats_.busy_frame_ms, 0.5) << " p95_ms " << percentile(stats_.busy_frame_ms, 0.95)
+             << " p99_ms " << percentile(stats_.busy_frame_ms, 0.99) << " max_ms " << percentile(stats_.busy_frame_ms, 1.0) << "\n";
+  stats_.log << "summary " << label << " edit_to_image n " << stats_.latencies_ms.size() << " mean_ms " << mean(stats_.latencies_ms)
+             << " p50_ms " << percentile(stats_.latencies_ms, 0.5) << " p95_ms " << percentile(stats_.latencies_ms, 0.95)
+             << " max_ms " << percentile(stats_.latencies_ms, 1.0) << "\n";
+  stats_.log.flush();
 }
 
 }  // namespace phonglab

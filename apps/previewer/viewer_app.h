@@ -188,7 +188,7 @@ class Viewer {
   void perform(const PendingAction& action);     // runs it
   void open_scene(const std::string& scene_arg);
   void reload_scene(bool keep_view);
-  void save_scene(bool as);                      // Save (false) or Save as the path field (true), then after_save_
+  void save_scene(bool as);                      // Save (false) or Save as the path field (true), then dialogs_.after_save
   bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
   bool begin_screenshot(Image& image);           // the shown image's size, or false (and why) before the first
   void save_png(const std::string& path);        // what is shown, exposure and curve applied
@@ -220,7 +220,7 @@ class Viewer {
   void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
   void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
   void push_click(ImVec2 at, bool ctrl);          // queues a left click (hover, press, release)
-  bool push_item_input();                        // queues item_action_'s input; false: no such widget
+  bool push_item_input();                        // queues script_.item_action's input; false: no such widget
   void write_state(const std::string& path) const;                    // `dump_state`
   void write_document_state(std::ostream& out) const;  // write_state's parts (viewer_state.cpp)
   void write_layout_state(std::ostream& out) const;
@@ -243,16 +243,6 @@ class Viewer {
   std::shared_ptr<const PreparedScene> snapshot_;  // the prepared scene the renderer has (for picking)
 
   // Edits gathered during a UI frame, applied once at its end.
-  bool scene_edited_ = false;      // materials, lights, shading: restart and mark unsaved
-  bool camera_changed_ = false;    // navigation: restart, not an unsaved change
-  bool scene_replaced_ = false;    // opened or reloaded
-  bool settings_changed_ = false;  // render settings panel
-  bool view_changed_ = false;      // the depth cut: a new snapshot of the same scene, not an edit
-  bool frame_requested_ = false;   // F / "Frame"
-  bool reset_requested_ = false;   // R / "Reset"
-  bool edited_while_active_ = false;  // a slider drag is editing: render coarse while it lasts
-  bool change_deferred_ = false;   // a drag's edit waits for the renderer's current first image
-  double deferred_since_ = 0;      // glfwGetTime() of the oldest deferred edit
   std::uint64_t sent_generation_ = 0;  // generation of the last snapshot handed over
   int render_width_ = 0;           // full-resolution size last given to the renderer
   int render_height_ = 0;
@@ -279,13 +269,6 @@ class Viewer {
   ViewportRect viewport_;
   Drag drag_;
   bool interacting_ = false;
-  PendingAction pending_;
-  bool open_guard_ = false;          // open the modal this frame
-  bool guard_visible_ = false;       // the modal is up
-  bool open_conflict_ = false;       // open the changed-on-disk dialog this frame
-  bool conflict_visible_ = false;    // it is up
-  PendingAction after_save_;         // what runs once a save (through the dialogs) succeeds
-  ui::GuardChoice scripted_choice_ = ui::GuardChoice::kNone;
   bool quit_ = false;
   double next_file_poll_ = 0;        // glfwGetTime() of the next mtime check
   std::string title_;
@@ -294,17 +277,8 @@ class Viewer {
   ui::SceneHistory history_;           // undo and redo of committed edits
   bool commit_pending_ = false;        // an edit waits for its gesture to end before it is committed
   bool restored_ = false;              // this frame's scene change came from undo or redo: no commit
-  std::optional<PixelProbe> probe_;    // the probed pixel's ray tree, in snapshot_
-  int probe_x_ = 0;                    // the probed render pixel
-  int probe_y_ = 0;
-  std::string probe_report_;           // probe_to_text of probe_
-  bool probe_precision_ = false;       // the probe panel shows every digit (else four significant)
   std::string camera_notice_;          // why the last typed camera value was refused
-  std::vector<std::string> probe_occluders_;  // object_name of each primary-hit light's occluder
-  ProgressiveFrame image_a_;           // snapshot A (pixels empty: none)
-  bool a_requested_ = false;           // Snapshot A was pressed; A is taken when the image is done
   std::uint64_t a_generation_ = 0;     // the renderer generation A was asked of
-  bool a_dropped_ = false;             // an edit came before that image was done: no A
   std::string figure_path_ = "phonglab-figure.png";
   std::string figure_status_;
   std::optional<Vec3> shading_eye_;    // the head-moved eye the renderers and the probe use now
@@ -321,43 +295,96 @@ class Viewer {
   // The small multiples' cells in reading order (the full image is the main renderer's).
   static constexpr std::array<Term, kTermCells> kCellTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular,
                                                               Term::kReflection, Term::kRefraction};
-  std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> term_renderers_;  // ambient .. refraction
-  std::array<ProgressiveFrame, kTermCells> term_frames_;  // their newest images
-  std::array<bool, kTermCells> term_upload_pending_{};   // term_frames_[i] is newer than its texture
   std::array<std::uint64_t, kTermCells> term_drawn_serial_{};  // serial of the image in each texture
-  std::array<ImageView, kTermCells> term_views_;         // their textures
 
   // Timing.
-  double last_frame_start_ = 0;
-  std::deque<std::pair<double, double>> frame_times_;  // (start, duration) over the last second
-  bool was_rendering_ = false;       // the renderer was busy when this frame started
-  bool slept_idle_ = false;          // this frame followed an idle sleep, not the 60 Hz pacing
   // Edits whose first image is not yet on screen: (generation, glfwGetTime() of the edit).
   std::deque<std::pair<std::uint64_t, double>> restart_times_;
   std::uint64_t first_image_generation_ = 0;  // its first image went up this frame; 0: none
-  double last_latency_ms_ = -1;               // edit to first image on screen, last measured
-  std::vector<double> latencies_ms_;      // for the stats log's summary (kept only with a log)
-  std::vector<double> busy_frame_ms_;     // UI frame times while the renderer was working (same)
-  std::ofstream stats_log_;
 
-  // Scripts.
-  std::vector<ScriptCommand> script_;
-  std::size_t script_index_ = 0;
-  ScriptWait script_wait_ = ScriptWait::kNone;
-  int wait_frames_left_ = 0;
-  double wait_deadline_ = 0;
-  std::string wait_file_;
-  std::deque<InputStep> input_steps_;
-  ItemAction item_action_;           // the widget action waiting for its widget to scroll into view
-  bool script_failed_ = false;
-  std::string screenshot_request_;   // window screenshot to take after drawing this frame
-  int bench_left_ = 0;               // bench_edits: edits still to make
-  int bench_gap_frames_ = 0;         // frames to wait after an image before the next edit
-  std::string bench_kind_;           // "material" or "camera"
-  bool bench_waiting_image_ = false; // an edit was made; its first image is not up yet
-  bool bench_expect_restart_ = false;  // the next restart is the bench's edit
-  std::uint64_t bench_generation_ = 0;
-  int bench_sign_ = 1;               // edits alternate direction so the scene stays put
+  // What this frame's panels and input changed (apply_edits turns them into one restart).
+  struct EditFlags {
+    bool scene = false;            // materials, lights, shading: restart and mark unsaved
+    bool camera = false;           // navigation: restart, not an unsaved change
+    bool replaced = false;         // opened or reloaded
+    bool settings = false;         // render settings panel
+    bool view = false;             // the depth cut: a new snapshot of the same scene, not an edit
+    bool frame_requested = false;  // F / "Frame"
+    bool reset_requested = false;  // R / "Reset"
+    bool while_active = false;     // a slider drag is editing: render coarse while it lasts
+    bool deferred = false;         // a drag's edit waits for the renderer's current first image
+    double deferred_since = 0;     // glfwGetTime() of the oldest deferred edit
+  };
+  EditFlags edits_;
+  // The unsaved-changes and changed-on-disk dialogs and what waits for them.
+  struct Dialogs {
+    PendingAction pending;
+    bool open_guard = false;        // open the modal this frame
+    bool guard_visible = false;     // the modal is up
+    bool open_conflict = false;     // open the changed-on-disk dialog this frame
+    bool conflict_visible = false;  // it is up
+    PendingAction after_save;       // what runs once a save (through the dialogs) succeeds
+    ui::GuardChoice scripted_choice = ui::GuardChoice::kNone;
+  };
+  Dialogs dialogs_;
+  // The probed pixel and what the Probe panel shows of it.
+  struct ProbeState {
+    std::optional<PixelProbe> tree;  // the probed pixel's ray tree, in snapshot_
+    int x = 0;                       // the probed render pixel
+    int y = 0;
+    std::string report;                  // probe_to_text of tree
+    bool every_digit = false;            // the probe panel shows every digit (else four significant)
+    std::vector<std::string> occluders;  // object_name of each primary-hit light's occluder
+  };
+  ProbeState probed_;
+  // Snapshot A of the A/B compare.
+  struct CompareState {
+    ProgressiveFrame image;  // snapshot A (pixels empty: none)
+    bool requested = false;  // Snapshot A was pressed; A is taken when the image is done
+    bool dropped = false;    // an edit came before that image was done: no A
+  };
+  CompareState compare_;
+  // The small multiples: one renderer, image and texture per term.
+  struct TermCells {
+    std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> renderers;  // ambient .. refraction
+    std::array<ProgressiveFrame, kTermCells> frames;                         // their newest images
+    std::array<bool, kTermCells> upload_pending{};                           // frames[i] is newer than its texture
+    std::array<ImageView, kTermCells> views;                                 // their textures
+  };
+  TermCells terms_;
+  // Frame pacing and the stats log's measurements.
+  struct FrameStats {
+    double last_frame_start = 0;
+    std::deque<std::pair<double, double>> frame_times;  // (start, duration) over the last second
+    bool was_rendering = false;                         // the renderer was busy when this frame started
+    bool slept_idle = false;                            // this frame followed an idle sleep, not the 60 Hz pacing
+    double last_latency_ms = -1;                        // edit to first image on screen, last measured
+    std::vector<double> latencies_ms;                   // for the stats log's summary (kept only with a log)
+    std::vector<double> busy_frame_ms;                  // UI frame times while the renderer was working (same)
+    std::ofstream log;
+  };
+  FrameStats stats_;
+  // A test script being run (viewer_script.cpp).
+  struct ScriptRun {
+    std::vector<ScriptCommand> commands;
+    std::size_t index = 0;
+    ScriptWait wait = ScriptWait::kNone;
+    int frames_left = 0;
+    double deadline = 0;
+    std::string file;
+    std::deque<InputStep> input;
+    ItemAction item_action;  // the widget action waiting for its widget to scroll into view
+    bool failed = false;
+    std::string screenshot;             // window screenshot to take after drawing this frame
+    int bench_left = 0;                 // bench_edits: edits still to make
+    int bench_gap_frames = 0;           // frames to wait after an image before the next edit
+    std::string bench_kind;             // "material" or "camera"
+    bool bench_waiting_image = false;   // an edit was made; its first image is not up yet
+    bool bench_expect_restart = false;  // the next restart is the bench's edit
+    std::uint64_t bench_generation = 0;
+    int bench_sign = 1;  // edits alternate direction so the scene stays put
+  };
+  ScriptRun script_;
 };
 
 }  // namespace phonglab

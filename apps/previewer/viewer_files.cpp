@@ -31,8 +31,8 @@ void Viewer::request(PendingAction action) {
     perform(action);
     return;
   }
-  pending_ = std::move(action);
-  open_guard_ = true;
+  dialogs_.pending = std::move(action);
+  dialogs_.open_guard = true;
 }
 
 void Viewer::perform(const PendingAction& action) {
@@ -47,21 +47,21 @@ void Viewer::perform(const PendingAction& action) {
 void Viewer::handle_guard_modal() {
   ui::GuardView view;
   view.action = "quit";
-  if (pending_.kind == PendingAction::Kind::kOpen) view.action = "open " + pending_.arg;
-  if (pending_.kind == PendingAction::Kind::kReload) view.action = "reload the file";
+  if (dialogs_.pending.kind == PendingAction::Kind::kOpen) view.action = "open " + dialogs_.pending.arg;
+  if (dialogs_.pending.kind == PendingAction::Kind::kReload) view.action = "reload the file";
   view.can_save = !doc_.file_path().empty() && !doc_.opened_mesh();
   view.changed_on_disk = !doc_.file_path().empty() && doc_.changed_on_disk();
-  const ui::GuardChoice choice = ui::unsaved_changes_modal(open_guard_, view, file_state_.path_field, scripted_choice_);
-  if (open_guard_) guard_visible_ = true;
-  open_guard_ = false;
-  if (guard_visible_) scripted_choice_ = ui::GuardChoice::kNone;
+  const ui::GuardChoice choice = ui::unsaved_changes_modal(dialogs_.open_guard, view, file_state_.path_field, dialogs_.scripted_choice);
+  if (dialogs_.open_guard) dialogs_.guard_visible = true;
+  dialogs_.open_guard = false;
+  if (dialogs_.guard_visible) dialogs_.scripted_choice = ui::GuardChoice::kNone;
   if (choice != ui::GuardChoice::kNone) {
-    guard_visible_ = false;
-    PendingAction pending = std::move(pending_);
-    pending_ = PendingAction{};
+    dialogs_.guard_visible = false;
+    PendingAction pending = std::move(dialogs_.pending);
+    dialogs_.pending = PendingAction{};
     if (choice == ui::GuardChoice::kSave || choice == ui::GuardChoice::kSaveAs) {
       // A save that meets an outside change asks first; the action waits for that answer.
-      after_save_ = std::move(pending);
+      dialogs_.after_save = std::move(pending);
       save_scene(choice == ui::GuardChoice::kSaveAs);
     } else if (choice == ui::GuardChoice::kDiscard) {
       perform(pending);
@@ -71,14 +71,14 @@ void Viewer::handle_guard_modal() {
 }
 
 void Viewer::handle_conflict_modal() {
-  const ui::GuardChoice choice = ui::changed_on_disk_modal(open_conflict_, doc_.file_path(), scripted_choice_);
-  if (open_conflict_) conflict_visible_ = true;
-  open_conflict_ = false;
-  if (conflict_visible_) scripted_choice_ = ui::GuardChoice::kNone;
+  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, doc_.file_path(), dialogs_.scripted_choice);
+  if (dialogs_.open_conflict) dialogs_.conflict_visible = true;
+  dialogs_.open_conflict = false;
+  if (dialogs_.conflict_visible) dialogs_.scripted_choice = ui::GuardChoice::kNone;
   if (choice == ui::GuardChoice::kNone) return;
-  conflict_visible_ = false;
-  PendingAction after = std::move(after_save_);
-  after_save_ = PendingAction{};
+  dialogs_.conflict_visible = false;
+  PendingAction after = std::move(dialogs_.after_save);
+  dialogs_.after_save = PendingAction{};
   if (choice == ui::GuardChoice::kOverwrite) {
     if (finish_save(doc_.save(true))) perform(after);
   } else if (choice == ui::GuardChoice::kReload) {
@@ -103,13 +103,13 @@ void Viewer::open_scene(const std::string& scene_arg) {
   selected_material_ = 0;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   picked_text_.clear();
-  probe_.reset();
+  probed_.tree.reset();
   // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
-  image_a_ = ProgressiveFrame{};
-  a_requested_ = a_dropped_ = false;
+  compare_.image = ProgressiveFrame{};
+  compare_.requested = compare_.dropped = false;
   instruments_.compare = 0;
   drag_ = Drag{};
-  scene_replaced_ = true;
+  edits_.replaced = true;
 }
 
 void Viewer::reload_scene(bool keep_view) {
@@ -124,25 +124,25 @@ void Viewer::reload_scene(bool keep_view) {
   selected_material_ = std::clamp(selected_material_, 0, std::max(materials - 1, 0));
   if (selected_light_ >= static_cast<int>(doc_.scene().lights.size())) selected_light_ = -1;
   drag_ = Drag{};
-  scene_replaced_ = true;
+  edits_.replaced = true;
 }
 
 void Viewer::save_scene(bool as) {
   if (as) {
     const bool ok = doc_.save_as(file_state_.path_field);
     if (finish_save(ok ? SceneDocument::SaveResult::kSaved : SceneDocument::SaveResult::kFailed)) {
-      perform(after_save_);
+      perform(dialogs_.after_save);
     }
-    after_save_ = PendingAction{};
+    dialogs_.after_save = PendingAction{};
     return;
   }
   const SceneDocument::SaveResult result = doc_.save();
   if (result == SceneDocument::SaveResult::kChangedOnDisk) {
-    open_conflict_ = true;  // the answer decides; after_save_ waits for it
+    dialogs_.open_conflict = true;  // the answer decides; dialogs_.after_save waits for it
     return;
   }
-  if (finish_save(result)) perform(after_save_);
-  after_save_ = PendingAction{};
+  if (finish_save(result)) perform(dialogs_.after_save);
+  dialogs_.after_save = PendingAction{};
 }
 
 bool Viewer::finish_save(SceneDocument::SaveResult result) {
@@ -218,7 +218,7 @@ void Viewer::save_window_screenshot(const std::string& path, int fb_width, int f
   const std::string error = write_image(path, image);
   if (!error.empty()) {
     std::cerr << "phonglab: screenshot: " << error << "\n";
-    script_failed_ = true;
+    script_.failed = true;
     quit_ = true;
   }
 }

@@ -100,7 +100,7 @@ void Viewer::handle_viewport_input() {
       }
       if (io.MouseWheel != 0) {
         ui::dolly(camera, std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel)), dolly_limit_);
-        camera_changed_ = true;
+        edits_.camera = true;
       }
     }
   } else if (ImGui::IsMouseDown(drag_.button)) {
@@ -130,19 +130,19 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
     case DragMode::kOrbit:
       // The scene follows the hand: drag right, it turns right; drag down, it is seen from higher up.
       ui::orbit(camera, -delta.x * per_px, delta.y * per_px);
-      camera_changed_ = true;
+      edits_.camera = true;
       break;
     case DragMode::kPan: {
       Camera moved = view;  // the fitted field of view sets how far a pixel goes
       ui::pan(moved, delta.x, delta.y, viewport_.height);
       camera.position = moved.position;
       camera.look_at = moved.look_at;
-      camera_changed_ = true;
+      edits_.camera = true;
       break;
     }
     case DragMode::kDolly:
       ui::dolly(camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
-      camera_changed_ = true;
+      edits_.camera = true;
       break;
     case DragMode::kLight:
       if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size()) && drag_.light_depth > 0) {
@@ -152,7 +152,7 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
         const Vec3 p = ui::unproject(view, at, drag_.light_depth, view_w, view_h);
         scene.lights[static_cast<std::size_t>(drag_.light)].position =
             Vec3(ui::tidy_float(p.x), ui::tidy_float(p.y), ui::tidy_float(p.z));
-        scene_edited_ = true;
+        edits_.scene = true;
       }
       break;
     case DragMode::kNone:
@@ -196,24 +196,24 @@ void Viewer::shortcut(int key, bool shift) {
       if (digit < static_cast<int>(scene.lights.size())) {
         ui::toggle_solo(scene.lights, solo_, digit);
         selected_light_ = digit;
-        scene_edited_ = true;
+        edits_.scene = true;
       }
     } else if (digit < static_cast<int>(kShortcutTerms.size())) {
       // 1 the full image, 2..6 its terms in the order of the equation.
       if (render_settings_.term != kShortcutTerms[static_cast<std::size_t>(digit)]) {
         render_settings_.term = kShortcutTerms[static_cast<std::size_t>(digit)];
-        settings_changed_ = true;
+        edits_.settings = true;
       }
     }
     return;
   }
   switch (key) {
-    case GLFW_KEY_F: frame_requested_ = true; break;
-    case GLFW_KEY_R: reset_requested_ = true; break;
+    case GLFW_KEY_F: edits_.frame_requested = true; break;
+    case GLFW_KEY_R: edits_.reset_requested = true; break;
     case GLFW_KEY_H: sidebar_visible_ = !sidebar_visible_; ++sidebar_toggles_; break;
     case GLFW_KEY_M:
       instruments_.small_multiples = !instruments_.small_multiples;
-      settings_changed_ = true;
+      edits_.settings = true;
       break;
     default: break;
   }

@@ -40,23 +40,23 @@ std::optional<std::array<int, 2>> Viewer::render_pixel_at(ImVec2 mouse) const {
 void Viewer::probe_at(ImVec2 mouse) {
   const auto pixel = render_pixel_at(mouse);
   if (!pixel || !snapshot_) return;
-  probe_x_ = (*pixel)[0];
-  probe_y_ = (*pixel)[1];
+  probed_.x = (*pixel)[0];
+  probed_.y = (*pixel)[1];
   refresh_probe();
 }
 
 void Viewer::refresh_probe() {
   if (!snapshot_ || render_width_ <= 0 || render_height_ <= 0) {
-    probe_.reset();
+    probed_.tree.reset();
     return;
   }
-  probe_x_ = std::clamp(probe_x_, 0, render_width_ - 1);
-  probe_y_ = std::clamp(probe_y_, 0, render_height_ - 1);
+  probed_.x = std::clamp(probed_.x, 0, render_width_ - 1);
+  probed_.y = std::clamp(probed_.y, 0, render_height_ - 1);
   // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
-  probe_ = probe_pixel(*snapshot_, render_width_, render_height_, probe_x_, probe_y_, shading_eye_);
-  probe_report_ = probe_to_text(snapshot_->scene(), *probe_, probe_precision_ ? 17 : 4);
-  probe_occluders_.clear();
-  for (const ProbeLight& light : probe_->root.lights) probe_occluders_.push_back(object_name(snapshot_->scene(), light.occluder));
+  probed_.tree = probe_pixel(*snapshot_, render_width_, render_height_, probed_.x, probed_.y, shading_eye_);
+  probed_.report = probe_to_text(snapshot_->scene(), *probed_.tree, probed_.every_digit ? 17 : 4);
+  probed_.occluders.clear();
+  for (const ProbeLight& light : probed_.tree->root.lights) probed_.occluders.push_back(object_name(snapshot_->scene(), light.occluder));
 }
 
 void Viewer::undo() {
@@ -74,7 +74,7 @@ void Viewer::restore(std::optional<Scene> step) {
   Scene& scene = doc_.scene();
   scene = std::move(*step);
   selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
-  scene_edited_ = true;
+  edits_.scene = true;
   restored_ = true;
 }
 
@@ -82,53 +82,53 @@ void Viewer::snapshot_a() {
   // A is the finished image of what is on screen now, never a half-converged one (its noise
   // would show in |live - A| as if something had changed). Until it is done, A waits; an edit
   // before then means the image asked for no longer exists.
-  a_requested_ = true;
+  compare_.requested = true;
   a_generation_ = renderer_.status().generation;
-  a_dropped_ = false;
+  compare_.dropped = false;
   if (instruments_.compare == 0) instruments_.compare = 1;
   take_a_when_final();
 }
 
 void Viewer::take_a_when_final() {
-  if (!a_requested_) return;
+  if (!compare_.requested) return;
   if (renderer_.status().generation != a_generation_) {
-    a_requested_ = false;
-    a_dropped_ = true;
+    compare_.requested = false;
+    compare_.dropped = true;
     return;
   }
   if (!image_is_final() || shown_.pixels.empty()) return;
-  image_a_ = shown_;
-  a_requested_ = false;
+  compare_.image = shown_;
+  compare_.requested = false;
   upload_pending_ = true;
 }
 
 bool Viewer::a_comparable() const {
-  if (image_a_.pixels.empty() || image_a_.width != shown_.width || image_a_.height != shown_.height ||
-      image_a_.divisor != shown_.divisor || image_a_.pixels.size() != shown_.pixels.size()) {
+  if (compare_.image.pixels.empty() || compare_.image.width != shown_.width || compare_.image.height != shown_.height ||
+      compare_.image.divisor != shown_.divisor || compare_.image.pixels.size() != shown_.pixels.size()) {
     return false;
   }
   // The difference compares like with like: the same samples, so only a change shows.
-  return instruments_.compare != 2 || image_a_.spp == shown_.spp;
+  return instruments_.compare != 2 || compare_.image.spp == shown_.spp;
 }
 
 std::string Viewer::compare_caption() const {
   char text[160];
-  if (a_requested_) {
+  if (compare_.requested) {
     std::snprintf(text, sizeof text, "A is taken when the image is done (%u of %d spp)", shown_.spp,
                   render_settings_.target_spp);
-  } else if (image_a_.pixels.empty()) {
-    std::snprintf(text, sizeof text, "%s", a_dropped_ ? "A was not taken: the view changed before the image was done"
+  } else if (compare_.image.pixels.empty()) {
+    std::snprintf(text, sizeof text, "%s", compare_.dropped ? "A was not taken: the view changed before the image was done"
                                                       : "no A yet: Snapshot A keeps the finished image");
-  } else if (image_a_.width != shown_.width || image_a_.height != shown_.height) {
-    std::snprintf(text, sizeof text, "A is %dx%d, the view is now %dx%d: take A again to compare", image_a_.width,
-                  image_a_.height, shown_.width, shown_.height);
+  } else if (compare_.image.width != shown_.width || compare_.image.height != shown_.height) {
+    std::snprintf(text, sizeof text, "A is %dx%d, the view is now %dx%d: take A again to compare", compare_.image.width,
+                  compare_.image.height, shown_.width, shown_.height);
   } else if (!a_comparable()) {
-    std::snprintf(text, sizeof text, "|live - A| shows when live has A's %u spp (now %u)", image_a_.spp, shown_.spp);
+    std::snprintf(text, sizeof text, "|live - A| shows when live has A's %u spp (now %u)", compare_.image.spp, shown_.spp);
   } else if (instruments_.compare == 1) {
-    std::snprintf(text, sizeof text, "wipe: A (%u spp) left of the line, live right", image_a_.spp);
+    std::snprintf(text, sizeof text, "wipe: A (%u spp) left of the line, live right", compare_.image.spp);
   } else {
     std::snprintf(text, sizeof text, "|live - A| \xC3\x97 %.0f (%u spp each)", static_cast<double>(instruments_.difference_gain),
-                  image_a_.spp);
+                  compare_.image.spp);
   }
   return text;
 }
@@ -140,7 +140,7 @@ void Viewer::set_heat_map(bool on) {
   if (on) term_before_heat_ = render_settings_.term;
   render_settings_.term = on ? Term::kRays : (term_before_heat_ == Term::kRays ? Term::kFull : term_before_heat_);
   rays_.heat_map = on;
-  settings_changed_ = true;
+  edits_.settings = true;
 }
 
 std::vector<glm::vec3> Viewer::display_pixels() const {
@@ -159,15 +159,15 @@ std::vector<glm::vec3> Viewer::display_pixels() const {
   for (int y = 0; y < shown_.height; ++y) {
     for (int x = 0; x < shown_.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(shown_.width) + static_cast<std::size_t>(x);
-      if (instruments_.compare == 1) out[i] = x < wipe_x ? image_a_.pixels[i] : shown_.pixels[i];
-      else out[i] = glm::abs(shown_.pixels[i] - image_a_.pixels[i]) * instruments_.difference_gain;
+      if (instruments_.compare == 1) out[i] = x < wipe_x ? compare_.image.pixels[i] : shown_.pixels[i];
+      else out[i] = glm::abs(shown_.pixels[i] - compare_.image.pixels[i]) * instruments_.difference_gain;
     }
   }
   return out;
 }
 
 Vec3 Viewer::head_pivot() const {
-  if (probe_ && probe_->root.hit) return probe_->root.p;
+  if (probed_.tree && probed_.tree->root.hit) return probed_.tree->root.p;
   return doc_.scene().camera.look_at;
 }
 

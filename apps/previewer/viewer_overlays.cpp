@@ -92,7 +92,7 @@ void Viewer::draw_overlays() {
     taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, overlay_rects_, [&] { draw_stats(); }));
   }
   draw_ray_tree_lines();
-  if (probe_ && rays_.overlay && rays_.legend && !tree_segments_.empty()) {
+  if (probed_.tree && rays_.overlay && rays_.legend && !tree_segments_.empty()) {
     const bool blinn = snapshot_ && snapshot_->scene().specular_model == SpecularModel::kBlinn;
     // The legend must not hide the tree it explains: top right, unless the probed point is there,
     // then bottom right, then bottom left.
@@ -189,13 +189,13 @@ void Viewer::draw_stats() {
   const ProgressiveStatus status = renderer_.status();
   ui::StatsView stats;
   double sum = 0, slowest = 0;
-  for (const auto& [start, seconds] : frame_times_) {
+  for (const auto& [start, seconds] : stats_.frame_times) {
     sum += seconds;
     slowest = std::max(slowest, seconds);
   }
-  stats.ui_frame_ms = frame_times_.empty() ? -1 : sum / static_cast<double>(frame_times_.size()) * 1e3;
+  stats.ui_frame_ms = stats_.frame_times.empty() ? -1 : sum / static_cast<double>(stats_.frame_times.size()) * 1e3;
   stats.ui_frame_max_ms = slowest * 1e3;
-  stats.edit_to_image_ms = last_latency_ms_;
+  stats.edit_to_image_ms = stats_.last_latency_ms;
   stats.have_frame = !shown_.pixels.empty();
   stats.level_divisor = shown_.divisor;
   stats.image_width = shown_.width;
@@ -204,7 +204,7 @@ void Viewer::draw_stats() {
   stats.target_spp = render_settings_.target_spp;
   stats.frame = shown_.stats;
   stats.idle = status.idle;
-  stats.interacting = interacting_ || edited_while_active_;
+  stats.interacting = interacting_ || edits_.while_active;
   stats.scene_error = file_state_.error_text;
   stats.details = display_.stats_details;
   ui::stats_overlay(stats);
@@ -213,12 +213,12 @@ void Viewer::draw_stats() {
 void Viewer::draw_head_plot() {
   // "Move your head": the highlight against the head angle.
   ui::HeadPlotView plot;
-  plot.hit = probe_ ? &probe_->root : nullptr;
+  plot.hit = probed_.tree ? &probed_.tree->root : nullptr;
   plot.eye_at_zero = snapshot_->scene().camera.position;
   plot.axis = glm::normalize(make_camera_frame(snapshot_->scene().camera, 1, 1).up);
-  if (probe_ && probe_->root.hit && probe_->root.material >= 0 &&
-      probe_->root.material < static_cast<int>(snapshot_->scene().materials.size())) {
-    plot.shininess = snapshot_->scene().materials[static_cast<std::size_t>(probe_->root.material)].n;
+  if (probed_.tree && probed_.tree->root.hit && probed_.tree->root.material >= 0 &&
+      probed_.tree->root.material < static_cast<int>(snapshot_->scene().materials.size())) {
+    plot.shininess = snapshot_->scene().materials[static_cast<std::size_t>(probed_.tree->root.material)].n;
   }
   plot.blinn = snapshot_->scene().specular_model == SpecularModel::kBlinn;
   plot.angle_deg = instruments_.head_angle_deg;
@@ -230,8 +230,8 @@ ImVec2 Viewer::probe_point_in_cell(int cell) const {
   // The probed pixel's centre as cell `cell` shows it.
   const Cells c = cells();
   const ImVec2 origin = c.origin(cell);
-  return ImVec2(origin.x + (static_cast<float>(probe_x_) + 0.5f) / static_cast<float>(std::max(render_width_, 1)) * c.width,
-                origin.y + (static_cast<float>(probe_y_) + 0.5f) / static_cast<float>(std::max(render_height_, 1)) * c.height);
+  return ImVec2(origin.x + (static_cast<float>(probed_.x) + 0.5f) / static_cast<float>(std::max(render_width_, 1)) * c.width,
+                origin.y + (static_cast<float>(probed_.y) + 0.5f) / static_cast<float>(std::max(render_height_, 1)) * c.height);
 }
 
 void Viewer::draw_cell_labels_and_probe_ring() {
@@ -249,7 +249,7 @@ void Viewer::draw_cell_labels_and_probe_ring() {
     }
   }
   // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
-  if (!probe_ || render_width_ <= 0 || render_height_ <= 0) return;
+  if (!probed_.tree || render_width_ <= 0 || render_height_ <= 0) return;
   for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
 }
 
@@ -304,7 +304,7 @@ void Viewer::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
 void Viewer::draw_ray_tree_lines() {
   // The ray tree over the full image: the only cell, or the last of the small multiples.
   tree_segments_.clear();
-  if (!probe_ || !rays_.overlay || !snapshot_ || render_width_ <= 0 || render_height_ <= 0) return;
+  if (!probed_.tree || !rays_.overlay || !snapshot_ || render_width_ <= 0 || render_height_ <= 0) return;
   const Cells c = cells();
   const ImVec2 full_cell = c.origin(c.count() - 1);
   RayTreeViewOptions options;
@@ -313,10 +313,10 @@ void Viewer::draw_ray_tree_lines() {
   options.arrows = rays_.arrows;
   // The probe was taken in snapshot_ at the render size: project with that camera and size.
   const CameraFrame frame = make_camera_frame(snapshot_->scene().camera, render_width_, render_height_);
-  tree_segments_ = project_ray_tree(frame, ray_tree_segments(snapshot_->scene(), probe_->root, options),
-                                    ray_tree_near(snapshot_->scene(), probe_->root));
+  tree_segments_ = project_ray_tree(frame, ray_tree_segments(snapshot_->scene(), probed_.tree->root, options),
+                                    ray_tree_near(snapshot_->scene(), probed_.tree->root));
   int lit_lights = 0;
-  for (const ProbeLight& light : probe_->root.lights) lit_lights += light.lit_side ? 1 : 0;
+  for (const ProbeLight& light : probed_.tree->root.lights) lit_lights += light.lit_side ? 1 : 0;
   const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(render_width_),
                                              c.height / static_cast<float>(render_height_))};
   const bool blinn = snapshot_->scene().specular_model == SpecularModel::kBlinn;

@@ -68,8 +68,8 @@ std::vector<ScriptCommand> parse_script(const std::string& text) {
 
 void Viewer::fail_script(const ScriptCommand& command, const std::string& message) {
   std::cerr << "phonglab: script line " << command.line << " (" << command.words.front() << "): " << message << "\n";
-  if (stats_log_) stats_log_ << "script_error line " << command.line << ": " << message << "\n";
-  script_failed_ = true;
+  if (stats_.log) stats_.log << "script_error line " << command.line << ": " << message << "\n";
+  script_.failed = true;
   quit_ = true;
 }
 
@@ -77,66 +77,66 @@ void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift
   InputStep hover;
   hover.pos = from;
   hover.shift = shift;
-  input_steps_.push_back(hover);  // ImGui learns what is under the mouse before the press
+  script_.input.push_back(hover);  // ImGui learns what is under the mouse before the press
   InputStep press = hover;
   press.buttons[button] = true;
-  input_steps_.push_back(press);
+  script_.input.push_back(press);
   for (int i = 1; i <= steps; ++i) {
     const float t = static_cast<float>(i) / static_cast<float>(steps);
     InputStep move = press;
     move.pos = ImVec2(from.x + (to.x - from.x) * t, from.y + (to.y - from.y) * t);
-    input_steps_.push_back(move);
+    script_.input.push_back(move);
   }
   InputStep release;
   release.pos = to;
-  input_steps_.push_back(release);
+  script_.input.push_back(release);
 }
 
 void Viewer::push_click(ImVec2 at, bool ctrl) {
   InputStep hover;
   hover.pos = at;
   hover.ctrl = ctrl;
-  input_steps_.push_back(hover);  // ImGui learns what is under the mouse before the press
+  script_.input.push_back(hover);  // ImGui learns what is under the mouse before the press
   InputStep press = hover;
   press.buttons[0] = true;
-  input_steps_.push_back(press);
-  input_steps_.push_back(hover);
+  script_.input.push_back(press);
+  script_.input.push_back(hover);
 }
 
 bool Viewer::push_item_input() {
-  const auto it = item_locations_.rects.find(item_action_.name);
+  const auto it = item_locations_.rects.find(script_.item_action.name);
   if (it == item_locations_.rects.end()) return false;
   const ImVec2 at((it->second.min.x + it->second.max.x) / 2, (it->second.min.y + it->second.max.y) / 2);
-  if (item_action_.kind == ItemAction::Kind::kDrag) {
-    push_drag(0, at, ImVec2(at.x + static_cast<float>(item_action_.dx), at.y + static_cast<float>(item_action_.dy)),
-              item_action_.steps, false);
+  if (script_.item_action.kind == ItemAction::Kind::kDrag) {
+    push_drag(0, at, ImVec2(at.x + static_cast<float>(script_.item_action.dx), at.y + static_cast<float>(script_.item_action.dy)),
+              script_.item_action.steps, false);
     return true;
   }
-  push_click(at, item_action_.kind == ItemAction::Kind::kType);
-  if (item_action_.kind == ItemAction::Kind::kType) {
+  push_click(at, script_.item_action.kind == ItemAction::Kind::kType);
+  if (script_.item_action.kind == ItemAction::Kind::kType) {
     InputStep typed;
     typed.pos = at;
-    typed.text = item_action_.text;
-    input_steps_.push_back(typed);
+    typed.text = script_.item_action.text;
+    script_.input.push_back(typed);
     InputStep enter;
     enter.pos = at;
     enter.key = GLFW_KEY_ENTER;
     enter.key_down = true;
-    input_steps_.push_back(enter);
+    script_.input.push_back(enter);
     enter.key_down = false;
-    input_steps_.push_back(enter);
+    script_.input.push_back(enter);
   }
   InputStep after;
   after.pos = at;
-  input_steps_.push_back(after);
+  script_.input.push_back(after);
   return true;
 }
 
 void Viewer::step_script(double now) {
   ImGuiIO& io = ImGui::GetIO();
-  if (!input_steps_.empty()) {
-    const InputStep step = input_steps_.front();
-    input_steps_.pop_front();
+  if (!script_.input.empty()) {
+    const InputStep step = script_.input.front();
+    script_.input.pop_front();
     io.MousePos = step.pos;
     for (int b = 0; b < 3; ++b) io.MouseDown[b] = step.buttons[b];
     io.KeyShift = step.shift;
@@ -146,17 +146,17 @@ void Viewer::step_script(double now) {
     for (const char c : step.text) io.AddInputCharacter(static_cast<unsigned char>(c));
     platform_.note_event();
   }
-  if (script_failed_ || (script_index_ >= script_.size() && script_wait_ == ScriptWait::kNone)) return;
-  if (script_wait_ != ScriptWait::kNone) {
+  if (script_.failed || (script_.index >= script_.commands.size() && script_.wait == ScriptWait::kNone)) return;
+  if (script_.wait != ScriptWait::kNone) {
     if (!script_wait_done(now)) return;
-    script_wait_ = ScriptWait::kNone;
+    script_.wait = ScriptWait::kNone;
   }
-  while (script_index_ < script_.size() && script_wait_ == ScriptWait::kNone && !script_failed_) {
-    const ScriptCommand& command = script_[script_index_++];
-    if (stats_log_) {
-      stats_log_ << "script " << now * 1e3;
-      for (const std::string& w : command.words) stats_log_ << " " << w;
-      stats_log_ << "\n";
+  while (script_.index < script_.commands.size() && script_.wait == ScriptWait::kNone && !script_.failed) {
+    const ScriptCommand& command = script_.commands[script_.index++];
+    if (stats_.log) {
+      stats_.log << "script " << now * 1e3;
+      for (const std::string& w : command.words) stats_.log << " " << w;
+      stats_.log << "\n";
     }
     if (!run_script_command(command, now)) return;
   }
@@ -164,57 +164,57 @@ void Viewer::step_script(double now) {
 
 bool Viewer::script_wait_done(double now) {
   bool done = false;
-  switch (script_wait_) {
+  switch (script_.wait) {
     case ScriptWait::kNone: return true;
-    case ScriptWait::kFrames: done = --wait_frames_left_ <= 0; break;
+    case ScriptWait::kFrames: done = --script_.frames_left <= 0; break;
     case ScriptWait::kIdle: done = image_is_final(); break;
     case ScriptWait::kImage:
       done = !upload_pending_ && drawn_serial_ > 0 && drawn_generation_ == renderer_.status().generation;
       break;
     case ScriptWait::kFile: {
       std::error_code ec;
-      done = std::filesystem::exists(wait_file_, ec);
+      done = std::filesystem::exists(script_.file, ec);
       break;
     }
-    case ScriptWait::kInput: done = input_steps_.empty(); break;
+    case ScriptWait::kInput: done = script_.input.empty(); break;
     case ScriptWait::kItem:
-      if (--wait_frames_left_ > 0) break;
+      if (--script_.frames_left > 0) break;
       if (!push_item_input()) {
-        fail_script(script_[script_index_ - 1], "no widget named '" + item_action_.name + "' was drawn (is its panel open?)");
+        fail_script(script_.commands[script_.index - 1], "no widget named '" + script_.item_action.name + "' was drawn (is its panel open?)");
         return false;
       }
-      script_wait_ = ScriptWait::kInput;  // now wait for the injected input to be used
+      script_.wait = ScriptWait::kInput;  // now wait for the injected input to be used
       return false;
     case ScriptWait::kBench:
-      if (bench_waiting_image_) {
-        if (!bench_expect_restart_ && drawn_generation_ >= bench_generation_ && !upload_pending_) {
-          bench_waiting_image_ = false;
-          bench_gap_frames_ = kBenchGapFrames;
+      if (script_.bench_waiting_image) {
+        if (!script_.bench_expect_restart && drawn_generation_ >= script_.bench_generation && !upload_pending_) {
+          script_.bench_waiting_image = false;
+          script_.bench_gap_frames = kBenchGapFrames;
         }
-      } else if (bench_gap_frames_ > 0) {
-        --bench_gap_frames_;
-      } else if (bench_left_ > 0) {
-        --bench_left_;
-        bench_sign_ = -bench_sign_;
+      } else if (script_.bench_gap_frames > 0) {
+        --script_.bench_gap_frames;
+      } else if (script_.bench_left > 0) {
+        --script_.bench_left;
+        script_.bench_sign = -script_.bench_sign;
         Scene& scene = doc_.scene();
-        if (bench_kind_ == "camera") {
-          ui::orbit(scene.camera, 0.02 * bench_sign_, 0);
-          camera_changed_ = true;
+        if (script_.bench_kind == "camera") {
+          ui::orbit(scene.camera, 0.02 * script_.bench_sign, 0);
+          edits_.camera = true;
         } else if (!scene.materials.empty()) {
           Material& m = scene.materials[static_cast<std::size_t>(std::clamp(selected_material_, 0, static_cast<int>(scene.materials.size()) - 1))];
-          m.kd *= bench_sign_ > 0 ? 1.25 : 0.8;  // exact inverses in turn: the scene stays put
-          scene_edited_ = true;
+          m.kd *= script_.bench_sign > 0 ? 1.25 : 0.8;  // exact inverses in turn: the scene stays put
+          edits_.scene = true;
         }
-        bench_waiting_image_ = true;
-        bench_expect_restart_ = true;
+        script_.bench_waiting_image = true;
+        script_.bench_expect_restart = true;
       } else {
         done = true;
       }
       break;
   }
   if (done) return true;
-  if (now > wait_deadline_) {
-    fail_script(script_[script_index_ - 1], "timed out");
+  if (now > script_.deadline) {
+    fail_script(script_.commands[script_.index - 1], "timed out");
   }
   return false;
 }
@@ -233,8 +233,8 @@ struct Viewer::ScriptStep {
   bool wait_for(ScriptWait kind, std::size_t timeout_word) {
     double timeout = kDefaultWaitSeconds;
     if (w.size() > timeout_word && !parse_double(w[timeout_word], timeout)) return fail("bad timeout");
-    viewer.script_wait_ = kind;
-    viewer.wait_deadline_ = now + timeout;
+    viewer.script_.wait = kind;
+    viewer.script_.deadline = now + timeout;
     return true;
   }
 };
@@ -246,14 +246,14 @@ std::optional<bool> Viewer::script_wait_command(ScriptStep& step) {
   if (name == "wait_frames") {
     int frames = 0;
     if (w.size() != 2 || !parse_int(w[1], frames)) return step.fail("usage: wait_frames N");
-    wait_frames_left_ = frames;
+    script_.frames_left = frames;
     return step.wait_for(ScriptWait::kFrames, 99);
   }
   if (name == "wait_idle") return step.wait_for(ScriptWait::kIdle, 1);
   if (name == "wait_image") return step.wait_for(ScriptWait::kImage, 1);
   if (name == "wait_file") {
     if (w.size() < 2) return step.fail("usage: wait_file FILE [TIMEOUT]");
-    wait_file_ = w[1];
+    script_.file = w[1];
     return step.wait_for(ScriptWait::kFile, 2);
   }
   if (name == "bench_edits") {
@@ -261,12 +261,12 @@ std::optional<bool> Viewer::script_wait_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_int(w[1], count) || count < 1 || (w[2] != "material" && w[2] != "camera")) {
       return step.fail("usage: bench_edits N material|camera");
     }
-    bench_left_ = count;
-    bench_kind_ = w[2];
-    bench_gap_frames_ = 0;
-    bench_waiting_image_ = false;
-    script_wait_ = ScriptWait::kBench;
-    wait_deadline_ = step.now + 10.0 * count + kDefaultWaitSeconds;
+    script_.bench_left = count;
+    script_.bench_kind = w[2];
+    script_.bench_gap_frames = 0;
+    script_.bench_waiting_image = false;
+    script_.wait = ScriptWait::kBench;
+    script_.deadline = step.now + 10.0 * count + kDefaultWaitSeconds;
     return true;
   }
   return std::nullopt;
@@ -319,11 +319,11 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     } else {
       InputStep hover;
       hover.pos = at;
-      input_steps_.push_back(hover);
+      script_.input.push_back(hover);
       InputStep act = hover;
       act.wheel = static_cast<float>(amount);
-      input_steps_.push_back(act);
-      input_steps_.push_back(hover);
+      script_.input.push_back(act);
+      script_.input.push_back(hover);
     }
     return step.wait_for(ScriptWait::kInput, 99);
   }
@@ -341,8 +341,8 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     press.key_down = true;
     InputStep release = press;
     release.key_down = false;
-    input_steps_.push_back(press);
-    input_steps_.push_back(release);
+    script_.input.push_back(press);
+    script_.input.push_back(release);
     // The press also arrives as a key event, as GLFW's callback delivers it (the viewer's
     // shortcuts read events; ImGui's widgets read the key state above).
     platform_.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
@@ -354,13 +354,13 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
     if (name == "probe") {
       probe_at(at);
-      if (!probe_) return step.fail("nothing to probe (no scene yet)");
+      if (!probed_.tree) return step.fail("nothing to probe (no scene yet)");
       return true;
     }
     push_click(at, true);
     InputStep after;  // Ctrl released again
     after.pos = at;
-    input_steps_.push_back(after);
+    script_.input.push_back(after);
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "resize") {
@@ -391,7 +391,7 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
       return step.fail("usage: solo I");
     }
     ui::toggle_solo(doc_.scene().lights, solo_, index);
-    scene_edited_ = true;
+    edits_.scene = true;
     return true;
   }
   if (name == "set") {
@@ -406,7 +406,7 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
     // show_item NAME: scrolls the sidebar until the widget is in view (nothing is clicked).
     if (w.size() != 2) return step.fail("usage: show_item NAME");
     item_locations_.scroll_to = w[1];
-    wait_frames_left_ = 3;
+    script_.frames_left = 3;
     return step.wait_for(ScriptWait::kFrames, 99);
   }
   if (name == "click_item" || name == "drag_item" || name == "type_item") {
@@ -427,9 +427,9 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
       if (ok) action.text = w[2];
     }
     if (!ok) return step.fail("usage: click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT");
-    item_action_ = action;
+    script_.item_action = action;
     item_locations_.scroll_to = action.name;
-    wait_frames_left_ = 3;  // the scroll lands, the widget is drawn where it will be clicked
+    script_.frames_left = 3;  // the scroll lands, the widget is drawn where it will be clicked
     return step.wait_for(ScriptWait::kItem, 99);
   }
   return std::nullopt;
@@ -447,10 +447,10 @@ std::optional<bool> Viewer::script_file_command(ScriptStep& step) {
   }
   if (name == "screenshot") {
     if (w.size() != 2) return step.fail("usage: screenshot FILE.png");
-    screenshot_request_ = w[1];
+    script_.screenshot = w[1];
     // Taken when this frame is drawn: later commands wait for the next frame so they
     // cannot change what it shows (or resize the window under it).
-    wait_frames_left_ = 1;
+    script_.frames_left = 1;
     return step.wait_for(ScriptWait::kFrames, 99);
   }
   if (name == "save_png" || name == "save_pfm") {
@@ -479,13 +479,13 @@ std::optional<bool> Viewer::script_file_command(ScriptStep& step) {
   if (name == "modal") {
     constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload";
     if (w.size() != 2) return step.fail(kUsage);
-    if (!guard_visible_ && !conflict_visible_) return step.fail("no unsaved-changes or changed-on-disk dialog is open");
-    if (w[1] == "save") scripted_choice_ = ui::GuardChoice::kSave;
-    else if (w[1] == "save_as") scripted_choice_ = ui::GuardChoice::kSaveAs;
-    else if (w[1] == "discard") scripted_choice_ = ui::GuardChoice::kDiscard;
-    else if (w[1] == "cancel") scripted_choice_ = ui::GuardChoice::kCancel;
-    else if (w[1] == "overwrite") scripted_choice_ = ui::GuardChoice::kOverwrite;
-    else if (w[1] == "reload") scripted_choice_ = ui::GuardChoice::kReload;
+    if (!dialogs_.guard_visible && !dialogs_.conflict_visible) return step.fail("no unsaved-changes or changed-on-disk dialog is open");
+    if (w[1] == "save") dialogs_.scripted_choice = ui::GuardChoice::kSave;
+    else if (w[1] == "save_as") dialogs_.scripted_choice = ui::GuardChoice::kSaveAs;
+    else if (w[1] == "discard") dialogs_.scripted_choice = ui::GuardChoice::kDiscard;
+    else if (w[1] == "cancel") dialogs_.scripted_choice = ui::GuardChoice::kCancel;
+    else if (w[1] == "overwrite") dialogs_.scripted_choice = ui::GuardChoice::kOverwrite;
+    else if (w[1] == "reload") dialogs_.scripted_choice = ui::GuardChoice::kReload;
     else return step.fail(kUsage);
     return true;
   }
@@ -520,8 +520,8 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
     return true;
   }
   if (name == "stats_reset") {
-    busy_frame_ms_.clear();
-    latencies_ms_.clear();
+    stats_.busy_frame_ms.clear();
+    stats_.latencies_ms.clear();
     return true;
   }
   if (name == "stats_summary") {

@@ -50,7 +50,7 @@ bool Viewer::set_material_field(const std::vector<std::string>& w) {
   } else {
     return false;
   }
-  scene_edited_ = true;
+  edits_.scene = true;
   return true;
 }
 
@@ -68,7 +68,7 @@ bool Viewer::set_light_field(const std::vector<std::string>& w) {
   else if (field == "enabled" && w.size() == 5) light.enabled = w[4] == "1" || w[4] == "true";
   else return false;
   selected_light_ = index;
-  scene_edited_ = true;
+  edits_.scene = true;
   return true;
 }
 
@@ -86,7 +86,7 @@ bool Viewer::set_camera_field(const std::vector<std::string>& w) {
   else return false;
   if (!ui::camera_is_valid(edit)) return false;
   scene.camera = edit;
-  camera_changed_ = true;
+  edits_.camera = true;
   return true;
 }
 
@@ -109,7 +109,7 @@ bool Viewer::set_render_field(const std::vector<std::string>& w) {
   } else {
     return false;
   }
-  settings_changed_ = true;
+  edits_.settings = true;
   return true;
 }
 
@@ -133,7 +133,7 @@ bool Viewer::set_instrument(const std::vector<std::string>& w) {
     // -1 ends the cut; 0, 1, ... cut there (as the panel's box and slider).
     rays_.depth_cut = v >= 0;
     if (v >= 0) rays_.cut_depth = static_cast<int>(v);
-    view_changed_ = true;
+    edits_.view = true;
   }
   else if (w[2] == "heat") set_heat_map(v != 0);
   else return false;

@@ -82,8 +82,8 @@ void Viewer::draw_sidebar() {
   }
   ImGui::End();
   // While a slider is held, each tick is an edit: keep the renderer at coarse levels.
-  if (!ImGui::IsAnyItemActive()) edited_while_active_ = false;
-  else if (scene_edited_ || camera_changed_) edited_while_active_ = true;
+  if (!ImGui::IsAnyItemActive()) edits_.while_active = false;
+  else if (edits_.scene || edits_.camera) edits_.while_active = true;
 }
 
 void Viewer::sidebar_show() {
@@ -92,22 +92,22 @@ void Viewer::sidebar_show() {
   ui::show_panel(render_settings_.term, instruments_.small_multiples, doc_.scene().specular_model == SpecularModel::kBlinn);
   if (render_settings_.term != before) {
     if (render_settings_.term != Term::kRays) rays_.heat_map = false;
-    settings_changed_ = true;
+    edits_.settings = true;
   }
-  if (multiples != instruments_.small_multiples) settings_changed_ = true;
+  if (multiples != instruments_.small_multiples) edits_.settings = true;
 }
 
 void Viewer::sidebar_materials() {
   Scene& scene = doc_.scene();
   if (picked_text_.empty()) ImGui::TextDisabled("Click an object in the view to select its material.");
   else ImGui::TextDisabled("Clicked: %s", picked_text_.c_str());
-  if (ui::materials_panel(scene.materials, selected_material_, scene.specular_model)) scene_edited_ = true;
+  if (ui::materials_panel(scene.materials, selected_material_, scene.specular_model)) edits_.scene = true;
 }
 
 void Viewer::sidebar_lights() {
   Scene& scene = doc_.scene();
   const std::size_t count = scene.lights.size();
-  if (ui::lights_panel(scene.lights, selected_light_, solo_)) scene_edited_ = true;
+  if (ui::lights_panel(scene.lights, selected_light_, solo_)) edits_.scene = true;
   // A new point light goes where the lecturer can see it and grab it: above and left of the
   // look-at point, in the view, at the look-at point's depth.
   if (scene.lights.size() == count + 1 && scene.lights.back().type == LightType::kPoint) {
@@ -125,22 +125,22 @@ void Viewer::sidebar_probe() {
   if (ImGui::BeginChild("##probe", ImVec2(0, height), true, ImGuiWindowFlags_HorizontalScrollbar)) {
     ui::ProbeView view;
     view.scene = snapshot_ ? &snapshot_->scene() : nullptr;
-    view.probe = probe_ ? &*probe_ : nullptr;
+    view.probe = probed_.tree ? &*probed_.tree : nullptr;
     view.image_width = render_width_;
     view.image_height = render_height_;
-    view.report = probe_report_;
-    view.occluders = probe_occluders_;
+    view.report = probed_.report;
+    view.occluders = probed_.occluders;
     view.exposure_ev = display_.exposure_ev;
-    if (probe_) {
+    if (probed_.tree) {
       const double gain = std::exp2(static_cast<double>(display_.exposure_ev));
       for (int c = 0; c < 3; ++c) {
-        const double v = std::clamp(probe_->root.total[c] * gain, 0.0, 1.0);
+        const double v = std::clamp(probed_.tree->root.total[c] * gain, 0.0, 1.0);
         view.srgb[c] = display_.srgb ? linear_to_srgb8(v) : static_cast<unsigned char>(std::lround(v * 255));
       }
     }
-    const bool digits_before = probe_precision_;
-    ui::probe_panel(view, probe_precision_);
-    if (probe_precision_ != digits_before) refresh_probe();
+    const bool digits_before = probed_.every_digit;
+    ui::probe_panel(view, probed_.every_digit);
+    if (probed_.every_digit != digits_before) refresh_probe();
   }
   ImGui::EndChild();
 }
@@ -148,9 +148,9 @@ void Viewer::sidebar_probe() {
 void Viewer::sidebar_instruments() {
   ui::InstrumentActions actions;
   const ui::InstrumentSettings before = instruments_;
-  if (ui::instruments_panel(instruments_, actions, !image_a_.pixels.empty(), history_.undo_count(),
+  if (ui::instruments_panel(instruments_, actions, !compare_.image.pixels.empty(), history_.undo_count(),
                             history_.redo_count(), figure_path_, figure_status_)) {
-    if (before.small_multiples != instruments_.small_multiples) settings_changed_ = true;
+    if (before.small_multiples != instruments_.small_multiples) edits_.settings = true;
     upload_pending_ = upload_pending_ || !shown_.pixels.empty();  // a compare view changed
   }
   if (actions.snapshot_a) snapshot_a();
@@ -168,12 +168,12 @@ void Viewer::sidebar_rays() {
   rays_.heat_map = render_settings_.term == Term::kRays;
   const ui::RayTreeSettings before = rays_;
   ui::RayTreeSummary summary;
-  summary.probe = probe_ ? &*probe_ : nullptr;
+  summary.probe = probed_.tree ? &*probed_.tree : nullptr;
   summary.scene_max_depth = doc_.scene().max_depth;
   summary.heat_max = heat_max_;
   if (ui::rays_panel(rays_, summary)) {
     if (before.depth_cut != rays_.depth_cut || (rays_.depth_cut && before.cut_depth != rays_.cut_depth)) {
-      view_changed_ = true;
+      edits_.view = true;
     }
     if (before.heat_map != rays_.heat_map) set_heat_map(rays_.heat_map);
   }
@@ -181,9 +181,9 @@ void Viewer::sidebar_rays() {
 
 void Viewer::sidebar_camera() {
   ui::CameraActions actions;
-  if (ui::camera_panel(doc_.scene().camera, actions, camera_notice_)) camera_changed_ = true;
-  frame_requested_ |= actions.frame_scene;
-  reset_requested_ |= actions.reset;
+  if (ui::camera_panel(doc_.scene().camera, actions, camera_notice_)) edits_.camera = true;
+  edits_.frame_requested |= actions.frame_scene;
+  edits_.reset_requested |= actions.reset;
   if (view_camera().fov_y_deg != doc_.scene().camera.fov_y_deg) {
     ImGui::TextDisabled("Shown with fov y %.1f: the view is narrower than the scene's %dx%d image.",
                         view_camera().fov_y_deg, doc_.scene().width, doc_.scene().height);
@@ -206,10 +206,10 @@ void Viewer::sidebar_file() {
 
 void Viewer::sidebar_render() {
   Scene& scene = doc_.scene();
-  if (ui::shading_settings_panel(scene)) scene_edited_ = true;
+  if (ui::shading_settings_panel(scene)) edits_.scene = true;
   ImGui::Separator();
   const int hardware = resolve_thread_count(0);
-  if (ui::render_settings_panel(render_settings_, hardware)) settings_changed_ = true;
+  if (ui::render_settings_panel(render_settings_, hardware)) edits_.settings = true;
 }
 
 }  // namespace phonglab

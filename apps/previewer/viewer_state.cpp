@@ -50,8 +50,8 @@ void Viewer::write_document_state(std::ostream& out) const {
   out << "source=" << doc_.source() << "\n"
       << "file=" << doc_.file_path() << "\n"
       << "dirty=" << (doc_.dirty() ? 1 : 0) << "\n"
-      << "modal=" << (guard_visible_ ? 1 : 0) << "\n"
-      << "conflict=" << (conflict_visible_ ? 1 : 0) << "\n"
+      << "modal=" << (dialogs_.guard_visible ? 1 : 0) << "\n"
+      << "conflict=" << (dialogs_.conflict_visible ? 1 : 0) << "\n"
       << "error=" << first_error_line << "\n"
       << "picked=" << picked_text_ << "\n"
       << "selected_material=" << (have_material ? scene.materials[static_cast<std::size_t>(selected_material_)].name : "") << "\n"
@@ -118,7 +118,7 @@ void Viewer::write_layout_state(std::ostream& out) const {
       << "redo=" << history_.redo_count() << "\n"
       << "multiples=" << (instruments_.small_multiples ? 1 : 0) << "\n"
       << "compare=" << instruments_.compare << "\n"
-      << "have_a=" << (image_a_.pixels.empty() ? 0 : 1) << "\n"
+      << "have_a=" << (compare_.image.pixels.empty() ? 0 : 1) << "\n"
       << "head=" << (shading_eye_ ? 1 : 0) << "\n";
   if (shading_eye_) out << "head_eye=" << vec(*shading_eye_) << "\n";
 }
@@ -148,16 +148,16 @@ void Viewer::write_rays_state(std::ostream& out) const {
 
 // The probed pixel: where, what it hit, its blocked shadow rays, and whether it matches the image.
 void Viewer::write_probe_state(std::ostream& out) const {
-  if (!probe_) return;
-  const Color total = probe_->root.total;
+  if (!probed_.tree) return;
+  const Color total = probed_.tree->root.total;
   const ImVec2 on_screen = probe_point_in_cell(cells().count() - 1);
-  out << "probe_pixel=" << probe_x_ << " " << probe_y_ << "\n"
+  out << "probe_pixel=" << probed_.x << " " << probed_.y << "\n"
       << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
-      << "probe_hit=" << (probe_->root.hit ? 1 : 0) << "\n"
+      << "probe_hit=" << (probed_.tree->root.hit ? 1 : 0) << "\n"
       << "probe_total=" << vec(total) << "\n";
   // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).
   int blocked = 0;
-  std::vector<const ProbeNode*> stack{&probe_->root};
+  std::vector<const ProbeNode*> stack{&probed_.tree->root};
   while (!stack.empty()) {
     const ProbeNode* node = stack.back();
     stack.pop_back();
@@ -166,12 +166,12 @@ void Viewer::write_probe_state(std::ostream& out) const {
     if (node->refraction) stack.push_back(node->refraction.get());
   }
   out << "probe_blocked=" << blocked << "\n"
-      << "probe_rays=" << probe_->rays.total() << "\n";
+      << "probe_rays=" << probed_.tree->rays.total() << "\n";
   // The shown image's pixel there, when it is the full-resolution 1-spp image of this
   // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
   if (shown_.divisor == 1 && shown_.spp == 1 && shown_.width == render_width_ && shown_.height == render_height_) {
-    const glm::vec3 shown = shown_.pixels[static_cast<std::size_t>(probe_y_) * static_cast<std::size_t>(shown_.width) +
-                                          static_cast<std::size_t>(probe_x_)];
+    const glm::vec3 shown = shown_.pixels[static_cast<std::size_t>(probed_.y) * static_cast<std::size_t>(shown_.width) +
+                                          static_cast<std::size_t>(probed_.x)];
     out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";
   }
 }
