@@ -11,6 +11,10 @@
 
 namespace phonglab::ui {
 
+// Message colours (ImVec4 is not a literal type: these are plain constants).
+inline const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
+inline const ImVec4 kWarningColor{1.0f, 0.8f, 0.3f, 1.0f};
+
 // A screen rectangle, min inclusive, max exclusive.
 struct ScreenRect {
   ImVec2 min;

@@ -1,0 +1,142 @@
+// The scene file and screenshot panels, and the dialogs that guard unsaved edits.
+#include "ui/panels.h"
+
+#include <algorithm>
+#include <array>
+#include <cfloat>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+
+#include "io/embedded_scenes.h"
+#include "ui/overlay.h"
+#include "ui/widgets.h"
+
+namespace phonglab::ui {
+
+namespace {
+
+// The last row of a dialog: Cancel (or Esc), a scripted answer in place of the user's, and the
+// dialog closed once answered. Call inside BeginPopupModal; ends the popup.
+GuardChoice end_choice(GuardChoice choice, GuardChoice scripted) {
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
+  if (scripted != GuardChoice::kNone) choice = scripted;
+  if (choice != GuardChoice::kNone) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+  return choice;
+}
+
+}  // namespace
+
+void scene_file_panel(SceneFileState& state, SceneFileActions& actions) {
+  ImGui::TextWrapped("%s%s", state.source.c_str(), state.dirty ? "  (modified)" : "");
+  input_text("path", state.path_field);
+  if (ImGui::Button("Open")) actions.open = true;
+  ImGui::SameLine();
+  // Save writes the document's own JSON file: not an embedded scene's, not over an OBJ.
+  const bool can_save = !state.file_path.empty() && !state.opened_mesh;
+  ImGui::BeginDisabled(!can_save);
+  if (ImGui::Button("Save")) actions.save = true;
+  ImGui::EndDisabled();
+  if (!can_save && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip(state.opened_mesh ? "Opened from an OBJ file: Save as writes a scene .json that uses it."
+                                        : "An embedded scene has no file: Save as writes one.");
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Save as")) actions.save_as = true;
+  ImGui::SameLine();
+  ImGui::BeginDisabled(state.file_path.empty());
+  if (ImGui::Button("Reload")) actions.reload = true;
+  ImGui::EndDisabled();
+  if (ImGui::BeginCombo("embedded", "open an embedded scene")) {
+    for (const EmbeddedScene& scene : embedded_scenes()) {
+      ImGui::PushID(scene.name.data(), scene.name.data() + scene.name.size());
+      const std::string name(scene.name);
+      if (ImGui::Selectable(name.c_str())) actions.open_embedded = name;
+      if (ImGui::IsItemHovered()) {
+        const std::string description(scene.description);
+        ImGui::SetTooltip("%s", description.c_str());
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::BeginDisabled(state.file_path.empty());
+  ImGui::Checkbox("reload when the file changes", &state.auto_reload);
+  ImGui::EndDisabled();
+  if (state.changed_on_disk) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+    ImGui::TextWrapped("The file changed on disk. Reload to see it (your edits will be lost).");
+    ImGui::PopStyleColor();
+  }
+  if (!state.error_text.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+    ImGui::TextWrapped("%s", state.error_text.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextDisabled("The previous scene stays open.");
+  }
+  if (!state.status.empty()) ImGui::TextDisabled("%s", state.status.c_str());
+}
+
+void screenshot_panel(ScreenshotState& state, ScreenshotActions& actions) {
+  input_text("##png", state.png_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save PNG")) actions.save_png = true;
+  input_text("##pfm", state.pfm_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save PFM")) actions.save_pfm = true;
+  ImGui::TextDisabled("PNG: what is shown. PFM: the linear image.");
+  if (!state.status.empty()) ImGui::TextWrapped("%s", state.status.c_str());
+}
+
+GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
+                                  GuardChoice scripted) {
+  constexpr const char* kTitle = "Unsaved changes";
+  if (open_now) ImGui::OpenPopup(kTitle);
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  GuardChoice choice = GuardChoice::kNone;
+  if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("The scene has unsaved changes.");
+    ImGui::Text("Save them before you %s?", view.action.c_str());
+    if (view.changed_on_disk) {
+      ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+      ImGui::Text("The file also changed on disk since it was opened: Save would overwrite that change.");
+      ImGui::PopStyleColor();
+    }
+    ImGui::Spacing();
+    ImGui::BeginDisabled(!view.can_save);
+    if (ImGui::Button("Save")) choice = GuardChoice::kSave;
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::Button("Save as")) choice = GuardChoice::kSaveAs;
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 16);
+    input_text("##save_as", save_as_path);
+    if (ImGui::Button("Discard")) choice = GuardChoice::kDiscard;
+    ImGui::SameLine();
+    choice = end_choice(choice, scripted);
+  }
+  return choice;
+}
+
+GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted) {
+  constexpr const char* kTitle = "The file changed on disk";
+  if (open_now) ImGui::OpenPopup(kTitle);
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  GuardChoice choice = GuardChoice::kNone;
+  if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s changed on disk since it was opened or saved here.", file.c_str());
+    ImGui::Text("Saving now would overwrite that change with your version.");
+    ImGui::Spacing();
+    if (ImGui::Button("Overwrite")) choice = GuardChoice::kOverwrite;
+    ImGui::SameLine();
+    if (ImGui::Button("Reload from disk (lose my edits)")) choice = GuardChoice::kReload;
+    ImGui::SameLine();
+    choice = end_choice(choice, scripted);
+  }
+  return choice;
+}
+
+}  // namespace phonglab::ui
