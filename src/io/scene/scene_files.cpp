@@ -98,7 +98,7 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   std::string error;
   const std::optional<std::string> text = files.read(file, error);
   if (!text) {
-    out.errors.push_back("cannot load mesh '" + file + "': " + error);
+    out.errors.push_back(line_diagnostic("", 0, "cannot load mesh '" + file + "': " + error));
     return out;
   }
   const std::string obj_dir = std::filesystem::path(file).parent_path().generic_string();
@@ -109,11 +109,11 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   // on the prescan's thread, which finishes well before tinyobjloader's parse on this one.
   std::vector<Triangle> room;
   ObjIndexedMesh obj = load_obj_indexed(*text, file, read_mtl, ns, [&](std::size_t n) { room.resize(n); });
-  for (const Diagnostic& w : obj.warnings) out.warnings.push_back(w.to_string());
-  for (const Diagnostic& e : obj.errors) out.errors.push_back(e.to_string());
+  out.warnings = std::move(obj.warnings);
+  out.errors = std::move(obj.errors);
   if (!out.errors.empty()) return out;
   if (obj.triangles.empty()) {
-    out.errors.push_back(file + ": no faces (a mesh needs at least one triangle of non-zero area)");
+    out.errors.push_back(line_diagnostic(file, 0, "no faces (a mesh needs at least one triangle of non-zero area)"));
     return out;
   }
   const std::string stem = std::filesystem::path(file).stem().string();
@@ -146,8 +146,8 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
     const Vec3& v1 = obj.vertices[t.v[1]];
     const Vec3& v2 = obj.vertices[t.v[2]];
     if (!all_finite(v0) || !all_finite(v1) || !all_finite(v2)) {
-      out.errors.push_back(file + ": the transform takes face " + std::to_string(t.face + 1) +
-                           " beyond the range of doubles");
+      out.errors.push_back(line_diagnostic(
+          file, 0, "the transform takes face " + std::to_string(t.face + 1) + " beyond the range of doubles"));
       return out;
     }
     const Vec3 cross = glm::cross(v1 - v0, v2 - v0);
@@ -159,19 +159,20 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   }
   placed.resize(kept);
   if (degenerate > 0) {
-    out.warnings.push_back(file + ": " + std::to_string(degenerate) + " triangles have zero area after the transform; left out");
+    out.warnings.push_back(line_diagnostic(
+        file, 0, std::to_string(degenerate) + " triangles have zero area after the transform; left out", Diagnostic::Severity::kWarning));
   }
   if (placed.empty()) {
-    out.errors.push_back(file + ": no triangle of non-zero area after the transform");
+    out.errors.push_back(line_diagnostic(file, 0, "no triangle of non-zero area after the transform"));
     return out;
   }
   for (Emitter e : obj.emitters) {
     e.centroid = place(e.centroid);
     std::ostringstream hint;
-    hint << file << ": material '" << e.material << "' emits light (Ke " << e.ke.x << " " << e.ke.y << " "
+    hint << "material '" << e.material << "' emits light (Ke " << e.ke.x << " " << e.ke.y << " "
          << e.ke.z << ") from " << e.faces << " face(s); phonglab has point lights only: place one near ["
          << e.centroid.x << ", " << e.centroid.y << ", " << e.centroid.z << "], their centre";
-    out.warnings.push_back(hint.str());
+    out.warnings.push_back(line_diagnostic(file, 0, hint.str(), Diagnostic::Severity::kWarning));
     out.emitters.push_back(e);
   }
   std::vector<int> faces(placed.size());

@@ -41,23 +41,6 @@ namespace phonglab {
 
 using namespace scene_load;  // the loader's own parts (src/io/scene/scene_load.h)
 
-std::string Diagnostic::to_string() const {
-  std::string s = file;
-  if (line > 0) {
-    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "x" + std::string here.
-    s += ':';
-    s += std::to_string(line);
-    if (column > 0) {
-      s += ':';
-      s += std::to_string(column);
-    }
-  }
-  s += ": ";
-  if (!path.empty()) s += path + ": ";
-  s += message;
-  return s;
-}
-
 std::string LoadResult::error_text() const {
   std::string s;
   for (const Diagnostic& d : errors) {
@@ -93,9 +76,9 @@ LoadResult load_obj_scene(const std::string& path) {
     d.message = std::move(message);
     return d;
   };
-  for (std::string& w : loaded.warnings) r.warnings.push_back(diagnostic(std::move(w)));
+  for (const Diagnostic& w : loaded.warnings) r.warnings.push_back(diagnostic(w.to_string()));
   set_severity(r.warnings, Diagnostic::Severity::kWarning);
-  for (std::string& e : loaded.errors) r.errors.push_back(diagnostic(std::move(e)));
+  for (const Diagnostic& e : loaded.errors) r.errors.push_back(diagnostic(e.to_string()));
   if (!r.errors.empty()) return r;
   Scene scene;
   scene.ambient = Color(0.2);

@@ -259,8 +259,8 @@ struct SceneFiles {
 struct MeshLoad {
   std::shared_ptr<const MeshGeometry> geometry;
   std::vector<Material> materials;  // the MTL's, to append to the scene's (none with an override)
-  std::vector<std::string> errors;  // "file.obj:LINE: message"
-  std::vector<std::string> warnings;
+  std::vector<Diagnostic> errors;   // the OBJ's and MTL's, and those of placing the mesh
+  std::vector<Diagnostic> warnings;
   std::vector<Emitter> emitters;    // centroids in world coordinates
 };
 

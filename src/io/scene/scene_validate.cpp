@@ -403,9 +403,9 @@ class Validator : private JsonReader {
     if (!ok || file == nullptr) return;
     MeshLoad loaded = load_mesh(files_, mesh.file, mesh.transform, ns, override_material,
                                 static_cast<int>(s.materials.size()));
-    for (std::string& w : loaded.warnings) warnings_.add({index_.begin(file->node), file->path, std::move(w)});
+    for (const Diagnostic& w : loaded.warnings) warnings_.add({index_.begin(file->node), file->path, w.to_string()});
     if (!loaded.errors.empty()) {
-      for (std::string& message : loaded.errors) report(*file, std::move(message));
+      for (const Diagnostic& problem : loaded.errors) report(*file, problem.to_string());
       return;
     }
     mesh.geometry = std::move(loaded.geometry);

@@ -1,0 +1,25 @@
+#include "io/diagnostic.h"
+
+namespace phonglab {
+
+std::string Diagnostic::to_string() const {
+  // A problem of no particular file (a mesh that cannot be read, told by the scene's) has no
+  // "file: " in front.
+  if (file.empty() && line == 0) return message;
+  std::string s = file;
+  if (line > 0) {
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "x" + std::string here.
+    s += ':';
+    s += std::to_string(line);
+    if (column > 0) {
+      s += ':';
+      s += std::to_string(column);
+    }
+  }
+  s += ": ";
+  if (!path.empty()) s += path + ": ";
+  s += message;
+  return s;
+}
+
+}  // namespace phonglab
