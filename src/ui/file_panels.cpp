@@ -16,6 +16,15 @@ namespace phonglab::ui {
 
 namespace {
 
+// Opens the modal `title` when `open_now`, centred in the window; whether it is showing (then
+// end it with end_choice).
+bool begin_centred_modal(const char* title, bool open_now) {
+  if (open_now) ImGui::OpenPopup(title);
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  return ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+}
+
 // The last row of a dialog: Cancel (or Esc), a scripted answer in place of the user's, and the
 // dialog closed once answered. Call inside BeginPopupModal; ends the popup.
 GuardChoice end_choice(GuardChoice choice, GuardChoice scripted) {
@@ -92,11 +101,8 @@ void screenshot_panel(ScreenshotState& state, ScreenshotActions& actions) {
 GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
                                   GuardChoice scripted) {
   constexpr const char* kTitle = "Unsaved changes";
-  if (open_now) ImGui::OpenPopup(kTitle);
-  const ImGuiViewport* viewport = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   GuardChoice choice = GuardChoice::kNone;
-  if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+  if (begin_centred_modal(kTitle, open_now)) {
     ImGui::Text("The scene has unsaved changes.");
     ImGui::Text("Save them before you %s?", view.action.c_str());
     if (view.changed_on_disk) {
@@ -122,11 +128,8 @@ GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::str
 
 GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted) {
   constexpr const char* kTitle = "The file changed on disk";
-  if (open_now) ImGui::OpenPopup(kTitle);
-  const ImGuiViewport* viewport = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   GuardChoice choice = GuardChoice::kNone;
-  if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+  if (begin_centred_modal(kTitle, open_now)) {
     ImGui::Text("%s changed on disk since it was opened or saved here.", file.c_str());
     ImGui::Text("Saving now would overwrite that change with your version.");
     ImGui::Spacing();

@@ -43,22 +43,18 @@ state() {  # state FILE KEY: the value of KEY= in a dump_state file
 stddev() {
   convert "$1" -crop "$2" +repage -colorspace Gray -format '%[fx:standard_deviation]' info: 2>/dev/null
 }
-# Normalised RMS difference of two images in a region.
+# rmse_crops IMAGE1 REGION1 IMAGE2 REGION2: normalised RMS difference of two image regions.
+rmse_crops() {
+  local a b
+  a=$(mktemp --suffix=.png) b=$(mktemp --suffix=.png)
+  convert "$1" -crop "$2" +repage "$a" && convert "$3" -crop "$4" +repage "$b"
+  compare -metric RMSE "$a" "$b" null: 2>&1 | sed -n 's/.*(\(.*\)).*/\1/p'
+  rm -f "$a" "$b"
+}
 # Normalised RMS difference of two regions of one image.
-rmse_regions() {
-  local a b
-  a=$(mktemp --suffix=.png) b=$(mktemp --suffix=.png)
-  convert "$1" -crop "$2" +repage "$a" && convert "$1" -crop "$3" +repage "$b"
-  compare -metric RMSE "$a" "$b" null: 2>&1 | sed -n 's/.*(\(.*\)).*/\1/p'
-  rm -f "$a" "$b"
-}
-rmse() {
-  local a b
-  a=$(mktemp --suffix=.png) b=$(mktemp --suffix=.png)
-  convert "$1" -crop "$3" +repage "$a" && convert "$2" -crop "$3" +repage "$b"
-  compare -metric RMSE "$a" "$b" null: 2>&1 | sed -n 's/.*(\(.*\)).*/\1/p'
-  rm -f "$a" "$b"
-}
+rmse_regions() { rmse_crops "$1" "$2" "$1" "$3"; }
+# Normalised RMS difference of two images in a region.
+rmse() { rmse_crops "$1" "$3" "$2" "$3"; }
 # apart FILE KEY1 KEY2: the rectangles "x y w h" under KEY1 and KEY2 in a dump do not overlap.
 apart() {
   awk -v a="$(state "$1" "$2")" -v b="$(state "$1" "$3")" 'BEGIN {
