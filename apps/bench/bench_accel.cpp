@@ -1,5 +1,6 @@
 #include "apps/bench/bench_accel.h"
 #include "apps/bench/bench_common.h"
+#include "apps/bench/bench_yardsticks.h"
 
 #include <algorithm>
 #include <atomic>
@@ -604,11 +605,14 @@ int write_accel_report(const AccelBenchOptions& options, const std::string& out_
     return 1;
   }
   const AccelBenchResult r = run_accel_bench(options);
+  const YardstickResult y = run_yardsticks(options.quick, resolve_thread_count(options.threads));
   int code = 0;
   const std::string md = "# phonglab: acceleration\n\nMade by `phonglab-cli bench --only accel" +
                          std::string(options.quick ? " --quick" : "") + "` on a machine with " +
-                         std::to_string(std::thread::hardware_concurrency()) + " hardware threads.\n" + r.markdown;
-  for (const auto& [name, text] : {std::pair<std::string, const std::string&>{"accel.md", md}, {"accel.csv", r.csv}}) {
+                         std::to_string(std::thread::hardware_concurrency()) + " hardware threads.\n" + r.markdown +
+                         y.markdown;
+  for (const auto& [name, text] : {std::pair<std::string, const std::string&>{"accel.md", md}, {"accel.csv", r.csv},
+                                   {"yardsticks.csv", y.csv}}) {
     if (std::string err = write_file_atomically((std::filesystem::path(out_dir) / name).string(), text); !err.empty()) {
       std::fprintf(stderr, "%s\n", err.c_str());
       code = 1;

@@ -25,7 +25,7 @@ constexpr const char* kUsage = R"(usage: phonglab-cli bench [--out DIR] [--quick
        phonglab-cli bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
   (default bench-out/); --quick finishes in about a minute. --only accel: the
-  acceleration section alone (accel.md, accel.csv). With SCENE: time Whitted
+  acceleration section and the yardsticks alone (accel.md, accel.csv, yardsticks.csv). With SCENE: time Whitted
   frames (1 spp) of one scene and print the median; --scalar: without the packet
   tracer (the same image, traced ray by ray).
 )";

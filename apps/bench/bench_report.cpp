@@ -13,6 +13,7 @@
 
 #include "apps/bench/bench_accel.h"  // issue 6: the acceleration section
 #include "apps/bench/bench_common.h"
+#include "apps/bench/bench_yardsticks.h"
 #include "io/embedded_scenes.h"
 #include "io/image_io.h"
 #include "experiments/numerics_variants.h"
@@ -548,6 +549,9 @@ int run_bench_report(const BenchReportOptions& options) {
   const AccelBenchResult accel = run_accel_bench(AccelBenchOptions{quick, options.threads});
   md << accel.markdown;
   out.write("accel.csv", accel.csv);
+  const YardstickResult yardsticks = run_yardsticks(quick, threads);
+  md << yardsticks.markdown;
+  out.write("yardsticks.csv", yardsticks.csv);
   precision_section(md, out, quick, threads);
   savings_section(md, out, quick, threads);
   out.write("report.md", md.str());

@@ -52,7 +52,8 @@ commands:
   bench [--out DIR] [--quick] [--threads N] [--only accel]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR
       (default bench-out/); --quick finishes in about a minute. --only accel:
-      the acceleration section alone (accel.md, accel.csv).
+      the acceleration section and the yardsticks alone (accel.md, accel.csv,
+      yardsticks.csv).
   bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
       Time Whitted frames (1 spp) of one scene and print the median.
       --scalar: without the packet tracer (the same image, traced ray by ray).

@@ -1,8 +1,11 @@
-# The AVX2 kernels' object file may define no code but its own functions (phonglab::packet::*)
-# and local functions. A weak function there (a template, a glm or std helper not inlined)
+# An AVX2 object file (the packet tracer's kernels; the bench's float loop) may define no code
+# but its own functions (PREFIX*, default phonglab::packet::) and local functions. A weak function there (a template, a glm or std helper not inlined)
 # could be picked by the linker for the whole program, and would then run AVX2 instructions on
 # a CPU without them. Data cannot: weak objects (V, such as the typeinfo UndefinedBehaviorSanitizer
-# emits) and read-only or local data pass. Usage: cmake -DNM=nm -DOBJECTS="a.o;b.o" -P this-file
+# emits) and read-only or local data pass. Usage: cmake -DNM=nm -DOBJECTS="a.o;b.o" [-DPREFIX=ns::] -P this-file
+if(NOT PREFIX)
+  set(PREFIX "phonglab::packet::")
+endif()
 foreach(obj IN LISTS OBJECTS)
   execute_process(COMMAND ${NM} -C --defined-only ${obj} OUTPUT_VARIABLE out RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
@@ -14,7 +17,8 @@ foreach(obj IN LISTS OBJECTS)
     if(line STREQUAL "" OR line MATCHES "^[0-9a-f]* [tbdrnBDRVvu] ")
       continue()  # local symbols and data
     endif()
-    if(line MATCHES "^[0-9a-f]* T phonglab::packet::")
+    string(FIND "${line}" " T ${PREFIX}" at)
+    if(at GREATER -1)
       math(EXPR kernels "${kernels} + 1")
       continue()
     endif()
