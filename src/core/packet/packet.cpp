@@ -169,6 +169,8 @@ struct PacketTracer::Impl {
   // tested before it, as SceneBvh does), and no sphere is culled.
   bool walk_hierarchy = false;
   packet::Hierarchy hierarchy{};
+  // Without one: the loose triangles, tested four rays at a time after the spheres and planes.
+  packet::LooseTriangles loose{};
   std::vector<std::uint8_t> top_kind;
   std::vector<std::int32_t> top_index;
   std::vector<packet::MeshTree> mesh_trees;
@@ -228,6 +230,8 @@ struct PacketTracer::Impl {
     levels.resize(at(std::max(0, limits.max_depth)) + 1);
     mesh_id = static_cast<int>(prim_material.size());
     if (const auto* bvh = dynamic_cast<const SceneBvh*>(prepared.accel())) set_up_hierarchy(*bvh);
+    loose = {kernel_vertices(scene.triangles), static_cast<long>(sizeof(Triangle) / sizeof(double)),
+             static_cast<int>(scene.triangles.size()), spheres.count + planes.count};
   }
 
   void set_up_hierarchy(const SceneBvh& bvh) {
@@ -336,7 +340,7 @@ struct PacketTracer::Impl {
   }
 
   // The nearest hit of every ray: spheres and planes in the kernel, then the scene's few loose
-  // triangles ray by ray, in intersect_all's order.
+  // triangles, in intersect_all's order.
   void find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested) {
     lv.fit_lanes(rays.n);
     for (int i = 0; i < rays.n; ++i) {
@@ -350,15 +354,8 @@ struct PacketTracer::Impl {
       return;
     }
     if (scene.triangles.empty()) return;
-    const int first = spheres.count + planes.count;
-    for (int i = 0; i < rays.n; ++i) {
-      const std::size_t u = at(i);
-      const Ray ray = make_ray(rays.origin(i), rays.dir(i));
-      if (const int k = nearest_triangle(scene.triangles, ray, make_shear(ray.dir), lv.t[u], lv.b1[u], lv.b2[u]);
-          k >= 0) {
-        lv.id[u] = first + k;
-      }
-    }
+    packet::triangles_nearest(loose, rays.view(), rays.n,
+                              {lv.t.data(), lv.id.data(), lv.prim.data(), lv.b1.data(), lv.b2.data()});
   }
 
   // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
@@ -371,12 +368,7 @@ struct PacketTracer::Impl {
       return;
     }
     if (scene.triangles.empty()) return;
-    for (int h = 0; h < lanes; ++h) {
-      const std::size_t u = at(h);
-      if (lv.shadow[u] != Shadow::kTest || lv.blocked[u]) continue;
-      const Ray ray = make_ray(Vec3(lv.sox[u], lv.soy[u], lv.soz[u]), Vec3(lv.sdx[u], lv.sdy[u], lv.sdz[u]));
-      if (any_triangle(scene.triangles, ray, make_shear(ray.dir), lv.st_max[u])) lv.blocked[u] = 1;
-    }
+    packet::triangles_occluded(loose, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
   }
 
   // The light loop of shade() for every hit of the level, one light at a time.

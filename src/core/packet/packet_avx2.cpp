@@ -628,4 +628,66 @@ void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_ma
   }
 }
 
+void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, const NearestHits& out) {
+  for (int i = 0; i < live; i += 4) {
+    const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;
+    const Packet p = make_packet(rays, i, lanes);
+    const V m = lane_mask(lanes);
+    V best = load(out.t + i);
+    V id = _mm256_set_pd(out.id[i + 3], out.id[i + 2], out.id[i + 1], out.id[i]);
+    V b1 = _mm256_setzero_pd(), b2 = _mm256_setzero_pd();
+    int changed = 0;
+    for (int k = 0; k < tris.count; ++k) {
+      const double* v0 = tris.vertices + k * tris.stride;
+      const TriangleHit hit = triangle_hit(p, v0);
+      const V take = both(both(m, hit.valid), lt(hit.t, best));
+      const int bits = lanes_set(take);
+      if (bits == 0 || !has_area(v0)) continue;
+      best = pick(take, hit.t, best);
+      id = pick(take, splat(tris.first_id + k), id);
+      b1 = pick(take, hit.v / hit.det, b1);
+      b2 = pick(take, hit.w / hit.det, b2);
+      changed |= bits;
+    }
+    if (changed == 0) continue;
+    alignas(32) double t_out[4], id_out[4], b1_out[4], b2_out[4];
+    _mm256_store_pd(t_out, best);
+    _mm256_store_pd(id_out, id);
+    _mm256_store_pd(b1_out, b1);
+    _mm256_store_pd(b2_out, b2);
+    for (int j = 0; j < 4; ++j) {
+      if (!((changed >> j) & 1)) continue;
+      out.t[i + j] = t_out[j];
+      out.id[i + j] = static_cast<std::int32_t>(id_out[j]);
+      out.b1[i + j] = b1_out[j];
+      out.b2[i + j] = b2_out[j];
+    }
+  }
+}
+
+void triangles_occluded(const LooseTriangles& tris, const Rays& rays, const double* t_max, int lanes,
+                        std::uint8_t* occluded_out) {
+  for (int i = 0; i < lanes; i += 4) {
+    int live = lanes_set(gt(load(t_max + i), _mm256_setzero_pd()));
+    for (int j = 0; j < 4; ++j) {
+      if (occluded_out[i + j]) live &= ~(1 << j);
+    }
+    if (live == 0) continue;
+    const Packet p = make_packet(rays, i, live);
+    const V limit = load(t_max + i);
+    V open = lane_mask(live);
+    for (int k = 0; k < tris.count && lanes_set(open) != 0; ++k) {
+      const double* v0 = tris.vertices + k * tris.stride;
+      const TriangleHit hit = triangle_hit(p, v0);
+      const V blocks = both(both(open, hit.valid), lt(hit.t, limit));
+      if (lanes_set(blocks) == 0 || !has_area(v0)) continue;
+      open = and_not(blocks, open);
+    }
+    const int bits = live & ~lanes_set(open);
+    for (int j = 0; j < 4; ++j) {
+      if (bits & (1 << j)) occluded_out[i + j] = 1;
+    }
+  }
+}
+
 }  // namespace phonglab::packet

@@ -160,4 +160,24 @@ void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const Nea
 void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_max, int lanes,
                         std::uint8_t* occluded);
 
+// A brute-force scene's loose triangles (Triangle's layout: v0, v1, v2 from `vertices` on, the
+// next triangle `stride` doubles further), tested four rays at a time as nearest_triangle and
+// any_triangle test them one ray at a time.
+struct LooseTriangles {
+  const double* vertices;  // the first triangle's v0.x
+  long stride;
+  int count;
+  int first_id;            // id of triangle 0 (spheres + planes)
+};
+
+// nearest_triangle for lanes [0, live): where a triangle is strictly nearer than t (ties go to
+// what came first: spheres, planes, then triangles in order), t, id (first_id + k), b1 and b2
+// are replaced; prim is left alone.
+void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, const NearestHits& out);
+
+// any_triangle within (0, t_max): sets occluded[i] = 1 for the lanes a triangle blocks. Lanes
+// whose t_max is not > 0, or that are occluded already, are skipped.
+void triangles_occluded(const LooseTriangles& tris, const Rays& rays, const double* t_max, int lanes,
+                        std::uint8_t* occluded);
+
 }  // namespace phonglab::packet
