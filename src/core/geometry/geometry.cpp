@@ -142,18 +142,7 @@ Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double
     case ObjectRef::Kind::kTriangle:
     case ObjectRef::Kind::kMesh: {
       const Triangle& tri = triangle_of(scene, obj);
-      const double b0 = 1 - b1 - b2;
-      // Interpolating the vertices is more accurate than o + t d for far-away rays.
-      hit.p = b0 * tri.v0 + b1 * tri.v1 + b2 * tri.v2;
-      hit.magnitude = std::max({max_abs(tri.v0), max_abs(tri.v1), max_abs(tri.v2)});
-      hit.ng = glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
-      hit.ns = hit.ng;
-      if (tri.has_vertex_normals) {
-        const Vec3 n = b0 * tri.n0 + b1 * tri.n1 + b2 * tri.n2;
-        const double len = glm::length(n);
-        if (len > 0 && std::isfinite(len)) hit.ns = n / len;
-      }
-      hit.material = tri.material;
+      triangle_hit_record(tri, triangle_normal(tri), triangle_magnitude(tri), b1, b2, hit);
       break;
     }
     case ObjectRef::Kind::kNone:

@@ -148,6 +148,31 @@ std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray,
                                  double t_max = std::numeric_limits<double>::infinity());
 bool occluded_all(const Scene& scene, const Ray& ray, double t_max);
 
+// A triangle's unit geometric normal Ng = normalize((v1 - v0) x (v2 - v0)), and its coordinate
+// magnitude for surface_offset (its largest vertex coordinate).
+inline Vec3 triangle_normal(const Triangle& tri) { return glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0)); }
+inline double triangle_magnitude(const Triangle& tri) {
+  return std::max({max_abs(tri.v0), max_abs(tri.v1), max_abs(tri.v2)});
+}
+
+// make_hit's part for a triangle hit at barycentric weights b1, b2 (of v1, v2), given its
+// triangle_normal and triangle_magnitude (which a tracer may compute once per triangle): the
+// point interpolated from the vertices (more accurate than o + t d for far-away rays), the
+// normals (interpolated vertex normals where the triangle has them), the material.
+inline void triangle_hit_record(const Triangle& tri, const Vec3& ng, double magnitude, double b1, double b2, Hit& hit) {
+  const double b0 = 1 - b1 - b2;
+  hit.p = b0 * tri.v0 + b1 * tri.v1 + b2 * tri.v2;
+  hit.magnitude = magnitude;
+  hit.ng = ng;
+  hit.ns = ng;
+  if (tri.has_vertex_normals) {
+    const Vec3 n = b0 * tri.n0 + b1 * tri.n1 + b2 * tri.n2;
+    const double len = glm::length(n);
+    if (len > 0 && std::isfinite(len)) hit.ns = n / len;
+  }
+  hit.material = tri.material;
+}
+
 // Fills a Hit for the primitive `obj` hit at distance t (used after the nearest-hit loop).
 Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double b1, double b2);
 

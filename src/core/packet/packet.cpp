@@ -171,6 +171,8 @@ struct PacketTracer::Impl {
   packet::Hierarchy hierarchy{};
   // Without one: the loose triangles, tested four rays at a time after the spheres and planes.
   packet::LooseTriangles loose{};
+  std::vector<Vec3> loose_normal;        // triangle_normal of each loose triangle, computed once
+  std::vector<double> loose_magnitude;   // and its triangle_magnitude
   std::vector<std::uint8_t> top_kind;
   std::vector<std::int32_t> top_index;
   std::vector<packet::MeshTree> mesh_trees;
@@ -232,6 +234,10 @@ struct PacketTracer::Impl {
     if (const auto* bvh = dynamic_cast<const SceneBvh*>(prepared.accel())) set_up_hierarchy(*bvh);
     loose = {kernel_vertices(scene.triangles), static_cast<long>(sizeof(Triangle) / sizeof(double)),
              static_cast<int>(scene.triangles.size()), spheres.count + planes.count};
+    for (const Triangle& tri : scene.triangles) {
+      loose_normal.push_back(triangle_normal(tri));
+      loose_magnitude.push_back(triangle_magnitude(tri));
+    }
   }
 
   void set_up_hierarchy(const SceneBvh& bvh) {
@@ -529,11 +535,20 @@ struct PacketTracer::Impl {
   }
 
   // A triangle's hit record (loose or a mesh's), by the scalar functions (the kernel does spheres
-  // and planes).
+  // and planes); a loose triangle's normal and magnitude come from those computed once.
   void record_triangle_hit(Level& lv, const RayBatch& rays, int i) {
     const std::size_t u = at(i);
     const Vec3 d = rays.dir(i);
-    const Hit hit = make_hit(scene, make_ray(rays.origin(i), d), object_of(lv.id[u], lv.prim[u]), lv.t[u], lv.b1[u], lv.b2[u]);
+    const int first = spheres.count + planes.count;
+    Hit hit;
+    if (lv.id[u] < mesh_id) {
+      const int k = lv.id[u] - first;
+      hit.t = lv.t[u];
+      hit.object = {ObjectRef::Kind::kTriangle, k};
+      triangle_hit_record(scene.triangles[at(k)], loose_normal[at(k)], loose_magnitude[at(k)], lv.b1[u], lv.b2[u], hit);
+    } else {
+      hit = make_hit(scene, make_ray(rays.origin(i), d), object_of(lv.id[u], lv.prim[u]), lv.t[u], lv.b1[u], lv.b2[u]);
+    }
     const HitSide side = hit_side(hit, d);
     lv.entering[u] = side.entering;
     lv.px[u] = hit.p.x, lv.py[u] = hit.p.y, lv.pz[u] = hit.p.z;

@@ -341,14 +341,13 @@ inline V lane_mask(int bits) {  // lane j all ones where bit j is set
   return _mm256_castsi256_pd(_mm256_set_epi64x(bits & 8 ? -1 : 0, bits & 4 ? -1 : 0, bits & 2 ? -1 : 0, bits & 1 ? -1 : 0));
 }
 
-// Four rays of `rays` from lane i; `live`: the lanes that matter (the shear's `uniform` looks at
-// those only).
-Packet make_packet(const Rays& rays, int i, int live) {
+// Four rays of `rays` from lane i with their triangle shear only (inv and sign unset: the loose
+// triangles test no boxes); `live`: the lanes that matter (the shear's `uniform` looks at those
+// only).
+Packet shear_packet(const Rays& rays, int i, int live) {
   Packet p;
   p.o[0] = load(rays.ox + i), p.o[1] = load(rays.oy + i), p.o[2] = load(rays.oz + i);
   p.d[0] = load(rays.dx + i), p.d[1] = load(rays.dy + i), p.d[2] = load(rays.dz + i);
-  for (int a = 0; a < 3; ++a) p.inv[a] = splat(1.0) / p.d[a];
-  for (int a = 0; a < 3; ++a) p.sign[a] = lanes_set(p.d[a]);
   // make_shear, lane by lane: kz is the axis of the largest |d| (the first of equals), kx and ky
   // follow it cyclically, swapped when d[kz] < 0.
   const V ax = and_not(sign_bit(), p.d[0]), ay = and_not(sign_bit(), p.d[1]), az = and_not(sign_bit(), p.d[2]);
@@ -374,6 +373,14 @@ Packet make_packet(const Rays& rays, int i, int live) {
   const bool swapped = (ms >> first) & 1;
   p.kx = swapped ? (p.kz + 2) % 3 : (p.kz + 1) % 3;
   p.ky = swapped ? (p.kz + 1) % 3 : (p.kz + 2) % 3;
+  return p;
+}
+
+// The same with what the box tests need too (1 / d and the sign octants).
+Packet make_packet(const Rays& rays, int i, int live) {
+  Packet p = shear_packet(rays, i, live);
+  for (int a = 0; a < 3; ++a) p.inv[a] = splat(1.0) / p.d[a];
+  for (int a = 0; a < 3; ++a) p.sign[a] = lanes_set(p.d[a]);
   return p;
 }
 
@@ -631,7 +638,7 @@ void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_ma
 void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, const NearestHits& out) {
   for (int i = 0; i < live; i += 4) {
     const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;
-    const Packet p = make_packet(rays, i, lanes);
+    const Packet p = shear_packet(rays, i, lanes);
     const V m = lane_mask(lanes);
     V best = load(out.t + i);
     V id = _mm256_set_pd(out.id[i + 3], out.id[i + 2], out.id[i + 1], out.id[i]);
@@ -673,7 +680,7 @@ void triangles_occluded(const LooseTriangles& tris, const Rays& rays, const doub
       if (occluded_out[i + j]) live &= ~(1 << j);
     }
     if (live == 0) continue;
-    const Packet p = make_packet(rays, i, live);
+    const Packet p = shear_packet(rays, i, live);
     const V limit = load(t_max + i);
     V open = lane_mask(live);
     for (int k = 0; k < tris.count && lanes_set(open) != 0; ++k) {
