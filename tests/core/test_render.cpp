@@ -2,10 +2,15 @@
 // sample 0 at the pixel centre, the camera formula of docs/model.md, camera and samples.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <stdexcept>
+#include <thread>
+#include <vector>
 #include <utility>
 
 #include "core/render/render.h"
+#include "core/render/threads.h"
 
 using namespace phonglab;
 
@@ -271,4 +276,29 @@ TEST(Sampling, SeedsGiveIndependentSampleSetsButTheSameCentre) {
     differ += (u0 != u1 || v0 != v1);
   }
   EXPECT_EQ(differ, 49);
+}
+
+// run_workers keeps its helper threads between calls: every worker index runs exactly once per
+// call whatever the sequence of sizes, two callers at once each get their own helpers, and an
+// exception on the caller's share comes back after the helpers are done with the work.
+TEST(Workers, EveryIndexRunsOncePerCallAndCallersDoNotShareHelpers) {
+  const auto check = [](int seed) {
+    for (int call = 0; call < 200; ++call) {
+      const int n = 1 + (call * 7 + seed) % 5;
+      std::vector<std::atomic<int>> runs(static_cast<std::size_t>(n));
+      run_workers(n, [&](int i) { runs[static_cast<std::size_t>(i)].fetch_add(1); });
+      for (int i = 0; i < n; ++i) ASSERT_EQ(runs[static_cast<std::size_t>(i)].load(), 1) << "call " << call << ", n " << n;
+    }
+  };
+  std::thread other([&] { check(3); });
+  check(1);
+  other.join();
+  std::atomic<int> helpers_done{0};
+  EXPECT_THROW(run_workers(3,
+                           [&](int i) {
+                             if (i == 0) throw std::runtime_error("worker 0");
+                             helpers_done.fetch_add(1);
+                           }),
+               std::runtime_error);
+  EXPECT_EQ(helpers_done.load(), 2);
 }

@@ -3,6 +3,7 @@
 // Immutable: an edit makes a new one, so no copy can carry a stale accelerator.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -25,14 +26,25 @@ class PreparedScene {
   // forced BVH, Embree, the experiments' geometry), and optionally an experiment.
   PreparedScene(Scene scene, const AccelFactory& make_accel, std::shared_ptr<const Experiment> experiment = nullptr);
 
+  // Copies and moves are new snapshots: each gets an id of its own.
+  PreparedScene(const PreparedScene& other);
+  PreparedScene(PreparedScene&& other) noexcept;
+  PreparedScene& operator=(const PreparedScene& other);
+  PreparedScene& operator=(PreparedScene&& other) noexcept;
+  ~PreparedScene() = default;
+
   const Scene& scene() const { return scene_; }
   const Accelerator* accel() const { return accel_.get(); }  // null: queries test every primitive
   const Experiment* experiment() const { return experiment_.get(); }  // null: the production renderer
+  // Unique to this object for the life of the program (what a tracer built for it, kept between
+  // passes, is checked against, with its address).
+  std::uint64_t id() const { return id_; }
 
  private:
   Scene scene_;
   std::shared_ptr<const Accelerator> accel_;
   std::shared_ptr<const Experiment> experiment_;
+  std::uint64_t id_;
 };
 
 // Nearest hit with t in (0, t_max), through the accelerator when there is one.

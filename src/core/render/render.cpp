@@ -86,6 +86,29 @@ Color term_value(const Terms& t, Term term) {
   }
 }
 
+namespace {
+
+// This thread's packet tracer for `prepared`, kept from pass to pass of the same snapshot (its
+// set-up is a fair part of a small pass). Address and id together name one object for its whole
+// life (PreparedScene::id), so a tracer is never used for another scene.
+PacketTracer& packet_tracer_for(const PreparedScene& prepared) {
+  struct Kept {
+    const PreparedScene* scene = nullptr;
+    std::uint64_t id = 0;
+    std::optional<PacketTracer> tracer;
+  };
+  thread_local Kept kept;
+  if (!kept.tracer || kept.scene != &prepared || kept.id != prepared.id()) {
+    kept.tracer.reset();
+    kept.tracer.emplace(prepared);
+    kept.scene = &prepared;
+    kept.id = prepared.id();
+  }
+  return *kept.tracer;
+}
+
+}  // namespace
+
 PassStats render_pass(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
                       const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
@@ -107,12 +130,9 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
   // (x, y, sample_index), so the image is the same for any thread count or tile order.
   const bool packets = options.packets && PacketTracer::draws(options.term) && packet_tracing_applies(prepared);
   auto worker = [&](PassStats& stats) {
-    std::optional<PacketTracer> tracer;
+    PacketTracer* tracer = packets ? &packet_tracer_for(prepared) : nullptr;
     std::vector<Color> tile_radiance;
-    if (packets) {
-      tracer.emplace(prepared);
-      tile_radiance.resize(static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile));
-    }
+    if (packets) tile_radiance.resize(static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile));
     const auto add = [&](Color* row, int x, Color c) {
       if (!all_finite(c)) {
         ++stats.nan_count;

@@ -1,9 +1,8 @@
 // The one way the renderer and its tools fan work out over threads.
 #pragma once
 
-#include <algorithm>
+#include <functional>
 #include <thread>
-#include <vector>
 
 namespace phonglab {
 
@@ -14,15 +13,11 @@ inline int resolve_thread_count(int requested) {
   return hw > 0 ? static_cast<int>(hw) : 1;
 }
 
-// Runs work(i) for every worker i in [0, n): 1 .. n - 1 on threads of their own, 0 on the
-// caller's; returns when all have finished. n < 1 counts as 1.
-template <class Work>
-void run_workers(int n, const Work& work) {
-  std::vector<std::thread> pool;
-  pool.reserve(static_cast<std::size_t>(std::max(0, n - 1)));
-  for (int i = 1; i < n; ++i) pool.emplace_back([&work, i] { work(i); });
-  work(0);
-  for (std::thread& t : pool) t.join();
-}
+// Runs work(i) for every worker i in [0, n): 0 on the caller's thread, 1 .. n - 1 on helper
+// threads that the calling thread keeps between calls (a render pass of a small image takes less
+// than starting threads would), and returns when all have finished. n < 1 counts as 1. Each
+// calling thread has helpers of its own, so concurrent callers (the previewer's renderers) never
+// wait for each other; they end with it.
+void run_workers(int n, const std::function<void(int)>& work);
 
 }  // namespace phonglab
