@@ -332,11 +332,87 @@ void add_packet_primitives(EmbreeHandle& embree, const Scene& scene) {
   if (!tris.empty()) embree.add_triangles(tris);
 }
 
+// Embree's own primitives behind the Accelerator interface (make_embree_native_accel).
+class EmbreeNativeAccel final : public Accelerator {
+ public:
+  explicit EmbreeNativeAccel(const Scene& scene) : scale_(scene_scale(scene)), embree_(0) {
+    add_packet_primitives(embree_, scene);
+    sphere_geometry_ = scene.spheres.empty() ? RTC_INVALID_GEOMETRY_ID : 0;
+    // add_packet_primitives' triangle order: loose triangles, each mesh's, two per plane.
+    std::size_t first = scene.triangles.size();
+    for (const Mesh& m : scene.meshes) {
+      mesh_first_.push_back(first);
+      first += m.geometry->triangles.size();
+    }
+    plane_first_ = first;
+    rtcCommitScene(embree_.scene());
+  }
+
+  std::optional<Hit> intersect(const Scene& scene, const Ray& ray, double t_max) const override {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh = ray_hit(ray, round_up(t_max));
+    rtcIntersect1(embree_.scene(), &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    return make_hit(scene, ray, object(rh.hit.geomID, rh.hit.primID), static_cast<double>(rh.ray.tfar),
+                    static_cast<double>(rh.hit.u), static_cast<double>(rh.hit.v));
+  }
+
+  bool occluded(const Scene& /*scene*/, const Ray& ray, double t_max) const override {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh = ray_hit(ray, round_down(t_max));
+    rtcOccluded1(embree_.scene(), &context, &rh.ray);
+    return rh.ray.tfar == -std::numeric_limits<float>::infinity();
+  }
+
+  bool matches(const Scene& /*scene*/) const override { return false; }  // built per snapshot, never reused
+
+ private:
+  RTCRayHit ray_hit(const Ray& ray, float tfar) const {
+    RTCRayHit rh{};
+    rh.ray.org_x = static_cast<float>(ray.origin.x);
+    rh.ray.org_y = static_cast<float>(ray.origin.y);
+    rh.ray.org_z = static_cast<float>(ray.origin.z);
+    rh.ray.dir_x = static_cast<float>(ray.dir.x);
+    rh.ray.dir_y = static_cast<float>(ray.dir.y);
+    rh.ray.dir_z = static_cast<float>(ray.dir.z);
+    rh.ray.tnear = static_cast<float>(kFloatSelfHitMargin * (max_abs(ray.origin) + scale_));
+    rh.ray.tfar = tfar;
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+  }
+
+  // The scene object Embree's (geometry, primitive) names.
+  ObjectRef object(unsigned geometry, unsigned prim) const {
+    if (geometry == sphere_geometry_) return {ObjectRef::Kind::kSphere, static_cast<int>(prim)};
+    const std::size_t p = prim;
+    if (p >= plane_first_) return {ObjectRef::Kind::kPlane, static_cast<int>((p - plane_first_) / 2)};
+    for (std::size_t m = mesh_first_.size(); m-- > 0;) {
+      if (p >= mesh_first_[m]) return {ObjectRef::Kind::kMesh, static_cast<int>(m), static_cast<int>(p - mesh_first_[m])};
+    }
+    return {ObjectRef::Kind::kTriangle, static_cast<int>(p)};
+  }
+
+  double scale_ = 0;
+  EmbreeHandle embree_;
+  unsigned sphere_geometry_ = RTC_INVALID_GEOMETRY_ID;
+  std::vector<std::size_t> mesh_first_;
+  std::size_t plane_first_ = 0;
+};
+
 }  // namespace
 
 std::shared_ptr<const Accelerator> make_embree_accel(const Scene& scene, const EmbreeOptions& options,
                                                      EmbreeBuildStats* stats) {
   return std::make_shared<EmbreeAccel>(scene, options, stats);
+}
+
+std::shared_ptr<const Accelerator> make_embree_native_accel(const Scene& scene) {
+  return std::make_shared<EmbreeNativeAccel>(scene);
 }
 
 std::vector<PacketCast> embree_cast_primary_packets(const Scene& scene, int width, int height, int threads,

@@ -36,6 +36,14 @@ struct EmbreeBuildStats {
 std::shared_ptr<const Accelerator> make_embree_accel(const Scene& scene, const EmbreeOptions& options = {},
                                                      EmbreeBuildStats* stats = nullptr);
 
+// Embree single-ray queries over Embree's own float primitives, what a user who picks Embree
+// gets: spheres as built-in sphere points, triangles and meshes as its triangles, planes as two
+// triangles of a square 1e4 times the scene's size. Hits keep Embree's float t, u and v (the hit
+// record is then the renderer's make_hit); no query is exact, and images differ from the
+// renderer's where float rounding moves a hit. Self-hits are kept off by the same float margin
+// on tnear as make_embree_accel's.
+std::shared_ptr<const Accelerator> make_embree_native_accel(const Scene& scene);
+
 // Primary rays of a w x h frame (pixel centres: camera_ray's formula, evaluated in float),
 // cast by Embree as 16-wide packets (rtcIntersect16, 4x4 pixels each, coherent context) over
 // Embree's own float primitives: spheres as built-in sphere points, planes as two triangles of a
