@@ -44,22 +44,6 @@ struct Contender {
   bool packets = true;  // RenderOptions::packets
 };
 
-struct Frame {
-  double ms = 0;
-  RayCounts rays;
-  std::vector<Color> image;
-};
-
-Frame render_frame(const PreparedScene& scene, int w, int h, int threads, bool packets = true) {
-  Accumulator accum;
-  accum.reset(w, h);
-  RenderOptions options;
-  options.threads = threads;
-  options.packets = packets;
-  const PassStats st = render_pass(scene, options, accum);
-  return Frame{st.seconds * 1000, st.rays, std::move(accum.sum)};
-}
-
 // Largest channel difference and number of pixels that differ at all.
 std::pair<double, std::size_t> image_difference(const std::vector<Color>& a, const std::vector<Color>& b) {
   double m = 0;

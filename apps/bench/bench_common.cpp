@@ -189,6 +189,16 @@ std::string cpu_model() {
   return model;
 }
 
+Frame render_frame(const PreparedScene& scene, int w, int h, int threads, bool packets) {
+  Accumulator accum;
+  accum.reset(w, h);
+  RenderOptions options;
+  options.threads = threads;
+  options.packets = packets;
+  const PassStats st = render_pass(scene, options, accum);
+  return Frame{st.seconds * 1000, st.rays, std::move(accum.sum)};
+}
+
 void Writer::write(const std::string& name, const std::string& text) {
   if (std::string err = write_file_atomically((dir / name).string(), text); !err.empty()) {
     std::fprintf(stderr, "%s\n", err.c_str());

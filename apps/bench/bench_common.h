@@ -63,6 +63,14 @@ Render render(const PreparedScene& scene, int w, int h, int spp, int threads, st
 // The same for a scene prepared here, outside the timing.
 Render render(const Scene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets = true);
 
+// One Whitted frame (1 spp) of a prepared scene: its time, rays and pixel sums.
+struct Frame {
+  double ms = 0;
+  RayCounts rays;
+  std::vector<Color> image;
+};
+Frame render_frame(const PreparedScene& scene, int w, int h, int threads, bool packets = true);
+
 // A log-log line chart as SVG: one polyline per series, plus dashed reference slopes.
 struct Series {
   std::string name;

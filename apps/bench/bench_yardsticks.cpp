@@ -46,22 +46,6 @@ Scene with_quad_floor(Scene s, double half) {
   return s;
 }
 
-// One frame of a phonglab contender.
-struct Timed {
-  double ms = 0;
-  RayCounts rays;
-  std::vector<Color> image;
-};
-Timed phonglab_frame(const PreparedScene& p, int w, int h, int threads, bool packets) {
-  Accumulator accum;
-  accum.reset(w, h);
-  RenderOptions options;
-  options.threads = threads;
-  options.packets = packets;
-  const PassStats st = render_pass(p, options, accum);
-  return Timed{st.seconds * 1000, st.rays, std::move(accum.sum)};
-}
-
 // The share of pixels whose largest channel differs by more than 1/255 (linear radiance).
 double share_off(const std::vector<Color>& a, const std::vector<Color>& b) {
   std::size_t off = 0;
@@ -96,24 +80,24 @@ SceneFigures measure(const std::string& name, const Scene& raw, int w, int h, in
   embree.emplace(raw, [](const Scene& x) { return make_embree_accel(x); });
   native.emplace(raw, [](const Scene& x) { return make_embree_native_accel(x); });
 #endif
-  const Timed first = phonglab_frame(p, w, h, threads, true);
-  const Timed scalar = phonglab_frame(p, w, h, threads, false);
+  const Frame first = render_frame(p, w, h, threads, true);
+  const Frame scalar = render_frame(p, w, h, threads, false);
   out.rays = first.rays.total();
   out.same_image = first.image == scalar.image;
   out.same_rays = first.rays.total() == scalar.rays.total() && first.rays.shadow == scalar.rays.shadow;
   std::vector<double> ms[5];
   for (int f = 0; f < frames; ++f) {  // the contenders alternate frame by frame
-    ms[0].push_back(phonglab_frame(p, w, h, threads, true).ms);
-    ms[1].push_back(phonglab_frame(p, w, h, threads, false).ms);
+    ms[0].push_back(render_frame(p, w, h, threads, true).ms);
+    ms[1].push_back(render_frame(p, w, h, threads, false).ms);
     if (FloatLoop::available()) {
       const FloatLoop::Frame lf = loop.frame(threads);
       ms[2].push_back(lf.ms);
       out.loop_rays = lf.rays;
       if (f == 0) out.loop_pixels_off = share_off(lf.rgb, first.image);
     }
-    if (embree) ms[3].push_back(phonglab_frame(*embree, w, h, threads, false).ms);
+    if (embree) ms[3].push_back(render_frame(*embree, w, h, threads, false).ms);
     if (native) {
-      const Timed nf = phonglab_frame(*native, w, h, threads, false);
+      const Frame nf = render_frame(*native, w, h, threads, false);
       ms[4].push_back(nf.ms);
       if (f == 0) out.native_pixels_off = share_off(nf.image, first.image);
     }

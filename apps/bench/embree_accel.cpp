@@ -110,6 +110,26 @@ class EmbreeHandle {
   RTCScene scene_ = nullptr;
 };
 
+// An Embree ray for `ray` up to tfar, starting a float self-hit margin of the coordinates
+// (|origin| + the scene's `scale`) along it; no hit yet.
+RTCRayHit rtc_ray(const Ray& ray, double scale, float tfar) {
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(ray.origin.x);
+  rh.ray.org_y = static_cast<float>(ray.origin.y);
+  rh.ray.org_z = static_cast<float>(ray.origin.z);
+  rh.ray.dir_x = static_cast<float>(ray.dir.x);
+  rh.ray.dir_y = static_cast<float>(ray.dir.y);
+  rh.ray.dir_z = static_cast<float>(ray.dir.z);
+  rh.ray.tnear = static_cast<float>(kFloatSelfHitMargin * (max_abs(ray.origin) + scale));
+  rh.ray.tfar = tfar;
+  rh.ray.mask = ~0u;
+  rh.ray.time = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 // The query state the sphere callbacks see: Embree hands them the context pointer, and the
 // context is this struct's first member, so the double ray and the nearest sphere travel along.
 struct SphereQuery {
@@ -272,23 +292,7 @@ class EmbreeAccel final : public Accelerator {
     geometries_[geometry] = kind;
   }
 
-  RTCRayHit make_rtc_ray_hit(const Ray& ray, double t_max) const {
-    RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(ray.origin.x);
-    rh.ray.org_y = static_cast<float>(ray.origin.y);
-    rh.ray.org_z = static_cast<float>(ray.origin.z);
-    rh.ray.dir_x = static_cast<float>(ray.dir.x);
-    rh.ray.dir_y = static_cast<float>(ray.dir.y);
-    rh.ray.dir_z = static_cast<float>(ray.dir.z);
-    rh.ray.tnear = static_cast<float>(kFloatSelfHitMargin * (max_abs(ray.origin) + scale_));
-    rh.ray.tfar = round_up(t_max);
-    rh.ray.mask = ~0u;
-    rh.ray.time = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-  }
+  RTCRayHit make_rtc_ray_hit(const Ray& ray, double t_max) const { return rtc_ray(ray, scale_, round_up(t_max)); }
 
   std::vector<Sphere> spheres_;      // the user geometry's primitives (and matches())
   std::vector<Triangle> triangles_;  // for matches()
@@ -369,22 +373,7 @@ class EmbreeNativeAccel final : public Accelerator {
   bool matches(const Scene& /*scene*/) const override { return false; }  // built per snapshot, never reused
 
  private:
-  RTCRayHit ray_hit(const Ray& ray, float tfar) const {
-    RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(ray.origin.x);
-    rh.ray.org_y = static_cast<float>(ray.origin.y);
-    rh.ray.org_z = static_cast<float>(ray.origin.z);
-    rh.ray.dir_x = static_cast<float>(ray.dir.x);
-    rh.ray.dir_y = static_cast<float>(ray.dir.y);
-    rh.ray.dir_z = static_cast<float>(ray.dir.z);
-    rh.ray.tnear = static_cast<float>(kFloatSelfHitMargin * (max_abs(ray.origin) + scale_));
-    rh.ray.tfar = tfar;
-    rh.ray.mask = ~0u;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-  }
+  RTCRayHit ray_hit(const Ray& ray, float tfar) const { return rtc_ray(ray, scale_, tfar); }
 
   // The scene object Embree's (geometry, primitive) names.
   ObjectRef object(unsigned geometry, unsigned prim) const {
