@@ -580,6 +580,16 @@ void walk_octants(const Hierarchy& h, const Packet& p, int lanes, Walk& w) {
   }
 }
 
+// The lanes i .. i + 3 of a shadow batch that still need a query: a ray (t_max > 0) that
+// nothing has occluded yet.
+int shadow_lanes(const double* t_max, const std::uint8_t* occluded, int i) {
+  int live = lanes_set(gt(load(t_max + i), _mm256_setzero_pd()));
+  for (int j = 0; j < 4; ++j) {
+    if (occluded[i + j]) live &= ~(1 << j);
+  }
+  return live;
+}
+
 }  // namespace
 
 void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const NearestHits& out) {
@@ -617,10 +627,7 @@ void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const Nea
 void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_max, int lanes, std::uint8_t* occluded_out) {
   if (h.top == nullptr) return;
   for (int i = 0; i < lanes; i += 4) {
-    int live = lanes_set(gt(load(t_max + i), _mm256_setzero_pd()));
-    for (int j = 0; j < 4; ++j) {
-      if (occluded_out[i + j]) live &= ~(1 << j);
-    }
+    const int live = shadow_lanes(t_max, occluded_out, i);
     if (live == 0) continue;
     const Packet p = make_packet(rays, i, live);
     Walk w;
@@ -675,10 +682,7 @@ void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, c
 void triangles_occluded(const LooseTriangles& tris, const Rays& rays, const double* t_max, int lanes,
                         std::uint8_t* occluded_out) {
   for (int i = 0; i < lanes; i += 4) {
-    int live = lanes_set(gt(load(t_max + i), _mm256_setzero_pd()));
-    for (int j = 0; j < 4; ++j) {
-      if (occluded_out[i + j]) live &= ~(1 << j);
-    }
+    const int live = shadow_lanes(t_max, occluded_out, i);
     if (live == 0) continue;
     const Packet p = shear_packet(rays, i, live);
     const V limit = load(t_max + i);
