@@ -335,7 +335,7 @@ void speed_section(std::ostringstream& md, Writer& out, bool quick, int threads)
      << threads << " threads ms | Mrays/s (" << threads << " threads) | scaling |\n|---|---|---|---|---|---|---|---|---|---|\n";
   std::string speed_csv = "scene,width,height,threads,median_ms,mrays_per_s,primary,shadow,reflection,refraction\n";
   for (const EmbeddedScene& e : embedded_scenes()) {
-    const Scene s = load_embedded(e.name);
+    const PreparedScene s(load_embedded(e.name));
     double ms_by_threads[2] = {0, 0};
     RayCounts rays;
     const int counts[2] = {1, threads};
@@ -418,8 +418,9 @@ void convergence_section(std::ostringstream& md, Writer& out, bool quick, int th
     // Not 0: glass with Fresnel splits every ray in two, and an unpruned tree of depth 64 is
     // 2^64 rays. 1e-6 bounds the pruning error at 1e-6 of the scene's radiance.
     ref_scene.min_weight = kReferenceMinWeight;
-    const std::vector<Color> half1 = means(render(ref_scene, cw, ch, half_spp, threads, 1000).accum);
-    const std::vector<Color> half2 = means(render(ref_scene, cw, ch, half_spp, threads, 2000).accum);
+    const PreparedScene reference(std::move(ref_scene));
+    const std::vector<Color> half1 = means(render(reference, cw, ch, half_spp, threads, 1000).accum);
+    const std::vector<Color> half2 = means(render(reference, cw, ch, half_spp, threads, 2000).accum);
     std::vector<Color> ref(half1.size());
     for (std::size_t i = 0; i < ref.size(); ++i) ref[i] = 0.5 * (half1[i] + half2[i]);
     const double ref_noise = rel_mse(half1, half2) / 4;

@@ -52,13 +52,11 @@ double share_off(const std::vector<Color>& a, const std::vector<Color>& b) {
   for (std::size_t i = 0; i < b.size(); ++i) off += max_channel(glm::abs(a[i] - b[i])) > 1.0 / 255 ? 1 : 0;
   return b.empty() ? 0 : static_cast<double>(off) / static_cast<double>(b.size());
 }
-double share_off(const std::vector<float>& rgb, const std::vector<Color>& image) {
-  std::size_t off = 0;
-  for (std::size_t i = 0; i < image.size(); ++i) {
-    const Color c(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
-    off += max_channel(glm::abs(c - image[i])) > 1.0 / 255 ? 1 : 0;
-  }
-  return image.empty() ? 0 : static_cast<double>(off) / static_cast<double>(image.size());
+// The float loop's interleaved RGB as colours.
+std::vector<Color> colours(const std::vector<float>& rgb) {
+  std::vector<Color> out(rgb.size() / 3);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = Color(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
+  return out;
 }
 
 struct SceneFigures {
@@ -93,7 +91,7 @@ SceneFigures measure(const std::string& name, const Scene& raw, int w, int h, in
       const FloatLoop::Frame lf = loop.frame(threads);
       ms[2].push_back(lf.ms);
       out.loop_rays = lf.rays;
-      if (f == 0) out.loop_pixels_off = share_off(lf.rgb, first.image);
+      if (f == 0) out.loop_pixels_off = share_off(colours(lf.rgb), first.image);
     }
     if (embree) ms[3].push_back(render_frame(*embree, w, h, threads, false).ms);
     if (native) {
