@@ -186,6 +186,10 @@ bool Viewer::poll_render_frame() {
   }
   if (!renderer_.take_frame(shown_)) return false;
   upload_pending_ = true;
+  if (stats_.log && shown_.stats.serial != stats_.last_pass_serial && shown_.stats.pass_ms > 0) {
+    stats_.last_pass_serial = shown_.stats.serial;
+    stats_.pass_mrays[shown_.divisor].push_back(shown_.stats.mrays_per_s);
+  }
   return true;
 }
 
@@ -496,6 +500,15 @@ void Viewer::write_stats_summary(const std::string& label) {
   stats_.log << "summary " << label << " edit_to_image n " << stats_.latencies_ms.size() << " mean_ms " << mean(stats_.latencies_ms)
              << " p50_ms " << percentile(stats_.latencies_ms, 0.5) << " p95_ms " << percentile(stats_.latencies_ms, 0.95)
              << " max_ms " << percentile(stats_.latencies_ms, 1.0) << "\n";
+  // The passes' ray rates by level, each as a share of the full-resolution median (issue 14's
+  // "small passes as efficient as large ones", as the stats overlay shows them).
+  const auto full = stats_.pass_mrays.find(1);
+  const double full_median = full != stats_.pass_mrays.end() ? percentile(full->second, 0.5) : 0;
+  for (const auto& [divisor, mrays] : stats_.pass_mrays) {
+    const double median = percentile(mrays, 0.5);
+    stats_.log << "summary " << label << " passes 1/" << divisor << " n " << mrays.size() << " median_mrays " << median
+               << " of_full " << (full_median > 0 ? median / full_median : 0) << "\n";
+  }
   stats_.log.flush();
 }
 

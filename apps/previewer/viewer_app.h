@@ -361,6 +361,8 @@ class Viewer {
     double last_latency_ms = -1;                        // edit to first image on screen, last measured
     std::vector<double> latencies_ms;                   // for the stats log's summary (kept only with a log)
     std::vector<double> busy_frame_ms;                  // UI frame times while the renderer was working (same)
+    std::map<int, std::vector<double>> pass_mrays;      // Mrays/s of the passes taken, by level divisor (same)
+    std::uint64_t last_pass_serial = 0;                 // the last of them
     std::ofstream log;
   };
   FrameStats stats_;

@@ -522,6 +522,7 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
   if (name == "stats_reset") {
     stats_.busy_frame_ms.clear();
     stats_.latencies_ms.clear();
+    stats_.pass_mrays.clear();
     return true;
   }
   if (name == "stats_summary") {

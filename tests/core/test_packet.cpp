@@ -258,6 +258,30 @@ TEST(PacketTracer, RandomScenesAreBitIdenticalToTheScalarRenderer) {
   expect_every_ray_kind(seen);
 }
 
+// A tracer that takes over the buffers of another scene's tracer (as render_pass does after every
+// edit) draws what a new one draws: from a deeper scene to a shallower one and back, with a
+// hierarchy and without, tiles of different sizes.
+TEST(PacketTracer, ARecycledTracerDrawsWhatANewOneDraws) {
+  REQUIRE_PACKETS();
+  std::optional<PreparedScene> previous;
+  std::unique_ptr<PacketTracer> kept;
+  for (std::uint32_t seed = 1; seed <= 60; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const PreparedScene& scene = previous.emplace(random_scene(seed, seed % 3 == 0));
+    if (!packet_tracing_applies(scene)) continue;
+    const int w = 8 + static_cast<int>(seed % 9), h = 5 + static_cast<int>(seed % 7);
+    const CameraFrame frame = make_camera_frame(scene.scene().camera, w, h);
+    std::vector<Color> fresh_out(static_cast<std::size_t>(w * h)), kept_out(fresh_out.size());
+    RayCounts fresh_rays, kept_rays;
+    PacketTracer fresh(scene);
+    fresh.render_tile(frame, 0, 0, w, h, seed, seed, fresh_out.data(), fresh_rays);
+    kept = kept ? std::make_unique<PacketTracer>(scene, std::move(*kept)) : std::make_unique<PacketTracer>(scene);
+    kept->render_tile(frame, 0, 0, w, h, seed, seed, kept_out.data(), kept_rays);
+    ASSERT_EQ(std::memcmp(fresh_out.data(), kept_out.data(), fresh_out.size() * sizeof(Color)), 0);
+    ASSERT_EQ(fresh_rays.total(), kept_rays.total());
+  }
+}
+
 // The same random scenes traced through the scene's hierarchy: its spheres and loose triangles
 // (force_bvh), then with meshes and more spheres added, some far from the origin. Lanes of a
 // packet that differ in the signs of their directions or in the axes of their triangle shear are

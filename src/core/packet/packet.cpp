@@ -611,6 +611,19 @@ struct PacketTracer::Impl {
 };
 
 PacketTracer::PacketTracer(const PreparedScene& prepared) : impl_(std::make_unique<Impl>(prepared)) {}
+PacketTracer::PacketTracer(const PreparedScene& prepared, PacketTracer&& recycled)
+    : impl_(std::make_unique<Impl>(prepared)) {
+  if (!recycled.impl_) return;
+  // Buffers only: every lane is written before it is read, in any tile of any scene.
+  Impl& old = *recycled.impl_;
+  const std::size_t depth = impl_->levels.size();
+  impl_->levels = std::move(old.levels);
+  impl_->levels.resize(depth);
+  impl_->primary = std::move(old.primary);
+  impl_->x_plus_u = std::move(old.x_plus_u);
+  impl_->y_plus_v = std::move(old.y_plus_v);
+  recycled.impl_.reset();
+}
 PacketTracer::~PacketTracer() = default;
 
 bool PacketTracer::draws(Term term) {

@@ -35,6 +35,9 @@ bool packet_tracing_applies(const PreparedScene& prepared);
 class PacketTracer {
  public:
   explicit PacketTracer(const PreparedScene& prepared);  // the scene must outlive the tracer
+  // The same, reusing the ray and hit buffers of a tracer of another scene (left empty): they are
+  // a fair part of a small pass's set-up, and every edit in the previewer makes a new scene.
+  PacketTracer(const PreparedScene& prepared, PacketTracer&& recycled);
   ~PacketTracer();
   PacketTracer(const PacketTracer&) = delete;
   PacketTracer& operator=(const PacketTracer&) = delete;

@@ -95,12 +95,12 @@ PacketTracer& packet_tracer_for(const PreparedScene& prepared) {
   struct Kept {
     const PreparedScene* scene = nullptr;
     std::uint64_t id = 0;
-    std::optional<PacketTracer> tracer;
+    std::unique_ptr<PacketTracer> tracer;
   };
   thread_local Kept kept;
   if (!kept.tracer || kept.scene != &prepared || kept.id != prepared.id()) {
-    kept.tracer.reset();
-    kept.tracer.emplace(prepared);
+    kept.tracer = kept.tracer ? std::make_unique<PacketTracer>(prepared, std::move(*kept.tracer))
+                              : std::make_unique<PacketTracer>(prepared);
     kept.scene = &prepared;
     kept.id = prepared.id();
   }
