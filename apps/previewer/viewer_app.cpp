@@ -43,6 +43,7 @@ ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std:
   p.threads = s.threads;
   p.term = s.term;
   p.interactive_divisor = kInteractiveDivisor;
+  p.live_images_per_s = s.live_images_per_s;
   p.lower_thread_priority = true;  // the UI thread stays ahead of the workers on few cores
   return p;
 }
@@ -266,6 +267,7 @@ Camera Viewer::view_camera() const {
 
 void Viewer::note_restart(std::uint64_t generation, double edit_time) {
   restart_times_.emplace_back(generation, edit_time);
+  if (stats_.log) stats_.full_pending.emplace_back(generation, edit_time);
   constexpr std::size_t kKeep = 256;  // a few seconds of drag frames; older ones never show
   while (restart_times_.size() > kKeep) restart_times_.pop_front();
   if (script_.bench_expect_restart) {
@@ -427,8 +429,20 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
 }
 
 void Viewer::after_swap() {
-  if (first_image_generation_ == 0) return;
   const double now = glfwGetTime();
+  if (stats_.log && drawn_generation_ != 0) {
+    // Levels are counted while the hand is on: scripted input or edits under way, a drag, a
+    // held slider; not the refinement after it lets go.
+    const bool hand_on = !script_.input.empty() || script_.wait == ScriptWait::kBench || interacting_ ||
+                         edits_.while_active;
+    if (hand_on) ++stats_.frames_at_level[shown_.divisor];
+    // An edit is seen at full resolution once an image of it, or of a later edit, is.
+    while (shown_.divisor == 1 && !stats_.full_pending.empty() && stats_.full_pending.front().first <= drawn_generation_) {
+      stats_.edit_to_full_ms.push_back((now - stats_.full_pending.front().second) * 1e3);
+      stats_.full_pending.pop_front();
+    }
+  }
+  if (first_image_generation_ == 0) return;
   for (const auto& [generation, edit_time] : restart_times_) {
     if (generation != first_image_generation_) continue;
     stats_.last_latency_ms = (now - edit_time) * 1e3;
@@ -500,6 +514,14 @@ void Viewer::write_stats_summary(const std::string& label) {
   stats_.log << "summary " << label << " edit_to_image n " << stats_.latencies_ms.size() << " mean_ms " << mean(stats_.latencies_ms)
              << " p50_ms " << percentile(stats_.latencies_ms, 0.5) << " p95_ms " << percentile(stats_.latencies_ms, 0.95)
              << " max_ms " << percentile(stats_.latencies_ms, 1.0) << "\n";
+  const auto frames_at = [&](int divisor) {
+    const auto it = stats_.frames_at_level.find(divisor);
+    return it == stats_.frames_at_level.end() ? 0 : it->second;
+  };
+  stats_.log << "levels " << label << " full=" << frames_at(1) << " half=" << frames_at(2) << " quarter=" << frames_at(4)
+             << " eighth=" << frames_at(8) << "\n";
+  stats_.log << "summary " << label << " edit_to_full n " << stats_.edit_to_full_ms.size() << " p50_ms "
+             << percentile(stats_.edit_to_full_ms, 0.5) << " p95_ms " << percentile(stats_.edit_to_full_ms, 0.95) << "\n";
   // The passes' ray rates by level, each as a share of the full-resolution median (issue 14's
   // "small passes as efficient as large ones", as the stats overlay shows them).
   const auto full = stats_.pass_mrays.find(1);

@@ -363,6 +363,9 @@ class Viewer {
     std::vector<double> busy_frame_ms;                  // UI frame times while the renderer was working (same)
     std::map<int, std::vector<double>> pass_mrays;      // Mrays/s of the passes taken, by level divisor (same)
     std::uint64_t last_pass_serial = 0;                 // the last of them
+    std::map<int, int> frames_at_level;                 // UI frames by the level divisor of the image on screen (same)
+    std::deque<std::pair<std::uint64_t, double>> full_pending;  // edits (generation, time) not yet seen at full resolution
+    std::vector<double> edit_to_full_ms;                // edit to the first full-resolution image of it or a later one (same)
     std::ofstream log;
   };
   FrameStats stats_;

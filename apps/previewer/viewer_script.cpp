@@ -291,20 +291,23 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "drag_light") {
-    // drag_light I DX DY: grabs light I's marker where it is drawn and drags it by (DX, DY).
+    // drag_light I DX DY [STEPS]: grabs light I's marker where it is drawn and drags it by
+    // (DX, DY), in STEPS frames (10).
     int index = -1;
     double dx = 0, dy = 0;
+    int steps = 10;
     const std::vector<Light>& lights = doc_.scene().lights;
-    if (w.size() != 4 || !parse_int(w[1], index) || !parse_double(w[2], dx) || !parse_double(w[3], dy) ||
-        index < 0 || index >= static_cast<int>(lights.size())) {
-      return step.fail("usage: drag_light I DX DY");
+    if ((w.size() != 4 && w.size() != 5) || !parse_int(w[1], index) || !parse_double(w[2], dx) ||
+        !parse_double(w[3], dy) || index < 0 || index >= static_cast<int>(lights.size()) ||
+        (w.size() == 5 && (!parse_int(w[4], steps) || steps < 1))) {
+      return step.fail("usage: drag_light I DX DY [STEPS]");
     }
     // Where its marker (or its arrow at the edge) was drawn last frame: what a user would grab.
     const auto marker = std::find_if(markers_.begin(), markers_.end(),
                                      [&](const ui::LightMarker& m) { return m.index == index; });
     if (marker == markers_.end()) return step.fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
     const ImVec2 from = marker->pos;
-    push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), 10, false);
+    push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), steps, false);
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "click" || name == "scroll") {
@@ -397,7 +400,7 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
   if (name == "set") {
     if (!script_set(w)) return step.fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
                                     "position|direction|intensity|enabled V.. | set camera position|look_at|up|fov V.. | "
-                                    "set render target_spp|resolution_scale|threads|term V | set display exposure|srgb|stats V | "
+                                    "set render target_spp|resolution_scale|threads|live_images_per_s|term V | set display exposure|srgb|stats V | "
                                     "set instruments probe_mode|multiples|compare|wipe|gain|head|head_angle|ray_tree|tree_shadows|"
                                     "tree_secondary|tree_arrows|tree_legend|depth_cut|heat V");
     return true;
@@ -523,6 +526,9 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
     stats_.busy_frame_ms.clear();
     stats_.latencies_ms.clear();
     stats_.pass_mrays.clear();
+    stats_.frames_at_level.clear();
+    stats_.full_pending.clear();
+    stats_.edit_to_full_ms.clear();
     return true;
   }
   if (name == "stats_summary") {

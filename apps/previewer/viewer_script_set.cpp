@@ -90,7 +90,7 @@ bool Viewer::set_camera_field(const std::vector<std::string>& w) {
   return true;
 }
 
-// `set render target_spp|resolution_scale|threads|term V`.
+// `set render target_spp|resolution_scale|threads|live_images_per_s|term V`.
 bool Viewer::set_render_field(const std::vector<std::string>& w) {
   const std::string& field = w[2];
   double v = 0;
@@ -106,6 +106,8 @@ bool Viewer::set_render_field(const std::vector<std::string>& w) {
     render_settings_.resolution_scale = static_cast<float>(v);
   } else if (field == "threads" && v >= 0) {
     render_settings_.threads = static_cast<int>(v);
+  } else if (field == "live_images_per_s" && v >= 0 && v <= 1000) {
+    render_settings_.live_images_per_s = static_cast<int>(v);
   } else {
     return false;
   }

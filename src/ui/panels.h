@@ -51,6 +51,7 @@ struct RenderSettings {
   float resolution_scale = 1;   // rendered pixels per framebuffer pixel along each axis
   int threads = 0;              // 0 = all hardware threads
   Term term = Term::kFull;      // full image, one term of the equation, or a debug view
+  int live_images_per_s = 30;   // while dragging: images a second the start level must allow (0: 1/8 always)
 };
 bool render_settings_panel(RenderSettings& settings, int hardware_threads);
 

@@ -63,6 +63,10 @@ bool render_settings_panel(RenderSettings& settings, int hardware_threads) {
   else std::snprintf(threads_format, sizeof threads_format, "%%d");
   edited |= ImGui::SliderInt("threads", &settings.threads, 0, std::max(2 * hardware_threads, 4), threads_format,
                              ImGuiSliderFlags_AlwaysClamp);
+  edited |= ImGui::SliderInt("live images/s", &settings.live_images_per_s, 0, 120,
+                             settings.live_images_per_s == 0 ? "off (1/8 first)" : "%d", ImGuiSliderFlags_AlwaysClamp);
+  help_marker("While a drag or slider is held, each new image starts at the finest resolution whose last pass "
+              "fits this rate (and the time between edits), instead of at 1/8. A faster machine shows more.");
   return edited;
 }
 

@@ -159,6 +159,55 @@ TEST(ProgressiveRenderer, InteractingStaysAtCoarseLevelsUntilReleased) {
   log.renderer = nullptr;
 }
 
+// The finest level whose pass fits the budget: measured times where known, else the next
+// coarser measured time times the ratio of pixel counts.
+TEST(ProgressiveLevels, LiveStartIsTheFinestLevelThatFitsTheBudget) {
+  const std::vector<ProgressiveLevel> levels = make_levels(1280, 720);
+  ASSERT_EQ(levels.size(), 4u);
+  LevelTimes times;
+  EXPECT_EQ(live_start_level(levels, times, 33), 0u);  // nothing measured: the coarsest
+  times.ms_at_8 = 0.5;  // 160x90; 1/4 and 1/2 then expected at 2 and 8 ms, full at 32
+  EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 1);
+  EXPECT_EQ(levels[live_start_level(levels, times, 31.9)].divisor, 2);
+  EXPECT_EQ(levels[live_start_level(levels, times, 7.9)].divisor, 4);
+  EXPECT_EQ(levels[live_start_level(levels, times, 0.4)].divisor, 8);  // none fits: the coarsest
+  times.ms_at_2 = 20;  // measured slower than expected: the full level is now expected at 80 ms
+  EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 2);
+  EXPECT_EQ(levels[live_start_level(levels, times, 19)].divisor, 4);
+  times.ms_at_1 = 30;  // measured: that wins over the estimate
+  EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 1);
+}
+
+// Once its levels have been timed, a restart while interacting starts at the finest level that
+// fits, and stays there until the interaction ends; a budget of 0 keeps the coarse start.
+TEST(ProgressiveRenderer, LiveRestartsStartAtTheFinestLevelThatFits) {
+  for (const double images_per_s : {1.0, 0.0}) {
+    SCOPED_TRACE(images_per_s);
+    FrameLog log;
+    ProgressiveSettings settings;
+    settings.target_spp = 1;
+    settings.live_images_per_s = images_per_s;  // 1 s: any pass of a 64x48 image fits
+    ProgressiveRenderer renderer(settings, [&] { log.on_frame(); });
+    {
+      const std::lock_guard lock(log.mutex);
+      log.renderer = &renderer;
+    }
+    renderer.set_resolution(64, 48);
+    renderer.set_scene(background_scene(Color(0.5), 0));
+    ASSERT_TRUE(renderer.wait_idle(kLongWait));  // every level timed once
+    std::this_thread::sleep_for(100ms);           // restarts far apart: the budget decides
+    renderer.set_interacting(true);
+    renderer.set_scene(background_scene(Color(0.25), 0));
+    ASSERT_TRUE(renderer.wait_idle(kLongWait));
+    renderer.set_interacting(false);
+    ASSERT_TRUE(renderer.wait_idle(kLongWait));
+    const std::lock_guard lock(log.mutex);
+    const std::vector<int> live = images_per_s > 0 ? std::vector<int>{8, 4, 2, 1, 1} : std::vector<int>{8, 4, 2, 1, 8, 4, 2, 1};
+    EXPECT_EQ(log.divisors, live);
+    log.renderer = nullptr;
+  }
+}
+
 TEST(ProgressiveRenderer, IdlesWithoutUsingTheCpuAfterTheTarget) {
   ProgressiveSettings settings;
   settings.target_spp = 4;

@@ -1,17 +1,22 @@
 #!/usr/bin/env bash
-# Measures the previewer's responsiveness (issue 3's targets) under Xvfb:
+# Measures the previewer's responsiveness (issues 3 and 15) under Xvfb:
 #
 #   tests/gui/bench_previewer.sh BUILD_DIR [SCENE]
 #
-# The window is 1280x720 with the panels hidden, so the render is 1280x720. Three phases,
-# each while the renderer is working (target 64 spp):
+# The window is 1280x720 with the panels hidden, so the render is 1280x720 (for the slider phase
+# the panels are shown and the window widened by the sidebar, so the render stays 1280x720).
+# Five phases, each while the renderer is working (target 64 spp):
 #   material: 30 isolated edits of the selected material's kd, each 10 UI frames after the
 #             first image of the previous one (the renderer is then mid-pass again);
 #   camera:   30 isolated orbit steps, the same way;
-#   drag:     a continuous 2-second left-drag orbit (one restart per UI frame).
-# For each phase: UI frame times (frames paced while rendering) and the time from an edit to
-# the first image of it on screen (after the buffer swap). Figures go to stdout; the raw log
-# (every frame and latency) to BUILD_DIR/gui-bench/stats.log.
+#   drag:     a continuous 2-second left-drag orbit (one restart per UI frame);
+#   light:    a continuous 2-second drag of light 0's marker;
+#   slider:   a continuous 2-second drag of the kd slider, through ImGui.
+# For each phase: UI frame times (frames paced while rendering), the time from an edit to the
+# first image of it on screen (after the buffer swap) and to the first full-resolution image of
+# it or a later edit, the level of the image on screen at every UI frame while the hand is on
+# (`levels PHASE full=N half=N quarter=N eighth=N`), and the passes' Mrays/s by level. Figures
+# go to stdout; the raw log (every frame and latency) to BUILD_DIR/gui-bench/stats.log.
 set -eu
 BUILD_DIR=$(cd "${1:?usage: bench_previewer.sh BUILD_DIR [SCENE]}" && pwd)
 SCENE=${2:-lecture}
@@ -23,19 +28,34 @@ wait_image 60
 wait_frames 30
 stats_reset
 bench_edits 30 material
+wait_frames 30
 stats_summary material
 stats_reset
 bench_edits 30 camera
+wait_frames 30
 stats_summary camera
 stats_reset
 drag left 200 360 1000 380 120
-wait_frames 5
+wait_frames 30
 stats_summary drag
+stats_reset
+drag_light 0 300 40 120
+wait_frames 30
+stats_summary light
+key H
+resize 1680 720
+wait_image 60
+show_item material.kd
+wait_frames 30
+stats_reset
+drag_item material.kd 240 0 120
+wait_frames 30
+stats_summary slider
 quit
 SCRIPT
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0}
 echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
-timeout 300 xvfb-run -a -s '-screen 0 1280x720x24' "$BUILD_DIR/bin/phonglab" "$SCENE" --size 1280x720 \
+timeout 300 xvfb-run -a -s '-screen 0 1920x1080x24' "$BUILD_DIR/bin/phonglab" "$SCENE" --size 1280x720 \
   --script "$OUT/script.txt" --stats-log "$OUT/stats.log"
-grep '^summary' "$OUT/stats.log" | grep -v ' session '
+grep -E '^(summary|levels) ' "$OUT/stats.log" | grep -v ' session '
 echo "first-image levels: $(grep '^latency' "$OUT/stats.log" | awk '{print $4}' | sort | uniq -c | tr '\n' ' ')"

@@ -13,30 +13,7 @@ namespace phonglab {
 
 namespace {
 
-// One step of the coarse-to-fine ladder.
-struct Level {
-  int divisor = 1;  // the image is 1/divisor of the full resolution along each axis
-  int width = 0;    // pixels
-  int height = 0;   // pixels
-};
-
 int ceil_div(int a, int b) { return (a + b - 1) / b; }
-
-// 1/8, 1/4, 1/2 and full resolution, leaving out coarse levels that would not be smaller than
-// the next one (a tiny window renders at full resolution at once).
-std::vector<Level> make_levels(int width, int height) {
-  std::vector<Level> levels;
-  if (width <= 0 || height <= 0) return levels;
-  for (const int divisor : {8, 4, 2}) {
-    const Level level{divisor, ceil_div(width, divisor), ceil_div(height, divisor)};
-    const bool smaller_than_full = level.width < width || level.height < height;
-    const bool smaller_than_previous =
-        levels.empty() || level.width > levels.back().width || level.height > levels.back().height;
-    if (smaller_than_full && smaller_than_previous) levels.push_back(level);
-  }
-  levels.push_back(Level{1, width, height});
-  return levels;
-}
 
 // Render workers are created by the thread that runs the pass and inherit its nice value on
 // Linux, so lowering it here keeps every worker below the UI thread.
@@ -54,6 +31,54 @@ double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_c
 }
 
 }  // namespace
+
+
+double live_budget_ms(const ProgressiveSettings& settings) {
+  return settings.live_images_per_s > 0 ? 1000 / settings.live_images_per_s : 0;
+}
+
+std::vector<ProgressiveLevel> make_levels(int width, int height) {
+  std::vector<ProgressiveLevel> levels;
+  if (width <= 0 || height <= 0) return levels;
+  for (const int divisor : {8, 4, 2}) {
+    const ProgressiveLevel level{divisor, ceil_div(width, divisor), ceil_div(height, divisor)};
+    const bool smaller_than_full = level.width < width || level.height < height;
+    const bool smaller_than_previous =
+        levels.empty() || level.width > levels.back().width || level.height > levels.back().height;
+    if (smaller_than_full && smaller_than_previous) levels.push_back(level);
+  }
+  levels.push_back(ProgressiveLevel{1, width, height});
+  return levels;
+}
+
+double& LevelTimes::at(int divisor) {
+  switch (divisor) {
+    case 8: return ms_at_8;
+    case 4: return ms_at_4;
+    case 2: return ms_at_2;
+    default: return ms_at_1;
+  }
+}
+
+std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms) {
+  std::size_t start = 0;
+  double known_ms = 0;   // the last measured level's time on the way up
+  double known_px = 0;   // and its pixel count
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const double px = static_cast<double>(levels[i].width) * levels[i].height;
+    double expected = times.at(levels[i].divisor);
+    if (expected > 0) {
+      known_ms = expected;
+      known_px = px;
+    } else if (known_ms > 0) {
+      expected = known_ms * px / known_px;
+    } else {
+      continue;  // nothing known yet at or below this level
+    }
+    if (expected <= budget_ms) start = i;
+  }
+  return start;
+}
 
 ProgressiveRenderer::ProgressiveRenderer(ProgressiveSettings settings, std::function<void()> on_frame)
     : settings_(settings), on_frame_(std::move(on_frame)) {
@@ -152,8 +177,10 @@ void ProgressiveRenderer::run() {
   // The state of the generation being rendered; only this thread touches it.
   std::uint64_t generation = 0;
   std::shared_ptr<const PreparedScene> scene;
-  std::vector<Level> levels;
+  std::vector<ProgressiveLevel> levels;
   std::size_t level = 0;
+  std::size_t start_level = 0;  // where this generation started (finer while interacting: live_start_level)
+  LevelTimes level_times;       // the last pass at each level, for live_start_level
   Accumulator accum;
   std::uint64_t nan_count = 0;
   bool published_any = false;
@@ -168,22 +195,25 @@ void ProgressiveRenderer::run() {
         if (generation_ != generation) {
           generation = generation_;
           scene = scene_;
+          if (levels.empty() || levels.back().width != width_ || levels.back().height != height_) level_times = {};
           levels = make_levels(width_, height_);
-          level = 0;
+          level = interacting_ ? live_start_level(levels, level_times, live_budget_ms(settings_)) : 0;
+          start_level = level;
           nan_count = 0;
           published_any = false;
           restart_time = restart_time_;
           // Cleared only together with picking up the newest generation, so a raised flag
           // always means "the job you hold is stale".
           cancel_.store(false);
-          if (!levels.empty()) accum.reset(levels[0].width, levels[0].height);
+          if (!levels.empty()) accum.reset(levels[level].width, levels[level].height);
         }
         settings = settings_;
         bool work = scene != nullptr && !levels.empty();
         if (work) {
           // The first image of a generation is always rendered, even while interacting.
-          const bool capped = interacting_ && published_any &&
-                              levels[level].divisor < std::max(settings.interactive_divisor, 1);
+          // While interacting, no finer than the interactive divisor or the level it started at.
+          const int cap = std::min(std::max(settings.interactive_divisor, 1), levels[start_level].divisor);
+          const bool capped = interacting_ && published_any && levels[level].divisor < cap;
           const bool coarse = level + 1 < levels.size();
           const auto target = static_cast<std::uint32_t>(std::max(settings.target_spp, 1));
           work = !capped && (coarse || accum.samples < target);
@@ -203,11 +233,15 @@ void ProgressiveRenderer::run() {
     options.shading_eye = settings.shading_eye;
     const PassStats pass = render_pass(*scene, options, accum, &cancel_);
     if (!pass.completed) {
+      // A first pass overtaken by the next restart took at least this long: while interacting
+      // the next restart starts below it, or nothing would ever show.
+      if (!published_any) level_times.at(levels[level].divisor) = std::max(level_times.at(levels[level].divisor), pass.seconds * 1e3);
       // Cancelled midway: a restart is pending and the accumulator is partly updated.
       accum.reset(levels[level].width, levels[level].height);
       continue;
     }
     nan_count += pass.nan_count;
+    level_times.at(levels[level].divisor) = pass.seconds * 1e3;
 
     // Build the image outside the lock; publishing is then a swap.
     back_.generation = generation;

@@ -33,6 +33,10 @@ struct ProgressiveSettings {
   int threads = 0;                  // threads per pass; 0 = all hardware threads
   Term term = Term::kFull;          // what the pixels show (a change restarts)
   int interactive_divisor = 4;      // while interacting, refine no further than 1/this resolution
+  // While interacting, each restart starts at the finest level whose last measured pass fits
+  // 1/this of a second (the previewer holds a drag's next edit until the image is out, so a
+  // pass that long gives this many images a second); 0: always at the coarsest level.
+  double live_images_per_s = 30;
   bool lower_thread_priority = false;  // Linux: render at a higher nice value so the UI stays smooth
   std::optional<Vec3> shading_eye;  // "move your head": RenderOptions::shading_eye (a change restarts)
 };
@@ -67,6 +71,30 @@ struct ProgressiveStatus {
   std::uint64_t serial = 0;      // FrameStats::serial of the newest published image (0: none)
   std::uint64_t published_generation = 0;  // generation of the newest published image
 };
+
+// One step of the coarse-to-fine ladder.
+struct ProgressiveLevel {
+  int divisor = 1;  // the image is 1/divisor of the full resolution along each axis
+  int width = 0;    // pixels
+  int height = 0;   // pixels
+};
+// 1/8, 1/4, 1/2 and full resolution, leaving out coarse levels that would not be smaller than
+// the next one (a tiny window renders at full resolution at once).
+std::vector<ProgressiveLevel> make_levels(int width, int height);
+
+// Pass times last measured at each level, by divisor (0: not measured yet).
+struct LevelTimes {
+  double ms_at_8 = 0, ms_at_4 = 0, ms_at_2 = 0, ms_at_1 = 0;
+  double& at(int divisor);
+  double at(int divisor) const { return const_cast<LevelTimes&>(*this).at(divisor); }
+};
+// The index into `levels` of the finest level whose pass is expected to take at most
+// `budget_ms`: its measured time, or, not measured yet, the next coarser measured level's
+// time scaled by the ratio of their pixel counts. 0 (the coarsest) when none fits or nothing is
+// known.
+// The time a pass may take while interacting: 1 / live_images_per_s (0: none).
+double live_budget_ms(const ProgressiveSettings& settings);
+std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms);
 
 class ProgressiveRenderer {
  public:
