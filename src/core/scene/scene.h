@@ -18,6 +18,7 @@ struct Camera {
   Vec3 look_at{0, 0.8, 0};   // point the view centre passes through
   Vec3 up{0, 1, 0};          // roughly up; must not be parallel to the view direction
   double fov_y_deg = 40;     // full vertical field of view, degrees, in (0, 180)
+  bool operator==(const Camera&) const = default;
 };
 
 enum class LightType : std::uint8_t { kPoint, kDirectional };
@@ -52,6 +53,7 @@ struct Sphere {
   Vec3 center{0, 0, 0};
   double radius = 1;  // > 0
   int material = 0;   // index into Scene::materials
+  bool operator==(const Sphere&) const = default;
 };
 
 // Infinite, two-sided plane; its outward side is the one `normal` points to.
@@ -59,6 +61,7 @@ struct Plane {
   Vec3 point{0, 0, 0};
   Vec3 normal{0, 1, 0};  // unit
   int material = 0;
+  bool operator==(const Plane&) const = default;
 };
 
 // Two-sided triangle; Ng = normalize((v1-v0)x(v2-v0)).
@@ -68,6 +71,7 @@ struct Triangle {
   // Optional per-vertex shading normals (meshes with vertex normals).
   bool has_vertex_normals = false;
   Vec3 n0{0}, n1{0}, n2{0};
+  bool operator==(const Triangle&) const = default;
 };
 
 // Where a mesh's OBJ coordinates go: scale, then rotations about x, then y, then z (degrees,
@@ -76,6 +80,7 @@ struct MeshTransform {
   Vec3 scale{1, 1, 1};
   Vec3 rotate_deg{0, 0, 0};
   Vec3 translate{0, 0, 0};
+  bool operator==(const MeshTransform&) const = default;
 };
 
 // A loaded mesh's world-space triangles and their bounding volume hierarchy: immutable and
@@ -94,6 +99,7 @@ struct Mesh {
   MeshTransform transform;
   NsMapping ns = NsMapping::kAsIs;
   std::shared_ptr<const MeshGeometry> geometry;  // never null in a loaded scene
+  bool operator==(const Mesh&) const = default;
 };
 
 // Which scene object a primitive came from (for picking and error messages).

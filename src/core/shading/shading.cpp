@@ -37,35 +37,15 @@ void record_hit(ProbeNode& probe, const Hit& hit, const HitSide& side, const Vec
   probe.object = hit.object;
 }
 
-// V at a hit: towards the real eye (-D), or towards a moved eye ("move your head"); an eye
-// exactly at P has no direction and falls back to -D.
-Vec3 view_direction(const Hit& hit, const Vec3& d, const Vec3* shading_eye) {
-  if (shading_eye) {
-    if (const std::optional<Vec3> v = towards_eye(hit.p, *shading_eye)) return *v;
-  }
-  return -d;
-}
-
-// The specular cosine under the scene's model: R.V (Phong; `r` = R) or N.H (Blinn; `r` = H).
-double specular_cosine(SpecularModel model, const Vec3& n, const Vec3& l, const Vec3& v, double n_dot_l, Vec3& r) {
-  if (model == SpecularModel::kPhong) {
-    r = 2.0 * n_dot_l * n - l;
-    return glm::dot(r, v);
-  }
-  const Vec3 h = l + v;
-  const double len = glm::length(h);
-  r = len > 0 ? h / len : n;  // L = -V only at grazing: any H then gives N.H <= 0
-  return len > 0 ? glm::dot(n, r) : 0;
-}
-
 // The equation, compiled twice. Equation<false> is the production renderer: it never asks for
 // an experiment, and the hooks below fold to the production rules. Equation<true> routes them
 // through prepared.experiment() (the bench's ablations and numerics, core/shading/experiment.h).
 template <bool kExperiment>
 class Equation {
  public:
-  Equation(const PreparedScene& prepared, const TraceLimits& limits, RayCounts& counts)
-      : prepared_(prepared), scene_(prepared.scene()), limits_(limits), counts_(counts) {}
+  Equation(const PreparedScene& prepared, const TraceLimits& limits, RayCounts& counts,
+           TraceRecorder* recorder = nullptr)
+      : prepared_(prepared), scene_(prepared.scene()), limits_(limits), counts_(counts), recorder_(recorder) {}
 
   Color trace(const Ray& ray, int depth, double weight, ProbeNode* probe, const Vec3* shading_eye) {
     if (probe) {
@@ -77,6 +57,7 @@ class Equation {
     const std::optional<Hit> hit = intersect(prepared_, ray);
     if (!hit) {
       if (probe) probe->total = scene_.background;
+      if (recorder_) recorder_->ray_missed();
       return scene_.background;
     }
     return shade(ray, *hit, depth, weight, probe, shading_eye, TermsWanted{}).sum();
@@ -86,16 +67,19 @@ class Equation {
               const TermsWanted& wanted) {
     const Material& m = scene_.materials[hit.material];
     const HitSide side = hit_side(hit, ray.dir);
-    const Vec3 v = view_direction(hit, ray.dir, shading_eye);
+    const Vec3 v = view_direction(hit.p, ray.dir, shading_eye);
     const double offset = offset_of(hit);
     Terms terms;
     terms.ambient = m.ka * scene_.ambient;
     if (probe) record_hit(*probe, hit, side, v);
-    // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0).
-    if (wanted.lights && (is_lit(m) || probe)) {
+    if (recorder_) recorder_->begin_hit(ray, hit, side, offset, depth, weight);
+    // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0); a recorder of ray
+    // trees is told of every light, so that a later edit of kd, ks or a mute needs no new rays.
+    if (wanted.lights && (is_lit(m) || probe || recorder_)) {
       light_terms(m, hit, side, v, offset, probe, terms);
     }
     mirror_and_glass_terms(m, ray, hit, side, depth, weight, offset, probe, wanted, terms);
+    if (recorder_) recorder_->end_hit();
     if (probe) {
       probe->terms = terms;
       probe->total = terms.sum();
@@ -133,20 +117,9 @@ class Equation {
   [[gnu::always_inline]] inline bool light_visible(const Light& light, const Hit& hit, const Vec3& ng_facing,
                                                    const Vec3& l, double offset, Occluder* occluder) {
     ++counts_.shadow;
-    const Vec3 origin = offset_origin(hit.p, ng_facing, l, offset);
-    if (light.type == LightType::kDirectional) {
-      const Ray ray = make_ray(origin, l);
-      const double t_max = std::numeric_limits<double>::infinity();
-      if (occluder) *occluder = find_occluder(ray, t_max, hit.p);
-      return !occluded(prepared_, ray, t_max);
-    }
-    // The open segment to the light, pulled in at the light's end by the same relative amount
-    // as the origin is pushed off the surface: a light lying on a surface does not shadow itself.
-    const Vec3 to_light = light.position - origin;
-    const double dist = glm::length(to_light);
-    const double t_max = dist - surface_offset(light.position, 0);
-    if (!(t_max > 0)) return true;  // the light is within rounding distance of the surface
-    const Ray ray = make_ray(origin, to_light / dist);
+    Ray ray;
+    double t_max = 0;
+    if (!shadow_ray(light, hit.p, ng_facing, l, offset, ray, t_max)) return true;
     if (occluder) *occluder = find_occluder(ray, t_max, hit.p);
     return !occluded(prepared_, ray, t_max);
   }
@@ -158,20 +131,16 @@ class Equation {
     const Vec3& n = side.n;
     for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
       const Light& light = scene_.lights[li];
-      if (!light.enabled) continue;
+      if (!light.enabled && !recorder_) continue;
       Vec3 l;
-      double dist = std::numeric_limits<double>::infinity();
-      if (light.type == LightType::kPoint) {
-        const Vec3 to_light = light.position - hit.p;
-        dist = glm::length(to_light);
-        if (!(dist > 0)) continue;  // light exactly at the point: no direction, no light
-        l = to_light / dist;
-      } else {
-        l = -light.direction;
+      double dist = 0;
+      if (!light_direction(light, hit.p, l, dist)) {
+        if (recorder_) recorder_->light(static_cast<int>(li), LightSeen::kNoLight, 0, 0, 0);
+        continue;
       }
       const double n_dot_l = glm::dot(n, l);
       ProbeLight* pl = nullptr;
-      if (probe) {
+      if (probe && light.enabled) {
         pl = &probe->lights.emplace_back();
         pl->index = static_cast<int>(li);
         pl->l = l;
@@ -179,13 +148,14 @@ class Equation {
         pl->distance = dist;
       }
       if (!(n_dot_l > 0)) {  // light behind the surface: neither diffuse nor specular
-        if (shadow_rays_behind()) light_visible(light, hit, side.ng, l, offset, nullptr);  // a ray for nothing
+        if (shadow_rays_behind() && light.enabled) light_visible(light, hit, side.ng, l, offset, nullptr);  // a ray for nothing
+        if (recorder_) recorder_->light(static_cast<int>(li), LightSeen::kNoLight, n_dot_l, 0, 0);
         continue;
       }
-      double spec = 0;
-      if (has_specular || probe) {
+      double spec = 0, cos_spec = 0;
+      if (has_specular || probe || recorder_) {
         Vec3 r;
-        const double cos_spec = specular_cosine(scene_.specular_model, n, l, v, n_dot_l, r);
+        cos_spec = specular_cosine(scene_.specular_model, n, l, v, n_dot_l, r);
         spec = specular_factor(cos_spec, m.n);
         if (pl) {
           pl->r = r;
@@ -194,7 +164,12 @@ class Equation {
         }
       }
       Occluder occluder;
-      const bool visible = light_visible(light, hit, side.ng, l, offset, probe ? &occluder : nullptr);
+      const bool visible = light_visible(light, hit, side.ng, l, offset, pl ? &occluder : nullptr);
+      if (recorder_) {
+        recorder_->light(static_cast<int>(li), visible ? LightSeen::kVisible : LightSeen::kBlocked, n_dot_l, cos_spec,
+                         spec);
+        if (!light.enabled) continue;
+      }
       if (pl) {
         pl->lit_side = true;
         pl->visible = visible;
@@ -202,24 +177,23 @@ class Equation {
         pl->occluder_distance = occluder.distance;
       }
       if (!visible) continue;
-      const Color diffuse = light.intensity * m.kd * n_dot_l;
-      const Color specular = light.intensity * m.ks * spec;
-      terms.diffuse += diffuse;
-      terms.specular += specular;
+      add_light(light, m, n_dot_l, has_specular ? spec : 0.0, terms.diffuse, terms.specular);
       if (pl) {
-        pl->diffuse = diffuse;
-        pl->specular = specular;
+        pl->diffuse = light.intensity * m.kd * n_dot_l;
+        pl->specular = light.intensity * m.ks * spec;
       }
     }
   }
 
   // One child ray with weight kw along dir; nothing when kw = 0 or the path weight is too low.
-  Color child(const Color& kw, const Hit& hit, const Vec3& ng_facing, const Vec3& dir, double offset, int depth,
-              double weight, std::uint64_t& count, ProbeNode* probe, std::unique_ptr<ProbeNode>& probe_child) {
+  Color child(TraceRecorder::Child kind, const Color& kw, const Hit& hit, const Vec3& ng_facing, const Vec3& dir,
+              double offset, int depth, double weight, std::uint64_t& count, ProbeNode* probe,
+              std::unique_ptr<ProbeNode>& probe_child) {
     const std::optional<double> w = child_weight(kw, weight, limits_.min_weight);
     if (!w) return Color(0);
     ++count;
     if (probe) probe_child = std::make_unique<ProbeNode>();
+    if (recorder_) recorder_->begin_child(kind);
     const Ray ray_out = make_ray(offset_origin(hit.p, ng_facing, dir, offset), dir);
     return kw * trace(ray_out, depth + 1, *w, probe_child.get(), nullptr);
   }
@@ -242,12 +216,12 @@ class Equation {
     }
     std::unique_ptr<ProbeNode> no_probe;
     if (wanted.reflection) {
-      terms.reflection = child(bn.kr, hit, side.ng, bn.mirror, offset, depth, weight, counts_.reflection, probe,
+      terms.reflection = child(TraceRecorder::Child::kReflection, bn.kr, hit, side.ng, bn.mirror, offset, depth, weight, counts_.reflection, probe,
                                probe ? probe->reflection : no_probe);
     }
     if (!wanted.refraction) return;
     if (!is_zero(bn.kt)) {
-      terms.refraction = child(bn.kt, hit, side.ng, bn.refracted, offset, depth, weight, counts_.refraction, probe,
+      terms.refraction = child(TraceRecorder::Child::kRefraction, bn.kt, hit, side.ng, bn.refracted, offset, depth, weight, counts_.refraction, probe,
                                probe ? probe->refraction : no_probe);
     } else if (force_refraction) {  // the ablation: traced at the parent's path weight, times kt' = 0
       ++counts_.refraction;
@@ -260,6 +234,7 @@ class Equation {
   const Scene& scene_;
   const TraceLimits& limits_;
   RayCounts& counts_;
+  TraceRecorder* recorder_;
 };
 
 }  // namespace
@@ -279,6 +254,11 @@ Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray&
     return Equation<true>(prepared, limits, counts).trace(ray, depth, weight, probe, shading_eye);
   }
   return Equation<false>(prepared, limits, counts).trace(ray, depth, weight, probe, shading_eye);
+}
+
+Color trace_recorded(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, RayCounts& counts,
+                     TraceRecorder& recorder, const Vec3* shading_eye) {
+  return Equation<false>(prepared, limits, counts, &recorder).trace(ray, 0, 1.0, nullptr, shading_eye);
 }
 
 }  // namespace phonglab

@@ -63,6 +63,61 @@ inline double specular_factor(double cos_spec, double n) {
   return (base == 0 && n > 0) ? 0.0 : std::pow(base, n);
 }
 
+// The specular cosine under the scene's model: R.V (Phong; `r` = R) or N.H (Blinn; `r` = H).
+inline double specular_cosine(SpecularModel model, const Vec3& n, const Vec3& l, const Vec3& v, double n_dot_l, Vec3& r) {
+  if (model == SpecularModel::kPhong) {
+    r = 2.0 * n_dot_l * n - l;
+    return glm::dot(r, v);
+  }
+  const Vec3 h = l + v;
+  const double len = glm::length(h);
+  r = len > 0 ? h / len : n;  // L = -V only at grazing: any H then gives N.H <= 0
+  return len > 0 ? glm::dot(n, r) : 0;
+}
+
+// The unit vector L from P towards a light and the distance to it (infinity for directional
+// lights). False for a point light exactly at P: no direction, no light.
+inline bool light_direction(const Light& light, const Vec3& p, Vec3& l, double& dist) {
+  if (light.type == LightType::kPoint) {
+    const Vec3 to_light = light.position - p;
+    dist = glm::length(to_light);
+    if (!(dist > 0)) return false;
+    l = to_light / dist;
+    return true;
+  }
+  dist = std::numeric_limits<double>::infinity();
+  l = -light.direction;
+  return true;
+}
+
+// The shadow ray from P (offset along the facing geometric normal ng towards L) to a light: the
+// open segment to a point light, pulled in at the light's end by the same relative amount as the
+// origin is pushed off the surface (a light lying on a surface does not shadow itself), or the
+// half-line along L. False when the light is within rounding distance of the surface: visible,
+// no ray.
+inline bool shadow_ray(const Light& light, const Vec3& p, const Vec3& ng, const Vec3& l, double offset, Ray& ray,
+                       double& t_max) {
+  const Vec3 origin = offset_origin(p, ng, l, offset);
+  if (light.type == LightType::kDirectional) {
+    ray = make_ray(origin, l);
+    t_max = std::numeric_limits<double>::infinity();
+    return true;
+  }
+  const Vec3 to_light = light.position - origin;
+  const double dist = glm::length(to_light);
+  t_max = dist - surface_offset(light.position, 0);
+  if (!(t_max > 0)) return false;
+  ray = make_ray(origin, to_light / dist);
+  return true;
+}
+
+// One visible light's share of the diffuse and specular terms (spec: the specular factor).
+inline void add_light(const Light& light, const Material& m, double n_dot_l, double spec, Color& diffuse,
+                      Color& specular) {
+  diffuse += light.intensity * m.kd * n_dot_l;
+  specular += light.intensity * m.ks * spec;
+}
+
 // The rules both tracers share, one definition each.
 // Lights are evaluated at a hit only where a term can come back: kd or ks non-zero.
 inline bool is_lit(const Material& m) { return !is_zero(m.kd) || !is_zero(m.ks); }
@@ -82,6 +137,15 @@ inline std::optional<Vec3> towards_eye(const Vec3& p, const Vec3& eye) {
   const double len = glm::length(to_eye);
   if (len > 0) return to_eye / len;
   return std::nullopt;
+}
+
+// V at a hit point P of a ray along d: towards the real eye (-D), or towards a moved eye ("move
+// your head"); an eye exactly at P has no direction and falls back to -D.
+inline Vec3 view_direction(const Vec3& p, const Vec3& d, const Vec3* shading_eye) {
+  if (shading_eye) {
+    if (const std::optional<Vec3> v = towards_eye(p, *shading_eye)) return *v;
+  }
+  return -d;
 }
 
 // What a mirror or glass hit passes on to its children.
@@ -178,12 +242,42 @@ struct TraceLimits {
   double min_weight = 0.001;
 };
 
+// What a light is at a hit, as a recorder of ray trees keeps it.
+enum class LightSeen : std::uint8_t {
+  kNoLight,  // N.L <= 0 or the light exactly at P: neither term, no shadow ray
+  kVisible,  // its shadow ray reached it
+  kBlocked,  // its shadow ray met something
+};
+
+// Told of every ray of a traced tree, in the tracer's order (core/render/ray_trees.h keeps them
+// for re-shading): a hit opens a node, its lights and children follow, end_hit closes it.
+class TraceRecorder {
+ public:
+  enum class Child : std::uint8_t { kReflection, kRefraction };
+  virtual ~TraceRecorder() = default;
+  virtual void ray_missed() = 0;
+  virtual void begin_hit(const Ray& ray, const Hit& hit, const HitSide& side, double offset, int depth,
+                         double weight) = 0;
+  // Every light, enabled or not, whatever the material (the recorder casts the shadow rays an
+  // edit might need later); spec for the material's n.
+  virtual void light(int index, LightSeen seen, double n_dot_l, double cos_spec, double spec) = 0;
+  // The next ray_missed or begin_hit is this child of the open hit.
+  virtual void begin_child(Child kind) = 0;
+  virtual void end_hit() = 0;
+};
+
 // Radiance along a ray (docs/model.md, the equation: trace). `probe`, when given, receives the whole ray tree.
 // `shading_eye`, when given, is the eye used for V at this ray's hit only ("move your head":
 // V = normalize(eye - P) instead of -D); the reflected and refracted children still follow the
 // real ray and use their own -D. Without it the result is bit-identical to the plain equation.
 Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, int depth, double weight,
             RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
+
+// trace() of a primary ray (depth 0, weight 1), telling `recorder` of the whole tree. The radiance
+// is trace()'s, bit for bit; more shadow rays are cast (every light at every hit facing it).
+// Not for scenes with an experiment.
+Color trace_recorded(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, RayCounts& counts,
+                     TraceRecorder& recorder, const Vec3* shading_eye = nullptr);
 
 // Shading of a known hit, term by term (`shading_eye` as for trace: V at this hit only). Terms
 // that `wanted` leaves out are 0.

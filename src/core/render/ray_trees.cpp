@@ -1,0 +1,375 @@
+#include "core/render/ray_trees.h"
+
+#include <chrono>
+
+#include "core/render/threads.h"
+
+namespace phonglab {
+
+EditScope edit_scope(const Scene& a, const Scene& b) {
+  if (!(a.camera == b.camera) || a.max_depth != b.max_depth || a.min_weight != b.min_weight ||
+      a.spheres != b.spheres || a.planes != b.planes || a.triangles != b.triangles || a.meshes != b.meshes ||
+      a.materials.size() != b.materials.size() || a.lights.size() != b.lights.size()) {
+    return EditScope::kRetrace;
+  }
+  EditScope scope = EditScope::kNothing;
+  const auto at_least = [&](EditScope s) { scope = std::max(scope, s); };
+  for (std::size_t i = 0; i < a.materials.size(); ++i) {
+    const Material& x = a.materials[i];
+    const Material& y = b.materials[i];
+    if (x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel) return EditScope::kRetrace;
+    if (x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n) at_least(EditScope::kShading);
+  }
+  for (std::size_t i = 0; i < a.lights.size(); ++i) {
+    const Light& x = a.lights[i];
+    const Light& y = b.lights[i];
+    if (x.type != y.type) return EditScope::kRetrace;
+    if (x.position != y.position || x.direction != y.direction) at_least(EditScope::kLights);
+    if (x.intensity != y.intensity || x.enabled != y.enabled) at_least(EditScope::kShading);
+  }
+  if (a.ambient != b.ambient || a.background != b.background || a.specular_model != b.specular_model) {
+    at_least(EditScope::kShading);
+  }
+  return scope;
+}
+
+bool reshades(Term term) {
+  switch (term) {
+    case Term::kFull:
+    case Term::kAmbient:
+    case Term::kDiffuse:
+    case Term::kSpecular:
+    case Term::kReflection:
+    case Term::kRefraction:
+      return true;
+    default:
+      return false;
+  }
+}
+
+namespace {
+
+constexpr int kTile = 16;
+
+using Node = RayTrees::Node;
+using NodeLight = RayTrees::NodeLight;
+using Tile = RayTrees::Tile;
+
+// Keeps one tile's trees as the tracer reports them.
+class TileRecorder final : public TraceRecorder {
+ public:
+  TileRecorder(Tile& tile, std::size_t lights) : tile_(tile), lights_(lights) {}
+
+  std::int32_t root() const { return root_; }
+  void ray_missed() override { link(RayTrees::kMissed); }
+  void begin_hit(const Ray& ray, const Hit& hit, const HitSide& side, double offset, int depth,
+                 double weight) override {
+    const auto index = static_cast<std::int32_t>(tile_.nodes.size());
+    Node node;
+    node.p = hit.p;
+    node.n = side.n;
+    node.ng = side.ng;
+    node.dir = ray.dir;
+    node.offset = offset;
+    node.weight = weight;
+    node.material = hit.material;
+    node.depth = static_cast<std::int16_t>(depth);
+    node.entering = side.entering;
+    tile_.nodes.push_back(node);
+    tile_.lights.resize(tile_.lights.size() + lights_);
+    link(index);
+    open_.push_back(index);
+  }
+  void light(int index, LightSeen seen, double n_dot_l, double cos_spec, double spec) override {
+    tile_.lights[static_cast<std::size_t>(open_.back()) * lights_ + static_cast<std::size_t>(index)] =
+        NodeLight{n_dot_l, cos_spec, spec, seen};
+  }
+  void begin_child(Child kind) override { child_ = kind; }
+  void end_hit() override { open_.pop_back(); }
+
+ private:
+  void link(std::int32_t to) {
+    if (open_.empty()) {
+      root_ = to;
+      return;
+    }
+    Node& parent = tile_.nodes[static_cast<std::size_t>(open_.back())];
+    (child_ == Child::kReflection ? parent.reflection : parent.refraction) = to;
+  }
+
+  Tile& tile_;
+  std::size_t lights_;
+  std::vector<std::int32_t> open_;  // the hits whose children are being traced, innermost last
+  Child child_ = Child::kReflection;
+  std::int32_t root_ = RayTrees::kMissed;
+};
+
+std::size_t tile_bytes(const Tile& t) {
+  return t.nodes.capacity() * sizeof(Node) + t.lights.capacity() * sizeof(NodeLight) +
+         t.roots.capacity() * sizeof(std::int32_t);
+}
+
+// The image's tiles, row by row.
+std::vector<Tile> make_tiles(int width, int height) {
+  std::vector<Tile> tiles;
+  for (int y0 = 0; y0 < height; y0 += kTile) {
+    for (int x0 = 0; x0 < width; x0 += kTile) {
+      Tile t;
+      t.x0 = x0;
+      t.y0 = y0;
+      t.x1 = std::min(x0 + kTile, width);
+      t.y1 = std::min(y0 + kTile, height);
+      tiles.push_back(std::move(t));
+    }
+  }
+  return tiles;
+}
+
+// work(tile) for every tile, spread over threads as render_pass spreads its tiles. Returns false
+// when `cancel` or `stop` ended it early.
+template <class Work>
+bool for_each_tile(std::vector<Tile>& tiles, int threads, const std::atomic<bool>* cancel, std::atomic<bool>& stop,
+                   std::vector<RayCounts>& counts, Work&& work) {
+  const int n = std::max(1, std::min(resolve_thread_count(threads), static_cast<int>(tiles.size())));
+  counts.assign(static_cast<std::size_t>(n), RayCounts{});
+  std::atomic<std::size_t> next{0};
+  run_workers(n, [&](int worker) {
+    for (;;) {
+      if ((cancel && cancel->load(std::memory_order_relaxed)) || stop.load(std::memory_order_relaxed)) {
+        stop.store(true, std::memory_order_relaxed);
+        return;
+      }
+      const std::size_t i = next.fetch_add(1, std::memory_order_relaxed);
+      if (i >= tiles.size()) return;
+      work(tiles[i], counts[static_cast<std::size_t>(worker)]);
+    }
+  });
+  return !stop.load();
+}
+
+// Sample 0's primary ray through pixel (x, y), as render_sample makes it.
+Ray centre_ray(const CameraFrame& frame, int x, int y) {
+  double u = 0, v = 0;
+  sample_offset(x, y, 0, u, v, 0);
+  return camera_ray(frame, x, y, u, v);
+}
+
+// What changed between the trees' scene and the new one, light by light and material by material.
+struct Changes {
+  std::vector<bool> light_moved;   // its shadow rays are cast again
+  std::vector<bool> n_changed;     // the specular factor of its hits is taken again
+  bool model_changed = false;      // every specular cosine is computed again
+  bool any() const {
+    for (const bool b : light_moved) {
+      if (b) return true;
+    }
+    for (const bool b : n_changed) {
+      if (b) return true;
+    }
+    return model_changed;
+  }
+};
+
+Changes changes_between(const Scene& a, const Scene& b) {
+  Changes c;
+  for (std::size_t i = 0; i < b.lights.size(); ++i) {
+    c.light_moved.push_back(a.lights[i].position != b.lights[i].position || a.lights[i].direction != b.lights[i].direction);
+  }
+  for (std::size_t i = 0; i < b.materials.size(); ++i) c.n_changed.push_back(a.materials[i].n != b.materials[i].n);
+  c.model_changed = a.specular_model != b.specular_model;
+  return c;
+}
+
+// Brings one node's stored lights up to `scene` (the same arithmetic as the tracer's light loop).
+void update_lights(const PreparedScene& prepared, const Changes& changes, const Node& node, const Vec3* eye,
+                   NodeLight* lights, RayCounts& counts) {
+  const Scene& scene = prepared.scene();
+  const Material& m = scene.materials[static_cast<std::size_t>(node.material)];
+  for (std::size_t li = 0; li < scene.lights.size(); ++li) {
+    NodeLight& nl = lights[li];
+    const bool moved = changes.light_moved[li];
+    if (!moved && !changes.model_changed) {
+      if (changes.n_changed[static_cast<std::size_t>(node.material)] && nl.seen != LightSeen::kNoLight) {
+        nl.spec = specular_factor(nl.cos_spec, m.n);
+      }
+      continue;
+    }
+    const Light& light = scene.lights[li];
+    Vec3 l;
+    double dist = 0;
+    if (!light_direction(light, node.p, l, dist)) {
+      nl = NodeLight{};
+      continue;
+    }
+    const double n_dot_l = glm::dot(node.n, l);
+    if (!(n_dot_l > 0)) {
+      nl = NodeLight{n_dot_l, 0, 0, LightSeen::kNoLight};
+      continue;
+    }
+    Vec3 r;
+    const Vec3 v = view_direction(node.p, node.dir, node.depth == 0 ? eye : nullptr);
+    nl.n_dot_l = n_dot_l;
+    nl.cos_spec = specular_cosine(scene.specular_model, node.n, l, v, n_dot_l, r);
+    nl.spec = specular_factor(nl.cos_spec, m.n);
+    if (!moved && nl.seen != LightSeen::kNoLight) continue;  // the same shadow ray as before
+    ++counts.shadow;
+    Ray ray;
+    double t_max = 0;
+    const bool visible = !shadow_ray(light, node.p, node.ng, l, node.offset, ray, t_max) || !occluded(prepared, ray, t_max);
+    nl.seen = visible ? LightSeen::kVisible : LightSeen::kBlocked;
+  }
+}
+
+// The equation over one tile's stored trees, for `scene`.
+class TileShader {
+ public:
+  TileShader(const PreparedScene& prepared, const Tile& tile, RayCounts& counts)
+      : prepared_(prepared), scene_(prepared.scene()), tile_(tile), counts_(counts),
+        lights_(scene_.lights.size()) {}
+
+  // The terms of node i, as shade() gives them.
+  Terms terms(std::int32_t i, const TermsWanted& wanted) {
+    const Node& node = tile_.nodes[static_cast<std::size_t>(i)];
+    const Material& m = scene_.materials[static_cast<std::size_t>(node.material)];
+    Terms t;
+    t.ambient = m.ka * scene_.ambient;
+    if (wanted.lights && is_lit(m)) {
+      const bool has_specular = !is_zero(m.ks);
+      const NodeLight* lights = tile_.lights.data() + static_cast<std::size_t>(i) * lights_;
+      for (std::size_t li = 0; li < lights_; ++li) {
+        const Light& light = scene_.lights[li];
+        if (!light.enabled || lights[li].seen != LightSeen::kVisible) continue;
+        add_light(light, m, lights[li].n_dot_l, has_specular ? lights[li].spec : 0.0, t.diffuse, t.specular);
+      }
+    }
+    if (!(node.depth < scene_.max_depth && has_children(m))) return t;
+    const Bounce bn = bounce(m, node.dir, node.n, node.entering);
+    if (wanted.reflection) t.reflection = child(node, bn.kr, bn.mirror, node.reflection);
+    if (wanted.refraction && !is_zero(bn.kt)) t.refraction = child(node, bn.kt, bn.refracted, node.refraction);
+    return t;
+  }
+
+ private:
+  // kw times what the child ray brings back (the Equation's child()).
+  Color child(const Node& node, const Color& kw, const Vec3& dir, std::int32_t stored) {
+    const std::optional<double> w = child_weight(kw, node.weight, scene_.min_weight);
+    if (!w) return Color(0);
+    if (stored == RayTrees::kMissed) return kw * scene_.background;
+    if (stored >= 0) return kw * terms(stored, TermsWanted{}).sum();
+    // Not stored (it cannot happen below kRetrace): traced as the tracer would.
+    const Ray ray = make_ray(offset_origin(node.p, node.ng, dir, node.offset), dir);
+    return kw * trace(prepared_, TraceLimits{scene_.max_depth, scene_.min_weight}, ray, node.depth + 1, *w, counts_);
+  }
+
+  const PreparedScene& prepared_;
+  const Scene& scene_;
+  const Tile& tile_;
+  RayCounts& counts_;
+  std::size_t lights_;
+};
+
+}  // namespace
+
+std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> scene, int width, int height,
+                                           const std::optional<Vec3>& shading_eye, int threads,
+                                           std::size_t budget_bytes, const std::atomic<bool>* cancel) {
+  if (!scene || scene->experiment() || width <= 0 || height <= 0) return nullptr;
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<RayTrees> trees(new RayTrees);
+  trees->scene_ = scene;
+  trees->width_ = width;
+  trees->height_ = height;
+  trees->shading_eye_ = shading_eye;
+  trees->tiles_ = make_tiles(width, height);
+  const Scene& s = scene->scene();
+  const CameraFrame frame = make_camera_frame(s.camera, width, height);
+  const TraceLimits limits{s.max_depth, s.min_weight};
+  const Vec3* eye = shading_eye ? &*shading_eye : nullptr;
+  std::atomic<std::size_t> bytes{0};
+  std::atomic<bool> stop{false};
+  std::vector<RayCounts> counts;
+  const bool done = for_each_tile(trees->tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
+    tile.roots.reserve(static_cast<std::size_t>((tile.x1 - tile.x0) * (tile.y1 - tile.y0)));
+    for (int y = tile.y0; y < tile.y1; ++y) {
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        TileRecorder recorder(tile, s.lights.size());
+        trace_recorded(*scene, limits, centre_ray(frame, x, y), rays, recorder, eye);
+        tile.roots.push_back(recorder.root());
+      }
+    }
+    if (bytes.fetch_add(tile_bytes(tile)) + tile_bytes(tile) > budget_bytes) stop.store(true);
+  });
+  if (!done) return nullptr;
+  trees->record_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return trees;
+}
+
+EditScope RayTrees::scope_for(const PreparedScene& scene, int width, int height,
+                              const std::optional<Vec3>& shading_eye) const {
+  if (!usable_ || width != width_ || height != height_ || shading_eye != shading_eye_ || scene.experiment()) {
+    return EditScope::kRetrace;
+  }
+  return edit_scope(scene_->scene(), scene.scene());
+}
+
+PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term term, int threads, Accumulator& accum,
+                            const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  const Scene& s = scene->scene();
+  const Changes changes = changes_between(scene_->scene(), s);
+  const bool update = changes.any();
+  const Vec3* eye = shading_eye_ ? &*shading_eye_ : nullptr;
+  const TermsWanted wanted = terms_wanted(term);
+  std::atomic<bool> stop{false};
+  std::vector<RayCounts> counts;
+  std::atomic<std::uint64_t> nan_count{0};
+  const bool done = for_each_tile(tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
+    const std::size_t lights = s.lights.size();
+    if (update) {
+      for (std::size_t i = 0; i < tile.nodes.size(); ++i) {
+        update_lights(*scene, changes, tile.nodes[i], eye, tile.lights.data() + i * lights, rays);
+      }
+    }
+    TileShader shader(*scene, tile, rays);
+    const std::int32_t* root = tile.roots.data();
+    for (int y = tile.y0; y < tile.y1; ++y) {
+      Color* row = accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
+      for (int x = tile.x0; x < tile.x1; ++x, ++root) {
+        Color c = *root == kMissed ? miss_value(s, term)
+                  : term == Term::kFull ? shader.terms(*root, wanted).sum()
+                                        : term_value(shader.terms(*root, wanted), term);
+        if (!all_finite(c)) {  // as render_pass replaces them
+          c = Color(0);
+          nan_count.fetch_add(1, std::memory_order_relaxed);
+        }
+        row[x] += c;
+      }
+    }
+  });
+  PassStats stats;
+  for (const RayCounts& c : counts) stats.rays += c;
+  stats.nan_count = nan_count.load();
+  stats.completed = done;
+  if (done) {
+    ++accum.samples;
+    scene_ = std::move(scene);
+  } else {
+    usable_ = false;  // some tiles describe the new scene, some the old
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+std::size_t RayTrees::memory_bytes() const {
+  std::size_t bytes = tiles_.capacity() * sizeof(Tile);
+  for (const Tile& t : tiles_) bytes += tile_bytes(t);
+  return bytes;
+}
+
+std::size_t RayTrees::node_count() const {
+  std::size_t n = 0;
+  for (const Tile& t : tiles_) n += t.nodes.size();
+  return n;
+}
+
+}  // namespace phonglab

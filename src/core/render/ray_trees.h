@@ -1,0 +1,93 @@
+// The ray trees of an image's first sample, kept so that an edit which changes no ray is
+// re-shaded instead of re-traced (docs/speed.md, "Re-shading"). A change of ka, kd, ks, n, Ia,
+// the background, a light's intensity or mute, or the specular model leaves every ray, every hit
+// and every shadow ray's answer as it was: the image is a sum over stored values. A moved light
+// changes only the shadow rays towards it, which are cast again from the stored hit points.
+// The re-shaded image is the one render_pass gives for the new scene, bit for bit.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/accel/prepared_scene.h"
+#include "core/render/render.h"
+#include "core/shading/shading.h"
+
+namespace phonglab {
+
+// What an edit between two snapshots of a scene invalidates.
+enum class EditScope : std::uint8_t {
+  kNothing,  // the same image
+  kShading,  // ka, kd, ks, n, Ia, background, light intensity or mute, specular model
+  kLights,   // a light moved or turned (and perhaps shading): the shadow rays towards it
+  kRetrace,  // camera, geometry, kr, kt, ior, fresnel, depth, weight, lights added or removed
+};
+EditScope edit_scope(const Scene& before, const Scene& after);
+
+// Whether a term can be re-shaded from stored trees: the full image and its five terms.
+bool reshades(Term term);
+
+class RayTrees {
+ public:
+  // Traces the centre ray (sample 0) of every pixel of a width x height image of `scene`, with
+  // `shading_eye` as RenderOptions has it, keeping every tree. Null when the trees would need
+  // more than `budget_bytes`, when cancelled, or for a scene with an experiment.
+  static std::unique_ptr<RayTrees> record(std::shared_ptr<const PreparedScene> scene, int width, int height,
+                                          const std::optional<Vec3>& shading_eye, int threads,
+                                          std::size_t budget_bytes, const std::atomic<bool>* cancel = nullptr);
+
+  // What re-shading `scene` at this size and eye would need (kRetrace: it cannot be).
+  EditScope scope_for(const PreparedScene& scene, int width, int height, const std::optional<Vec3>& shading_eye) const;
+
+  // Sample 0 of `scene` for `term` (reshades(term)) into `accum`, which must be empty at this
+  // size; the trees then describe `scene`. Only for a scope below kRetrace. Shadow rays towards
+  // moved lights are cast again; cancelled midway, the trees are no longer usable (usable()).
+  PassStats reshade(std::shared_ptr<const PreparedScene> scene, Term term, int threads, Accumulator& accum,
+                    const std::atomic<bool>* cancel = nullptr);
+
+  bool usable() const { return usable_; }
+  std::size_t memory_bytes() const;
+  std::size_t node_count() const;
+  double record_seconds() const { return record_seconds_; }
+
+  // One traced ray that met something.
+  struct Node {
+    Vec3 p{0}, n{0}, ng{0}, dir{0};  // hit point, facing shading and geometric normals, ray direction
+    double offset = 0;               // surface_offset of the hit
+    double weight = 1;               // path weight of the ray
+    std::int32_t material = 0;
+    std::int32_t reflection = kNone, refraction = kNone;  // child nodes, kMissed or kNone
+    std::int16_t depth = 0;
+    bool entering = false;
+  };
+  // One light at a node: what the shading needs of it, for the trees' scene.
+  struct NodeLight {
+    double n_dot_l = 0, cos_spec = 0, spec = 0;
+    LightSeen seen = LightSeen::kNoLight;
+  };
+  static constexpr std::int32_t kNone = -1;    // no such ray was traced
+  static constexpr std::int32_t kMissed = -2;  // the ray was traced and met nothing
+
+  // The trees of one tile of pixels.
+  struct Tile {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    std::vector<Node> nodes;
+    std::vector<NodeLight> lights;  // lights() per node
+    std::vector<std::int32_t> roots;  // per pixel, row by row: node, or kMissed
+  };
+
+ private:
+  RayTrees() = default;
+  std::shared_ptr<const PreparedScene> scene_;  // the scene the stored values describe
+  int width_ = 0, height_ = 0;
+  std::optional<Vec3> shading_eye_;
+  std::vector<Tile> tiles_;
+  bool usable_ = true;
+  double record_seconds_ = 0;
+};
+
+}  // namespace phonglab

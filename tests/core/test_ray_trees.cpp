@@ -1,0 +1,192 @@
+// Re-shading from stored ray trees (src/core/render/ray_trees.h): for every edit it accepts, the
+// re-shaded image equals a fresh render_pass of the edited scene bit for bit, over seeded random
+// scenes and seeded random edits of each kind, in chains of edits, for the full image and each
+// term; and the edits it must refuse are classified as such.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "core/packet/packet.h"
+#include "core/render/ray_trees.h"
+#include "core/render/render.h"
+#include "tests/support/random_scenes.h"
+#include "tests/support/test_support.h"
+
+using namespace phonglab;
+
+namespace {
+
+constexpr int kW = 23, kH = 15;
+
+Accumulator fresh_image(const PreparedScene& scene, Term term, bool packets) {
+  Accumulator accum;
+  accum.reset(kW, kH);
+  RenderOptions options;
+  options.term = term;
+  options.threads = 2;
+  options.packets = packets;
+  render_pass(scene, options, accum);
+  return accum;
+}
+
+Accumulator reshaded_image(RayTrees& trees, std::shared_ptr<const PreparedScene> scene, Term term) {
+  Accumulator accum;
+  accum.reset(kW, kH);
+  const PassStats stats = trees.reshade(std::move(scene), term, 2, accum);
+  EXPECT_TRUE(stats.completed);
+  EXPECT_EQ(accum.samples, 1u);
+  return accum;
+}
+
+::testing::AssertionResult same_bits(const Accumulator& a, const Accumulator& b) {
+  if (a.sum.size() != b.sum.size()) return ::testing::AssertionFailure() << "sizes differ";
+  for (std::size_t i = 0; i < a.sum.size(); ++i) {
+    if (std::memcmp(&a.sum[i], &b.sum[i], sizeof(Color)) != 0) {
+      return ::testing::AssertionFailure() << "pixel " << i % kW << "," << i / kW << ": re-shaded (" << a.sum[i].x
+                                           << ", " << a.sum[i].y << ", " << a.sum[i].z << ") fresh (" << b.sum[i].x
+                                           << ", " << b.sum[i].y << ", " << b.sum[i].z << ")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// A random edit that changes no ray: ka, kd, ks or n of a material, Ia, the background, a light's
+// intensity or mute, the specular model.
+void shading_edit(Scene& s, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const auto pick = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
+  switch (std::uniform_int_distribution<int>(0, 8)(rng)) {
+    case 0: s.materials[pick(s.materials.size())].ka = random_color(rng, 0.3, 0.3); break;
+    case 1: s.materials[pick(s.materials.size())].kd = random_color(rng, 0.3, 0.9); break;  // also from or to 0
+    case 2: s.materials[pick(s.materials.size())].ks = random_color(rng, 0.3, 0.9); break;
+    case 3: s.materials[pick(s.materials.size())].n = u(rng) < 0.1 ? 0.0 : std::pow(10.0, 3 * u(rng)); break;
+    case 4: s.ambient = random_color(rng, 0.2, 1); break;
+    case 5: s.background = random_color(rng, 0.3, 0.5); break;
+    case 6:
+      if (!s.lights.empty()) s.lights[pick(s.lights.size())].intensity = random_color(rng, 0.2, 2);
+      break;
+    case 7:
+      if (!s.lights.empty()) s.lights[pick(s.lights.size())].enabled ^= true;
+      break;
+    default:
+      s.specular_model = s.specular_model == SpecularModel::kPhong ? SpecularModel::kBlinn : SpecularModel::kPhong;
+      break;
+  }
+}
+
+// A light moved or turned.
+void light_edit(Scene& s, std::mt19937& rng) {
+  if (s.lights.empty()) return;
+  std::uniform_real_distribution<double> c(-3, 3);
+  Light& l = s.lights[std::uniform_int_distribution<std::size_t>(0, s.lights.size() - 1)(rng)];
+  const double scale = std::max(1e-3, glm::length(s.camera.position) / 6);
+  l.position += Vec3(c(rng), c(rng), c(rng)) * scale;
+  l.direction = glm::normalize(Vec3(c(rng), -1, c(rng)));
+}
+
+std::shared_ptr<const PreparedScene> prepared(const Scene& s) { return std::make_shared<const PreparedScene>(s); }
+
+}  // namespace
+
+TEST(EditScope, SaysWhatAnEditInvalidates) {
+  const Scene a = load_scene_or_fail("lecture");
+  Scene b = a;
+  EXPECT_EQ(edit_scope(a, b), EditScope::kNothing);
+  b.materials[0].kd.x += 0.1;
+  b.lights[0].enabled = false;
+  b.specular_model = SpecularModel::kBlinn;
+  EXPECT_EQ(edit_scope(a, b), EditScope::kShading);
+  b.lights[1].position.y += 1;
+  EXPECT_EQ(edit_scope(a, b), EditScope::kLights);
+  for (int k = 0; k < 6; ++k) {
+    Scene c = b;
+    if (k == 0) c.camera.position.x += 1e-9;
+    if (k == 1) c.materials[0].kr = Color(0.5);
+    if (k == 2) c.materials[0].ior = 1.33;
+    if (k == 3) c.spheres[0].radius *= 1.01;
+    if (k == 4) c.max_depth += 1;
+    if (k == 5) c.lights.pop_back();
+    EXPECT_EQ(edit_scope(a, c), EditScope::kRetrace) << k;
+  }
+}
+
+// Re-shading the recorded scene itself, then chains of random edits of the kinds it accepts:
+// every image equals a fresh render of the edited scene, traced ray by ray and in packets.
+TEST(RayTrees, ReshadedImagesAreBitIdenticalToFreshRenders) {
+  int edits = 0;
+  for (std::uint32_t seed = 1; seed <= 120; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Scene s = random_scene_data(seed, seed % 4 == 0);
+    std::shared_ptr<const PreparedScene> scene = prepared(s);
+    std::unique_ptr<RayTrees> trees = RayTrees::record(scene, kW, kH, std::nullopt, 2, std::size_t{1} << 30);
+    ASSERT_NE(trees, nullptr);
+    ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh_image(*scene, Term::kFull, false)));
+    std::mt19937 rng(seed);
+    for (int e = 0; e < 6; ++e) {
+      if (e % 3 == 2) {
+        light_edit(s, rng);
+      } else {
+        shading_edit(s, rng);
+      }
+      scene = prepared(s);
+      ASSERT_NE(trees->scope_for(*scene, kW, kH, std::nullopt), EditScope::kRetrace);
+      const Accumulator fresh = fresh_image(*scene, Term::kFull, false);
+      ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh)) << "after edit " << e;
+      if (packet_cpu_supported()) {
+        ASSERT_TRUE(same_bits(fresh, fresh_image(*scene, Term::kFull, true)));
+      }
+      ++edits;
+    }
+  }
+  EXPECT_GT(edits, 600);
+}
+
+// Each term image from the same trees, after an edit: what render_pass gives for that term.
+TEST(RayTrees, TermImagesComeFromTheSameTrees) {
+  for (std::uint32_t seed = 200; seed <= 240; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Scene s = random_scene_data(seed);
+    std::unique_ptr<RayTrees> trees = RayTrees::record(prepared(s), kW, kH, std::nullopt, 1, std::size_t{1} << 30);
+    ASSERT_NE(trees, nullptr);
+    std::mt19937 rng(seed);
+    shading_edit(s, rng);
+    const std::shared_ptr<const PreparedScene> scene = prepared(s);
+    for (const Term term : {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection, Term::kRefraction}) {
+      SCOPED_TRACE(std::string(term_name(term)));
+      ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, term), fresh_image(*scene, term, false)));
+    }
+  }
+}
+
+// "Move your head": trees recorded with a moved eye re-shade to the image render_pass gives with it.
+TEST(RayTrees, AMovedEyeIsKeptWithTheTrees) {
+  Scene s = load_scene_or_fail("lecture");
+  const Vec3 eye = s.camera.position + Vec3(1.5, 0, 0);
+  std::unique_ptr<RayTrees> trees = RayTrees::record(prepared(s), kW, kH, eye, 2, std::size_t{1} << 30);
+  ASSERT_NE(trees, nullptr);
+  s.materials[0].ks = Color(0.9);
+  s.lights[0].position.x += 0.5;
+  const std::shared_ptr<const PreparedScene> scene = prepared(s);
+  EXPECT_EQ(trees->scope_for(*scene, kW, kH, std::nullopt), EditScope::kRetrace);  // another eye
+  ASSERT_EQ(trees->scope_for(*scene, kW, kH, eye), EditScope::kLights);
+  Accumulator fresh;
+  fresh.reset(kW, kH);
+  RenderOptions options;
+  options.shading_eye = eye;
+  options.packets = false;
+  render_pass(*scene, options, fresh);
+  EXPECT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh));
+}
+
+TEST(RayTrees, RecordingStopsAtTheMemoryBudget) {
+  const auto scene = std::make_shared<const PreparedScene>(load_prepared("lecture"));
+  EXPECT_EQ(RayTrees::record(scene, 64, 36, std::nullopt, 2, 10000), nullptr);
+  const std::unique_ptr<RayTrees> trees = RayTrees::record(scene, 64, 36, std::nullopt, 2, std::size_t{1} << 30);
+  ASSERT_NE(trees, nullptr);
+  EXPECT_GE(trees->node_count(), 64u * 36u / 2);  // most centre rays meet something
+  EXPECT_GE(trees->memory_bytes(), trees->node_count() * sizeof(RayTrees::Node));
+  EXPECT_EQ(trees->scope_for(*scene, 64, 35, std::nullopt), EditScope::kRetrace);  // another size
+}
