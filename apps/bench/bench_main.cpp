@@ -3,7 +3,9 @@
 // Exit codes: 0 success, 1 bad input, 2 bad usage.
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "apps/bench/bench_report.h"
 #include "apps/common/args.h"
 #include "core/packet/packet.h"
+#include "core/render/ray_trees.h"
 #include "core/render/render.h"
 
 namespace {
@@ -23,13 +26,61 @@ using bench::median;
 
 constexpr const char* kUsage = R"(usage: phonglab-cli bench [--out DIR] [--quick] [--threads N] [--only accel]
        phonglab-cli bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar] [--edited]
+                           [--reshade shading|light]
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
   (default bench-out/); --quick finishes in about a minute. --only accel: the
   acceleration section and the yardsticks alone (accel.md, accel.csv, yardsticks.csv). With SCENE: time Whitted
   frames (1 spp) of one scene and print the median; --scalar: without the packet
   tracer (the same image, traced ray by ray); --edited: a new snapshot of the scene each
-  frame, as after every edit in the previewer.
+  frame, as after every edit in the previewer. --reshade: record the first sample's ray trees
+  once, then time re-shading an edit of kd (shading) or a light's position (light) against
+  render_pass of the same scene, checking the images are bit-identical.
 )";
+
+// Re-shaded frames: the trees of the first sample recorded once, then each frame an edit of the
+// first material's kd ("shading") or of the first light's position ("light") re-shaded, against
+// a fresh render_pass of the same edited scene, alternating; the images are compared bit for bit.
+int time_reshading(const std::string& scene_arg, const std::string& kind, int frames, int width, int height,
+                   int threads) {
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  if (scene->materials.empty() || (kind == "light" && scene->lights.empty())) {
+    std::fprintf(stderr, "phonglab-cli bench: --reshade %s needs a material and a light\n", kind.c_str());
+    return kExitBadInput;
+  }
+  auto prepared = std::make_shared<const PreparedScene>(*scene);
+  std::unique_ptr<RayTrees> trees = RayTrees::record(prepared, width, height, std::nullopt, threads, std::size_t{4} << 30);
+  if (!trees) {
+    std::fprintf(stderr, "phonglab-cli bench: the trees do not fit in 4 GiB\n");
+    return kExitBadInput;
+  }
+  std::printf("scene %s, %dx%d, %d threads: trees recorded in %.1f ms, %zu nodes, %.1f MiB\n", scene_arg.c_str(), width,
+              height, resolve_thread_count(threads), trees->record_seconds() * 1e3, trees->node_count(),
+              static_cast<double>(trees->memory_bytes()) / (1 << 20));
+  RenderOptions options;
+  options.threads = threads;
+  std::vector<double> reshade_ms, render_ms;
+  bool identical = true;
+  RayCounts recast;
+  for (int f = 0; f < frames; ++f) {
+    if (kind == "light") scene->lights[0].position.x += f % 2 == 0 ? 0.25 : -0.2;
+    else scene->materials[0].kd.x = f % 2 == 0 ? 0.2 : 0.6;
+    prepared = std::make_shared<const PreparedScene>(*scene);
+    Accumulator reshaded, rendered;
+    reshaded.reset(width, height);
+    rendered.reset(width, height);
+    const PassStats r = trees->reshade(prepared, Term::kFull, threads, reshaded);
+    const PassStats p = render_pass(*prepared, options, rendered);
+    reshade_ms.push_back(r.seconds * 1e3);
+    render_ms.push_back(p.seconds * 1e3);
+    recast = r.rays;
+    identical = identical && std::memcmp(reshaded.sum.data(), rendered.sum.data(), reshaded.sum.size() * sizeof(Color)) == 0;
+  }
+  std::printf("%s edit: median re-shade %.2f ms (shadow rays cast %llu), median render_pass %.2f ms (%.1fx); images %s\n",
+              kind.c_str(), median(reshade_ms), static_cast<unsigned long long>(recast.shadow), median(render_ms),
+              median(render_ms) / median(reshade_ms), identical ? "bit-identical" : "DIFFERENT");
+  return identical ? kExitOk : kExitBadInput;
+}
 
 // Frames of one scene, timed.
 int time_frames(const std::string& scene_arg, int frames, int width, int height, int threads, bool scalar,
@@ -79,6 +130,7 @@ int run(Args& args) {
   const auto only = args.take_value("--only");
   const bool scalar = args.take_flag("--scalar");
   const bool edited = args.take_flag("--edited");
+  const auto reshade = args.take_value("--reshade");
   const auto positional = args.take_positional();
   if (only) {
     if (*only != "accel" || positional) throw UsageError{"bench --only takes 'accel' and no SCENE"};
@@ -90,6 +142,11 @@ int run(Args& args) {
     report.quick = quick;
     report.threads = threads.value_or(0);
     return run_bench_report(report);
+  }
+  if (reshade) {
+    if (*reshade != "shading" && *reshade != "light") throw UsageError{"bench --reshade takes 'shading' or 'light'"};
+    return time_reshading(*positional, *reshade, frames.value_or(15), width.value_or(1280), height.value_or(720),
+                          threads.value_or(0));
   }
   return time_frames(*positional, frames.value_or(15), width.value_or(1280), height.value_or(720),
                      threads.value_or(0), scalar, edited);

@@ -53,6 +53,7 @@ constexpr int kTile = 16;
 
 using Node = RayTrees::Node;
 using NodeLight = RayTrees::NodeLight;
+using NodeGeometry = RayTrees::NodeGeometry;
 using Tile = RayTrees::Tile;
 
 // Keeps one tile's trees as the tracer reports them.
@@ -66,24 +67,24 @@ class TileRecorder final : public TraceRecorder {
                  double weight) override {
     const auto index = static_cast<std::int32_t>(tile_.nodes.size());
     Node node;
-    node.p = hit.p;
-    node.n = side.n;
-    node.ng = side.ng;
-    node.dir = ray.dir;
-    node.offset = offset;
-    node.weight = weight;
     node.material = hit.material;
     node.depth = static_cast<std::int16_t>(depth);
     node.entering = side.entering;
     tile_.nodes.push_back(node);
+    tile_.geometry.push_back(NodeGeometry{hit.p, side.n, side.ng, ray.dir, offset, weight});
     tile_.lights.resize(tile_.lights.size() + lights_);
+    tile_.seen.resize(tile_.seen.size() + lights_, LightSeen::kNoLight);
+    tile_.cos_spec.resize(tile_.cos_spec.size() + lights_);
     link(index);
     open_.push_back(index);
   }
   void light(int index, LightSeen seen, double n_dot_l, double cos_spec, double spec) override {
-    tile_.lights[static_cast<std::size_t>(open_.back()) * lights_ + static_cast<std::size_t>(index)] =
-        NodeLight{n_dot_l, cos_spec, spec, seen};
+    const std::size_t at = static_cast<std::size_t>(open_.back()) * lights_ + static_cast<std::size_t>(index);
+    tile_.lights[at] = NodeLight{n_dot_l, spec};
+    tile_.seen[at] = seen;
+    tile_.cos_spec[at] = cos_spec;
   }
+  void bounced(const Bounce& b) override { tile_.geometry[static_cast<std::size_t>(open_.back())].fresnel = b.fresnel; }
   void begin_child(Child kind) override { child_ = kind; }
   void end_hit() override { open_.pop_back(); }
 
@@ -105,8 +106,9 @@ class TileRecorder final : public TraceRecorder {
 };
 
 std::size_t tile_bytes(const Tile& t) {
-  return t.nodes.capacity() * sizeof(Node) + t.lights.capacity() * sizeof(NodeLight) +
-         t.roots.capacity() * sizeof(std::int32_t);
+  return t.nodes.capacity() * sizeof(Node) + t.geometry.capacity() * sizeof(NodeGeometry) +
+         t.lights.capacity() * sizeof(NodeLight) + t.seen.capacity() * sizeof(LightSeen) +
+         t.cos_spec.capacity() * sizeof(double) + t.roots.capacity() * sizeof(std::int32_t);
 }
 
 // The image's tiles, row by row.
@@ -180,43 +182,46 @@ Changes changes_between(const Scene& a, const Scene& b) {
   return c;
 }
 
-// Brings one node's stored lights up to `scene` (the same arithmetic as the tracer's light loop).
-void update_lights(const PreparedScene& prepared, const Changes& changes, const Node& node, const Vec3* eye,
-                   NodeLight* lights, RayCounts& counts) {
+// Brings node i's stored lights up to `scene` (the same arithmetic as the tracer's light loop).
+void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& tile, std::size_t i, const Vec3* eye,
+                   RayCounts& counts) {
   const Scene& scene = prepared.scene();
+  const std::size_t lights = scene.lights.size();
+  const Node& node = tile.nodes[i];
+  const NodeGeometry& g = tile.geometry[i];
   const Material& m = scene.materials[static_cast<std::size_t>(node.material)];
-  for (std::size_t li = 0; li < scene.lights.size(); ++li) {
-    NodeLight& nl = lights[li];
+  for (std::size_t li = 0; li < lights; ++li) {
+    const std::size_t at = i * lights + li;
+    NodeLight& nl = tile.lights[at];
+    LightSeen& seen = tile.seen[at];
     const bool moved = changes.light_moved[li];
     if (!moved && !changes.model_changed) {
-      if (changes.n_changed[static_cast<std::size_t>(node.material)] && nl.seen != LightSeen::kNoLight) {
-        nl.spec = specular_factor(nl.cos_spec, m.n);
+      if (changes.n_changed[static_cast<std::size_t>(node.material)] && seen != LightSeen::kNoLight) {
+        nl.spec = specular_factor(tile.cos_spec[at], m.n);
       }
       continue;
     }
     const Light& light = scene.lights[li];
     Vec3 l;
     double dist = 0;
-    if (!light_direction(light, node.p, l, dist)) {
-      nl = NodeLight{};
-      continue;
-    }
-    const double n_dot_l = glm::dot(node.n, l);
+    const bool has_direction = light_direction(light, g.p, l, dist);
+    const double n_dot_l = has_direction ? glm::dot(g.n, l) : 0;
     if (!(n_dot_l > 0)) {
-      nl = NodeLight{n_dot_l, 0, 0, LightSeen::kNoLight};
+      nl = NodeLight{n_dot_l, 0};
+      seen = LightSeen::kNoLight;
+      tile.cos_spec[at] = 0;
       continue;
     }
     Vec3 r;
-    const Vec3 v = view_direction(node.p, node.dir, node.depth == 0 ? eye : nullptr);
-    nl.n_dot_l = n_dot_l;
-    nl.cos_spec = specular_cosine(scene.specular_model, node.n, l, v, n_dot_l, r);
-    nl.spec = specular_factor(nl.cos_spec, m.n);
-    if (!moved && nl.seen != LightSeen::kNoLight) continue;  // the same shadow ray as before
+    const Vec3 v = view_direction(g.p, g.dir, node.depth == 0 ? eye : nullptr);
+    tile.cos_spec[at] = specular_cosine(scene.specular_model, g.n, l, v, n_dot_l, r);
+    nl = NodeLight{n_dot_l, specular_factor(tile.cos_spec[at], m.n)};
+    if (!moved && seen != LightSeen::kNoLight) continue;  // the same shadow ray as before
     ++counts.shadow;
     Ray ray;
     double t_max = 0;
-    const bool visible = !shadow_ray(light, node.p, node.ng, l, node.offset, ray, t_max) || !occluded(prepared, ray, t_max);
-    nl.seen = visible ? LightSeen::kVisible : LightSeen::kBlocked;
+    const bool visible = !shadow_ray(light, g.p, g.ng, l, g.offset, ray, t_max) || !occluded(prepared, ray, t_max);
+    seen = visible ? LightSeen::kVisible : LightSeen::kBlocked;
   }
 }
 
@@ -227,37 +232,50 @@ class TileShader {
       : prepared_(prepared), scene_(prepared.scene()), tile_(tile), counts_(counts),
         lights_(scene_.lights.size()) {}
 
-  // The terms of node i, as shade() gives them.
-  Terms terms(std::int32_t i, const TermsWanted& wanted) {
+  // The terms of node i, as shade() gives them. Inlined where the pixel loop calls it for a root
+  // (most nodes are roots); children go through child_terms.
+  [[gnu::always_inline]] inline Terms terms(std::int32_t i, const TermsWanted& wanted) {
     const Node& node = tile_.nodes[static_cast<std::size_t>(i)];
     const Material& m = scene_.materials[static_cast<std::size_t>(node.material)];
     Terms t;
     t.ambient = m.ka * scene_.ambient;
     if (wanted.lights && is_lit(m)) {
       const bool has_specular = !is_zero(m.ks);
-      const NodeLight* lights = tile_.lights.data() + static_cast<std::size_t>(i) * lights_;
+      const std::size_t first = static_cast<std::size_t>(i) * lights_;
+      const NodeLight* lights = tile_.lights.data() + first;
+      const LightSeen* seen = tile_.seen.data() + first;
       for (std::size_t li = 0; li < lights_; ++li) {
         const Light& light = scene_.lights[li];
-        if (!light.enabled || lights[li].seen != LightSeen::kVisible) continue;
+        if (!light.enabled || seen[li] != LightSeen::kVisible) continue;
         add_light(light, m, lights[li].n_dot_l, has_specular ? lights[li].spec : 0.0, t.diffuse, t.specular);
       }
     }
     if (!(node.depth < scene_.max_depth && has_children(m))) return t;
-    const Bounce bn = bounce(m, node.dir, node.n, node.entering);
-    if (wanted.reflection) t.reflection = child(node, bn.kr, bn.mirror, node.reflection);
-    if (wanted.refraction && !is_zero(bn.kt)) t.refraction = child(node, bn.kt, bn.refracted, node.refraction);
+    // kr' and kt' from the stored F (the directions are needed only for a ray not stored).
+    const NodeGeometry& g = tile_.geometry[static_cast<std::size_t>(i)];
+    Bounce bn;
+    bn.fresnel = g.fresnel;
+    set_bounce_weights(m, bn);
+    if (wanted.reflection) t.reflection = child(node, g, bn.kr, Child::kReflection, node.reflection);
+    if (wanted.refraction && !is_zero(bn.kt)) t.refraction = child(node, g, bn.kt, Child::kRefraction, node.refraction);
     return t;
   }
 
  private:
   // kw times what the child ray brings back (the Equation's child()).
-  Color child(const Node& node, const Color& kw, const Vec3& dir, std::int32_t stored) {
-    const std::optional<double> w = child_weight(kw, node.weight, scene_.min_weight);
+  [[gnu::noinline]] Terms child_terms(std::int32_t i) { return terms(i, TermsWanted{}); }
+
+  using Child = TraceRecorder::Child;
+  Color child(const Node& node, const NodeGeometry& g, const Color& kw, Child kind, std::int32_t stored) {
+    const std::optional<double> w = child_weight(kw, g.weight, scene_.min_weight);
     if (!w) return Color(0);
     if (stored == RayTrees::kMissed) return kw * scene_.background;
-    if (stored >= 0) return kw * terms(stored, TermsWanted{}).sum();
+    if (stored >= 0) return kw * child_terms(stored).sum();
     // Not stored (it cannot happen below kRetrace): traced as the tracer would.
-    const Ray ray = make_ray(offset_origin(node.p, node.ng, dir, node.offset), dir);
+    const Material& m = scene_.materials[static_cast<std::size_t>(node.material)];
+    const Bounce bn = bounce(m, g.dir, g.n, node.entering);
+    const Vec3& dir = kind == Child::kReflection ? bn.mirror : bn.refracted;
+    const Ray ray = make_ray(offset_origin(g.p, g.ng, dir, g.offset), dir);
     return kw * trace(prepared_, TraceLimits{scene_.max_depth, scene_.min_weight}, ray, node.depth + 1, *w, counts_);
   }
 
@@ -324,11 +342,8 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
   const bool done = for_each_tile(tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
-    const std::size_t lights = s.lights.size();
     if (update) {
-      for (std::size_t i = 0; i < tile.nodes.size(); ++i) {
-        update_lights(*scene, changes, tile.nodes[i], eye, tile.lights.data() + i * lights, rays);
-      }
+      for (std::size_t i = 0; i < tile.nodes.size(); ++i) update_lights(*scene, changes, tile, i, eye, rays);
     }
     TileShader shader(*scene, tile, rays);
     const std::int32_t* root = tile.roots.data();
@@ -342,7 +357,7 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
           c = Color(0);
           nan_count.fetch_add(1, std::memory_order_relaxed);
         }
-        row[x] += c;
+        row[x] = Color(0) + c;  // what render_pass adds to the empty sum, without reading it
       }
     }
   });

@@ -54,29 +54,38 @@ class RayTrees {
   std::size_t node_count() const;
   double record_seconds() const { return record_seconds_; }
 
-  // One traced ray that met something.
+  // One traced ray that met something, as a re-shade reads it (the hot part, kept small: a
+  // re-shade streams through every node and is bound by memory).
   struct Node {
-    Vec3 p{0}, n{0}, ng{0}, dir{0};  // hit point, facing shading and geometric normals, ray direction
-    double offset = 0;               // surface_offset of the hit
-    double weight = 1;               // path weight of the ray
     std::int32_t material = 0;
     std::int32_t reflection = kNone, refraction = kNone;  // child nodes, kMissed or kNone
     std::int16_t depth = 0;
     bool entering = false;
   };
-  // One light at a node: what the shading needs of it, for the trees' scene.
+  // The rest of it: read for mirrors and glass, moved lights and a new specular model.
+  struct NodeGeometry {
+    Vec3 p{0}, n{0}, ng{0}, dir{0};  // hit point, facing shading and geometric normals, ray direction
+    double offset = 0;               // surface_offset of the hit
+    double weight = 1;               // path weight of the ray
+    double fresnel = 0;              // F at a mirror or glass hit (Bounce::fresnel)
+  };
+  // One light at a node, for the trees' scene: N.L and the specular factor (hot), whether its
+  // shadow ray got through, and the specular cosine the factor came from.
   struct NodeLight {
-    double n_dot_l = 0, cos_spec = 0, spec = 0;
-    LightSeen seen = LightSeen::kNoLight;
+    double n_dot_l = 0, spec = 0;
   };
   static constexpr std::int32_t kNone = -1;    // no such ray was traced
   static constexpr std::int32_t kMissed = -2;  // the ray was traced and met nothing
 
-  // The trees of one tile of pixels.
+  // The trees of one tile of pixels, as structure of arrays (per node; per node and light, light
+  // by light within a node).
   struct Tile {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     std::vector<Node> nodes;
-    std::vector<NodeLight> lights;  // lights() per node
+    std::vector<NodeGeometry> geometry;
+    std::vector<NodeLight> lights;
+    std::vector<LightSeen> seen;
+    std::vector<double> cos_spec;
     std::vector<std::int32_t> roots;  // per pixel, row by row: node, or kMissed
   };
 

@@ -207,6 +207,7 @@ class Equation {
     if (!(depth < limits_.max_depth && (has_children(m) || force_refraction))) return;
     const Bounce bn = bounce(m, ray.dir, side.n, side.entering, force_refraction,
                              [this](double cos_i, double eta) { return fresnel(cos_i, eta); });
+    if (recorder_) recorder_->bounced(bn);
     if (probe) {
       probe->kr_eff = bn.kr;
       probe->kt_eff = bn.kt;

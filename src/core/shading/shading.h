@@ -261,6 +261,8 @@ class TraceRecorder {
   // Every light, enabled or not, whatever the material (the recorder casts the shadow rays an
   // edit might need later); spec for the material's n.
   virtual void light(int index, LightSeen seen, double n_dot_l, double cos_spec, double spec) = 0;
+  // The open hit is a mirror or glass: what it passes on to its children.
+  virtual void bounced(const Bounce& b) = 0;
   // The next ray_missed or begin_hit is this child of the open hit.
   virtual void begin_child(Child kind) = 0;
   virtual void end_hit() = 0;
