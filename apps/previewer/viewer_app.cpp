@@ -44,6 +44,7 @@ ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std:
   p.term = s.term;
   p.interactive_divisor = kInteractiveDivisor;
   p.live_images_per_s = s.live_images_per_s;
+  p.tree_budget_bytes = static_cast<std::size_t>(std::max(s.tree_budget_mib, 0)) << 20;
   p.lower_thread_priority = true;  // the UI thread stays ahead of the workers on few cores
   return p;
 }

@@ -400,7 +400,7 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
   if (name == "set") {
     if (!script_set(w)) return step.fail("usage: set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V.. | set light I "
                                     "position|direction|intensity|enabled V.. | set camera position|look_at|up|fov V.. | "
-                                    "set render target_spp|resolution_scale|threads|live_images_per_s|term V | set display exposure|srgb|stats V | "
+                                    "set render target_spp|resolution_scale|threads|live_images_per_s|tree_budget_mib|term V | set display exposure|srgb|stats V | "
                                     "set instruments probe_mode|multiples|compare|wipe|gain|head|head_angle|ray_tree|tree_shadows|"
                                     "tree_secondary|tree_arrows|tree_legend|depth_cut|heat V");
     return true;

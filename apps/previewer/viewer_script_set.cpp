@@ -90,7 +90,7 @@ bool Viewer::set_camera_field(const std::vector<std::string>& w) {
   return true;
 }
 
-// `set render target_spp|resolution_scale|threads|live_images_per_s|term V`.
+// `set render target_spp|resolution_scale|threads|live_images_per_s|tree_budget_mib|term V`.
 bool Viewer::set_render_field(const std::vector<std::string>& w) {
   const std::string& field = w[2];
   double v = 0;
@@ -108,6 +108,8 @@ bool Viewer::set_render_field(const std::vector<std::string>& w) {
     render_settings_.threads = static_cast<int>(v);
   } else if (field == "live_images_per_s" && v >= 0 && v <= 1000) {
     render_settings_.live_images_per_s = static_cast<int>(v);
+  } else if (field == "tree_budget_mib" && v >= 0 && v <= 65536) {
+    render_settings_.tree_budget_mib = static_cast<int>(v);
   } else {
     return false;
   }

@@ -66,7 +66,12 @@ bool render_settings_panel(RenderSettings& settings, int hardware_threads) {
   edited |= ImGui::SliderInt("live images/s", &settings.live_images_per_s, 0, 120,
                              settings.live_images_per_s == 0 ? "off (1/8 first)" : "%d", ImGuiSliderFlags_AlwaysClamp);
   help_marker("While a drag or slider is held, each new image starts at the finest resolution whose last pass "
-              "fits this rate (and the time between edits), instead of at 1/8. A faster machine shows more.");
+              "fits this rate, instead of at 1/8. A faster machine shows more.");
+  edited |= ImGui::SliderInt("ray-tree memory", &settings.tree_budget_mib, 0, 4096,
+                             settings.tree_budget_mib == 0 ? "none" : "%d MiB", ImGuiSliderFlags_AlwaysClamp);
+  help_marker("The first sample's ray trees are kept in this much memory: an edit that moves no ray (ka, kd, ks, n, "
+              "light intensity or mute, Phong/Blinn) is then re-shaded at full resolution at once, and a moved "
+              "light casts only its shadow rays again. Over the budget nothing is kept and edits are traced.");
   return edited;
 }
 
@@ -160,8 +165,8 @@ void stats_overlay(const StatsView& stats) {
   if (stats.have_frame) {
     char level[16] = "";
     if (stats.level_divisor > 1) std::snprintf(level, sizeof level, " (1/%d)", stats.level_divisor);
-    ImGui::Text("%d\xC3\x97%d%s  %u/%d spp  %.1f ms/pass  %s", stats.image_width, stats.image_height, level, stats.spp,
-                stats.target_spp, stats.frame.pass_ms, state);
+    ImGui::Text("%d\xC3\x97%d%s  %u/%d spp  %.1f ms/%s  %s", stats.image_width, stats.image_height, level, stats.spp,
+                stats.target_spp, stats.frame.pass_ms, stats.frame.reshaded ? "re-shade" : "pass", state);
   } else {
     ImGui::TextDisabled("waiting for the first image");
   }
@@ -188,7 +193,12 @@ void stats_overlay(const StatsView& stats) {
       row("pass");
       ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
       row("tracer");
-      ImGui::TextUnformatted(f.packets ? "packets, 4 rays wide (AVX2)" : "scalar, ray by ray");
+      ImGui::TextUnformatted(f.reshaded ? "re-shaded from the stored ray trees"
+                             : f.packets ? "packets, 4 rays wide (AVX2)"
+                                         : "scalar, ray by ray");
+      row("ray trees");
+      if (f.tree_bytes > 0) ImGui::Text("%.1f MiB kept (first sample)", static_cast<double>(f.tree_bytes) / (1 << 20));
+      else ImGui::TextUnformatted("none kept");
       char primary[16], shadow[16], reflection[16], refraction[16];
       format_count(primary, sizeof primary, f.pass_rays.primary);
       format_count(shadow, sizeof shadow, f.pass_rays.shadow);

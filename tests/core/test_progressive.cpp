@@ -197,7 +197,7 @@ TEST(ProgressiveRenderer, LiveRestartsStartAtTheFinestLevelThatFits) {
     ASSERT_TRUE(renderer.wait_idle(kLongWait));  // every level timed once
     std::this_thread::sleep_for(100ms);           // restarts far apart: the budget decides
     renderer.set_interacting(true);
-    renderer.set_scene(background_scene(Color(0.25), 0));
+    renderer.set_scene(background_scene(Color(0.25), 1));  // new geometry: traced, not re-shaded
     ASSERT_TRUE(renderer.wait_idle(kLongWait));
     renderer.set_interacting(false);
     ASSERT_TRUE(renderer.wait_idle(kLongWait));
@@ -205,6 +205,58 @@ TEST(ProgressiveRenderer, LiveRestartsStartAtTheFinestLevelThatFits) {
     const std::vector<int> live = images_per_s > 0 ? std::vector<int>{8, 4, 2, 1, 1} : std::vector<int>{8, 4, 2, 1, 8, 4, 2, 1};
     EXPECT_EQ(log.divisors, live);
     log.renderer = nullptr;
+  }
+}
+
+// After an image has reached full resolution its first sample's trees are kept: an edit that
+// changes no ray (kd), or only shadow rays (a light moved), then shows the full-resolution image
+// at once, re-shaded, bit for bit what render_pass gives; more samples follow as before. With no
+// memory for trees, the same edit starts again at 1/8.
+TEST(ProgressiveRenderer, EditsThatChangeNoRayAreReshadedAtFullResolution) {
+  for (const std::size_t budget : {std::size_t{64} << 20, std::size_t{0}}) {
+    SCOPED_TRACE(budget);
+    FrameLog log;
+    ProgressiveSettings settings;
+    settings.target_spp = 2;
+    settings.tree_budget_bytes = budget;
+    settings.live_images_per_s = 0;  // a traced restart starts at 1/8
+    ProgressiveRenderer renderer(settings, [&] { log.on_frame(); });
+    {
+      const std::lock_guard lock(log.mutex);
+      log.renderer = &renderer;
+    }
+    renderer.set_resolution(40, 30);
+    Scene scene = load_scene_or_fail("lecture");
+    renderer.set_scene(std::make_shared<const PreparedScene>(scene));
+    ASSERT_TRUE(renderer.wait_idle(kLongWait));
+    for (int edit = 0; edit < 2; ++edit) {
+      if (edit == 0) scene.materials[0].kd = Color(0.1, 0.5, 0.2);
+      else scene.lights[0].position += Vec3(0.5, 0.2, 0);
+      const auto edited = std::make_shared<const PreparedScene>(scene);
+      {
+        const std::lock_guard lock(log.mutex);
+        log.renderer = nullptr;  // the first image of the edit is taken here
+      }
+      renderer.set_interacting(true);  // as while a slider is held: the first image only
+      renderer.set_scene(edited);
+      ASSERT_TRUE(renderer.wait_idle(kLongWait));
+      ProgressiveFrame frame;
+      ASSERT_TRUE(renderer.take_frame(frame));
+      EXPECT_EQ(frame.divisor, budget > 0 ? 1 : 4);  // re-shaded, or the coarse levels up to the cap
+      EXPECT_EQ(frame.stats.reshaded, budget > 0);
+      if (budget > 0) {
+        EXPECT_GT(frame.stats.tree_bytes, 0u);
+        Accumulator fresh;
+        fresh.reset(40, 30);
+        render_pass(*edited, RenderOptions{}, fresh);
+        ASSERT_EQ(frame.pixels.size(), fresh.sum.size());
+        for (std::size_t i = 0; i < frame.pixels.size(); ++i) ASSERT_EQ(frame.pixels[i], glm::vec3(fresh.sum[i])) << i;
+      }
+      renderer.set_interacting(false);
+      ASSERT_TRUE(renderer.wait_idle(kLongWait));
+      ASSERT_TRUE(renderer.take_frame(frame));
+      EXPECT_EQ(frame.spp, 2u);
+    }
   }
 }
 

@@ -368,13 +368,19 @@ struct PacketTracer::Impl {
   void test_shadows(Level& lv, int lanes, const packet::Spheres& tested) {
     std::fill_n(lv.blocked.begin(), padded(lanes), std::uint8_t{0});
     const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
-    packet::occluded(tested, planes, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
+    any_hits(rays, lv.st_max.data(), padded(lanes), tested, lv.blocked.data());
+  }
+
+  // Sets blocked[i] = 1 for the lanes that something blocks within (0, t_max[i]).
+  void any_hits(const packet::Rays& rays, const double* t_max, int lanes, const packet::Spheres& tested,
+                std::uint8_t* blocked) {
+    packet::occluded(tested, planes, rays, t_max, lanes, blocked);
     if (walk_hierarchy) {
-      packet::hierarchy_occluded(hierarchy, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
+      packet::hierarchy_occluded(hierarchy, rays, t_max, lanes, blocked);
       return;
     }
     if (scene.triangles.empty()) return;
-    packet::triangles_occluded(loose, rays, lv.st_max.data(), padded(lanes), lv.blocked.data());
+    packet::triangles_occluded(loose, rays, t_max, lanes, blocked);
   }
 
   // The light loop of shade() for every hit of the level, one light at a time.
@@ -649,6 +655,30 @@ void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1,
   const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
   counts.primary += static_cast<std::uint64_t>(im.primary.n);
   im.trace_level(0, im.primary, tested, out, counts);
+}
+
+void PacketTracer::occluded(const double* ox, const double* oy, const double* oz, const double* dx, const double* dy,
+                            const double* dz, const double* t_max, int n, std::uint8_t* blocked) {
+  Impl& im = *impl_;
+  std::fill_n(blocked, padded(n), std::uint8_t{0});
+  const packet::Rays rays{ox, oy, oz, dx, dy, dz};
+  im.any_hits(rays, t_max, padded(n), im.spheres, blocked);
+}
+
+PacketTracer& packet_tracer_for(const PreparedScene& prepared) {
+  struct Kept {
+    const PreparedScene* scene = nullptr;
+    std::uint64_t id = 0;
+    std::unique_ptr<PacketTracer> tracer;
+  };
+  thread_local Kept kept;
+  if (!kept.tracer || kept.scene != &prepared || kept.id != prepared.id()) {
+    kept.tracer = kept.tracer ? std::make_unique<PacketTracer>(prepared, std::move(*kept.tracer))
+                              : std::make_unique<PacketTracer>(prepared);
+    kept.scene = &prepared;
+    kept.id = prepared.id();
+  }
+  return *kept.tracer;
 }
 
 int PacketTracer::cast_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1) {

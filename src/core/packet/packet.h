@@ -52,6 +52,12 @@ class PacketTracer {
                    std::uint32_t seed, Color* out, RayCounts& counts, Term term = Term::kFull,
                    const Vec3* shading_eye = nullptr);
 
+  // occluded(prepared, ray i, t_max[i]) for n rays given as structure of arrays, each array
+  // with room for a multiple of 4 (padding lanes with t_max 0 hold no ray): blocked[i] = 1 where
+  // something blocks ray i, the same answers as the scalar query.
+  void occluded(const double* ox, const double* oy, const double* oz, const double* dx, const double* dy,
+                const double* dz, const double* t_max, int n, std::uint8_t* blocked);
+
   // The nearest hits of the pixel-centre rays of pixels [x0, x1) x [y0, y1), without shading
   // (the benchmark of primary rays alone). Returns how many rays hit something.
   int cast_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1);
@@ -60,5 +66,10 @@ class PacketTracer {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// This thread's packet tracer for `prepared` (packet_tracing_applies), kept from call to call of
+// the same snapshot: its set-up is a fair part of a small pass. A tracer of a new scene takes
+// over the previous one's buffers.
+PacketTracer& packet_tracer_for(const PreparedScene& prepared);
 
 }  // namespace phonglab

@@ -1,5 +1,7 @@
 #include "core/render/progressive.h"
 
+#include "core/render/ray_trees.h"
+
 #include <algorithm>
 #include <utility>
 
@@ -169,115 +171,186 @@ bool ProgressiveRenderer::wait_idle(std::chrono::milliseconds timeout) {
                            [&] { return stop_ || (idle_ && idle_generation_ == generation_); });
 }
 
-void ProgressiveRenderer::run() {
-  {
-    const std::lock_guard lock(mutex_);
-    if (settings_.lower_thread_priority) lower_this_thread_priority();
-  }
-  // The state of the generation being rendered; only this thread touches it.
+// The generation being rendered; only the render thread touches it.
+struct ProgressiveRenderer::Job {
   std::uint64_t generation = 0;
   std::shared_ptr<const PreparedScene> scene;
   std::vector<ProgressiveLevel> levels;
   std::size_t level = 0;
   std::size_t start_level = 0;  // where this generation started (finer while interacting: live_start_level)
+  bool reshade = false;         // the next pass re-shades the stored trees instead of tracing
+  bool reshaded = false;        // this generation's first image was re-shaded
   LevelTimes level_times;       // the last pass at each level, for live_start_level
   Accumulator accum;
   std::uint64_t nan_count = 0;
   bool published_any = false;
+  bool accum_stale = false;     // accum still holds the previous generation's sums
+  bool interacting = false;     // interacting_ when the pass began
   std::chrono::steady_clock::time_point restart_time;
   ProgressiveSettings settings;
+  std::unique_ptr<RayTrees> trees;  // the first sample's trees of a recent scene, or null
+  struct Refusal {
+    int width = 0, height = 0;
+    std::size_t budget = 0;
+  } refused;  // the last recording over budget: not tried again at this size and budget
+};
 
-  for (;;) {
-    {
-      std::unique_lock lock(mutex_);
-      for (;;) {
-        if (stop_) return;
-        if (generation_ != generation) {
-          generation = generation_;
-          scene = scene_;
-          if (levels.empty() || levels.back().width != width_ || levels.back().height != height_) level_times = {};
-          levels = make_levels(width_, height_);
-          level = interacting_ ? live_start_level(levels, level_times, live_budget_ms(settings_)) : 0;
-          start_level = level;
-          nan_count = 0;
-          published_any = false;
-          restart_time = restart_time_;
-          // Cleared only together with picking up the newest generation, so a raised flag
-          // always means "the job you hold is stale".
-          cancel_.store(false);
-          if (!levels.empty()) accum.reset(levels[level].width, levels[level].height);
-        }
-        settings = settings_;
-        bool work = scene != nullptr && !levels.empty();
-        if (work) {
-          // The first image of a generation is always rendered, even while interacting.
-          // While interacting, no finer than the interactive divisor or the level it started at.
-          const int cap = std::min(std::max(settings.interactive_divisor, 1), levels[start_level].divisor);
-          const bool capped = interacting_ && published_any && levels[level].divisor < cap;
-          const bool coarse = level + 1 < levels.size();
-          const auto target = static_cast<std::uint32_t>(std::max(settings.target_spp, 1));
-          work = !capped && (coarse || accum.samples < target);
-        }
-        if (work) break;
-        idle_ = true;
-        idle_generation_ = generation;
-        idle_cv_.notify_all();
-        wake_.wait(lock);
+void ProgressiveRenderer::run() {
+  {
+    const std::lock_guard lock(mutex_);
+    if (settings_.lower_thread_priority) lower_this_thread_priority();
+  }
+  Job job;
+  while (wait_for_work(job)) {
+    if (job.accum_stale) {
+      const ProgressiveLevel& lv = job.levels[job.level];
+      if (job.reshade) {
+        job.accum.width = lv.width;  // a re-shade writes every pixel: no need to clear them first
+        job.accum.height = lv.height;
+        job.accum.samples = 0;
+        job.accum.sum.resize(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height));
+      } else {
+        job.accum.reset(lv.width, lv.height);
       }
-      idle_ = false;
+      job.accum_stale = false;
     }
-
-    RenderOptions options;
-    options.term = settings.term;
-    options.threads = settings.threads;
-    options.shading_eye = settings.shading_eye;
-    const PassStats pass = render_pass(*scene, options, accum, &cancel_);
+    PassStats pass;
+    if (job.reshade) {
+      pass = job.trees->reshade(job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_);
+      job.reshade = false;
+      if (!pass.completed) job.trees.reset();  // half updated
+    } else {
+      RenderOptions options;
+      options.term = job.settings.term;
+      options.threads = job.settings.threads;
+      options.shading_eye = job.settings.shading_eye;
+      pass = render_pass(*job.scene, options, job.accum, &cancel_);
+    }
+    const double divisor_ms = pass.seconds * 1e3;
+    double& measured = job.level_times.at(job.levels[job.level].divisor);
     if (!pass.completed) {
       // A first pass overtaken by the next restart took at least this long: while interacting
       // the next restart starts below it, or nothing would ever show.
-      if (!published_any) level_times.at(levels[level].divisor) = std::max(level_times.at(levels[level].divisor), pass.seconds * 1e3);
+      if (!job.published_any) measured = std::max(measured, divisor_ms);
       // Cancelled midway: a restart is pending and the accumulator is partly updated.
-      accum.reset(levels[level].width, levels[level].height);
+      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height);
       continue;
     }
-    nan_count += pass.nan_count;
-    level_times.at(levels[level].divisor) = pass.seconds * 1e3;
-
-    // Build the image outside the lock; publishing is then a swap.
-    back_.generation = generation;
-    back_.width = accum.width;
-    back_.height = accum.height;
-    back_.divisor = levels[level].divisor;
-    back_.spp = accum.samples;
-    back_.pixels.resize(accum.sum.size());
-    const double inv_samples = 1.0 / static_cast<double>(accum.samples);
-    for (std::size_t i = 0; i < accum.sum.size(); ++i) back_.pixels[i] = glm::vec3(accum.sum[i] * inv_samples);
-    back_.stats.pass_ms = pass.seconds * 1e3;
-    back_.stats.pass_rays = pass.rays;
-    back_.stats.mrays_per_s = pass.seconds > 0 ? static_cast<double>(pass.rays.total()) / pass.seconds * 1e-6 : 0;
-    back_.stats.nan_count = nan_count;
-    back_.stats.packets = pass.packets;
-
-    bool published = false;
-    {
-      const std::lock_guard lock(mutex_);
-      ++passes_;
-      if (generation_ == generation) {
-        back_.stats.serial = ++serial_;
-        published_generation_ = generation;
-        back_.stats.ms_since_restart = ms_between(restart_time, std::chrono::steady_clock::now());
-        std::swap(back_, published_);
-        published_fresh_ = true;
-        published = true;
-      }
-    }
-    if (published && on_frame_) on_frame_();
-    published_any = true;
-    if (level + 1 < levels.size()) {
-      ++level;
-      accum.reset(levels[level].width, levels[level].height);
+    if (!job.reshaded) measured = divisor_ms;  // a re-shade says nothing of a traced pass's time
+    job.nan_count += pass.nan_count;
+    publish(job, pass);
+    if (job.level + 1 < job.levels.size()) {
+      ++job.level;
+      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height);
+    } else if (job.accum.samples == 1 && !job.reshaded && !job.interacting) {
+      record_trees(job);
     }
   }
+}
+
+bool ProgressiveRenderer::wait_for_work(Job& job) {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    if (stop_) return false;
+    if (generation_ != job.generation) start_generation_locked(job);
+    job.settings = settings_;
+    job.interacting = interacting_;
+    bool work = job.scene != nullptr && !job.levels.empty();
+    if (work) {
+      // The first image of a generation is always rendered, even while interacting. While
+      // interacting, no finer than the interactive divisor or the level it started at, and
+      // nothing after a re-shaded image (the next edit comes soon).
+      const int cap = std::min(std::max(job.settings.interactive_divisor, 1), job.levels[job.start_level].divisor);
+      const bool capped =
+          interacting_ && job.published_any && (job.reshaded || job.levels[job.level].divisor < cap);
+      const bool coarse = job.level + 1 < job.levels.size();
+      const auto target = static_cast<std::uint32_t>(std::max(job.settings.target_spp, 1));
+      const std::uint32_t samples = job.accum_stale ? 0 : job.accum.samples;
+      work = !capped && (coarse || samples < target);
+    }
+    if (work) {
+      idle_ = false;
+      return true;
+    }
+    idle_ = true;
+    idle_generation_ = job.generation;
+    idle_cv_.notify_all();
+    wake_.wait(lock);
+  }
+}
+
+void ProgressiveRenderer::start_generation_locked(Job& job) {
+  job.generation = generation_;
+  job.scene = scene_;
+  if (job.levels.empty() || job.levels.back().width != width_ || job.levels.back().height != height_) {
+    job.level_times = {};
+  }
+  job.levels = make_levels(width_, height_);
+  // An edit that changes no ray (or only shadow rays) is re-shaded at full resolution at once.
+  job.reshade = job.scene && job.trees && reshades(settings_.term) &&
+                job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
+  job.reshaded = job.reshade;
+  if (job.reshade) {
+    job.level = job.levels.size() - 1;
+  } else {
+    job.level = interacting_ ? live_start_level(job.levels, job.level_times, live_budget_ms(settings_)) : 0;
+  }
+  job.start_level = job.level;
+  job.nan_count = 0;
+  job.published_any = false;
+  job.restart_time = restart_time_;
+  // Cleared only together with picking up the newest generation, so a raised flag always means
+  // "the job you hold is stale".
+  cancel_.store(false);
+  job.accum_stale = true;  // made ready outside the lock (22 MB to clear at 1280x720)
+}
+
+// Builds the image outside the lock; publishing is then a swap.
+void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
+  back_.generation = job.generation;
+  back_.width = job.accum.width;
+  back_.height = job.accum.height;
+  back_.divisor = job.levels[job.level].divisor;
+  back_.spp = job.accum.samples;
+  back_.pixels.resize(job.accum.sum.size());
+  const double inv_samples = 1.0 / static_cast<double>(job.accum.samples);
+  for (std::size_t i = 0; i < job.accum.sum.size(); ++i) back_.pixels[i] = glm::vec3(job.accum.sum[i] * inv_samples);
+  back_.stats.pass_ms = pass.seconds * 1e3;
+  back_.stats.pass_rays = pass.rays;
+  back_.stats.mrays_per_s = pass.seconds > 0 ? static_cast<double>(pass.rays.total()) / pass.seconds * 1e-6 : 0;
+  back_.stats.nan_count = job.nan_count;
+  back_.stats.packets = pass.packets;
+  back_.stats.reshaded = job.reshaded && job.accum.samples == 1;
+  back_.stats.tree_bytes = job.trees ? job.trees->memory_bytes() : 0;
+  bool published = false;
+  {
+    const std::lock_guard lock(mutex_);
+    ++passes_;
+    if (generation_ == job.generation) {
+      back_.stats.serial = ++serial_;
+      published_generation_ = job.generation;
+      back_.stats.ms_since_restart = ms_between(job.restart_time, std::chrono::steady_clock::now());
+      std::swap(back_, published_);
+      published_fresh_ = true;
+      published = true;
+    }
+  }
+  if (published && on_frame_) on_frame_();
+  job.published_any = true;
+}
+
+// After a generation's first full-resolution sample: its trees, unless the kept ones still serve
+// or the budget refused this size before. A restart cancels the recording.
+void ProgressiveRenderer::record_trees(Job& job) {
+  const ProgressiveSettings& s = job.settings;
+  const ProgressiveLevel& full = job.levels.back();
+  if (s.tree_budget_bytes == 0 || !reshades(s.term)) return;
+  if (job.trees && job.trees->scope_for(*job.scene, full.width, full.height, s.shading_eye) != EditScope::kRetrace) return;
+  const Job::Refusal here{full.width, full.height, s.tree_budget_bytes};
+  if (job.refused.width == here.width && job.refused.height == here.height && job.refused.budget == here.budget) return;
+  job.trees.reset();  // its memory, before the new trees take theirs
+  job.trees = RayTrees::record(job.scene, full.width, full.height, s.shading_eye, s.threads, s.tree_budget_bytes, &cancel_);
+  if (!job.trees && !cancel_.load()) job.refused = here;
 }
 
 }  // namespace phonglab

@@ -37,6 +37,10 @@ struct ProgressiveSettings {
   // 1/this of a second (the previewer holds a drag's next edit until the image is out, so a
   // pass that long gives this many images a second); 0: always at the coarsest level.
   double live_images_per_s = 30;
+  // Memory for the ray trees of the first sample (core/render/ray_trees.h), with which an edit
+  // that changes no ray is re-shaded instead of traced; 0: none kept. The default holds a
+  // 1920x1080 image of a scene like `lecture`.
+  std::size_t tree_budget_bytes = std::size_t{512} << 20;
   bool lower_thread_priority = false;  // Linux: render at a higher nice value so the UI stays smooth
   std::optional<Vec3> shading_eye;  // "move your head": RenderOptions::shading_eye (a change restarts)
 };
@@ -50,6 +54,8 @@ struct FrameStats {
   double ms_since_restart = 0;        // from the restart to this image's publication
   std::uint64_t serial = 0;           // counts every image ever published (1, 2, ...)
   bool packets = false;               // PassStats::packets of that pass
+  bool reshaded = false;              // re-shaded from the stored ray trees, not traced
+  std::size_t tree_bytes = 0;         // memory the stored ray trees take (0: none kept)
 };
 
 // One finished image: the mean of the samples so far at one level of resolution.
@@ -129,7 +135,12 @@ class ProgressiveRenderer {
   bool wait_idle(std::chrono::milliseconds timeout);
 
  private:
+  struct Job;
   void run();
+  bool wait_for_work(Job& job);  // false: stop
+  void start_generation_locked(Job& job);
+  void publish(Job& job, const PassStats& pass);
+  void record_trees(Job& job);
   std::uint64_t restart_locked();
 
   mutable std::mutex mutex_;

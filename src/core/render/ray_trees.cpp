@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/packet/packet.h"
 #include "core/render/threads.h"
 
 namespace phonglab {
@@ -182,9 +183,44 @@ Changes changes_between(const Scene& a, const Scene& b) {
   return c;
 }
 
-// Brings node i's stored lights up to `scene` (the same arithmetic as the tracer's light loop).
+// Shadow rays waiting for their answers, as structure of arrays: a tile's at once, four wide
+// through the packet tracer where it applies (the same answers as occluded()).
+struct ShadowBatch {
+  std::vector<double> ox, oy, oz, dx, dy, dz, t_max;
+  std::vector<std::size_t> at;  // where each answer goes (Tile::seen)
+  std::vector<std::uint8_t> blocked;
+
+  void push(const Ray& ray, double t, std::size_t to) {
+    ox.push_back(ray.origin.x), oy.push_back(ray.origin.y), oz.push_back(ray.origin.z);
+    dx.push_back(ray.dir.x), dy.push_back(ray.dir.y), dz.push_back(ray.dir.z);
+    t_max.push_back(t);
+    at.push_back(to);
+  }
+  // Answers every ray into `tile.seen` and empties the batch.
+  void resolve(const PreparedScene& prepared, Tile& tile, RayCounts& counts) {
+    const std::size_t n = at.size();
+    if (n == 0) return;
+    counts.shadow += n;
+    blocked.assign((n + 3) / 4 * 4, 0);
+    if (packet_tracing_applies(prepared)) {
+      for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->resize(blocked.size(), 0.0);  // idle lanes
+      packet_tracer_for(prepared).occluded(ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data(),
+                                           t_max.data(), static_cast<int>(n), blocked.data());
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        blocked[i] = occluded(prepared, make_ray(Vec3(ox[i], oy[i], oz[i]), Vec3(dx[i], dy[i], dz[i])), t_max[i]);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) tile.seen[at[i]] = blocked[i] ? LightSeen::kBlocked : LightSeen::kVisible;
+    for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->clear();
+    at.clear();
+  }
+};
+
+// Brings node i's stored lights up to `scene` (the same arithmetic as the tracer's light loop);
+// the shadow rays towards moved lights go into `batch`.
 void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& tile, std::size_t i, const Vec3* eye,
-                   RayCounts& counts) {
+                   ShadowBatch& batch) {
   const Scene& scene = prepared.scene();
   const std::size_t lights = scene.lights.size();
   const Node& node = tile.nodes[i];
@@ -217,11 +253,10 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
     tile.cos_spec[at] = specular_cosine(scene.specular_model, g.n, l, v, n_dot_l, r);
     nl = NodeLight{n_dot_l, specular_factor(tile.cos_spec[at], m.n)};
     if (!moved && seen != LightSeen::kNoLight) continue;  // the same shadow ray as before
-    ++counts.shadow;
     Ray ray;
     double t_max = 0;
-    const bool visible = !shadow_ray(light, g.p, g.ng, l, g.offset, ray, t_max) || !occluded(prepared, ray, t_max);
-    seen = visible ? LightSeen::kVisible : LightSeen::kBlocked;
+    seen = LightSeen::kVisible;  // unless the batch finds a blocker
+    if (shadow_ray(light, g.p, g.ng, l, g.offset, ray, t_max)) batch.push(ray, t_max, at);
   }
 }
 
@@ -343,7 +378,9 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   std::atomic<std::uint64_t> nan_count{0};
   const bool done = for_each_tile(tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
     if (update) {
-      for (std::size_t i = 0; i < tile.nodes.size(); ++i) update_lights(*scene, changes, tile, i, eye, rays);
+      thread_local ShadowBatch batch;
+      for (std::size_t i = 0; i < tile.nodes.size(); ++i) update_lights(*scene, changes, tile, i, eye, batch);
+      batch.resolve(*scene, tile, rays);
     }
     TileShader shader(*scene, tile, rays);
     const std::int32_t* root = tile.roots.data();

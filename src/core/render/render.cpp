@@ -86,28 +86,6 @@ Color term_value(const Terms& t, Term term) {
   }
 }
 
-namespace {
-
-// This thread's packet tracer for `prepared`, kept from pass to pass of the same snapshot (its
-// set-up is a fair part of a small pass). Address and id together name one object for its whole
-// life (PreparedScene::id), so a tracer is never used for another scene.
-PacketTracer& packet_tracer_for(const PreparedScene& prepared) {
-  struct Kept {
-    const PreparedScene* scene = nullptr;
-    std::uint64_t id = 0;
-    std::unique_ptr<PacketTracer> tracer;
-  };
-  thread_local Kept kept;
-  if (!kept.tracer || kept.scene != &prepared || kept.id != prepared.id()) {
-    kept.tracer = kept.tracer ? std::make_unique<PacketTracer>(prepared, std::move(*kept.tracer))
-                              : std::make_unique<PacketTracer>(prepared);
-    kept.scene = &prepared;
-    kept.id = prepared.id();
-  }
-  return *kept.tracer;
-}
-
-}  // namespace
 
 PassStats render_pass(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
                       const std::atomic<bool>* cancel) {
