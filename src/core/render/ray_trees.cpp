@@ -63,10 +63,15 @@ class TileRecorder final : public TraceRecorder {
   TileRecorder(Tile& tile, std::size_t lights) : tile_(tile), lights_(lights) {}
 
   std::int32_t root() const { return root_; }
-  void ray_missed() override { link(RayTrees::kMissed); }
+  std::uint64_t reach() const { return reach_; }
+  void ray_missed() override {
+    reach_ |= RayTrees::kBackground;
+    link(RayTrees::kMissed);
+  }
   void begin_hit(const Ray& ray, const Hit& hit, const HitSide& side, double offset, int depth,
                  double weight) override {
     const auto index = static_cast<std::int32_t>(tile_.nodes.size());
+    reach_ |= RayTrees::reach_bit(hit.material);
     Node node;
     node.material = hit.material;
     node.depth = static_cast<std::int16_t>(depth);
@@ -104,12 +109,14 @@ class TileRecorder final : public TraceRecorder {
   std::vector<std::int32_t> open_;  // the hits whose children are being traced, innermost last
   Child child_ = Child::kReflection;
   std::int32_t root_ = RayTrees::kMissed;
+  std::uint64_t reach_ = 0;
 };
 
 std::size_t tile_bytes(const Tile& t) {
   return t.nodes.capacity() * sizeof(Node) + t.geometry.capacity() * sizeof(NodeGeometry) +
          t.lights.capacity() * sizeof(NodeLight) + t.seen.capacity() * sizeof(LightSeen) +
-         t.cos_spec.capacity() * sizeof(double) + t.roots.capacity() * sizeof(std::int32_t);
+         t.cos_spec.capacity() * sizeof(double) + t.roots.capacity() * sizeof(std::int32_t) +
+         t.reach.capacity() * sizeof(std::uint64_t) + t.values.capacity() * sizeof(Color);
 }
 
 // The image's tiles, row by row.
@@ -260,6 +267,25 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
   }
 }
 
+// The reach bits of the pixels whose values an edit from `a` to `b` changes: those of the
+// materials whose ka, kd, ks or n changed and the background's, when it changed; every pixel
+// for anything else (Ia, lights, the model, another term).
+std::uint64_t dirty_reach(const Scene& a, const Scene& b, const Changes& changes, bool other_term) {
+  bool lights_changed = changes.model_changed;
+  for (std::size_t i = 0; i < b.lights.size(); ++i) {
+    lights_changed = lights_changed || changes.light_moved[i] || a.lights[i].intensity != b.lights[i].intensity ||
+                     a.lights[i].enabled != b.lights[i].enabled;
+  }
+  if (other_term || lights_changed || a.ambient != b.ambient) return ~std::uint64_t{0};
+  std::uint64_t dirty = a.background != b.background ? RayTrees::kBackground : 0;
+  for (std::size_t i = 0; i < b.materials.size(); ++i) {
+    const Material& x = a.materials[i];
+    const Material& y = b.materials[i];
+    if (x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n) dirty |= RayTrees::reach_bit(static_cast<int>(i));
+  }
+  return dirty;
+}
+
 // The equation over one tile's stored trees, for `scene`.
 class TileShader {
  public:
@@ -342,12 +368,16 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   const bool done = for_each_tile(trees->tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
-    tile.roots.reserve(static_cast<std::size_t>((tile.x1 - tile.x0) * (tile.y1 - tile.y0)));
+    const auto pixels = static_cast<std::size_t>((tile.x1 - tile.x0) * (tile.y1 - tile.y0));
+    tile.roots.reserve(pixels);
+    tile.reach.reserve(pixels);
+    tile.values.reserve(pixels);
     for (int y = tile.y0; y < tile.y1; ++y) {
       for (int x = tile.x0; x < tile.x1; ++x) {
         TileRecorder recorder(tile, s.lights.size());
-        trace_recorded(*scene, limits, centre_ray(frame, x, y), rays, recorder, eye);
+        tile.values.push_back(trace_recorded(*scene, limits, centre_ray(frame, x, y), rays, recorder, eye));
         tile.roots.push_back(recorder.root());
+        tile.reach.push_back(recorder.reach());
       }
     }
     if (bytes.fetch_add(tile_bytes(tile)) + tile_bytes(tile) > budget_bytes) stop.store(true);
@@ -373,6 +403,7 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   const bool update = changes.any();
   const Vec3* eye = shading_eye_ ? &*shading_eye_ : nullptr;
   const TermsWanted wanted = terms_wanted(term);
+  const std::uint64_t dirty = dirty_reach(scene_->scene(), s, changes, term != values_term_);
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
@@ -383,13 +414,17 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
       batch.resolve(*scene, tile, rays);
     }
     TileShader shader(*scene, tile, rays);
-    const std::int32_t* root = tile.roots.data();
+    std::size_t pixel = 0;
     for (int y = tile.y0; y < tile.y1; ++y) {
       Color* row = accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
-      for (int x = tile.x0; x < tile.x1; ++x, ++root) {
-        Color c = *root == kMissed ? miss_value(s, term)
-                  : term == Term::kFull ? shader.terms(*root, wanted).sum()
-                                        : term_value(shader.terms(*root, wanted), term);
+      for (int x = tile.x0; x < tile.x1; ++x, ++pixel) {
+        if (tile.reach[pixel] & dirty) {
+          const std::int32_t root = tile.roots[pixel];
+          tile.values[pixel] = root == kMissed ? miss_value(s, term)
+                               : term == Term::kFull ? shader.terms(root, wanted).sum()
+                                                     : term_value(shader.terms(root, wanted), term);
+        }
+        Color c = tile.values[pixel];
         if (!all_finite(c)) {  // as render_pass replaces them
           c = Color(0);
           nan_count.fetch_add(1, std::memory_order_relaxed);
@@ -405,6 +440,7 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   if (done) {
     ++accum.samples;
     scene_ = std::move(scene);
+    values_term_ = term;
   } else {
     usable_ = false;  // some tiles describe the new scene, some the old
   }

@@ -87,7 +87,13 @@ class RayTrees {
     std::vector<LightSeen> seen;
     std::vector<double> cos_spec;
     std::vector<std::int32_t> roots;  // per pixel, row by row: node, or kMissed
+    std::vector<std::uint64_t> reach;  // per pixel: reach_bit of every material in its tree, kBackground
+    std::vector<Color> values;         // per pixel: its value as last computed (for values_term_)
   };
+  // A pixel whose tree meets none of the materials an edit changed (and no background, when
+  // that changed) keeps its value: material i is bit i mod 63; bit 63 is a ray that met nothing.
+  static constexpr std::uint64_t kBackground = std::uint64_t{1} << 63;
+  static std::uint64_t reach_bit(int material) { return std::uint64_t{1} << (static_cast<unsigned>(material) % 63u); }
 
  private:
   RayTrees() = default;
@@ -95,6 +101,7 @@ class RayTrees {
   int width_ = 0, height_ = 0;
   std::optional<Vec3> shading_eye_;
   std::vector<Tile> tiles_;
+  Term values_term_ = Term::kFull;
   bool usable_ = true;
   double record_seconds_ = 0;
 };
