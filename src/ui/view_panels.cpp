@@ -191,7 +191,8 @@ void stats_overlay(const StatsView& stats) {
     if (stats.have_frame) {
       const FrameStats& f = stats.frame;
       row("pass");
-      ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
+      if (f.reshaded) ImGui::Text("%.1f ms re-shade (%.2f Mrays/s re-cast)", f.pass_ms, f.mrays_per_s);
+      else ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
       row("tracer");
       ImGui::TextUnformatted(f.reshaded ? "re-shaded from the stored ray trees"
                              : f.packets ? "packets, 4 rays wide (AVX2)"
