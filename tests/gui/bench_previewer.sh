@@ -2,6 +2,7 @@
 # Measures the previewer's responsiveness (issues 3 and 15) under Xvfb:
 #
 #   tests/gui/bench_previewer.sh BUILD_DIR [SCENE]
+#   BASELINE=1 tests/gui/bench_previewer.sh BUILD_DIR [SCENE]   # live levels and re-shading off
 #
 # The window is 1280x720 with the panels hidden, so the render is 1280x720 (for the slider phase
 # the panels are shown and the window widened by the sidebar, so the render stays 1280x720).
@@ -22,7 +23,14 @@ BUILD_DIR=$(cd "${1:?usage: bench_previewer.sh BUILD_DIR [SCENE]}" && pwd)
 SCENE=${2:-lecture}
 OUT=$BUILD_DIR/gui-bench
 mkdir -p "$OUT"
+if [ "${BASELINE:-0}" = 1 ]; then
+  # What the previewer did before issue 15: every restart at 1/8, no stored ray trees.
+  SETTINGS=$'set render live_images_per_s 0\nset render tree_budget_mib 0'
+else
+  SETTINGS='log live levels and re-shading on'
+fi
 cat >"$OUT/script.txt" <<SCRIPT
+$SETTINGS
 key H
 wait_image 60
 wait_frames 30
