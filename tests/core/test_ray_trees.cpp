@@ -87,6 +87,21 @@ void light_edit(Scene& s, std::mt19937& rng) {
   l.direction = glm::normalize(Vec3(c(rng), -1, c(rng)));
 }
 
+// A random edit of what children a hit has: kr, kt, ior or Fresnel of a material, the depth
+// limit or the pruning weight (children appear, vanish or change direction).
+void bounce_edit(Scene& s, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  Material& m = s.materials[std::uniform_int_distribution<std::size_t>(0, s.materials.size() - 1)(rng)];
+  switch (std::uniform_int_distribution<int>(0, 5)(rng)) {
+    case 0: m.kr = random_color(rng, 0.4, 0.9); break;
+    case 1: m.kt = random_color(rng, 0.4, 0.9); break;
+    case 2: m.ior = 1 + u(rng); break;
+    case 3: m.fresnel ^= true; break;
+    case 4: s.max_depth = std::uniform_int_distribution<int>(0, 7)(rng); break;
+    default: s.min_weight = u(rng) < 0.3 ? 0.0 : std::pow(10.0, -4 + 3 * u(rng)); break;
+  }
+}
+
 std::shared_ptr<const PreparedScene> prepared(const Scene& s) { return std::make_shared<const PreparedScene>(s); }
 
 }  // namespace
@@ -101,19 +116,27 @@ TEST(EditScope, SaysWhatAnEditInvalidates) {
   EXPECT_EQ(edit_scope(a, b), EditScope::kShading);
   b.lights[1].position.y += 1;
   EXPECT_EQ(edit_scope(a, b), EditScope::kLights);
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < 5; ++k) {
+    Scene c = b;
+    if (k == 0) c.materials[0].kr = Color(0.5);
+    if (k == 1) c.materials[5].ior = 1.33;
+    if (k == 2) c.materials[5].fresnel ^= true;
+    if (k == 3) c.max_depth += 1;
+    if (k == 4) c.min_weight *= 2;
+    EXPECT_EQ(edit_scope(a, c), EditScope::kBounces) << k;
+  }
+  for (int k = 0; k < 4; ++k) {
     Scene c = b;
     if (k == 0) c.camera.position.x += 1e-9;
-    if (k == 1) c.materials[0].kr = Color(0.5);
-    if (k == 2) c.materials[0].ior = 1.33;
-    if (k == 3) c.spheres[0].radius *= 1.01;
-    if (k == 4) c.max_depth += 1;
-    if (k == 5) c.lights.pop_back();
+    if (k == 1) c.spheres[0].radius *= 1.01;
+    if (k == 2) c.lights.pop_back();
+    if (k == 3) c.materials.push_back(Material{});
     EXPECT_EQ(edit_scope(a, c), EditScope::kRetrace) << k;
   }
 }
 
-// Re-shading the recorded scene itself, then chains of random edits of the kinds it accepts:
+// Re-shading the recorded scene itself, then chains of random edits of the kinds it accepts
+// (shading, moved lights, and children that appear, vanish or turn):
 // every image equals a fresh render of the edited scene, traced ray by ray and in packets.
 TEST(RayTrees, ReshadedImagesAreBitIdenticalToFreshRenders) {
   int edits = 0;
@@ -125,9 +148,11 @@ TEST(RayTrees, ReshadedImagesAreBitIdenticalToFreshRenders) {
     ASSERT_NE(trees, nullptr);
     ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh_image(*scene, Term::kFull, false)));
     std::mt19937 rng(seed);
-    for (int e = 0; e < 6; ++e) {
+    for (int e = 0; e < 9; ++e) {
       if (e % 3 == 2) {
         light_edit(s, rng);
+      } else if (e % 3 == 1) {
+        bounce_edit(s, rng);
       } else {
         shading_edit(s, rng);
       }
@@ -141,7 +166,7 @@ TEST(RayTrees, ReshadedImagesAreBitIdenticalToFreshRenders) {
       ++edits;
     }
   }
-  EXPECT_GT(edits, 600);
+  EXPECT_GT(edits, 1000);
 }
 
 // Each term image from the same trees, after an edit: what render_pass gives for that term.

@@ -218,7 +218,9 @@ void ProgressiveRenderer::run() {
     if (job.reshade) {
       pass = job.trees->reshade(job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_);
       job.reshade = false;
-      if (!pass.completed) job.trees.reset();  // half updated
+      // Half updated, or full of holes that every later re-shade would trace again: the next
+      // traced generation records anew.
+      if (!pass.completed || job.trees->worn()) job.trees.reset();
     } else {
       RenderOptions options;
       options.term = job.settings.term;

@@ -1,6 +1,7 @@
 #include "core/render/ray_trees.h"
 
 #include <chrono>
+#include <utility>
 
 #include "core/packet/packet.h"
 #include "core/render/threads.h"
@@ -8,17 +9,17 @@
 namespace phonglab {
 
 EditScope edit_scope(const Scene& a, const Scene& b) {
-  if (!(a.camera == b.camera) || a.max_depth != b.max_depth || a.min_weight != b.min_weight ||
-      a.spheres != b.spheres || a.planes != b.planes || a.triangles != b.triangles || a.meshes != b.meshes ||
+  if (!(a.camera == b.camera) || a.spheres != b.spheres || a.planes != b.planes || a.triangles != b.triangles || a.meshes != b.meshes ||
       a.materials.size() != b.materials.size() || a.lights.size() != b.lights.size()) {
     return EditScope::kRetrace;
   }
   EditScope scope = EditScope::kNothing;
   const auto at_least = [&](EditScope s) { scope = std::max(scope, s); };
+  if (a.max_depth != b.max_depth || a.min_weight != b.min_weight) at_least(EditScope::kBounces);
   for (std::size_t i = 0; i < a.materials.size(); ++i) {
     const Material& x = a.materials[i];
     const Material& y = b.materials[i];
-    if (x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel) return EditScope::kRetrace;
+    if (x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel) at_least(EditScope::kBounces);
     if (x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n) at_least(EditScope::kShading);
   }
   for (std::size_t i = 0; i < a.lights.size(); ++i) {
@@ -77,7 +78,8 @@ class TileRecorder final : public TraceRecorder {
     node.depth = static_cast<std::int16_t>(depth);
     node.entering = side.entering;
     tile_.nodes.push_back(node);
-    tile_.geometry.push_back(NodeGeometry{hit.p, side.n, side.ng, ray.dir, offset, weight});
+    (void)weight;  // a re-shade derives every weight afresh, from the root down
+    tile_.geometry.push_back(NodeGeometry{hit.p, side.n, side.ng, ray.dir, offset});
     tile_.lights.resize(tile_.lights.size() + lights_);
     tile_.seen.resize(tile_.seen.size() + lights_, LightSeen::kNoLight);
     tile_.cos_spec.resize(tile_.cos_spec.size() + lights_);
@@ -168,6 +170,9 @@ Ray centre_ray(const CameraFrame& frame, int x, int y) {
 struct Changes {
   std::vector<bool> light_moved;   // its shadow rays are cast again
   std::vector<bool> n_changed;     // the specular factor of its hits is taken again
+  std::vector<bool> bounce_changed;  // kr, kt, ior or Fresnel: its hits' F is taken again
+  std::vector<bool> ior_changed;   // its hits' refracted rays go elsewhere: traced again
+  bool depth_grew = false;         // hits that had no children may now: their F is taken
   bool model_changed = false;      // every specular cosine is computed again
   bool any() const {
     for (const bool b : light_moved) {
@@ -176,7 +181,10 @@ struct Changes {
     for (const bool b : n_changed) {
       if (b) return true;
     }
-    return model_changed;
+    for (const bool b : bounce_changed) {
+      if (b) return true;
+    }
+    return model_changed || depth_grew;
   }
 };
 
@@ -185,8 +193,15 @@ Changes changes_between(const Scene& a, const Scene& b) {
   for (std::size_t i = 0; i < b.lights.size(); ++i) {
     c.light_moved.push_back(a.lights[i].position != b.lights[i].position || a.lights[i].direction != b.lights[i].direction);
   }
-  for (std::size_t i = 0; i < b.materials.size(); ++i) c.n_changed.push_back(a.materials[i].n != b.materials[i].n);
+  for (std::size_t i = 0; i < b.materials.size(); ++i) {
+    const Material& x = a.materials[i];
+    const Material& y = b.materials[i];
+    c.n_changed.push_back(x.n != y.n);
+    c.bounce_changed.push_back(x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel);
+    c.ior_changed.push_back(x.ior != y.ior);
+  }
   c.model_changed = a.specular_model != b.specular_model;
+  c.depth_grew = b.max_depth > a.max_depth;
   return c;
 }
 
@@ -267,6 +282,18 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
   }
 }
 
+// Brings node i's Fresnel factor up to its material's kr, kt, ior and Fresnel switch (the
+// tracer's bounce()); with another ior its refracted ray goes elsewhere and is traced again.
+void update_bounce(const Scene& scene, const Changes& changes, Tile& tile, std::size_t i) {
+  Node& node = tile.nodes[i];
+  const auto material = static_cast<std::size_t>(node.material);
+  // F is recorded only where the tracer bounced: a hit below the old depth limit had none.
+  if (!changes.bounce_changed[material] && !changes.depth_grew) return;
+  NodeGeometry& g = tile.geometry[i];
+  g.fresnel = bounce(scene.materials[material], g.dir, g.n, node.entering).fresnel;
+  if (changes.ior_changed[material]) node.refraction = RayTrees::kNone;
+}
+
 // The reach bits of the pixels whose values an edit from `a` to `b` changes: those of the
 // materials whose ka, kd, ks or n changed and the background's, when it changed; every pixel
 // for anything else (Ia, lights, the model, another term).
@@ -276,12 +303,17 @@ std::uint64_t dirty_reach(const Scene& a, const Scene& b, const Changes& changes
     lights_changed = lights_changed || changes.light_moved[i] || a.lights[i].intensity != b.lights[i].intensity ||
                      a.lights[i].enabled != b.lights[i].enabled;
   }
-  if (other_term || lights_changed || a.ambient != b.ambient) return ~std::uint64_t{0};
+  if (other_term || lights_changed || a.ambient != b.ambient || a.max_depth != b.max_depth ||
+      a.min_weight != b.min_weight) {
+    return ~std::uint64_t{0};
+  }
   std::uint64_t dirty = a.background != b.background ? RayTrees::kBackground : 0;
   for (std::size_t i = 0; i < b.materials.size(); ++i) {
     const Material& x = a.materials[i];
     const Material& y = b.materials[i];
-    if (x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n) dirty |= RayTrees::reach_bit(static_cast<int>(i));
+    if (x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n || changes.bounce_changed[i]) {
+      dirty |= RayTrees::reach_bit(static_cast<int>(i));
+    }
   }
   return dirty;
 }
@@ -295,7 +327,7 @@ class TileShader {
 
   // The terms of node i, as shade() gives them. Inlined where the pixel loop calls it for a root
   // (most nodes are roots); children go through child_terms.
-  [[gnu::always_inline]] inline Terms terms(std::int32_t i, const TermsWanted& wanted) {
+  [[gnu::always_inline]] inline Terms terms(std::int32_t i, const TermsWanted& wanted, double weight) {
     const Node& node = tile_.nodes[static_cast<std::size_t>(i)];
     const Material& m = scene_.materials[static_cast<std::size_t>(node.material)];
     Terms t;
@@ -317,21 +349,29 @@ class TileShader {
     Bounce bn;
     bn.fresnel = g.fresnel;
     set_bounce_weights(m, bn);
-    if (wanted.reflection) t.reflection = child(node, g, bn.kr, Child::kReflection, node.reflection);
-    if (wanted.refraction && !is_zero(bn.kt)) t.refraction = child(node, g, bn.kt, Child::kRefraction, node.refraction);
+    if (wanted.reflection) t.reflection = child(node, g, bn.kr, weight, Child::kReflection, node.reflection);
+    if (wanted.refraction && !is_zero(bn.kt)) {
+      t.refraction = child(node, g, bn.kt, weight, Child::kRefraction, node.refraction);
+    }
     return t;
   }
 
+  // Whether a ray was traced because it was not stored since the last call (then the pixel's
+  // value depends on what its stored tree does not show).
+  bool traced_fresh() { return std::exchange(traced_fresh_, false); }
+
  private:
   // kw times what the child ray brings back (the Equation's child()).
-  [[gnu::noinline]] Terms child_terms(std::int32_t i) { return terms(i, TermsWanted{}); }
+  [[gnu::noinline]] Terms child_terms(std::int32_t i, double weight) { return terms(i, TermsWanted{}, weight); }
 
   using Child = TraceRecorder::Child;
-  Color child(const Node& node, const NodeGeometry& g, const Color& kw, Child kind, std::int32_t stored) {
-    const std::optional<double> w = child_weight(kw, g.weight, scene_.min_weight);
+  Color child(const Node& node, const NodeGeometry& g, const Color& kw, double weight, Child kind,
+              std::int32_t stored) {
+    const std::optional<double> w = child_weight(kw, weight, scene_.min_weight);
     if (!w) return Color(0);
     if (stored == RayTrees::kMissed) return kw * scene_.background;
-    if (stored >= 0) return kw * child_terms(stored).sum();
+    if (stored >= 0) return kw * child_terms(stored, *w).sum();
+    traced_fresh_ = true;
     // Not stored (it cannot happen below kRetrace): traced as the tracer would.
     const Material& m = scene_.materials[static_cast<std::size_t>(node.material)];
     const Bounce bn = bounce(m, g.dir, g.n, node.entering);
@@ -345,6 +385,7 @@ class TileShader {
   const Tile& tile_;
   RayCounts& counts_;
   std::size_t lights_;
+  bool traced_fresh_ = false;
 };
 
 }  // namespace
@@ -407,10 +448,14 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
+  std::atomic<std::size_t> traced_pixels{0};
   const bool done = for_each_tile(tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
     if (update) {
       thread_local ShadowBatch batch;
-      for (std::size_t i = 0; i < tile.nodes.size(); ++i) update_lights(*scene, changes, tile, i, eye, batch);
+      for (std::size_t i = 0; i < tile.nodes.size(); ++i) {
+        update_lights(*scene, changes, tile, i, eye, batch);
+        update_bounce(s, changes, tile, i);
+      }
       batch.resolve(*scene, tile, rays);
     }
     TileShader shader(*scene, tile, rays);
@@ -421,8 +466,12 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
         if (tile.reach[pixel] & dirty) {
           const std::int32_t root = tile.roots[pixel];
           tile.values[pixel] = root == kMissed ? miss_value(s, term)
-                               : term == Term::kFull ? shader.terms(root, wanted).sum()
-                                                     : term_value(shader.terms(root, wanted), term);
+                               : term == Term::kFull ? shader.terms(root, wanted, 1.0).sum()
+                                                     : term_value(shader.terms(root, wanted, 1.0), term);
+          if (shader.traced_fresh()) {
+            tile.reach[pixel] = ~std::uint64_t{0};  // any later edit re-shades it
+            traced_pixels.fetch_add(1, std::memory_order_relaxed);
+          }
         }
         Color c = tile.values[pixel];
         if (!all_finite(c)) {  // as render_pass replaces them
@@ -436,6 +485,7 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   PassStats stats;
   for (const RayCounts& c : counts) stats.rays += c;
   stats.nan_count = nan_count.load();
+  traced_pixels_ = traced_pixels.load();
   stats.completed = done;
   if (done) {
     ++accum.samples;

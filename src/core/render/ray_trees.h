@@ -24,7 +24,9 @@ enum class EditScope : std::uint8_t {
   kNothing,  // the same image
   kShading,  // ka, kd, ks, n, Ia, background, light intensity or mute, specular model
   kLights,   // a light moved or turned (and perhaps shading): the shadow rays towards it
-  kRetrace,  // camera, geometry, kr, kt, ior, fresnel, depth, weight, lights added or removed
+  kBounces,  // kr, kt, ior, Fresnel, max depth, min weight (and perhaps the above): the rays
+             // that stay are reused, those that become needed or change direction are traced
+  kRetrace,  // camera, geometry, lights added or removed, another material table
 };
 EditScope edit_scope(const Scene& before, const Scene& after);
 
@@ -45,11 +47,16 @@ class RayTrees {
 
   // Sample 0 of `scene` for `term` (reshades(term)) into `accum`, which must be empty at this
   // size; the trees then describe `scene`. Only for a scope below kRetrace. Shadow rays towards
-  // moved lights are cast again; cancelled midway, the trees are no longer usable (usable()).
+  // moved lights are cast again; a child ray that is not stored (it became needed, or its
+  // direction changed with ior) is traced, and not stored; cancelled midway, the trees are no
+  // longer usable (usable()).
   PassStats reshade(std::shared_ptr<const PreparedScene> scene, Term term, int threads, Accumulator& accum,
                     const std::atomic<bool>* cancel = nullptr);
 
   bool usable() const { return usable_; }
+  // Whether the last re-shade had to trace rays for more than an eighth of the pixels (children
+  // that became needed or turned): recording again would serve the next edits better.
+  bool worn() const { return traced_pixels_ * 8 > static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_); }
   std::size_t memory_bytes() const;
   std::size_t node_count() const;
   double record_seconds() const { return record_seconds_; }
@@ -66,7 +73,6 @@ class RayTrees {
   struct NodeGeometry {
     Vec3 p{0}, n{0}, ng{0}, dir{0};  // hit point, facing shading and geometric normals, ray direction
     double offset = 0;               // surface_offset of the hit
-    double weight = 1;               // path weight of the ray
     double fresnel = 0;              // F at a mirror or glass hit (Bounce::fresnel)
   };
   // One light at a node, for the trees' scene: N.L and the specular factor (hot), whether its
@@ -103,6 +109,7 @@ class RayTrees {
   std::vector<Tile> tiles_;
   Term values_term_ = Term::kFull;
   bool usable_ = true;
+  std::size_t traced_pixels_ = 0;  // pixels the last re-shade traced rays for
   double record_seconds_ = 0;
 };
 
