@@ -35,19 +35,7 @@ EditScope edit_scope(const Scene& a, const Scene& b) {
   return scope;
 }
 
-bool reshades(Term term) {
-  switch (term) {
-    case Term::kFull:
-    case Term::kAmbient:
-    case Term::kDiffuse:
-    case Term::kSpecular:
-    case Term::kReflection:
-    case Term::kRefraction:
-      return true;
-    default:
-      return false;
-  }
-}
+bool reshades(Term term) { return is_equation_term(term); }
 
 namespace {
 

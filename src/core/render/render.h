@@ -30,6 +30,9 @@ enum class Term : std::uint8_t {
   kRays,    // rays cast for the sample, all kinds (a heat map input)
 };
 
+// Whether `term` is the equation's image or one of its five terms (not a debug view).
+inline bool is_equation_term(Term term) { return term <= Term::kRefraction; }
+
 // What a primary ray that meets nothing gives for `term`: the background in the full image, 0
 // in a term or debug image.
 inline Color miss_value(const Scene& scene, Term term) { return term == Term::kFull ? scene.background : Color(0); }
