@@ -69,7 +69,7 @@ int time_reshading(const std::string& scene_arg, const std::string& kind, int fr
     Accumulator reshaded, rendered;
     reshaded.reset(width, height);
     rendered.reset(width, height);
-    const PassStats r = trees->reshade(prepared, Term::kFull, threads, reshaded);
+    const PassStats r = trees->reshade(prepared, Term::kFull, std::nullopt, threads, reshaded);
     const PassStats p = render_pass(*prepared, options, rendered);
     reshade_ms.push_back(r.seconds * 1e3);
     render_ms.push_back(p.seconds * 1e3);

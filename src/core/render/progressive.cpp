@@ -216,7 +216,8 @@ void ProgressiveRenderer::run() {
     }
     PassStats pass;
     if (job.reshade) {
-      pass = job.trees->reshade(job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_);
+      pass = job.trees->reshade(job.scene, job.settings.term, job.settings.shading_eye, job.settings.threads,
+                                job.accum, &cancel_);
       job.reshade = false;
       // Half updated, or full of holes that every later re-shade would trace again: the next
       // traced generation records anew.

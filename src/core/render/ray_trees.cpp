@@ -161,6 +161,7 @@ struct Changes {
   std::vector<bool> bounce_changed;  // kr, kt, ior or Fresnel: its hits' F is taken again
   std::vector<bool> ior_changed;   // its hits' refracted rays go elsewhere: traced again
   bool depth_grew = false;         // hits that had no children may now: their F is taken
+  bool eye_moved = false;          // V at the primary hits: their specular cosines are taken again
   bool model_changed = false;      // every specular cosine is computed again
   bool any() const {
     for (const bool b : light_moved) {
@@ -172,7 +173,7 @@ struct Changes {
     for (const bool b : bounce_changed) {
       if (b) return true;
     }
-    return model_changed || depth_grew;
+    return model_changed || depth_grew || eye_moved;
   }
 };
 
@@ -241,7 +242,7 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
     NodeLight& nl = tile.lights[at];
     LightSeen& seen = tile.seen[at];
     const bool moved = changes.light_moved[li];
-    if (!moved && !changes.model_changed) {
+    if (!moved && !changes.model_changed && !(changes.eye_moved && node.depth == 0)) {
       if (changes.n_changed[static_cast<std::size_t>(node.material)] && seen != LightSeen::kNoLight) {
         nl.spec = specular_factor(tile.cos_spec[at], m.n);
       }
@@ -418,21 +419,22 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
 
 EditScope RayTrees::scope_for(const PreparedScene& scene, int width, int height,
                               const std::optional<Vec3>& shading_eye) const {
-  if (!usable_ || width != width_ || height != height_ || shading_eye != shading_eye_ || scene.experiment()) {
-    return EditScope::kRetrace;
-  }
-  return edit_scope(scene_->scene(), scene.scene());
+  if (!usable_ || width != width_ || height != height_ || scene.experiment()) return EditScope::kRetrace;
+  const EditScope scope = edit_scope(scene_->scene(), scene.scene());
+  return shading_eye != shading_eye_ ? std::max(scope, EditScope::kShading) : scope;
 }
 
-PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term term, int threads, Accumulator& accum,
+PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term term,
+                            const std::optional<Vec3>& shading_eye, int threads, Accumulator& accum,
                             const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
   const Scene& s = scene->scene();
-  const Changes changes = changes_between(scene_->scene(), s);
+  Changes changes = changes_between(scene_->scene(), s);
+  changes.eye_moved = shading_eye != shading_eye_;
   const bool update = changes.any();
-  const Vec3* eye = shading_eye_ ? &*shading_eye_ : nullptr;
+  const Vec3* eye = shading_eye ? &*shading_eye : nullptr;
   const TermsWanted wanted = terms_wanted(term);
-  const std::uint64_t dirty = dirty_reach(scene_->scene(), s, changes, term != values_term_);
+  const std::uint64_t dirty = dirty_reach(scene_->scene(), s, changes, term != values_term_ || changes.eye_moved);
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
@@ -479,6 +481,7 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
     ++accum.samples;
     scene_ = std::move(scene);
     values_term_ = term;
+    shading_eye_ = shading_eye;
   } else {
     usable_ = false;  // some tiles describe the new scene, some the old
   }

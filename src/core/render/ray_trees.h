@@ -42,7 +42,8 @@ class RayTrees {
                                           const std::optional<Vec3>& shading_eye, int threads,
                                           std::size_t budget_bytes, const std::atomic<bool>* cancel = nullptr);
 
-  // What re-shading `scene` at this size and eye would need (kRetrace: it cannot be).
+  // What re-shading `scene` at this size and eye would need (kRetrace: it cannot be). Another
+  // eye ("move your head") is a shading edit: V changes at the primary hits only.
   EditScope scope_for(const PreparedScene& scene, int width, int height, const std::optional<Vec3>& shading_eye) const;
 
   // Sample 0 of `scene` for `term` (reshades(term)) into `accum`, which must be empty at this
@@ -50,8 +51,8 @@ class RayTrees {
   // moved lights are cast again; a child ray that is not stored (it became needed, or its
   // direction changed with ior) is traced, and not stored; cancelled midway, the trees are no
   // longer usable (usable()).
-  PassStats reshade(std::shared_ptr<const PreparedScene> scene, Term term, int threads, Accumulator& accum,
-                    const std::atomic<bool>* cancel = nullptr);
+  PassStats reshade(std::shared_ptr<const PreparedScene> scene, Term term, const std::optional<Vec3>& shading_eye,
+                    int threads, Accumulator& accum, const std::atomic<bool>* cancel = nullptr);
 
   bool usable() const { return usable_; }
   // Whether the last re-shade had to trace rays for more than an eighth of the pixels (children
