@@ -245,8 +245,8 @@ void ProgressiveRenderer::run() {
     if (job.level + 1 < job.levels.size()) {
       ++job.level;
       job.accum.reset(job.levels[job.level].width, job.levels[job.level].height);
-    } else if (job.accum.samples == 1 && !job.reshaded && !job.interacting) {
-      record_trees(job);
+    } else if (!job.interacting) {
+      record_trees(job);  // once per scene: at once if it has none that serve
     }
   }
 }
@@ -342,8 +342,9 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   job.published_any = true;
 }
 
-// After a generation's first full-resolution sample: its trees, unless the kept ones still serve
-// or the budget refused this size before. A restart cancels the recording.
+// After a full-resolution pass while the hand is off (the first, or the first after a drag): the
+// trees of the generation's scene, unless the kept ones still serve or the budget refused this
+// size before. A restart cancels the recording.
 void ProgressiveRenderer::record_trees(Job& job) {
   const ProgressiveSettings& s = job.settings;
   const ProgressiveLevel& full = job.levels.back();
