@@ -57,8 +57,7 @@ class TileRecorder final : public TraceRecorder {
     reach_ |= RayTrees::kBackground;
     link(RayTrees::kMissed);
   }
-  void begin_hit(const Ray& ray, const Hit& hit, const HitSide& side, double offset, int depth,
-                 double weight) override {
+  void begin_hit(const Ray& ray, const Hit& hit, const HitSide& side, double offset, int depth) override {
     const auto index = static_cast<std::int32_t>(tile_.nodes.size());
     reach_ |= RayTrees::reach_bit(hit.material);
     Node node;
@@ -66,7 +65,7 @@ class TileRecorder final : public TraceRecorder {
     node.depth = static_cast<std::int16_t>(depth);
     node.entering = side.entering;
     tile_.nodes.push_back(node);
-    (void)weight;  // a re-shade derives every weight afresh, from the root down
+    // No weight: a re-shade derives every weight afresh, from the root down.
     tile_.geometry.push_back(NodeGeometry{hit.p, side.n, side.ng, ray.dir, offset});
     tile_.lights.resize(tile_.lights.size() + lights_);
     tile_.seen.resize(tile_.seen.size() + lights_, LightSeen::kNoLight);

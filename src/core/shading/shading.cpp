@@ -72,7 +72,7 @@ class Equation {
     Terms terms;
     terms.ambient = m.ka * scene_.ambient;
     if (probe) record_hit(*probe, hit, side, v);
-    if (recorder_) recorder_->begin_hit(ray, hit, side, offset, depth, weight);
+    if (recorder_) recorder_->begin_hit(ray, hit, side, offset, depth);
     // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0); a recorder of ray
     // trees is told of every light, so that a later edit of kd, ks or a mute needs no new rays.
     if (wanted.lights && (is_lit(m) || probe || recorder_)) {

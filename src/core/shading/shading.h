@@ -256,8 +256,7 @@ class TraceRecorder {
   enum class Child : std::uint8_t { kReflection, kRefraction };
   virtual ~TraceRecorder() = default;
   virtual void ray_missed() = 0;
-  virtual void begin_hit(const Ray& ray, const Hit& hit, const HitSide& side, double offset, int depth,
-                         double weight) = 0;
+  virtual void begin_hit(const Ray& ray, const Hit& hit, const HitSide& side, double offset, int depth) = 0;
   // Every light, enabled or not, whatever the material (the recorder casts the shadow rays an
   // edit might need later); spec for the material's n.
   virtual void light(int index, LightSeen seen, double n_dot_l, double cos_spec, double spec) = 0;
