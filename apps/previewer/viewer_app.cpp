@@ -491,8 +491,10 @@ void Viewer::update_term_renderers(bool scene_changed) {
   }
   const bool started = !terms_.renderers[0];
   ProgressiveSettings settings = progressive_settings(render_settings_, shading_eye_);
-  // Five more renderers share the machine with the main one.
+  // Five more renderers share the machine with the main one. They keep no ray trees: the
+  // budget is the main renderer's alone (five more sets at full size would take five times it).
   settings.threads = std::max(1, resolve_thread_count(render_settings_.threads) / 3);
+  settings.tree_budget_bytes = 0;
   for (std::size_t i = 0; i < terms_.renderers.size(); ++i) {
     settings.term = kCellTerms[i];
     if (!terms_.renderers[i]) {
