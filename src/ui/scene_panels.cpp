@@ -178,27 +178,19 @@ bool lights_panel(std::vector<Light>& lights, int& selected, LightSolo& solo) {
     if (ImGui::Selectable(label, selected == i)) selected = i;
     ImGui::PopID();
   }
+  // A new light is appended, selected, and ends any solo.
+  const auto add = [&](const Light& light) {
+    lights.push_back(light);
+    selected = static_cast<int>(lights.size()) - 1;
+    solo = LightSolo{};
+    edited = true;
+  };
   const bool add_point = ImGui::Button("Add point");
   locate("lights.add_point");
-  if (add_point) {
-    Light light;
-    light.position = Vec3(2, 5, 3);
-    light.intensity = Color(0.5);
-    lights.push_back(light);
-    selected = static_cast<int>(lights.size()) - 1;
-    solo = LightSolo{};
-    edited = true;
-  }
+  if (add_point) add(Light{.position = Vec3(2, 5, 3), .intensity = Color(0.5)});
   ImGui::SameLine();
   if (ImGui::Button("Add directional")) {
-    Light light;
-    light.type = LightType::kDirectional;
-    light.direction = glm::normalize(Vec3(-1, -1, -0.5));
-    light.intensity = Color(0.2);
-    lights.push_back(light);
-    selected = static_cast<int>(lights.size()) - 1;
-    solo = LightSolo{};
-    edited = true;
+    add(Light{.type = LightType::kDirectional, .direction = glm::normalize(Vec3(-1, -1, -0.5)), .intensity = Color(0.2)});
   }
   ImGui::SameLine();
   const bool have_selection = selected >= 0 && selected < static_cast<int>(lights.size());
