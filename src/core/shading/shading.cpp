@@ -177,10 +177,12 @@ class Equation {
         pl->occluder_distance = occluder.distance;
       }
       if (!visible) continue;
-      add_light(light, m, n_dot_l, has_specular ? spec : 0.0, terms.diffuse, terms.specular);
+      const LightShare share = light_share(light, m, n_dot_l, has_specular ? spec : 0.0);
+      terms.diffuse += share.diffuse;
+      terms.specular += share.specular;
       if (pl) {
-        pl->diffuse = light.intensity * m.kd * n_dot_l;
-        pl->specular = light.intensity * m.ks * spec;
+        pl->diffuse = share.diffuse;
+        pl->specular = share.specular;
       }
     }
   }

@@ -112,10 +112,17 @@ inline bool shadow_ray(const Light& light, const Vec3& p, const Vec3& ng, const 
 }
 
 // One visible light's share of the diffuse and specular terms (spec: the specular factor).
+struct LightShare {
+  Color diffuse{0}, specular{0};
+};
+inline LightShare light_share(const Light& light, const Material& m, double n_dot_l, double spec) {
+  return {light.intensity * m.kd * n_dot_l, light.intensity * m.ks * spec};
+}
 inline void add_light(const Light& light, const Material& m, double n_dot_l, double spec, Color& diffuse,
                       Color& specular) {
-  diffuse += light.intensity * m.kd * n_dot_l;
-  specular += light.intensity * m.ks * spec;
+  const LightShare share = light_share(light, m, n_dot_l, spec);
+  diffuse += share.diffuse;
+  specular += share.specular;
 }
 
 // The rules both tracers share, one definition each.
