@@ -1,5 +1,6 @@
 #include "core/render/ray_trees.h"
 
+#include <algorithm>
 #include <chrono>
 #include <utility>
 
@@ -8,32 +9,87 @@
 
 namespace phonglab {
 
-EditScope edit_scope(const Scene& a, const Scene& b) {
-  if (!(a.camera == b.camera) || a.spheres != b.spheres || a.planes != b.planes || a.triangles != b.triangles || a.meshes != b.meshes ||
-      a.materials.size() != b.materials.size() || a.lights.size() != b.lights.size()) {
-    return EditScope::kRetrace;
+namespace {
+
+bool any(const std::vector<bool>& flags) { return std::find(flags.begin(), flags.end(), true) != flags.end(); }
+
+// What differs between two snapshots of a scene: one comparison for the edit's scope, for what
+// the re-shade brings up to date at each stored hit, and for which pixels it shades again.
+struct Changes {
+  bool retrace = false;                // camera, geometry, a table's length, a light's type
+  std::vector<bool> light_moved;       // its shadow rays are cast again
+  std::vector<bool> light_shading;     // its intensity or mute
+  std::vector<bool> material_shading;  // its ka, kd, ks or n
+  std::vector<bool> n_changed;         // the specular factor of its hits is taken again
+  std::vector<bool> bounce_changed;    // kr, kt, ior or Fresnel: its hits' F is taken again
+  std::vector<bool> ior_changed;       // its hits' refracted rays go elsewhere: traced again
+  bool limits_changed = false;         // the depth limit or the pruning weight
+  bool depth_grew = false;             // hits that had no children may now: their F is taken
+  bool eye_moved = false;              // V at the primary hits: their specular cosines are taken again
+  bool model_changed = false;          // every specular cosine is computed again
+  bool ambient_changed = false, background_changed = false;
+
+  // Something stored at the hits must be brought up to date.
+  bool stale_hits() const {
+    return any(light_moved) || any(n_changed) || any(bounce_changed) || model_changed || depth_grew || eye_moved;
   }
-  EditScope scope = EditScope::kNothing;
-  const auto at_least = [&](EditScope s) { scope = std::max(scope, s); };
-  if (a.max_depth != b.max_depth || a.min_weight != b.min_weight) at_least(EditScope::kBounces);
-  for (std::size_t i = 0; i < a.materials.size(); ++i) {
-    const Material& x = a.materials[i];
-    const Material& y = b.materials[i];
-    if (x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel) at_least(EditScope::kBounces);
-    if (x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n) at_least(EditScope::kShading);
+  EditScope scope() const {
+    if (retrace) return EditScope::kRetrace;
+    if (limits_changed || any(bounce_changed)) return EditScope::kBounces;
+    if (any(light_moved)) return EditScope::kLights;
+    if (any(light_shading) || any(material_shading) || model_changed || eye_moved || ambient_changed ||
+        background_changed) {
+      return EditScope::kShading;
+    }
+    return EditScope::kNothing;
   }
-  for (std::size_t i = 0; i < a.lights.size(); ++i) {
+  // The reach bits of the pixels whose values change: those of the materials whose shading or
+  // bounce changed and the background's, when it changed; every pixel for anything else.
+  std::uint64_t dirty_reach(bool other_term) const {
+    if (other_term || any(light_moved) || any(light_shading) || model_changed || eye_moved || ambient_changed ||
+        limits_changed) {
+      return ~std::uint64_t{0};
+    }
+    std::uint64_t dirty = background_changed ? RayTrees::kBackground : 0;
+    for (std::size_t i = 0; i < material_shading.size(); ++i) {
+      if (material_shading[i] || bounce_changed[i]) dirty |= RayTrees::reach_bit(static_cast<int>(i));
+    }
+    return dirty;
+  }
+};
+
+Changes changes_between(const Scene& a, const Scene& b) {
+  Changes c;
+  c.retrace = !(a.camera == b.camera) || a.spheres != b.spheres || a.planes != b.planes ||
+              a.triangles != b.triangles || a.meshes != b.meshes || a.materials.size() != b.materials.size() ||
+              a.lights.size() != b.lights.size();
+  if (c.retrace) return c;
+  for (std::size_t i = 0; i < b.lights.size(); ++i) {
     const Light& x = a.lights[i];
     const Light& y = b.lights[i];
-    if (x.type != y.type) return EditScope::kRetrace;
-    if (x.position != y.position || x.direction != y.direction) at_least(EditScope::kLights);
-    if (x.intensity != y.intensity || x.enabled != y.enabled) at_least(EditScope::kShading);
+    c.retrace = c.retrace || x.type != y.type;
+    c.light_moved.push_back(x.position != y.position || x.direction != y.direction);
+    c.light_shading.push_back(x.intensity != y.intensity || x.enabled != y.enabled);
   }
-  if (a.ambient != b.ambient || a.background != b.background || a.specular_model != b.specular_model) {
-    at_least(EditScope::kShading);
+  for (std::size_t i = 0; i < b.materials.size(); ++i) {
+    const Material& x = a.materials[i];
+    const Material& y = b.materials[i];
+    c.material_shading.push_back(x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n);
+    c.n_changed.push_back(x.n != y.n);
+    c.bounce_changed.push_back(x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel);
+    c.ior_changed.push_back(x.ior != y.ior);
   }
-  return scope;
+  c.limits_changed = a.max_depth != b.max_depth || a.min_weight != b.min_weight;
+  c.depth_grew = b.max_depth > a.max_depth;
+  c.model_changed = a.specular_model != b.specular_model;
+  c.ambient_changed = a.ambient != b.ambient;
+  c.background_changed = a.background != b.background;
+  return c;
 }
+
+}  // namespace
+
+EditScope edit_scope(const Scene& a, const Scene& b) { return changes_between(a, b).scope(); }
 
 bool reshades(Term term) { return is_equation_term(term); }
 
@@ -153,46 +209,6 @@ Ray centre_ray(const CameraFrame& frame, int x, int y) {
   return camera_ray(frame, x, y, u, v);
 }
 
-// What changed between the trees' scene and the new one, light by light and material by material.
-struct Changes {
-  std::vector<bool> light_moved;   // its shadow rays are cast again
-  std::vector<bool> n_changed;     // the specular factor of its hits is taken again
-  std::vector<bool> bounce_changed;  // kr, kt, ior or Fresnel: its hits' F is taken again
-  std::vector<bool> ior_changed;   // its hits' refracted rays go elsewhere: traced again
-  bool depth_grew = false;         // hits that had no children may now: their F is taken
-  bool eye_moved = false;          // V at the primary hits: their specular cosines are taken again
-  bool model_changed = false;      // every specular cosine is computed again
-  bool any() const {
-    for (const bool b : light_moved) {
-      if (b) return true;
-    }
-    for (const bool b : n_changed) {
-      if (b) return true;
-    }
-    for (const bool b : bounce_changed) {
-      if (b) return true;
-    }
-    return model_changed || depth_grew || eye_moved;
-  }
-};
-
-Changes changes_between(const Scene& a, const Scene& b) {
-  Changes c;
-  for (std::size_t i = 0; i < b.lights.size(); ++i) {
-    c.light_moved.push_back(a.lights[i].position != b.lights[i].position || a.lights[i].direction != b.lights[i].direction);
-  }
-  for (std::size_t i = 0; i < b.materials.size(); ++i) {
-    const Material& x = a.materials[i];
-    const Material& y = b.materials[i];
-    c.n_changed.push_back(x.n != y.n);
-    c.bounce_changed.push_back(x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel);
-    c.ior_changed.push_back(x.ior != y.ior);
-  }
-  c.model_changed = a.specular_model != b.specular_model;
-  c.depth_grew = b.max_depth > a.max_depth;
-  return c;
-}
-
 // Shadow rays waiting for their answers, as structure of arrays: a tile's at once, four wide
 // through the packet tracer where it applies (the same answers as occluded()).
 struct ShadowBatch {
@@ -280,30 +296,6 @@ void update_bounce(const Scene& scene, const Changes& changes, Tile& tile, std::
   NodeGeometry& g = tile.geometry[i];
   g.fresnel = bounce(scene.materials[material], g.dir, g.n, node.entering).fresnel;
   if (changes.ior_changed[material]) node.refraction = RayTrees::kNone;
-}
-
-// The reach bits of the pixels whose values an edit from `a` to `b` changes: those of the
-// materials whose ka, kd, ks or n changed and the background's, when it changed; every pixel
-// for anything else (Ia, lights, the model, another term).
-std::uint64_t dirty_reach(const Scene& a, const Scene& b, const Changes& changes, bool other_term) {
-  bool lights_changed = changes.model_changed;
-  for (std::size_t i = 0; i < b.lights.size(); ++i) {
-    lights_changed = lights_changed || changes.light_moved[i] || a.lights[i].intensity != b.lights[i].intensity ||
-                     a.lights[i].enabled != b.lights[i].enabled;
-  }
-  if (other_term || lights_changed || a.ambient != b.ambient || a.max_depth != b.max_depth ||
-      a.min_weight != b.min_weight) {
-    return ~std::uint64_t{0};
-  }
-  std::uint64_t dirty = a.background != b.background ? RayTrees::kBackground : 0;
-  for (std::size_t i = 0; i < b.materials.size(); ++i) {
-    const Material& x = a.materials[i];
-    const Material& y = b.materials[i];
-    if (x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n || changes.bounce_changed[i]) {
-      dirty |= RayTrees::reach_bit(static_cast<int>(i));
-    }
-  }
-  return dirty;
 }
 
 // The equation over one tile's stored trees, for `scene`.
@@ -419,8 +411,9 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
 EditScope RayTrees::scope_for(const PreparedScene& scene, int width, int height,
                               const std::optional<Vec3>& shading_eye) const {
   if (!usable_ || width != width_ || height != height_ || scene.experiment()) return EditScope::kRetrace;
-  const EditScope scope = edit_scope(scene_->scene(), scene.scene());
-  return shading_eye != shading_eye_ ? std::max(scope, EditScope::kShading) : scope;
+  Changes changes = changes_between(scene_->scene(), scene.scene());
+  changes.eye_moved = shading_eye != shading_eye_;
+  return changes.scope();
 }
 
 PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term term,
@@ -430,10 +423,10 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   const Scene& s = scene->scene();
   Changes changes = changes_between(scene_->scene(), s);
   changes.eye_moved = shading_eye != shading_eye_;
-  const bool update = changes.any();
+  const bool update = changes.stale_hits();
   const Vec3* eye = shading_eye ? &*shading_eye : nullptr;
   const TermsWanted wanted = terms_wanted(term);
-  const std::uint64_t dirty = dirty_reach(scene_->scene(), s, changes, term != values_term_ || changes.eye_moved);
+  const std::uint64_t dirty = changes.dirty_reach(term != values_term_);
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
