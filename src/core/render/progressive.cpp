@@ -189,6 +189,7 @@ struct ProgressiveRenderer::Job {
   std::chrono::steady_clock::time_point restart_time;
   ProgressiveSettings settings;
   std::unique_ptr<RayTrees> trees;  // the first sample's trees of a recent scene, or null
+  bool trees_serve = false;         // they can re-shade this generation (scene, size and eye)
   struct Refusal {
     int width = 0, height = 0;
     std::size_t budget = 0;
@@ -221,7 +222,10 @@ void ProgressiveRenderer::run() {
       job.reshade = false;
       // Half updated, or full of holes that every later re-shade would trace again: the next
       // traced generation records anew.
-      if (!pass.completed || job.trees->worn()) job.trees.reset();
+      if (!pass.completed || job.trees->worn()) {
+        job.trees.reset();
+        job.trees_serve = false;
+      }
     } else {
       RenderOptions options;
       options.term = job.settings.term;
@@ -290,8 +294,9 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   }
   job.levels = make_levels(width_, height_);
   // An edit that changes no ray (or only shadow rays) is re-shaded at full resolution at once.
-  job.reshade = job.scene && job.trees && reshades(settings_.term) &&
-                job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
+  job.trees_serve = job.scene && job.trees &&
+                    job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
+  job.reshade = job.trees_serve && reshades(settings_.term);
   job.reshaded = job.reshade;
   if (job.reshade) {
     job.level = job.levels.size() - 1;
@@ -349,12 +354,13 @@ void ProgressiveRenderer::record_trees(Job& job) {
   const ProgressiveSettings& s = job.settings;
   const ProgressiveLevel& full = job.levels.back();
   if (s.tree_budget_bytes == 0 || !reshades(s.term)) return;
-  if (job.trees && job.trees->scope_for(*job.scene, full.width, full.height, s.shading_eye) != EditScope::kRetrace) return;
+  if (job.trees_serve) return;
   const Job::Refusal here{full.width, full.height, s.tree_budget_bytes};
   if (job.refused.width == here.width && job.refused.height == here.height && job.refused.budget == here.budget) return;
   job.trees.reset();  // its memory, before the new trees take theirs
   job.trees = RayTrees::record(job.scene, full.width, full.height, s.shading_eye, s.threads, s.tree_budget_bytes, &cancel_);
   if (!job.trees && !cancel_.load()) job.refused = here;
+  job.trees_serve = job.trees != nullptr;
 }
 
 }  // namespace phonglab
