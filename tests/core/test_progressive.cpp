@@ -166,15 +166,15 @@ TEST(ProgressiveLevels, LiveStartIsTheFinestLevelThatFitsTheBudget) {
   ASSERT_EQ(levels.size(), 4u);
   LevelTimes times;
   EXPECT_EQ(live_start_level(levels, times, 33), 0u);  // nothing measured: the coarsest
-  times.ms_at_8 = 0.5;  // 160x90; 1/4 and 1/2 then expected at 2 and 8 ms, full at 32
+  times.at(8) = 0.5;  // 160x90; 1/4 and 1/2 then expected at 2 and 8 ms, full at 32
   EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 1);
   EXPECT_EQ(levels[live_start_level(levels, times, 31.9)].divisor, 2);
   EXPECT_EQ(levels[live_start_level(levels, times, 7.9)].divisor, 4);
   EXPECT_EQ(levels[live_start_level(levels, times, 0.4)].divisor, 8);  // none fits: the coarsest
-  times.ms_at_2 = 20;  // measured slower than expected: the full level is now expected at 80 ms
+  times.at(2) = 20;  // measured slower than expected: the full level is now expected at 80 ms
   EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 2);
   EXPECT_EQ(levels[live_start_level(levels, times, 19)].divisor, 4);
-  times.ms_at_1 = 30;  // measured: that wins over the estimate
+  times.at(1) = 30;  // measured: that wins over the estimate
   EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 1);
 }
 

@@ -53,15 +53,6 @@ std::vector<ProgressiveLevel> make_levels(int width, int height) {
   return levels;
 }
 
-double& LevelTimes::at(int divisor) {
-  switch (divisor) {
-    case 8: return ms_at_8;
-    case 4: return ms_at_4;
-    case 2: return ms_at_2;
-    default: return ms_at_1;
-  }
-}
-
 std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms) {
   std::size_t start = 0;
   double known_ms = 0;   // the last measured level's time on the way up

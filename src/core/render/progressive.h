@@ -11,6 +11,7 @@
 // Pure: no GL, no window system. The previewer and the tests drive it alike.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -90,9 +91,10 @@ std::vector<ProgressiveLevel> make_levels(int width, int height);
 
 // Pass times last measured at each level, by divisor (0: not measured yet).
 struct LevelTimes {
-  double ms_at_8 = 0, ms_at_4 = 0, ms_at_2 = 0, ms_at_1 = 0;
-  double& at(int divisor);
-  double at(int divisor) const { return const_cast<LevelTimes&>(*this).at(divisor); }
+  std::array<double, 4> ms{};  // at 1/8, 1/4, 1/2 and full resolution
+  static std::size_t slot(int divisor) { return divisor >= 8 ? 0 : divisor >= 4 ? 1 : divisor >= 2 ? 2 : 3; }
+  double& at(int divisor) { return ms[slot(divisor)]; }
+  double at(int divisor) const { return ms[slot(divisor)]; }
 };
 // The index into `levels` of the finest level whose pass is expected to take at most
 // `budget_ms`: its measured time, or, not measured yet, the next coarser measured level's
