@@ -36,9 +36,11 @@ constexpr float kSidebarWidth = 400;        // panel width at UI scale 1, ImGui 
 constexpr int kInteractiveDivisor = 4;      // while dragging, refine no further than 1/4 resolution
 constexpr double kMaxDeferral = 1.0;        // a drag's edit waits at most this long for the renderer, s
 
-ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std::optional<Vec3>& shading_eye) {
+ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std::optional<Vec3>& shading_eye,
+                                         bool small_multiples) {
   ProgressiveSettings p;
   p.shading_eye = shading_eye;
+  p.term_images = small_multiples;  // one trace, five sums
   p.target_spp = s.target_spp;
   p.threads = s.threads;
   p.term = s.term;
@@ -94,7 +96,7 @@ Viewer::Viewer(Platform& platform, const ViewerOptions& options)
     : platform_(platform),
       options_(options),
       // The render thread only wakes the event loop; the UI takes the image itself.
-      renderer_(progressive_settings(ui::RenderSettings{}, std::nullopt), [] { glfwPostEmptyEvent(); }) {}
+      renderer_(progressive_settings(ui::RenderSettings{}, std::nullopt, false), [] { glfwPostEmptyEvent(); }) {}
 
 Viewer::~Viewer() = default;
 
@@ -183,9 +185,6 @@ int Viewer::run() {
 }
 
 bool Viewer::poll_render_frame() {
-  for (std::size_t i = 0; i < terms_.renderers.size(); ++i) {
-    if (terms_.renderers[i] && terms_.renderers[i]->take_frame(terms_.frames[i])) terms_.upload_pending[i] = true;
-  }
   if (!renderer_.take_frame(shown_)) return false;
   upload_pending_ = true;
   if (stats_.log && shown_.stats.serial != stats_.last_pass_serial && shown_.stats.pass_ms > 0) {
@@ -200,7 +199,7 @@ void Viewer::wait_for_next_frame() {
   const double now = glfwGetTime();
   const bool script_running = script_.index < script_.commands.size() || !script_.input.empty();
   const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
-                    script_running || dialogs_.guard_visible || drag_.mode != DragMode::kNone || !terms_idle();
+                    script_running || dialogs_.guard_visible || drag_.mode != DragMode::kNone;
   stats_.slept_idle = !busy;
   if (!busy) {
     // Nothing moves: sleep until an event, a new image (the render thread posts an empty
@@ -313,9 +312,14 @@ void Viewer::apply_edits(double frame_start) {
     edits_.settings = true;
     if (probed_.tree) refresh_probe();
   }
+  // The small multiples, turned on or off from anywhere (panel, M, script): term images or none.
+  if (instruments_.small_multiples != multiples_sent_) {
+    multiples_sent_ = instruments_.small_multiples;
+    edits_.settings = true;
+  }
   if (edits_.settings) {
     const std::uint64_t before = renderer_.status().generation;
-    const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_, shading_eye_));
+    const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_, shading_eye_, multiples_sent_));
     if (generation != before) {
       sent_generation_ = generation;
       note_restart(generation, frame_start);
@@ -366,11 +370,7 @@ void Viewer::apply_edits(double frame_start) {
     if (scene_changed) note_restart(generation, edits_.deferred_since);
     if (probed_.tree) refresh_probe();
   }
-  update_term_renderers((scene_changed && !defer) || resized);
   renderer_.set_interacting(interacting_ || edits_.while_active);
-  for (const auto& term_renderer : terms_.renderers) {
-    if (term_renderer) term_renderer->set_interacting(interacting_ || edits_.while_active);
-  }
   edits_.scene = edits_.camera = edits_.replaced = edits_.settings = edits_.view = false;
   take_a_when_final();
   update_title();
@@ -383,6 +383,10 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   if (upload_pending_) {
     heat_max_ = heat_shown() ? heat_max(shown_.pixels) : 0;
     image_view_.upload(shown_.width, shown_.height, display_pixels());
+    // The small multiples' cells: the five term images of the same samples, when it has them.
+    for (std::size_t i = 0; i < terms_.views.size(); ++i) {
+      if (!shown_.terms[i].empty()) terms_.views[i].upload(shown_.width, shown_.height, shown_.terms[i]);
+    }
     upload_pending_ = false;
     if (shown_.generation != drawn_generation_) first_image_generation_ = shown_.generation;
     drawn_generation_ = shown_.generation;
@@ -407,13 +411,8 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
         continue;
       }
       const auto i = static_cast<std::size_t>(cell);
-      if (terms_.upload_pending[i]) {
-        terms_.views[i].upload(terms_.frames[i].width, terms_.frames[i].height, terms_.frames[i].pixels);
-        terms_.upload_pending[i] = false;
-        term_drawn_serial_[i] = terms_.frames[i].stats.serial;
-      }
       if (terms_.views[i].has_image()) {
-        terms_.views[i].draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, terms_.frames[i].divisor > 1);
+        terms_.views[i].draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, shown_.divisor > 1);
       }
     }
   } else {
@@ -470,43 +469,7 @@ void Viewer::update_title() {
 bool Viewer::image_is_final() const {
   const ProgressiveStatus status = renderer_.status();
   return status.idle && status.serial > 0 && drawn_serial_ == status.serial &&
-         drawn_generation_ == status.generation && !upload_pending_ && terms_idle();
-}
-
-bool Viewer::terms_idle() const {
-  for (std::size_t i = 0; i < terms_.renderers.size(); ++i) {
-    if (!terms_.renderers[i]) continue;
-    const ProgressiveStatus status = terms_.renderers[i]->status();
-    if (!status.idle || terms_.upload_pending[i] || (status.serial > 0 && term_drawn_serial_[i] != status.serial)) {
-      return false;
-    }
-  }
-  return true;
-}
-
-void Viewer::update_term_renderers(bool scene_changed) {
-  if (!instruments_.small_multiples) {
-    for (auto& term_renderer : terms_.renderers) term_renderer.reset();  // joins its thread
-    return;
-  }
-  const bool started = !terms_.renderers[0];
-  ProgressiveSettings settings = progressive_settings(render_settings_, shading_eye_);
-  // Five more renderers share the machine with the main one. They keep no ray trees: the
-  // budget is the main renderer's alone (five more sets at full size would take five times it).
-  settings.threads = std::max(1, resolve_thread_count(render_settings_.threads) / 3);
-  settings.tree_budget_bytes = 0;
-  for (std::size_t i = 0; i < terms_.renderers.size(); ++i) {
-    settings.term = kCellTerms[i];
-    if (!terms_.renderers[i]) {
-      terms_.renderers[i] = std::make_unique<ProgressiveRenderer>(settings, [] { glfwPostEmptyEvent(); });
-      terms_.frames[i] = ProgressiveFrame{};
-      term_drawn_serial_[i] = 0;
-      terms_.upload_pending[i] = false;
-    } else {
-      terms_.renderers[i]->set_settings(settings);
-    }
-    if ((started || scene_changed) && snapshot_) terms_.renderers[i]->set_scene(snapshot_, render_width_, render_height_);
-  }
+         drawn_generation_ == status.generation && !upload_pending_;
 }
 
 void Viewer::write_stats_summary(const std::string& label) {

@@ -168,8 +168,6 @@ class Viewer {
   void save_figure(const std::string& path);     // the slide figure of the current snapshot
   std::optional<Vec3> head_eye() const;          // "move your head": the shading eye, nullopt when off
   Vec3 head_pivot() const;                       // the point the head turns about: the probed hit or look-at
-  void update_term_renderers(bool scene_changed);  // starts, feeds or stops the small multiples' renderers
-  bool terms_idle() const;                       // every small-multiples renderer is idle and its image shown
   std::vector<glm::vec3> display_pixels() const; // shown_, its heat map, or its wipe / difference against A
   bool heat_shown() const;                       // the rays view is on screen as a heat map
   void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
@@ -295,7 +293,6 @@ class Viewer {
   // The small multiples' cells in reading order (the full image is the main renderer's).
   static constexpr std::array<Term, kTermCells> kCellTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular,
                                                               Term::kReflection, Term::kRefraction};
-  std::array<std::uint64_t, kTermCells> term_drawn_serial_{};  // serial of the image in each texture
 
   // Timing.
   // Edits whose first image is not yet on screen: (generation, glfwGetTime() of the edit).
@@ -344,13 +341,12 @@ class Viewer {
     bool dropped = false;    // an edit came before that image was done: no A
   };
   CompareState compare_;
-  // The small multiples: one renderer, image and texture per term.
+  // The small multiples: a texture per term, from the main renderer's term images
+  // (ProgressiveFrame::terms, in kCellTerms' order).
   struct TermCells {
-    std::array<std::unique_ptr<ProgressiveRenderer>, kTermCells> renderers;  // ambient .. refraction
-    std::array<ProgressiveFrame, kTermCells> frames;                         // their newest images
-    std::array<bool, kTermCells> upload_pending{};                           // frames[i] is newer than its texture
-    std::array<ImageView, kTermCells> views;                                 // their textures
+    std::array<ImageView, kTermCells> views;
   };
+  bool multiples_sent_ = false;  // whether the renderer was last asked for term images
   TermCells terms_;
   // Frame pacing and the stats log's measurements.
   struct FrameStats {

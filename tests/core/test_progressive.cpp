@@ -3,6 +3,7 @@
 // Written to run under ThreadSanitizer: small images, no sleeps longer than needed.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <ctime>
 #include <memory>
@@ -258,6 +259,46 @@ TEST(ProgressiveRenderer, EditsThatChangeNoRayAreReshadedAtFullResolution) {
       EXPECT_EQ(frame.spp, 2u);
     }
   }
+}
+
+// The small multiples: with term_images, every image brings the five term images of the same
+// samples, traced or re-shaded from the trees; each is what render_pass gives that term.
+TEST(ProgressiveRenderer, TermImagesComeWithEveryImage) {
+  ProgressiveSettings settings;
+  settings.target_spp = 1;
+  settings.term_images = true;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(40, 30);
+  Scene scene = load_scene_or_fail("lecture");
+  const std::array<Term, 5> terms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
+                                     Term::kRefraction};
+  for (int edit = 0; edit < 2; ++edit) {
+    if (edit == 1) scene.materials[0].ks = Color(0.9, 0.1, 0.2);  // re-shaded from the trees
+    const auto prepared_scene = std::make_shared<const PreparedScene>(scene);
+    renderer.set_scene(prepared_scene);
+    ASSERT_TRUE(renderer.wait_idle(kLongWait));
+    ProgressiveFrame frame;
+    ASSERT_TRUE(renderer.take_frame(frame));
+    ASSERT_EQ(frame.divisor, 1);
+    EXPECT_EQ(frame.stats.reshaded, edit == 1);
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      Accumulator alone;
+      alone.reset(40, 30);
+      RenderOptions options;
+      options.term = terms[k];
+      render_pass(*prepared_scene, options, alone);
+      ASSERT_EQ(frame.terms[k].size(), alone.sum.size());
+      for (std::size_t i = 0; i < alone.sum.size(); ++i) {
+        ASSERT_EQ(frame.terms[k][i], glm::vec3(alone.sum[i])) << term_name(terms[k]) << " pixel " << i;
+      }
+    }
+  }
+  settings.term_images = false;
+  renderer.set_settings(settings);
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ProgressiveFrame frame;
+  ASSERT_TRUE(renderer.take_frame(frame));
+  EXPECT_TRUE(frame.terms[0].empty());
 }
 
 TEST(ProgressiveRenderer, IdlesWithoutUsingTheCpuAfterTheTarget) {

@@ -2,15 +2,20 @@
 // sample 0 at the pixel centre, the camera formula of docs/model.md, camera and samples.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
+#include <cstring>
+#include <string>
 #include <cmath>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 #include <utility>
 
+#include "core/packet/packet.h"
 #include "core/render/render.h"
 #include "core/render/threads.h"
+#include "tests/support/random_scenes.h"
 
 using namespace phonglab;
 
@@ -102,6 +107,55 @@ TEST(TermImages, FiveTermsAddUpToTheFullImage) {
   }
   EXPECT_GT(hits, 100);
   EXPECT_GT(misses, 10);
+}
+
+// The small multiples' pass: one trace whose primary hits keep all five terms gives each term
+// image, and the main image, bit for bit what a pass for that term alone gives; over two samples
+// of seeded random scenes, by either tracer, with the full image, a term or a debug view as the
+// main image.
+TEST(TermImages, OnePassGivesEveryTermImageBitForBit) {
+  const std::array<Term, 5> terms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
+                                     Term::kRefraction};
+  const std::array<Color Terms::*, 5> members = {&Terms::ambient, &Terms::diffuse, &Terms::specular,
+                                                 &Terms::reflection, &Terms::refraction};
+  const int w = 21, h = 13;
+  for (std::uint32_t seed = 1; seed <= 60; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const PreparedScene scene = random_scene(seed, seed % 3 == 0);
+    const Term main = seed % 10 == 0 ? Term::kNormal : seed % 5 == 0 ? Term::kSpecular : Term::kFull;
+    for (const bool packets : {false, true}) {
+      if (packets && !packet_cpu_supported()) continue;
+      RenderOptions options;
+      options.packets = packets;
+      options.threads = 2;
+      options.tile_size = 7;
+      options.term = main;
+      Accumulator together;
+      together.reset(w, h, true);
+      ASSERT_TRUE(together.has_terms());
+      for (int pass = 0; pass < 2; ++pass) render_pass(scene, options, together);
+      const auto alone = [&](Term term) {
+        Accumulator a;
+        a.reset(w, h);
+        options.term = term;
+        for (int pass = 0; pass < 2; ++pass) render_pass(scene, options, a);
+        options.term = main;
+        return a;
+      };
+      const Accumulator main_alone = alone(main);
+      for (std::size_t i = 0; i < together.sum.size(); ++i) {
+        ASSERT_EQ(std::memcmp(&together.sum[i], &main_alone.sum[i], sizeof(Color)), 0) << "main image, pixel " << i;
+      }
+      for (std::size_t k = 0; k < terms.size(); ++k) {
+        const Accumulator term_alone = alone(terms[k]);
+        for (std::size_t i = 0; i < together.sum.size(); ++i) {
+          const Color c = together.terms[i].*members[k];
+          ASSERT_EQ(std::memcmp(&c, &term_alone.sum[i], sizeof(Color)), 0)
+              << term_name(terms[k]) << ", pixel " << i << (packets ? ", packets" : ", scalar");
+        }
+      }
+    }
+  }
 }
 
 // A term image computes only what its term needs (no shadow rays for the ambient image, no

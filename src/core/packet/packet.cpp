@@ -187,6 +187,7 @@ struct PacketTracer::Impl {
   Term primary_term = Term::kFull;
   TermsWanted primary_wanted;
   const Vec3* shading_eye = nullptr;
+  Terms* primary_terms = nullptr;  // where the primary hits' five terms go (render_tile's terms_out)
 
   explicit Impl(const PreparedScene& p) : prepared(p), scene(p.scene()), limits{scene.max_depth, scene.min_weight} {
     for (const Sphere& sp : scene.spheres) {
@@ -489,6 +490,7 @@ struct PacketTracer::Impl {
       const std::int32_t id = lv.id[u];
       if (id < 0) {
         out[i] = depth == 0 ? miss_value(scene, primary_term) : scene.background;
+        if (depth == 0 && primary_terms) primary_terms[i] = Terms{};
         lv.lit[u] = lv.bounces[u] = 0;
         continue;
       }
@@ -529,6 +531,7 @@ struct PacketTracer::Impl {
         if (lv.refracted_index[u] >= 0) t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
       }
       out[i] = depth == 0 ? term_value(t, primary_term) : t.sum();
+      if (depth == 0 && primary_terms) primary_terms[i] = t;
     }
   }
 
@@ -635,11 +638,13 @@ PacketTracer::~PacketTracer() = default;
 bool PacketTracer::draws(Term term) { return is_equation_term(term); }
 
 void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
-                               std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye) {
+                               std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye,
+                               Terms* terms_out) {
   Impl& im = *impl_;
   im.primary_term = term;
-  im.primary_wanted = terms_wanted(term);
+  im.primary_wanted = terms_out ? TermsWanted{} : terms_wanted(term);
   im.shading_eye = shading_eye;
+  im.primary_terms = terms_out;
   const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
   counts.primary += static_cast<std::uint64_t>(im.primary.n);
   im.trace_level(0, im.primary, tested, out, counts);

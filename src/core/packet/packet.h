@@ -47,10 +47,11 @@ class PacketTracer {
 
   // Sample `sample_index` of pixels [x0, x1) x [y0, y1), row by row into `out`
   // ((x1 - x0) * (y1 - y0) colours): the value render_sample(term, ..., shading_eye) gives each
-  // pixel, for a term that draws() accepts.
+  // pixel, for a term that draws() accepts. With `terms_out` (room for as many), every term of
+  // the primary hits is computed and kept there too (zero on a miss): render_sample_terms.
   void render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                    std::uint32_t seed, Color* out, RayCounts& counts, Term term = Term::kFull,
-                   const Vec3* shading_eye = nullptr);
+                   const Vec3* shading_eye = nullptr, Terms* terms_out = nullptr);
 
   // occluded(prepared, ray i, t_max[i]) for n rays given as structure of arrays, each array
   // with room for a multiple of 4 (padding lanes with t_max 0 hold no ray): blocked[i] = 1 where

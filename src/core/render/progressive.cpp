@@ -123,7 +123,8 @@ std::uint64_t ProgressiveRenderer::set_resolution(int width, int height) {
 
 std::uint64_t ProgressiveRenderer::set_settings(const ProgressiveSettings& settings) {
   const std::lock_guard lock(mutex_);
-  const bool restart = settings.term != settings_.term || settings.shading_eye != settings_.shading_eye;
+  const bool restart = settings.term != settings_.term || settings.term_images != settings_.term_images ||
+                       settings.shading_eye != settings_.shading_eye;
   const bool keep_priority = settings_.lower_thread_priority;  // fixed at construction
   settings_ = settings;
   settings_.lower_thread_priority = keep_priority;
@@ -200,9 +201,11 @@ void ProgressiveRenderer::run() {
         job.accum.width = lv.width;  // a re-shade writes every pixel: no need to clear them first
         job.accum.height = lv.height;
         job.accum.samples = 0;
-        job.accum.sum.resize(static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height));
+        const std::size_t n = static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height);
+        job.accum.sum.resize(n);
+        job.accum.terms.resize(job.settings.term_images ? n : 0);
       } else {
-        job.accum.reset(lv.width, lv.height);
+        job.accum.reset(lv.width, lv.height, job.settings.term_images);
       }
       job.accum_stale = false;
     }
@@ -231,7 +234,7 @@ void ProgressiveRenderer::run() {
       // the next restart starts below it, or nothing would ever show.
       if (!job.published_any) measured = std::max(measured, divisor_ms);
       // Cancelled midway: a restart is pending and the accumulator is partly updated.
-      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height);
+      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height, job.settings.term_images);
       continue;
     }
     if (!job.reshaded) measured = divisor_ms;  // a re-shade says nothing of a traced pass's time
@@ -239,7 +242,7 @@ void ProgressiveRenderer::run() {
     publish(job, pass);
     if (job.level + 1 < job.levels.size()) {
       ++job.level;
-      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height);
+      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height, job.settings.term_images);
     } else if (!job.interacting) {
       record_trees(job);  // once per scene: at once if it has none that serve
     }
@@ -314,6 +317,13 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   back_.pixels.resize(job.accum.sum.size());
   const double inv_samples = 1.0 / static_cast<double>(job.accum.samples);
   for (std::size_t i = 0; i < job.accum.sum.size(); ++i) back_.pixels[i] = glm::vec3(job.accum.sum[i] * inv_samples);
+  const std::array<Color Terms::*, 5> members = {&Terms::ambient, &Terms::diffuse, &Terms::specular, &Terms::reflection,
+                                                  &Terms::refraction};
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    std::vector<glm::vec3>& image = back_.terms[k];
+    image.resize(job.accum.terms.size());
+    for (std::size_t i = 0; i < image.size(); ++i) image[i] = glm::vec3(job.accum.terms[i].*members[k] * inv_samples);
+  }
   back_.stats.pass_ms = pass.seconds * 1e3;
   back_.stats.pass_rays = pass.rays;
   back_.stats.mrays_per_s = pass.seconds > 0 ? static_cast<double>(pass.rays.total()) / pass.seconds * 1e-6 : 0;

@@ -33,6 +33,9 @@ struct ProgressiveSettings {
   int target_spp = 64;              // samples per pixel at full resolution, then idle
   int threads = 0;                  // threads per pass; 0 = all hardware threads
   Term term = Term::kFull;          // what the pixels show (a change restarts)
+  // Also the five term images, from the same samples (the small multiples: one trace, five
+  // sums; a change restarts).
+  bool term_images = false;
   int interactive_divisor = 4;      // while interacting, refine no further than 1/this resolution
   // While interacting, each restart starts at the finest level whose last measured pass fits
   // 1/this of a second (the previewer holds a drag's next edit until the image is out, so a
@@ -67,6 +70,9 @@ struct ProgressiveFrame {
   int divisor = 1;                // 8, 4 or 2 for the coarse levels, 1 at full resolution
   std::uint32_t spp = 0;          // samples per pixel in `pixels`
   std::vector<glm::vec3> pixels;  // linear RGB mean, row-major from the top-left
+  // With ProgressiveSettings::term_images: ambient, diffuse, specular, reflection and refraction
+  // at the primary hits, each like `pixels`; else empty.
+  std::array<std::vector<glm::vec3>, 5> terms;
   FrameStats stats;
 };
 

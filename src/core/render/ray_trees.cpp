@@ -425,8 +425,10 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   changes.eye_moved = shading_eye != shading_eye_;
   const bool update = changes.stale_hits();
   const Vec3* eye = shading_eye ? &*shading_eye : nullptr;
-  const TermsWanted wanted = terms_wanted(term);
-  const std::uint64_t dirty = changes.dirty_reach(term != values_term_);
+  // With term images every pixel is shaded whole: only its value is kept from pass to pass.
+  const bool with_terms = accum.has_terms();
+  const TermsWanted wanted = with_terms ? TermsWanted{} : terms_wanted(term);
+  const std::uint64_t dirty = with_terms ? ~std::uint64_t{0} : changes.dirty_reach(term != values_term_);
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
@@ -443,13 +445,18 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
     TileShader shader(*scene, tile, rays);
     std::size_t pixel = 0;
     for (int y = tile.y0; y < tile.y1; ++y) {
-      Color* row = accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
+      const std::size_t row_start = static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
+      Color* row = accum.sum.data() + row_start;
       for (int x = tile.x0; x < tile.x1; ++x, ++pixel) {
         if (tile.reach[pixel] & dirty) {
           const std::int32_t root = tile.roots[pixel];
-          tile.values[pixel] = root == kMissed ? miss_value(s, term)
-                               : term == Term::kFull ? shader.terms(root, wanted, 1.0).sum()
-                                                     : term_value(shader.terms(root, wanted, 1.0), term);
+          const Terms t = root == kMissed ? Terms{} : shader.terms(root, wanted, 1.0);
+          tile.values[pixel] = root == kMissed ? miss_value(s, term) : term == Term::kFull ? t.sum() : term_value(t, term);
+          if (with_terms) {
+            Terms& sums = accum.terms[row_start + static_cast<std::size_t>(x)];
+            sums = Terms{};
+            add_terms(sums, t);  // what render_pass adds to the empty sums
+          }
           if (shader.traced_fresh()) {
             tile.reach[pixel] = ~std::uint64_t{0};  // any later edit re-shades it
             traced_pixels.fetch_add(1, std::memory_order_relaxed);

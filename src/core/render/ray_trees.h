@@ -50,7 +50,8 @@ class RayTrees {
   // size; the trees then describe `scene`. Only for a scope below kRetrace. Shadow rays towards
   // moved lights are cast again; a child ray that is not stored (it became needed, or its
   // direction changed with ior) is traced, and not stored; cancelled midway, the trees are no
-  // longer usable (usable()).
+  // longer usable (usable()). With accum.has_terms(), the five term images too: every pixel is
+  // then shaded whole, none keeps its value from the last re-shade.
   PassStats reshade(std::shared_ptr<const PreparedScene> scene, Term term, const std::optional<Vec3>& shading_eye,
                     int threads, Accumulator& accum, const std::atomic<bool>* cancel = nullptr);
 

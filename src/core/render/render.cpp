@@ -22,11 +22,27 @@ std::optional<Term> term_from_name(std::string_view name) {
 
 std::string_view term_name(Term term) { return kTermNames[static_cast<std::size_t>(term)]; }
 
-void Accumulator::reset(int w, int h) {
+void Accumulator::reset(int w, int h, bool with_terms) {
   width = w;
   height = h;
   samples = 0;
-  sum.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), Color(0));
+  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  sum.assign(n, Color(0));
+  if (with_terms) {
+    terms.assign(n, Terms{});
+  } else {
+    terms.clear();
+  }
+}
+
+void add_terms(Terms& sum, const Terms& sample) {
+  // A term that is NaN or Inf adds 0, as render_pass does with such a sample of a term image.
+  const auto add = [](Color& to, const Color& c) { to += all_finite(c) ? c : Color(0); };
+  add(sum.ambient, sample.ambient);
+  add(sum.diffuse, sample.diffuse);
+  add(sum.specular, sample.specular);
+  add(sum.reflection, sample.reflection);
+  add(sum.refraction, sample.refraction);
 }
 
 Color Accumulator::mean(int x, int y) const {
@@ -62,6 +78,30 @@ Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Ter
       break;
   }
   return term_value(shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, terms_wanted(term)), term);
+}
+
+Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
+                          std::uint32_t sample_index, RayCounts& counts, Terms& terms, std::uint32_t seed,
+                          const Vec3* shading_eye) {
+  const Scene& scene = prepared.scene();
+  // A debug view is not read off the terms: its own value, then the terms' trace (uncounted twice).
+  std::optional<Color> debug;
+  if (!is_equation_term(term)) {
+    RayCounts uncounted;
+    debug = render_sample(prepared, frame, term, x, y, sample_index, uncounted, seed, shading_eye);
+  }
+  double u, v;
+  sample_offset(x, y, sample_index, u, v, seed);
+  const Ray ray = camera_ray(frame, x, y, u, v);
+  ++counts.primary;
+  const std::optional<Hit> hit = intersect(prepared, ray);
+  if (!hit) {
+    terms = Terms{};
+    return debug ? *debug : miss_value(scene, term);
+  }
+  terms = shade(prepared, TraceLimits{scene.max_depth, scene.min_weight}, ray, *hit, 0, 1.0, counts, nullptr,
+                shading_eye, TermsWanted{});
+  return debug ? *debug : term_value(terms, term);
 }
 
 TermsWanted terms_wanted(Term term) {
@@ -107,10 +147,13 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
   // Each tile is written by exactly one thread and each pixel's value depends only on
   // (x, y, sample_index), so the image is the same for any thread count or tile order.
   const bool packets = options.packets && PacketTracer::draws(options.term) && packet_tracing_applies(prepared);
+  const bool with_terms = accum.has_terms();
   auto worker = [&](PassStats& stats) {
     PacketTracer* tracer = packets ? &packet_tracer_for(prepared) : nullptr;
     std::vector<Color> tile_radiance;
+    std::vector<Terms> tile_terms;
     if (packets) tile_radiance.resize(static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile));
+    if (packets && with_terms) tile_terms.resize(tile_radiance.size());
     const auto add = [&](Color* row, int x, Color c) {
       if (!all_finite(c)) {
         ++stats.nan_count;
@@ -131,19 +174,30 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
       const int y1 = std::min(y0 + tile, accum.height);
       if (tracer) {
         tracer->render_tile(frame, x0, y0, x1, y1, sample_index, options.seed, tile_radiance.data(), stats.rays,
-                            options.term, shading_eye);
-        const Color* c = tile_radiance.data();
+                            options.term, shading_eye, with_terms ? tile_terms.data() : nullptr);
+        std::size_t i = 0;
         for (int y = y0; y < y1; ++y) {
-          Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
-          for (int x = x0; x < x1; ++x) add(row, x, *c++);
+          const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
+          for (int x = x0; x < x1; ++x, ++i) {
+            add(accum.sum.data() + row, x, tile_radiance[i]);
+            if (with_terms) add_terms(accum.terms[row + static_cast<std::size_t>(x)], tile_terms[i]);
+          }
         }
         continue;
       }
       for (int y = y0; y < y1; ++y) {
-        Color* row = accum.sum.data() + static_cast<std::size_t>(y) * accum.width;
+        const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
         for (int x = x0; x < x1; ++x) {
-          add(row, x, render_sample(prepared, frame, options.term, x, y, sample_index, stats.rays, options.seed,
-                                    shading_eye));
+          if (!with_terms) {
+            add(accum.sum.data() + row, x,
+                render_sample(prepared, frame, options.term, x, y, sample_index, stats.rays, options.seed, shading_eye));
+            continue;
+          }
+          Terms terms;
+          add(accum.sum.data() + row, x,
+              render_sample_terms(prepared, frame, options.term, x, y, sample_index, stats.rays, terms, options.seed,
+                                  shading_eye));
+          add_terms(accum.terms[row + static_cast<std::size_t>(x)], terms);
         }
       }
     }

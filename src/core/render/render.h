@@ -65,9 +65,16 @@ struct Accumulator {
   int height = 0;
   std::uint32_t samples = 0;  // samples every pixel has
   std::vector<Color> sum;     // width * height running sums (double, so 1e6 samples stay exact)
-  void reset(int w, int h);
+  // With term images (reset(w, h, true)): per pixel, the sums of the primary hit's five terms,
+  // from the same samples as `sum` (the small multiples: one trace, five sums). Empty: none.
+  std::vector<Terms> terms;
+  void reset(int w, int h, bool with_terms = false);
+  bool has_terms() const { return !terms.empty(); }
   Color mean(int x, int y) const;  // sum / samples (0 before the first pass)
 };
+
+// Adds one sample's terms to a pixel's sums, term by term.
+void add_terms(Terms& sum, const Terms& sample);
 
 struct PassStats {
   RayCounts rays;
@@ -82,7 +89,14 @@ Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Ter
                     std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed = 0,
                     const Vec3* shading_eye = nullptr);
 
-// Adds sample number `accum.samples` to every pixel. When `cancel` becomes true the pass stops between tiles; `accum` is then
+// The same sample, also giving the primary hit's five terms (zero on a miss) in `terms`: every
+// term is computed, and `term`'s value (or the full image's) is read off them, bit for bit what
+// render_sample gives. A debug view's value is cast separately.
+Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
+                          std::uint32_t sample_index, RayCounts& counts, Terms& terms, std::uint32_t seed = 0,
+                          const Vec3* shading_eye = nullptr);
+
+// Adds sample number `accum.samples` to every pixel (and its terms, if accum.has_terms()). When `cancel` becomes true the pass stops between tiles; `accum` is then
 // partly updated and must be reset before further use. Returns the pass's statistics.
 PassStats render_pass(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
                       const std::atomic<bool>* cancel = nullptr);
