@@ -291,8 +291,7 @@ class Viewer {
   static constexpr int kMultiplesColumns = 3;  // small multiples: 3 x 2 cells, the full image last
   static constexpr int kMultiplesRows = 2;
   // The small multiples' cells in reading order (the full image is the main renderer's).
-  static constexpr std::array<Term, kTermCells> kCellTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular,
-                                                              Term::kReflection, Term::kRefraction};
+  static constexpr const std::array<Term, kTermCells>& kCellTerms = kFiveTerms;
 
   // Timing.
   // Edits whose first image is not yet on screen: (generation, glfwGetTime() of the edit).

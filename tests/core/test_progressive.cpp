@@ -270,8 +270,7 @@ TEST(ProgressiveRenderer, TermImagesComeWithEveryImage) {
   ProgressiveRenderer renderer(settings);
   renderer.set_resolution(40, 30);
   Scene scene = load_scene_or_fail("lecture");
-  const std::array<Term, 5> terms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
-                                     Term::kRefraction};
+  const std::array<Term, 5>& terms = kFiveTerms;
   for (int edit = 0; edit < 2; ++edit) {
     if (edit == 1) scene.materials[0].ks = Color(0.9, 0.1, 0.2);  // re-shaded from the trees
     const auto prepared_scene = std::make_shared<const PreparedScene>(scene);

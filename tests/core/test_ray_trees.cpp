@@ -191,10 +191,8 @@ TEST(RayTrees, TermImagesComeFromTheSameTrees) {
 // The small multiples from the same trees: one re-shade with term images gives the main image
 // and each term image bit for bit what render_pass gives them, after chains of random edits.
 TEST(RayTrees, OneReshadeGivesEveryTermImage) {
-  const std::array<Term, 5> terms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
-                                     Term::kRefraction};
-  const std::array<Color Terms::*, 5> members = {&Terms::ambient, &Terms::diffuse, &Terms::specular,
-                                                 &Terms::reflection, &Terms::refraction};
+  const std::array<Term, 5>& terms = kFiveTerms;
+  const auto& members = kFiveTermMembers;
   for (std::uint32_t seed = 400; seed <= 430; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     Scene s = random_scene_data(seed, seed % 4 == 0);

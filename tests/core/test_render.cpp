@@ -114,10 +114,8 @@ TEST(TermImages, FiveTermsAddUpToTheFullImage) {
 // of seeded random scenes, by either tracer, with the full image, a term or a debug view as the
 // main image.
 TEST(TermImages, OnePassGivesEveryTermImageBitForBit) {
-  const std::array<Term, 5> terms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
-                                     Term::kRefraction};
-  const std::array<Color Terms::*, 5> members = {&Terms::ambient, &Terms::diffuse, &Terms::specular,
-                                                 &Terms::reflection, &Terms::refraction};
+  const std::array<Term, 5>& terms = kFiveTerms;
+  const auto& members = kFiveTermMembers;
   const int w = 21, h = 13;
   for (std::uint32_t seed = 1; seed <= 60; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));

@@ -317,12 +317,10 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   back_.pixels.resize(job.accum.sum.size());
   const double inv_samples = 1.0 / static_cast<double>(job.accum.samples);
   for (std::size_t i = 0; i < job.accum.sum.size(); ++i) back_.pixels[i] = glm::vec3(job.accum.sum[i] * inv_samples);
-  const std::array<Color Terms::*, 5> members = {&Terms::ambient, &Terms::diffuse, &Terms::specular, &Terms::reflection,
-                                                  &Terms::refraction};
-  for (std::size_t k = 0; k < members.size(); ++k) {
+  for (std::size_t k = 0; k < kFiveTermMembers.size(); ++k) {
     std::vector<glm::vec3>& image = back_.terms[k];
     image.resize(job.accum.terms.size());
-    for (std::size_t i = 0; i < image.size(); ++i) image[i] = glm::vec3(job.accum.terms[i].*members[k] * inv_samples);
+    for (std::size_t i = 0; i < image.size(); ++i) image[i] = glm::vec3(job.accum.terms[i].*kFiveTermMembers[k] * inv_samples);
   }
   back_.stats.pass_ms = pass.seconds * 1e3;
   back_.stats.pass_rays = pass.rays;

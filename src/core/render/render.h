@@ -2,6 +2,7 @@
 // The image is a function of the scene and the sample count only, never of the thread count.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <optional>
@@ -29,6 +30,12 @@ enum class Term : std::uint8_t {
   kDepth,   // primary hit distance t (world units; 0 on a miss)
   kRays,    // rays cast for the sample, all kinds (a heat map input)
 };
+
+// The five terms in the equation's order, as Term values and as the members of Terms that hold them.
+inline constexpr std::array<Term, 5> kFiveTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
+                                                   Term::kRefraction};
+inline constexpr std::array<Color Terms::*, 5> kFiveTermMembers = {&Terms::ambient, &Terms::diffuse, &Terms::specular,
+                                                                   &Terms::reflection, &Terms::refraction};
 
 // Whether `term` is the equation's image or one of its five terms (not a debug view).
 inline bool is_equation_term(Term term) { return term <= Term::kRefraction; }
