@@ -380,21 +380,28 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   glViewport(0, 0, fb_width, fb_height);
   glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
+  // The heat map's colours are final: exposure does not apply to them.
+  const float exposure_ev = heat_shown() ? 0.0f : display_.exposure_ev;
+  const bool has_frame = shown_.width > 0 && shown_.height > 0;
   if (upload_pending_) {
     heat_max_ = heat_shown() ? heat_max(shown_.pixels) : 0;
-    image_view_.upload(shown_.width, shown_.height, display_pixels());
-    // The small multiples' cells: the five term images of the same samples, when it has them.
-    for (std::size_t i = 0; i < terms_.views.size(); ++i) {
-      if (!shown_.terms[i].empty()) terms_.views[i].upload(shown_.width, shown_.height, shown_.terms[i]);
-    }
-    upload_pending_ = false;
     if (shown_.generation != drawn_generation_) first_image_generation_ = shown_.generation;
     drawn_generation_ = shown_.generation;
     drawn_serial_ = shown_.stats.serial;
   }
+  // A new image, or new display settings for the one on screen: encoded and uploaded again.
+  if (has_frame && (upload_pending_ || !image_view_.shows(exposure_ev, display_.srgb))) {
+    image_view_.upload(shown_.width, shown_.height, display_pixels(), exposure_ev, display_.srgb);
+  }
+  // The small multiples' cells: the five term images of the same samples, when it has them.
+  for (std::size_t i = 0; i < terms_.views.size(); ++i) {
+    if (has_frame && !shown_.terms[i].empty() &&
+        (upload_pending_ || !terms_.views[i].shows(display_.exposure_ev, display_.srgb))) {
+      terms_.views[i].upload(shown_.width, shown_.height, shown_.terms[i], display_.exposure_ev, display_.srgb);
+    }
+  }
+  upload_pending_ = false;
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
-  // The heat map's colours are final: exposure does not apply to them.
-  const float exposure_ev = heat_shown() ? 0.0f : display_.exposure_ev;
   const int view_w = static_cast<int>(std::lround(viewport_.width * scale.x));
   const int view_h = static_cast<int>(std::lround(viewport_.height * scale.y));
   const int view_x = static_cast<int>(std::lround(viewport_.x * scale.x));
@@ -407,18 +414,18 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
       const int x = view_x + (cell % kMultiplesColumns) * cell_w;
       const int y = view_y + (kMultiplesRows - 1 - cell / kMultiplesColumns) * cell_h;
       if (cell == kTermCells) {
-        image_view_.draw(x, y, cell_w, cell_h, exposure_ev, display_.srgb, shown_.divisor > 1);
+        image_view_.draw(x, y, cell_w, cell_h, shown_.divisor > 1);
         continue;
       }
       const auto i = static_cast<std::size_t>(cell);
       if (terms_.views[i].has_image()) {
-        terms_.views[i].draw(x, y, cell_w, cell_h, display_.exposure_ev, display_.srgb, shown_.divisor > 1);
+        terms_.views[i].draw(x, y, cell_w, cell_h, shown_.divisor > 1);
       }
     }
   } else {
     // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
     const bool nearest = shown_.divisor > 1 || shown_.width == view_w;
-    image_view_.draw(view_x, view_y, view_w, view_h, exposure_ev, display_.srgb, nearest);
+    image_view_.draw(view_x, view_y, view_w, view_h, nearest);
   }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

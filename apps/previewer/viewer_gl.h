@@ -1,6 +1,9 @@
-// The rendered image on screen: a float RGB texture drawn by a fullscreen triangle whose
-// fragment shader applies exposure and the sRGB curve (display-time only). Needs a current
-// GL 3.3 core context loaded by glad.
+// The rendered image on screen. Its linear float pixels are encoded on the CPU into the 8-bit
+// codes the CLI's PNG files hold (Display8Encoder: exposure, then the sRGB curve or none),
+// uploaded into an 8-bit texture and copied into the window by a framebuffer blit. No shader:
+// software GL (llvmpipe) took about 15 ms of both cores to shade 1280x720 pixels from a float
+// texture, the encoder takes a few ms of one, and the screen shows exactly the PNG's codes.
+// Needs a current GL 3.3 core context loaded by glad.
 #pragma once
 
 #include <string>
@@ -19,36 +22,27 @@ class ImageView {
   ImageView(const ImageView&) = delete;
   ImageView& operator=(const ImageView&) = delete;
 
-  // Compiles the shader and creates the textures. Returns an empty string or the GL error log.
+  // Creates the texture and its framebuffer. Returns an empty string or what failed.
   std::string init();
-  // Uploads a linear RGB image (rows from the top) as GL_RGB32F: a new texture size
-  // reallocates it, otherwise glTexSubImage2D updates it in place.
-  void upload(int width, int height, const std::vector<glm::vec3>& pixels);
+  // Encodes a linear RGB image (rows from the top) at this exposure (EV) with the sRGB curve
+  // or without, and uploads it: a new size reallocates the texture, else it is updated in place.
+  void upload(int width, int height, const std::vector<glm::vec3>& pixels, float exposure_ev, bool srgb);
+  // Whether the image on the texture was encoded with these display settings.
+  bool shows(float exposure_ev, bool srgb) const { return exposure_ev == exposure_ev_ && srgb == srgb_; }
   // Draws the image into the framebuffer rectangle (x, y, width, height), origin at the
-  // bottom-left as in glViewport. `nearest` shows coarse levels as crisp blocks.
-  void draw(int x, int y, int width, int height, float exposure_ev, bool srgb, bool nearest);
-  bool has_image() const { return texture_width_ > 0; }
+  // bottom-left as in glViewport. `nearest` shows coarse levels as crisp blocks; otherwise a
+  // scaled image is filtered linearly (between the 8-bit codes).
+  void draw(int x, int y, int width, int height, bool nearest);
+  bool has_image() const { return width_ > 0; }
 
  private:
-  GLuint program_ = 0;
-  GLuint vertex_array_ = 0;  // empty: the triangle's corners come from gl_VertexID
-  GLuint texture_ = 0;       // the linear float image
-  GLint exposure_location_ = -1;
-  GLint srgb_location_ = -1;
-  GLint image_location_ = -1;
-  int texture_width_ = 0;
-  int texture_height_ = 0;
-  // The displayed 8-bit result, kept between frames: software GL (llvmpipe) needs ~10 ms to
-  // shade 1280x720 pixels from a float texture, a blit of the cache about half that. Redrawn
-  // only when the image, its size on screen, exposure, the sRGB toggle or the filter change.
-  GLuint cache_framebuffer_ = 0;
-  GLuint cache_texture_ = 0;
-  int cache_width_ = 0;
-  int cache_height_ = 0;
-  bool cache_valid_ = false;
-  float cached_exposure_ev_ = 0;
-  bool cached_srgb_ = false;
-  bool cached_nearest_ = false;
+  GLuint texture_ = 0;      // the 8-bit codes, B, G, R, A in memory
+  GLuint framebuffer_ = 0;  // reads the texture for the blit
+  int width_ = 0;
+  int height_ = 0;
+  float exposure_ev_ = 0;
+  bool srgb_ = true;
+  std::vector<unsigned char> staging_;  // the encoded rows, kept to avoid an allocation per image
 };
 
 // Reads the back buffer as 8-bit RGB, rows from the top.

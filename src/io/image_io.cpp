@@ -22,11 +22,6 @@ Image mean_image(const Accumulator& accum) {
   return image;
 }
 
-unsigned char linear_to_srgb8(double linear) {
-  const double c = linear > 0 ? (linear < 1 ? linear : 1) : 0;  // also maps NaN to 0
-  const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(s * 255));
-}
 
 std::string encode_pfm(const Image& image) {
   std::string out = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";

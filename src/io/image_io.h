@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene/display8.h"
 #include "core/scene/math.h"
 #include "core/render/render.h"
 
@@ -21,8 +22,6 @@ struct Image {
 // The accumulator's per-pixel means (what a render shows) as a float image.
 Image mean_image(const Accumulator& accum);
 
-// Linear value in [0, 1] to an 8-bit sRGB code (IEC 61966-2-1 transfer function).
-unsigned char linear_to_srgb8(double linear);
 
 // Encodes as PFM: "PF\n<w> <h>\n-1.0\n", then float32 little-endian rows bottom to top.
 std::string encode_pfm(const Image& image);

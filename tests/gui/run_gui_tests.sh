@@ -434,6 +434,16 @@ session_rays() {
   cat >"$dir/script.txt" <<EOF
 set render target_spp 1
 set display stats 0
+# The whole window is the image: the screen's 8-bit codes against the CLI's PNG.
+set display sidebar 0
+wait_idle 120
+screenshot $dir/r_screen.png
+dump_state $dir/r_screen.txt
+set display exposure 1
+wait_frames 3
+screenshot $dir/r_screen_ev1.png
+set display exposure 0
+set display sidebar 1
 wait_idle 120
 # The red sphere's highlight, with the probe panel scrolled into view.
 probe 371 339
@@ -495,6 +505,22 @@ check_rays() {
   local dir=$OUT/rays cli=$BUILD_DIR/bin/phonglab-cli size w h
   echo "session 4: ray tree overlay, depth cut, heat map"
   check_exit "$dir" "the script ran to the end"
+  # The light markers with their labels and the hint at the bottom ("H shows the panels") are
+  # drawn over the image: blacked out in both before comparing.
+  local masks=(-draw "rectangle 440,676 840,720") m
+  for m in $(seq 0 9); do
+    local at
+    at=$(state "$dir/r_screen.txt" "light${m}_marker")
+    [ -n "$at" ] || continue
+    masks+=(-draw "rectangle $(awk -v p="$at" 'BEGIN { split(p, a, " "); printf "%d,%d %d,%d", a[1] - 56, a[2] - 32, a[1] + 32, a[2] + 32 }')")
+  done
+  "$cli" render lecture --width 1280 --height 720 --spp 1 -o "$dir/cli_screen.png" >/dev/null
+  convert "$dir/r_screen.png" -fill black "${masks[@]}" "$dir/r_screen_masked.png"
+  convert "$dir/cli_screen.png" -fill black "${masks[@]}" "$dir/cli_screen_masked.png"
+  check "the screen shows the codes of phonglab-cli's PNG, pixel for pixel ($(state "$dir/r_screen.txt" render), $((${#masks[@]} / 2)) regions masked)" \
+    test "$(state "$dir/r_screen.txt" render)" = 1280x720 -a \
+    "$(compare -metric AE "$dir/r_screen_masked.png" "$dir/cli_screen_masked.png" null: 2>&1)" = 0
+  check "exposure +1 brightens the screen" greater "$(rmse "$dir/r_screen.png" "$dir/r_screen_ev1.png" 1280x720+0+0)" 0.02
   check "the glass sphere's tree is drawn ($(state "$dir/r01.txt" tree_segments) segments, deepest ray $(state "$dir/r01.txt" tree_deepest))" \
     test "$(state "$dir/r01.txt" tree_segments)" -ge 10 -a "$(state "$dir/r01.txt" tree_deepest)" -ge 2
   check "a shaded floor point: the overlay's blocked shadow rays are the probe's ($(state "$dir/r02.txt" tree_blocked))" \
