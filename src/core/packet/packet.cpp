@@ -658,6 +658,24 @@ void PacketTracer::occluded(const double* ox, const double* oy, const double* oz
   im.any_hits(rays, t_max, padded(n), im.spheres, blocked);
 }
 
+void PacketTracer::occluded_towards(const Light& light, const double* ox, const double* oy, const double* oz,
+                                    const double* dx, const double* dy, const double* dz, const double* t_max, int n,
+                                    std::uint8_t* blocked) {
+  Impl& im = *impl_;
+  std::fill_n(blocked, padded(n), std::uint8_t{0});
+  if (n <= 0) return;
+  Vec3 lo(kInf), hi(-kInf);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 o(ox[i], oy[i], oz[i]);
+    lo = glm::min(lo, o);
+    hi = glm::max(hi, o);
+  }
+  const double ball = 0.5 * glm::length(hi - lo) * (1 + 1e-9);  // every origin lies within it
+  const Vec3 l = light.type == LightType::kPoint ? light.position : -light.direction;
+  const packet::Rays rays{ox, oy, oz, dx, dy, dz};
+  im.any_hits(rays, t_max, padded(n), im.shadow_spheres(0.5 * (lo + hi), ball, light, l), blocked);
+}
+
 PacketTracer& packet_tracer_for(const PreparedScene& prepared) {
   struct Kept {
     const PreparedScene* scene = nullptr;

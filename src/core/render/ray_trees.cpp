@@ -212,34 +212,46 @@ Ray centre_ray(const CameraFrame& frame, int x, int y) {
 // Shadow rays waiting for their answers, as structure of arrays: a tile's at once, four wide
 // through the packet tracer where it applies (the same answers as occluded()).
 struct ShadowBatch {
-  std::vector<double> ox, oy, oz, dx, dy, dz, t_max;
-  std::vector<std::size_t> at;  // where each answer goes (Tile::seen)
+  // The rays towards one light, as structure of arrays.
+  struct Rays {
+    std::vector<double> ox, oy, oz, dx, dy, dz, t_max;
+    std::vector<std::size_t> at;  // where each answer goes (Tile::seen)
+  };
+  std::vector<Rays> lights;  // by light
   std::vector<std::uint8_t> blocked;
 
-  void push(const Ray& ray, double t, std::size_t to) {
-    ox.push_back(ray.origin.x), oy.push_back(ray.origin.y), oz.push_back(ray.origin.z);
-    dx.push_back(ray.dir.x), dy.push_back(ray.dir.y), dz.push_back(ray.dir.z);
-    t_max.push_back(t);
-    at.push_back(to);
+  void push(std::size_t light, const Ray& ray, double t, std::size_t to) {
+    if (lights.size() <= light) lights.resize(light + 1);
+    Rays& r = lights[light];
+    r.ox.push_back(ray.origin.x), r.oy.push_back(ray.origin.y), r.oz.push_back(ray.origin.z);
+    r.dx.push_back(ray.dir.x), r.dy.push_back(ray.dir.y), r.dz.push_back(ray.dir.z);
+    r.t_max.push_back(t);
+    r.at.push_back(to);
   }
-  // Answers every ray into `tile.seen` and empties the batch.
+  // Answers every ray into `tile.seen` and empties the batch: light by light, so the packet
+  // tracer tests only the spheres each bundle can meet.
   void resolve(const PreparedScene& prepared, Tile& tile, RayCounts& counts) {
-    const std::size_t n = at.size();
-    if (n == 0) return;
-    counts.shadow += n;
-    blocked.assign((n + 3) / 4 * 4, 0);
-    if (packet_tracing_applies(prepared)) {
-      for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->resize(blocked.size(), 0.0);  // idle lanes
-      packet_tracer_for(prepared).occluded(ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data(),
-                                           t_max.data(), static_cast<int>(n), blocked.data());
-    } else {
-      for (std::size_t i = 0; i < n; ++i) {
-        blocked[i] = occluded(prepared, make_ray(Vec3(ox[i], oy[i], oz[i]), Vec3(dx[i], dy[i], dz[i])), t_max[i]);
+    const bool packets = packet_tracing_applies(prepared);
+    for (std::size_t li = 0; li < lights.size(); ++li) {
+      Rays& r = lights[li];
+      const std::size_t n = r.at.size();
+      if (n == 0) continue;
+      counts.shadow += n;
+      blocked.assign((n + 3) / 4 * 4, 0);
+      if (packets) {
+        for (std::vector<double>* v : {&r.ox, &r.oy, &r.oz, &r.dx, &r.dy, &r.dz, &r.t_max}) v->resize(blocked.size(), 0.0);  // idle lanes
+        packet_tracer_for(prepared).occluded_towards(prepared.scene().lights[li], r.ox.data(), r.oy.data(), r.oz.data(),
+                                                     r.dx.data(), r.dy.data(), r.dz.data(), r.t_max.data(),
+                                                     static_cast<int>(n), blocked.data());
+      } else {
+        for (std::size_t i = 0; i < n; ++i) {
+          blocked[i] = occluded(prepared, make_ray(Vec3(r.ox[i], r.oy[i], r.oz[i]), Vec3(r.dx[i], r.dy[i], r.dz[i])), r.t_max[i]);
+        }
       }
+      for (std::size_t i = 0; i < n; ++i) tile.seen[r.at[i]] = blocked[i] ? LightSeen::kBlocked : LightSeen::kVisible;
+      for (std::vector<double>* v : {&r.ox, &r.oy, &r.oz, &r.dx, &r.dy, &r.dz, &r.t_max}) v->clear();
+      r.at.clear();
     }
-    for (std::size_t i = 0; i < n; ++i) tile.seen[at[i]] = blocked[i] ? LightSeen::kBlocked : LightSeen::kVisible;
-    for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &t_max}) v->clear();
-    at.clear();
   }
 };
 
@@ -282,7 +294,7 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
     Ray ray;
     double t_max = 0;
     seen = LightSeen::kVisible;  // unless the batch finds a blocker
-    if (shadow_ray(light, g.p, g.ng, l, g.offset, ray, t_max)) batch.push(ray, t_max, at);
+    if (shadow_ray(light, g.p, g.ng, l, g.offset, ray, t_max)) batch.push(li, ray, t_max, at);
   }
 }
 
