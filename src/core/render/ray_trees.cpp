@@ -462,9 +462,13 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
       for (int x = tile.x0; x < tile.x1; ++x, ++pixel) {
         if (tile.reach[pixel] & dirty) {
           const std::int32_t root = tile.roots[pixel];
-          const Terms t = root == kMissed ? Terms{} : shader.terms(root, wanted, 1.0);
-          tile.values[pixel] = root == kMissed ? miss_value(s, term) : term == Term::kFull ? t.sum() : term_value(t, term);
-          if (with_terms) {
+          if (!with_terms) {
+            tile.values[pixel] = root == kMissed ? miss_value(s, term)
+                                 : term == Term::kFull ? shader.terms(root, wanted, 1.0).sum()
+                                                       : term_value(shader.terms(root, wanted, 1.0), term);
+          } else {
+            const Terms t = root == kMissed ? Terms{} : shader.terms(root, wanted, 1.0);
+            tile.values[pixel] = root == kMissed ? miss_value(s, term) : term_value(t, term);
             Terms& sums = accum.terms[row_start + static_cast<std::size_t>(x)];
             sums = Terms{};
             add_terms(sums, t);  // what render_pass adds to the empty sums
