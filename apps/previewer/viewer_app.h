@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <fstream>
+#include <functional>
 #include <iosfwd>
 #include <map>
 #include <memory>
@@ -75,7 +76,7 @@ class Viewer {
 
  private:
   // What a mouse drag in the viewport does.
-  enum class DragMode : std::uint8_t { kNone, kOrbit, kPan, kDolly, kLight };
+  enum class DragMode : std::uint8_t { kNone, kOrbit, kPan, kDolly, kLight, kObject };
   struct Drag {
     DragMode mode = DragMode::kNone;
     int button = 0;          // ImGui mouse button that started it
@@ -83,6 +84,10 @@ class Viewer {
     ImVec2 start;            // where the button went down
     int light = -1;          // kLight: index of the light being moved
     double light_depth = 0;  // kLight: its distance along the view direction
+    int object = -1;         // kObject: the object being moved (its index in the file)
+    double object_depth = 0; // kObject: its anchor's distance along the view direction
+    Vec3 object_start{0};    // kObject: its anchor when grabbed
+    Vec3 grab_offset{0};     // kObject: anchor minus the grabbed point, in the view plane
   };
   // An action that would lose unsaved edits, waiting for the modal's answer.
   struct PendingAction {
@@ -156,7 +161,27 @@ class Viewer {
   double view_aspect() const;                    // width / height of one rendered image (a cell)
 
   // Actions.
-  void pick(ImVec2 mouse);                       // selects the material under a click
+  void pick(ImVec2 mouse);                       // selects the object (and its material) under a click
+  std::optional<Hit> hit_at(ImVec2 mouse) const;  // the nearest hit of the ray through a viewport point
+  std::optional<int> object_under(ImVec2 mouse) const;  // the file index of the object seen there
+  // Building the scene (viewer_objects.cpp). Each returns "" or why nothing changed.
+  std::string edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move);  // one undo step
+  std::string place_meshes(Scene& scene) const;  // meshes loaded again where their transforms say
+  std::string add_object(ObjectRef::Kind kind, const std::string& obj_path);  // last, in front, selected
+  std::string delete_selected_or(int object);
+  std::string duplicate(int object);             // the copy beside the original, selected
+  std::string set_object(int object, const std::string& field, const std::vector<double>& values,
+                         const std::string& material);
+  std::string apply_material_preset(const std::string& name, const std::string& preset);  // a new material if none is so named
+  std::string add_material(const std::string& name);
+  std::string drop_file(const std::string& path);  // a .json opens (guarded), an .obj becomes a mesh object
+  void select_object(int object);                // -1: none; selects its material too
+  std::optional<ImVec2> object_screen_point(int object) const;  // its anchor on screen
+  bool grab_object(ImVec2 mouse, const std::optional<int>& hit_object);  // starts kObject on the selected one
+  void drag_object_to(ImVec2 mouse, int view_w, int view_h);
+  void sidebar_objects();
+  std::optional<std::string> script_scene_command(const std::vector<std::string>& words);  // viewer_objects.cpp
+  std::optional<std::string> script_scene_edit(const std::vector<std::string>& words);
   void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
   void refresh_probe();                          // probes the same pixel again in the newest snapshot
   void undo();                                   // Ctrl+Z: the scene before the last edit
@@ -180,6 +205,7 @@ class Viewer {
   ImVec2 probe_point_in_cell(int cell) const;    // the probed pixel's centre as cell `cell` shows it
   void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
   void draw_ray_tree_lines();                    // the probed tree over the full image's cell
+  void draw_selected_object();                   // its outline or handle where the view shows it
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
   std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
   void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
@@ -216,7 +242,7 @@ class Viewer {
   bool set_instrument(const std::vector<std::string>& words);
   bool set_display_field(const std::vector<std::string>& words);
   void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
-  void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift);   // queues a drag's input
+  void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift, int held_key = -1);  // queues a drag's input (a key held throughout)
   void push_click(ImVec2 at, bool ctrl);          // queues a left click (hover, press, release)
   bool push_item_input();                        // queues script_.item_action's input; false: no such widget
   void write_state(const std::string& path) const;                    // `dump_state`
@@ -254,6 +280,10 @@ class Viewer {
   ui::LightSolo solo_;
   ui::ItemLocations item_locations_;  // named widgets' rectangles (io.UserData), for test scripts
   int selected_material_ = 0;
+  int selected_object_ = -1;         // index into the file's objects, -1: none
+  std::string objects_notice_;       // the last object or material edit's result or refusal
+  std::string mesh_path_field_;      // the Objects panel's OBJ path
+  std::string material_name_field_;  // the Materials panel's name for "Rename to"
   int selected_light_ = -1;
   int hovered_light_ = -1;
   std::vector<ui::LightMarker> markers_;  // the light markers as drawn last frame (for grabbing)

@@ -96,6 +96,7 @@ void Viewer::open_scene(const std::string& scene_arg) {
     file_state_.error_text = doc_.error_text();  // the old scene stays
     return;
   }
+  selected_object_ = -1;
   file_state_.error_text.clear();
   file_state_.status = doc_.status();
   file_state_.changed_on_disk = false;
@@ -120,6 +121,7 @@ void Viewer::reload_scene(bool keep_view) {
   file_state_.error_text.clear();
   file_state_.status = doc_.status();
   file_state_.changed_on_disk = false;
+  selected_object_ = -1;
   const int materials = static_cast<int>(doc_.scene().materials.size());
   selected_material_ = std::clamp(selected_material_, 0, std::max(materials - 1, 0));
   if (selected_light_ >= static_cast<int>(doc_.scene().lights.size())) selected_light_ = -1;

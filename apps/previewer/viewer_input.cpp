@@ -10,6 +10,8 @@
 #include "core/geometry/geometry.h"
 #include "io/probe_report.h"
 #include "interaction/camera_control.h"
+#include "interaction/numbers.h"
+#include "interaction/scene_objects.h"
 #include "ui/widgets.h"
 
 namespace phonglab {
@@ -91,6 +93,8 @@ void Viewer::handle_viewport_input() {
           drag_.light = hovered_light_;
           drag_.light_depth = ui::view_depth(view, scene.lights[static_cast<std::size_t>(hovered_light_)].position);
           selected_light_ = hovered_light_;
+        } else if (button == ImGuiMouseButton_Left && !io.KeyShift && grab_object(mouse, object_under(mouse))) {
+          // The selected object, grabbed by its marker or its surface: moved in the view plane.
         } else if (button == ImGuiMouseButton_Left) {
           drag_.mode = io.KeyShift ? DragMode::kPan : DragMode::kOrbit;
         } else {
@@ -108,7 +112,8 @@ void Viewer::handle_viewport_input() {
     const ImVec2 d = io.MouseDelta;
     // A grabbed light follows the pointer from the first pixel (an arrow at the edge brings the
     // light into view at once); the camera waits for the drag threshold, so a click stays a click.
-    const bool moving = (drag_.moved || drag_.mode == DragMode::kLight) && (d.x != 0 || d.y != 0);
+    const bool grabbed = drag_.mode == DragMode::kLight || drag_.mode == DragMode::kObject;
+    const bool moving = (drag_.moved || grabbed) && (d.x != 0 || d.y != 0);
     if (moving) drag_viewport(mouse, d, view, view_w, view_h);
   } else {
     if (drag_.mode == DragMode::kOrbit && !drag_.moved) {
@@ -118,7 +123,8 @@ void Viewer::handle_viewport_input() {
     }
     drag_ = Drag{};
   }
-  interacting_ = drag_.mode != DragMode::kNone && (drag_.moved || drag_.mode == DragMode::kLight);
+  interacting_ = drag_.mode != DragMode::kNone &&
+                 (drag_.moved || drag_.mode == DragMode::kLight || drag_.mode == DragMode::kObject);
   handle_keys();
 }
 
@@ -155,6 +161,9 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
         edits_.scene = true;
       }
       break;
+    case DragMode::kObject:
+      drag_object_to(mouse, view_w, view_h);
+      break;
     case DragMode::kNone:
       break;
   }
@@ -162,6 +171,7 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
 
 void Viewer::handle_keys() {
   const ImGuiIO& io = ImGui::GetIO();
+  for (const std::string& path : platform_.take_drops()) drop_file(path);
   // Presses come from GLFW's key events, not from the key state once per frame: a tap shorter
   // than a frame still counts. A text field being edited keeps its keys.
   for (const KeyPress& press : platform_.take_key_presses()) {
@@ -219,8 +229,8 @@ void Viewer::shortcut(int key, bool shift) {
   }
 }
 
-void Viewer::pick(ImVec2 mouse) {
-  if (!snapshot_) return;
+std::optional<Hit> Viewer::hit_at(ImVec2 mouse) const {
+  if (!snapshot_) return std::nullopt;
   const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
   const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
   const double x = mouse.x - viewport_.x;
@@ -229,14 +239,26 @@ void Viewer::pick(ImVec2 mouse) {
   const int py = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
   // The same camera formula as the renderer, through the clicked point of the pixel.
   const CameraFrame frame = make_camera_frame(view_camera(), w, h);
-  const Ray ray = camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0));
-  const std::optional<Hit> hit = intersect(*snapshot_, ray);
+  return intersect(*snapshot_, camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0)));
+}
+
+std::optional<int> Viewer::object_under(ImVec2 mouse) const {
+  const std::optional<Hit> hit = hit_at(mouse);
+  if (!hit) return std::nullopt;
+  return ui::file_object_of(snapshot_->scene(), hit->object);
+}
+
+void Viewer::pick(ImVec2 mouse) {
+  if (!snapshot_) return;
+  const std::optional<Hit> hit = hit_at(mouse);
   if (!hit) {
     picked_text_ = "the background";
+    selected_object_ = -1;
     return;
   }
   const Scene& scene = snapshot_->scene();
   selected_material_ = hit->material;
+  selected_object_ = ui::file_object_of(scene, hit->object);
   open_materials_ = true;
   std::ostringstream text;
   // The probe's naming: "objects[i]", and a mesh's OBJ face.
@@ -245,6 +267,48 @@ void Viewer::pick(ImVec2 mouse) {
     text << ", material '" << scene.materials[static_cast<std::size_t>(hit->material)].name << "'";
   }
   picked_text_ = text.str();
+}
+
+void Viewer::drag_object_to(ImVec2 mouse, int view_w, int view_h) {
+  const Camera view = view_camera();
+  const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
+  Vec3 target = ui::unproject(view, at, drag_.object_depth, view_w, view_h) + drag_.grab_offset;
+  // X, Y or Z held: along that world axis only.
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!ImGui::IsKeyDown(GLFW_KEY_X + axis)) continue;
+    const double along = target[axis] - drag_.object_start[axis];
+    target = drag_.object_start;
+    target[axis] += along;
+    break;
+  }
+  const Vec3 now = ui::object_anchor(doc_.scene(), drag_.object);
+  const Vec3 delta = Vec3(ui::tidy_float(target.x), ui::tidy_float(target.y), ui::tidy_float(target.z)) - now;
+  if (delta == Vec3(0)) return;
+  const bool mesh = ui::object_at(doc_.scene(), drag_.object).kind == ObjectRef::Kind::kMesh;
+  edit_scene([&](Scene& s) { return ui::move_object(s, drag_.object, delta); }, mesh);
+}
+
+bool Viewer::grab_object(ImVec2 mouse, const std::optional<int>& hit_object) {
+  if (selected_object_ < 0) return false;
+  const std::optional<ImVec2> marker = object_screen_point(selected_object_);
+  const float grab = ui::light_marker_radius(platform_.ui_scale()) * kMarkerGrabFactor;
+  const bool on_marker = marker && (marker->x - mouse.x) * (marker->x - mouse.x) + (marker->y - mouse.y) * (marker->y - mouse.y) <= grab * grab;
+  if (!on_marker && hit_object != selected_object_) return false;
+  const Camera view = view_camera();
+  const Vec3 anchor = ui::object_anchor(doc_.scene(), selected_object_);
+  const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
+  const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
+  drag_.mode = DragMode::kObject;
+  drag_.object = selected_object_;
+  drag_.object_depth = ui::view_depth(view, anchor);
+  if (!(drag_.object_depth > 0)) {
+    drag_.mode = DragMode::kNone;
+    return false;
+  }
+  drag_.object_start = anchor;
+  drag_.grab_offset = anchor - ui::unproject(view, ui::ViewportPoint{mouse.x - viewport_.x, mouse.y - viewport_.y},
+                                             drag_.object_depth, w, h);
+  return true;
 }
 
 }  // namespace phonglab

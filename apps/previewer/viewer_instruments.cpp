@@ -1,6 +1,7 @@
 // The previewer's teaching instruments: the probe, undo and redo, snapshot A and the compare
 // views, the heat map, "move your head" and the slide figure.
 #include "apps/previewer/viewer_app.h"
+#include "interaction/scene_objects.h"
 
 #include <algorithm>
 #include <cmath>
@@ -74,6 +75,7 @@ void Viewer::restore(std::optional<Scene> step) {
   Scene& scene = doc_.scene();
   scene = std::move(*step);
   selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
+  if (selected_object_ >= ui::object_count(scene)) selected_object_ = -1;
   edits_.scene = true;
   restored_ = true;
 }

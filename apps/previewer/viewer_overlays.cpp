@@ -3,6 +3,7 @@
 // take places that no box holds, so nothing covers anything else, and every text sits on a dark
 // plate so it reads on any image.
 #include "apps/previewer/viewer_app.h"
+#include "interaction/scene_objects.h"
 
 #include <algorithm>
 #include <array>
@@ -145,6 +146,7 @@ void Viewer::draw_overlays() {
   }
   draw_cell_labels_and_probe_ring();
   draw_light_markers(taken);
+  draw_selected_object();
   if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
 
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
@@ -321,6 +323,31 @@ void Viewer::draw_ray_tree_lines() {
                                              c.height / static_cast<float>(render_height_))};
   const bool blinn = snapshot_->scene().specular_model == SpecularModel::kBlinn;
   ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), tree_segments_, rect, platform_.ui_scale(), blinn, lit_lights);
+}
+
+// The selected object, marked where the view shows it: a sphere's outline (its silhouette's
+// radius at its centre's depth), and for every kind a square handle at its anchor to grab it by.
+void Viewer::draw_selected_object() {
+  const std::optional<ImVec2> at = object_screen_point(selected_object_);
+  if (!at) return;
+  const Scene& scene = doc_.scene();
+  const float scale = platform_.ui_scale();
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const ImU32 colour = IM_COL32(255, 170, 40, 255);
+  const ObjectRef r = ui::object_at(scene, selected_object_);
+  if (r.kind == ObjectRef::Kind::kSphere) {
+    const Camera view = view_camera();
+    const Sphere& sp = scene.spheres[static_cast<std::size_t>(r.index)];
+    const double depth = ui::view_depth(view, sp.center);
+    const double pixels_per_unit =
+        depth > 0 ? viewport_.height / (2 * depth * std::tan(glm::radians(view.fov_y_deg) / 2)) : 0;
+    const auto radius = static_cast<float>(sp.radius * pixels_per_unit);
+    if (radius > 2 && radius < 1e4f) draw->AddCircle(*at, radius, colour, 64, 2 * scale);
+  }
+  const float h = ui::light_marker_radius(scale) * 0.8f;
+  draw->AddRect(ImVec2(at->x - h, at->y - h), ImVec2(at->x + h, at->y + h), colour, 0, 0, 2 * scale);
+  draw->AddLine(ImVec2(at->x - h * 0.5f, at->y), ImVec2(at->x + h * 0.5f, at->y), colour, 1.5f * scale);
+  draw->AddLine(ImVec2(at->x, at->y - h * 0.5f), ImVec2(at->x, at->y + h * 0.5f), colour, 1.5f * scale);
 }
 
 }  // namespace phonglab

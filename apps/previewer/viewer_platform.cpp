@@ -97,6 +97,11 @@ void install_activity_callbacks(Platform* platform) {
     }
   });
   glfwSetCharCallback(w, [](GLFWwindow* win, unsigned int) { note(win); });
+  glfwSetDropCallback(w, [](GLFWwindow* win, int count, const char** paths) {
+    note(win);
+    auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win));
+    for (int i = 0; p != nullptr && i < count; ++i) p->push_drop(paths[i]);
+  });
   glfwSetWindowSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
   glfwSetFramebufferSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
   glfwSetWindowRefreshCallback(w, [](GLFWwindow* win) { note(win); });
@@ -113,6 +118,8 @@ void Platform::note_event() { last_event_time_ = glfwGetTime(); }
 std::vector<KeyPress> Platform::take_key_presses() { return std::exchange(key_presses_, {}); }
 
 std::vector<MousePress> Platform::take_mouse_presses() { return std::exchange(mouse_presses_, {}); }
+
+std::vector<std::string> Platform::take_drops() { return std::exchange(drops_, {}); }
 
 void Platform::push_key_press(KeyPress press) { push_bounded(key_presses_, press); }
 

@@ -60,6 +60,9 @@ class Platform {
   void push_key_press(KeyPress press);
   // Mouse button presses since the last call, where the cursor was when each happened.
   std::vector<MousePress> take_mouse_presses();
+  // Files dropped on the window since the last call (the drop callback), in order.
+  void push_drop(std::string path) { drops_.push_back(std::move(path)); }
+  std::vector<std::string> take_drops();
 
  private:
   Platform() = default;
@@ -74,6 +77,7 @@ class Platform {
   double last_event_time_ = 0;
   std::vector<KeyPress> key_presses_;  // from the key callback, taken once per frame
   std::vector<MousePress> mouse_presses_;  // from the mouse button callback, likewise
+  std::vector<std::string> drops_;         // from the drop callback, likewise
 
   double cursor_x_ = 0;  // the cursor as the last cursor event left it, window coordinates
   double cursor_y_ = 0;

@@ -14,6 +14,7 @@
 #include "apps/previewer/script_words.h"
 #include "apps/previewer/viewer_app.h"
 #include "interaction/camera_control.h"
+#include "interaction/scene_objects.h"
 
 namespace phonglab {
 
@@ -73,10 +74,12 @@ void Viewer::fail_script(const ScriptCommand& command, const std::string& messag
   quit_ = true;
 }
 
-void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift) {
+void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift, int held_key) {
   InputStep hover;
   hover.pos = from;
   hover.shift = shift;
+  hover.key = held_key;  // held from before the press to the release
+  hover.key_down = held_key >= 0;
   script_.input.push_back(hover);  // ImGui learns what is under the mouse before the press
   InputStep press = hover;
   press.buttons[button] = true;
@@ -90,6 +93,12 @@ void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift
   InputStep release;
   release.pos = to;
   script_.input.push_back(release);
+  if (held_key >= 0) {
+    InputStep up = release;
+    up.key = held_key;
+    up.key_down = false;
+    script_.input.push_back(up);
+  }
 }
 
 void Viewer::push_click(ImVec2 at, bool ctrl) {
@@ -308,6 +317,25 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     if (marker == markers_.end()) return step.fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
     const ImVec2 from = marker->pos;
     push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), steps, false);
+    return step.wait_for(ScriptWait::kInput, 99);
+  }
+  if (name == "drag_object") {
+    // drag_object I DX DY [x|y|z]: selects object I, grabs it by its marker (where it is drawn)
+    // and drags by DX, DY pixels, the axis key held for a constrained move.
+    int index = -1, axis_key = -1;
+    double dx = 0, dy = 0;
+    if ((w.size() != 4 && w.size() != 5) || !parse_int(w[1], index) || !parse_double(w[2], dx) || !parse_double(w[3], dy)) {
+      return step.fail("usage: drag_object I DX DY [x|y|z]");
+    }
+    if (w.size() == 5) {
+      if (w[4] != "x" && w[4] != "y" && w[4] != "z") return step.fail("usage: drag_object I DX DY [x|y|z]");
+      axis_key = GLFW_KEY_X + (w[4][0] - 'x');
+    }
+    if (index < 0 || index >= ui::object_count(doc_.scene())) return step.fail("no objects[" + w[1] + "]");
+    select_object(index);
+    const std::optional<ImVec2> from = object_screen_point(index);
+    if (!from) return step.fail("objects[" + w[1] + "] is behind the camera");
+    push_drag(0, *from, ImVec2(from->x + static_cast<float>(dx), from->y + static_cast<float>(dy)), 12, false, axis_key);
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "click" || name == "scroll") {
@@ -549,6 +577,9 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
 
 bool Viewer::run_script_command(const ScriptCommand& command, double now) {
   ScriptStep step{*this, command, command.words, now};
+  if (const std::optional<std::string> error = script_scene_command(command.words)) {
+    return error->empty() ? true : step.fail(*error);
+  }
   for (const auto group : {&Viewer::script_wait_command, &Viewer::script_input_command, &Viewer::script_item_command,
                            &Viewer::script_file_command, &Viewer::script_other_command}) {
     if (const std::optional<bool> done = (this->*group)(step)) return *done;

@@ -21,6 +21,7 @@
 #include "core/teaching/ray_tree_view.h"
 #include "core/shading/shading.h"
 #include "interaction/camera_control.h"
+#include "interaction/scene_objects.h"
 
 
 namespace phonglab {
@@ -62,6 +63,7 @@ void Viewer::draw_sidebar() {
       ImGui::SetNextItemOpen(true);
       open_materials_ = false;
     }
+    if (header("Objects", false)) sidebar_objects();
     if (header("Materials", true)) sidebar_materials();
     if (header("Lights", true)) sidebar_lights();
     if (header("Probe", true)) sidebar_probe();
@@ -102,6 +104,39 @@ void Viewer::sidebar_materials() {
   if (picked_text_.empty()) ImGui::TextDisabled("Click an object in the view to select its material.");
   else ImGui::TextDisabled("Clicked: %s", picked_text_.c_str());
   if (ui::materials_panel(scene.materials, selected_material_, scene.specular_model)) edits_.scene = true;
+  ui::MaterialActions actions;
+  ui::material_library(scene, selected_material_, material_name_field_, actions);
+  const int m = selected_material_;
+  if (actions.add) add_material(ui::unused_material_name(scene, "material"));
+  if (actions.duplicate) {
+    int copy = -1;
+    if (edit_scene([&](Scene& s) { return ui::duplicate_material(s, m, copy); }, false).empty()) selected_material_ = copy;
+  }
+  if (actions.remove) {
+    // A mesh's faces carry their MTL materials' indices: with meshes, they are placed again.
+    const bool meshes = !scene.meshes.empty();
+    if (edit_scene([&](Scene& s) { return ui::delete_material(s, m); }, meshes).empty()) {
+      selected_material_ = std::max(0, m - 1);
+    }
+  }
+  if (!actions.rename.empty()) edit_scene([&](Scene& s) { return ui::rename_material(s, m, actions.rename); }, false);
+  if (!actions.preset.empty() && m >= 0 && m < static_cast<int>(scene.materials.size())) {
+    apply_material_preset(scene.materials[static_cast<std::size_t>(m)].name, actions.preset);
+  }
+  if (!objects_notice_.empty()) ImGui::TextColored(ui::kErrorColor, "%s", objects_notice_.c_str());
+}
+
+void Viewer::sidebar_objects() {
+  ui::ObjectActions actions;
+  int selected = selected_object_;
+  ui::objects_panel(doc_.scene(), selected, mesh_path_field_, objects_notice_, actions);
+  if (selected != selected_object_) select_object(selected);
+  if (actions.add != ObjectRef::Kind::kNone) add_object(actions.add, mesh_path_field_);
+  if (actions.duplicate >= 0) duplicate(actions.duplicate);
+  if (actions.remove >= 0) delete_selected_or(actions.remove);
+  if (!actions.field.empty() && selected_object_ >= 0) {
+    set_object(selected_object_, actions.field, actions.values, actions.material);
+  }
 }
 
 void Viewer::sidebar_lights() {

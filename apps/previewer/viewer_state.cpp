@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "apps/previewer/viewer_app.h"
+#include "interaction/scene_objects.h"
 #include "ui/ray_tree_overlay.h"
 
 namespace phonglab {
@@ -110,6 +111,17 @@ void Viewer::write_layout_state(std::ostream& out) const {
   for (const Material& m : scene.materials) {
     out << "material_" << m.name << "_kd=" << vec(m.kd) << "\n"
         << "material_" << m.name << "_n=" << m.n << "\n";
+  }
+  // The objects in file order: kind, anchor, material; the selection and the last edit's notice.
+  out << "objects=" << ui::object_count(scene) << "\n"
+      << "selected_object=" << selected_object_ << "\n"
+      << "objects_notice=" << objects_notice_ << "\n"
+      << "materials=" << scene.materials.size() << "\n";
+  for (int i = 0; i < ui::object_count(scene); ++i) {
+    const int m = ui::object_material(scene, i);
+    out << "object" << i << "_kind=" << ui::kind_name(ui::object_at(scene, i).kind) << "\n"
+        << "object" << i << "_anchor=" << vec(ui::object_anchor(scene, i)) << "\n"
+        << "object" << i << "_material=" << (m >= 0 ? scene.materials[static_cast<std::size_t>(m)].name : "") << "\n";
   }
   std::string enabled;
   for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';

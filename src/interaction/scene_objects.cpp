@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <sstream>
 
 namespace phonglab::ui {
 
@@ -64,6 +65,12 @@ bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 Vec3 vec(const std::vector<double>& v) { return Vec3(v[0], v[1], v[2]); }
 
+std::string shown(double v) {
+  std::ostringstream text;
+  text << v;
+  return text.str();
+}
+
 }  // namespace
 
 int object_count(const Scene& s) {
@@ -81,6 +88,12 @@ ObjectRef object_at(const Scene& s, int object) {
 }
 
 void complete_object_indices(Scene& s) { complete_indices(s); }
+
+int file_object_of(const Scene& s, const ObjectRef& ref) {
+  if (ref.kind == Kind::kNone) return -1;
+  const std::vector<int>& v = indices_of(s, ref.kind);
+  return ref.index >= 0 && static_cast<std::size_t>(ref.index) < v.size() ? v[static_cast<std::size_t>(ref.index)] : -1;
+}
 
 std::string_view kind_name(Kind kind) {
   const auto k = static_cast<std::size_t>(kind);
@@ -262,7 +275,7 @@ std::string set_object_field(Scene& s, int object, const std::string& field, con
   const auto not_here = [&] { return what + ": it has no " + field; };
   if (field == "center" || field == "radius") {
     if (r.kind != Kind::kSphere) return not_here();
-    if (field == "radius" && !(values[0] > 0)) return "radius must be > 0 (got " + std::to_string(values[0]) + ")";
+    if (field == "radius" && !(values[0] > 0)) return "radius must be > 0 (got " + shown(values[0]) + ")";
     if (field == "radius") s.spheres[i].radius = values[0];
     else s.spheres[i].center = v;
     return {};

@@ -22,6 +22,7 @@ namespace phonglab::ui {
 void complete_object_indices(Scene& scene);
 int object_count(const Scene& scene);
 ObjectRef object_at(const Scene& scene, int object);  // kind kNone when out of range
+int file_object_of(const Scene& scene, const ObjectRef& ref);  // the inverse: -1 for none
 std::string_view kind_name(ObjectRef::Kind kind);      // "sphere", "plane", "triangle", "mesh"
 // The kind a name gives; kNone for anything else.
 ObjectRef::Kind kind_from_name(std::string_view name);

@@ -37,6 +37,29 @@ void show_panel(Term& term, bool& small_multiples, bool blinn);
 // each beside the term of the equation it scales. `selected` may change without an edit.
 bool materials_panel(std::vector<Material>& materials, int& selected, SpecularModel model);
 
+// What the Objects panel asks for; the app carries it out, one undo step each.
+struct ObjectActions {
+  ObjectRef::Kind add = ObjectRef::Kind::kNone;  // "+ sphere" ...; kMesh: from the OBJ path field
+  int duplicate = -1;                            // object to duplicate, -1: none
+  int remove = -1;                               // object to delete, -1: none
+  std::string field;                             // a field of the selected object was edited: its name
+  std::vector<double> values;                    // its numbers
+  std::string material;                          // field "material": the chosen material's name
+};
+// The scene's objects by index, kind and material; add, duplicate, delete; the selected one's
+// numbers and material. `selected` may change without an edit; `notice` is the last edit's
+// result or refusal.
+void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, const std::string& notice,
+                   ObjectActions& actions);
+
+// New, duplicate, rename (to `name_field`), delete and the preset library for the selected material.
+struct MaterialActions {
+  bool add = false, duplicate = false, remove = false;
+  std::string rename;  // the new name, when "Rename to" was pressed
+  std::string preset;  // a preset chosen from the library
+};
+void material_library(const Scene& scene, int selected, std::string& name_field, MaterialActions& actions);
+
 // Light list with add/remove, per-light mute (the enabled box) and solo ("S": this light
 // alone, again to restore), and the selected light's type, intensity, position or direction.
 // `selected` may change without an edit.

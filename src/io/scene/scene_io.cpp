@@ -118,6 +118,24 @@ LoadResult load_scene_text(const std::string& text, const std::string& file_name
   return load_scene_text_from(text, file_name, SceneFiles{base_dir, false});
 }
 
+LoadResult reload_meshes(const Scene& scene, const std::string& base_dir, bool embedded) {
+  const std::string dir = base_dir.empty() ? "." : base_dir;
+  LoadResult result = load_scene_text_from(scene_to_json(scene, embedded ? "" : dir), "the edited scene",
+                                           SceneFiles{embedded ? "" : dir, embedded});
+  if (!result.ok()) return result;
+  for (Material& m : result.scene->materials) {
+    if (m.source.empty()) continue;
+    for (const Material& before : scene.materials) {
+      if (before.name == m.name && before.source == m.source) {
+        const std::string source = m.source;
+        m = before;
+        m.source = source;
+      }
+    }
+  }
+  return result;
+}
+
 LoadResult load_scene_file(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = to_lower(c);

@@ -36,6 +36,12 @@ bool is_obj_path(const std::string& path);
 // Resolves SCENE as the CLI takes it: an embedded scene's name, else a file path.
 LoadResult load_scene_arg(const std::string& scene_arg);
 
+// The scene with its meshes read again from their files (and their MTL materials), as the
+// scene saved in `base_dir` would load: after an edit adds a mesh object, moves one or changes
+// the material table under one. `embedded`: relative mesh paths name the embedded scenes'
+// files. MTL materials keep the coefficients edited since they were read.
+LoadResult reload_meshes(const Scene& scene, const std::string& base_dir, bool embedded);
+
 // Serialises a scene to JSON text that load_scene_text reads back to an equal scene. With
 // `save_dir`, the folder the text will be saved in, mesh files read from disk are named
 // relative to it (else as they were written).

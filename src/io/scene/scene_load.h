@@ -230,7 +230,7 @@ struct SceneFiles {
   std::optional<std::string> read(const std::string& relative, std::string& error) const {
     namespace fs = std::filesystem;
     const fs::path p(relative);
-    if (embedded) {
+    if (embedded && !p.is_absolute()) {  // an absolute path (a mesh added to an embedded scene) is on disk
       const std::string key = p.lexically_normal().generic_string();
       if (auto text = embedded_file(key)) return text;
       error = "no such embedded file";
@@ -248,7 +248,7 @@ struct SceneFiles {
   // The absolute path `relative` names on disk; empty for embedded files.
   std::string resolve(const std::string& relative) const {
     namespace fs = std::filesystem;
-    if (embedded) return "";
+    if (embedded && !fs::path(relative).is_absolute()) return "";
     const fs::path p(relative);
     std::error_code ec;
     const fs::path full = fs::absolute(p.is_absolute() ? p : fs::path(base_dir) / p, ec);

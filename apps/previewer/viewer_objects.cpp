@@ -1,0 +1,252 @@
+// Building the scene in the previewer: objects and materials added, duplicated, deleted, moved
+// and edited (the rules in src/interaction/scene_objects.h), meshes placed by the loader, files
+// dropped on the window. Every change is one undo step and marks the scene unsaved; a refused one
+// changes nothing and says why in the Objects panel.
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+#include "apps/previewer/script_words.h"
+#include "apps/previewer/viewer_app.h"
+#include "core/accel/accel.h"
+#include "interaction/camera_control.h"
+#include "interaction/material_presets.h"
+#include "interaction/numbers.h"
+#include "interaction/scene_objects.h"
+#include "io/scene/scene_io.h"
+
+namespace phonglab {
+
+std::string Viewer::place_meshes(Scene& scene) const {
+  if (scene.meshes.empty()) return {};
+  const bool embedded = doc_.file_path().empty();
+  const std::string dir = embedded ? "" : std::filesystem::path(doc_.file_path()).parent_path().string();
+  LoadResult loaded = reload_meshes(scene, dir, embedded);
+  if (!loaded.ok()) return loaded.error_text();
+  scene = std::move(*loaded.scene);
+  return {};
+}
+
+std::string Viewer::edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move) {
+  Scene scene = doc_.scene();
+  ui::complete_object_indices(scene);
+  std::string error = edit(scene);
+  if (error.empty() && meshes_move) error = place_meshes(scene);
+  objects_notice_ = error;
+  if (!error.empty()) return error;  // the scene stays as it was
+  doc_.scene() = std::move(scene);
+  edits_.scene = true;
+  return {};
+}
+
+void Viewer::select_object(int object) {
+  const Scene& scene = doc_.scene();
+  selected_object_ = object >= 0 && object < ui::object_count(scene) ? object : -1;
+  const int material = selected_object_ >= 0 ? ui::object_material(scene, selected_object_) : -1;
+  if (material >= 0) selected_material_ = material;
+}
+
+std::string Viewer::add_object(ObjectRef::Kind kind, const std::string& obj_path) {
+  int added = -1;
+  std::string error;
+  if (kind == ObjectRef::Kind::kMesh) {
+    if (obj_path.empty()) return objects_notice_ = "a mesh object needs an OBJ file";
+    if (!is_obj_path(obj_path)) return objects_notice_ = "'" + obj_path + "' is not an OBJ file (.obj)";
+    const std::string file = std::filesystem::absolute(obj_path).lexically_normal().string();
+    // Loaded where its file puts it, then moved so that its middle is the camera's look-at point.
+    error = edit_scene([&](Scene& s) {
+      Mesh mesh;
+      mesh.file = file;
+      added = ui::append_mesh_object(s, std::move(mesh));
+      std::string failed = place_meshes(s);
+      if (!failed.empty()) return failed;
+      const Mesh& placed = s.meshes[static_cast<std::size_t>(ui::object_at(s, added).index)];
+      const Vec3 middle = 0.5 * (placed.geometry->bounds.lo + placed.geometry->bounds.hi);
+      const Vec3 to = view_camera().look_at - middle;
+      return ui::move_object(s, added, Vec3(ui::tidy_float(to.x), ui::tidy_float(to.y), ui::tidy_float(to.z)));
+    }, true);
+  } else {
+    error = edit_scene([&](Scene& s) {
+      int material = selected_material_;
+      if (s.materials.empty()) {
+        std::string failed = ui::new_material(s, "default", material);
+        if (!failed.empty()) return failed;
+      }
+      material = std::clamp(material, 0, static_cast<int>(s.materials.size()) - 1);
+      added = ui::add_primitive(s, kind, ui::placement_in_front_of(view_camera()), material);
+      return added >= 0 ? std::string() : std::string("only a sphere, a plane, a triangle or a mesh can be added");
+    }, false);
+  }
+  if (error.empty()) {
+    select_object(added);
+    objects_notice_ = "added " + ui::object_label(doc_.scene(), added);
+  }
+  return error;
+}
+
+std::string Viewer::delete_selected_or(int object) {
+  const int count = ui::object_count(doc_.scene());
+  const std::string error = edit_scene([&](Scene& s) { return ui::delete_object(s, object); }, false);
+  if (!error.empty()) return error;
+  selected_object_ = -1;
+  objects_notice_ = count == 1 ? "deleted the last object: the scene is empty (Ctrl+Z brings it back)"
+                               : "deleted objects[" + std::to_string(object) + "]";
+  return {};
+}
+
+std::string Viewer::duplicate(int object) {
+  int copy = -1;
+  const bool mesh = ui::object_at(doc_.scene(), object).kind == ObjectRef::Kind::kMesh;
+  // The copy stands beside the original, a tenth of the view's distance to the right.
+  const ui::Placement where = ui::placement_in_front_of(view_camera());
+  const Vec3 beside = 2 * where.size * where.right;
+  const std::string error = edit_scene([&](Scene& s) {
+    std::string failed = ui::duplicate_object(s, object, copy);
+    if (!failed.empty()) return failed;
+    return ui::move_object(s, copy, Vec3(ui::tidy_float(beside.x), ui::tidy_float(beside.y), ui::tidy_float(beside.z)));
+  }, mesh);
+  if (error.empty()) select_object(copy);
+  return error;
+}
+
+std::string Viewer::set_object(int object, const std::string& field, const std::vector<double>& values,
+                               const std::string& material) {
+  const bool mesh = ui::object_at(doc_.scene(), object).kind == ObjectRef::Kind::kMesh;
+  const bool moves = mesh && (ui::moves_mesh_geometry(field) || field == "material");
+  return edit_scene([&](Scene& s) { return ui::set_object_field(s, object, field, values, material); }, moves);
+}
+
+std::string Viewer::apply_material_preset(const std::string& name, const std::string& preset_name) {
+  const ui::MaterialPreset* preset = ui::find_preset(preset_name);
+  if (preset == nullptr) return objects_notice_ = "no preset named '" + preset_name + "'";
+  int index = ui::find_material(doc_.scene(), name);
+  const std::string error = edit_scene([&](Scene& s) {
+    if (index < 0) {  // a new material of that name, starting from the preset
+      std::string failed = ui::new_material(s, name, index);
+      if (!failed.empty()) return failed;
+    }
+    ui::apply_preset(s.materials[static_cast<std::size_t>(index)], *preset, s.specular_model);
+    return std::string();
+  }, false);
+  if (error.empty()) selected_material_ = index;
+  return error;
+}
+
+std::string Viewer::add_material(const std::string& name) {
+  int index = -1;
+  const std::string error = edit_scene([&](Scene& s) { return ui::new_material(s, name, index); }, false);
+  if (error.empty()) selected_material_ = index;
+  return error;
+}
+
+std::string Viewer::drop_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return objects_notice_ = "dropped '" + path + "': not a file";
+  if (is_obj_path(path)) return add_object(ObjectRef::Kind::kMesh, path);
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".json" || ext == ".JSON") {
+    request(PendingAction{PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
+    return {};
+  }
+  return objects_notice_ = "dropped '" + path + "': neither a scene (.json) nor a mesh (.obj)";
+}
+
+std::optional<ImVec2> Viewer::object_screen_point(int object) const {
+  const Scene& scene = doc_.scene();
+  if (object < 0 || object >= ui::object_count(scene)) return std::nullopt;
+  const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
+  const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
+  const auto p = ui::project(view_camera(), ui::object_anchor(scene, object), w, h);
+  if (!p) return std::nullopt;
+  return ImVec2(viewport_.x + static_cast<float>(p->x), viewport_.y + static_cast<float>(p->y));
+}
+
+}  // namespace phonglab
+
+namespace phonglab {
+
+namespace {
+
+bool parse_numbers(const std::vector<std::string>& w, std::size_t first, std::vector<double>& out) {
+  for (std::size_t i = first; i < w.size(); ++i) {
+    double v = 0;
+    if (!script::parse_double(w[i], v)) return false;
+    out.push_back(v);
+  }
+  return true;
+}
+
+}  // namespace
+
+// The scene-building commands of the test scripts (docs/previewer.md, "Test scripts"): nullopt
+// when `w` is none of them, else "" or what is wrong with the command. An edit the scene's rules
+// refuse (a radius of -1, a material in use) is not a broken script: the program says why, as
+// the panel does, in dump_state's objects_notice and on stderr, and the script goes on.
+std::optional<std::string> Viewer::script_scene_command(const std::vector<std::string>& w) {
+  const std::optional<std::string> usage = script_scene_edit(w);
+  if (usage && usage->empty() && !objects_notice_.empty() && objects_notice_.rfind("added", 0) != 0 &&
+      objects_notice_.rfind("deleted", 0) != 0) {
+    std::cerr << "phonglab: " << w[0] << ": " << objects_notice_ << "\n";
+  }
+  return usage;
+}
+
+std::optional<std::string> Viewer::script_scene_edit(const std::vector<std::string>& w) {
+  const std::string& name = w[0];
+  int index = -1;
+  const auto object_word = [&](std::size_t i) { return w.size() > i && script::parse_int(w[i], index); };
+  if (name == "add_object") {
+    const ObjectRef::Kind kind = w.size() >= 2 ? ui::kind_from_name(w[1]) : ObjectRef::Kind::kNone;
+    const bool mesh = kind == ObjectRef::Kind::kMesh;
+    if (kind == ObjectRef::Kind::kNone || w.size() != (mesh ? 3u : 2u)) {
+      return "usage: add_object sphere|plane|triangle|mesh [OBJ_PATH]";
+    }
+    add_object(kind, mesh ? w[2] : std::string());
+    return "";
+  }
+  if (name == "select_object") {
+    if (w.size() != 2 || !object_word(1)) return "usage: select_object I";
+    if (index < -1 || index >= ui::object_count(doc_.scene())) {
+      objects_notice_ = "no objects[" + w[1] + "]";
+      return "";
+    }
+    select_object(index);
+    return "";
+  }
+  if (name == "delete_object") {
+    if (w.size() != 2 || !object_word(1)) return "usage: delete_object I";
+    delete_selected_or(index);
+    return "";
+  }
+  if (name == "duplicate_object") {
+    if (w.size() != 2 || !object_word(1)) return "usage: duplicate_object I";
+    duplicate(index);
+    return "";
+  }
+  if (name == "set" && w.size() >= 4 && w[1] == "object") {
+    if (!object_word(2)) return "usage: set object I FIELD V..";
+    std::vector<double> values;
+    if (w[3] == "material" && w.size() != 5) return "usage: set object I material NAME";
+    if (w[3] != "material" && !parse_numbers(w, 4, values)) return "set object: the values must be numbers";
+    set_object(index, w[3], values, w[3] == "material" ? w[4] : std::string());
+    return "";
+  }
+  if (name == "new_material") {
+    if (w.size() != 2) return "usage: new_material NAME";
+    add_material(w[1]);
+    return "";
+  }
+  if (name == "material_preset") {
+    if (w.size() != 3) return "usage: material_preset NAME PRESET";
+    apply_material_preset(w[1], w[2]);
+    return "";
+  }
+  if (name == "drop") {
+    if (w.size() != 2) return "usage: drop PATH";
+    drop_file(w[1]);
+    return "";  // a refused drop is the program's message, not a broken script
+  }
+  return std::nullopt;
+}
+
+}  // namespace phonglab
