@@ -22,7 +22,14 @@ std::string Viewer::place_meshes(Scene& scene) const {
   const bool embedded = doc_.file_path().empty();
   const std::string dir = embedded ? "" : std::filesystem::path(doc_.file_path()).parent_path().string();
   LoadResult loaded = reload_meshes(scene, dir, embedded);
-  if (!loaded.ok()) return loaded.error_text();
+  if (!loaded.ok()) {
+    // "the edited scene:91:30: objects[7].file: bunny.obj:2: ...": the position is in text no
+    // one wrote; what matters is the mesh file's own.
+    std::string text = loaded.error_text();
+    const std::size_t file = text.find("].file: ");
+    if (text.rfind("the edited scene:", 0) == 0 && file != std::string::npos) text = text.substr(file + 8);
+    return "cannot load the mesh: " + text;
+  }
   scene = std::move(*loaded.scene);
   return {};
 }

@@ -122,6 +122,7 @@ void Viewer::write_layout_state(std::ostream& out) const {
     out << "object" << i << "_kind=" << ui::kind_name(ui::object_at(scene, i).kind) << "\n"
         << "object" << i << "_anchor=" << vec(ui::object_anchor(scene, i)) << "\n"
         << "object" << i << "_material=" << (m >= 0 ? scene.materials[static_cast<std::size_t>(m)].name : "") << "\n";
+    if (const std::optional<ImVec2> at = object_screen_point(i)) out << "object" << i << "_screen=" << at->x << " " << at->y << "\n";
   }
   std::string enabled;
   for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';

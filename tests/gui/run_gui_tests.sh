@@ -933,6 +933,138 @@ check_no_display() {
   check "an unknown option exits 2" test $? = 2
 }
 
+# --- Session 7: building a scene (issue 16) ------------------------------------------------
+session_objects() {
+  local dir=$OUT/objects
+  mkdir -p "$dir"
+  printf '# a tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$dir/tetra.obj"
+  printf 'v 0 0 0\nf 1 2 3\n' >"$dir/broken.obj"
+  printf 'not a scene\n' >"$dir/notes.txt"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+set display stats 0
+wait_idle 120
+dump_state $dir/b00.txt
+show_item panel.Objects
+click_item panel.Objects
+wait_frames 3
+click_item objects.add_sphere
+wait_idle 120
+dump_state $dir/b01.txt
+set object 6 radius 0.3
+set object 6 center 0.2 0.3 1.4
+new_material shiny_gold
+material_preset shiny_gold gold
+set object 6 material shiny_gold
+wait_idle 120
+screenshot $dir/b02_gold.png
+dump_state $dir/b02.txt
+touch $dir/select_ready
+wait_file $dir/select_done 60
+wait_frames 3
+dump_state $dir/b03.txt
+touch $dir/drag_ready
+wait_file $dir/drag_done 60
+wait_idle 120
+dump_state $dir/b04.txt
+screenshot $dir/b04_dragged.png
+duplicate_object 6
+drag_object 7 0 -60 y
+wait_idle 120
+dump_state $dir/b05.txt
+add_object mesh $dir/tetra.obj
+wait_idle 120
+dump_state $dir/b06.txt
+add_object mesh $dir/broken.obj
+dump_state $dir/b07.txt
+drop $dir/notes.txt
+dump_state $dir/b08.txt
+drop $dir/tetra.obj
+set object 6 radius -1
+wait_frames 3
+dump_state $dir/b09.txt
+delete_object 0
+wait_frames 3
+key Z ctrl
+wait_frames 3
+dump_state $dir/b10.txt
+wait_idle 120
+save_as $dir/built.json
+save_pfm $dir/built.pfm
+dump_state $dir/b11.txt
+screenshot $dir/b11_built.png
+quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
+  local pid=$! win="" at x y
+  # Real X input: a click on the red sphere selects it; a drag of it with X held moves it
+  # along the world's x axis only.
+  if wait_for_file "$dir/select_ready" 120 "$pid"; then
+    win=$(xdotool search --sync --limit 1 --name '^phonglab' 2>/dev/null | head -n 1)
+    at=$(state "$dir/b02.txt" object2_screen)
+    x=${at% *} y=${at#* }
+    x=${x%.*} y=${y%.*}
+    xdotool mousemove --window "$win" "$x" "$y"
+    sleep 0.2
+    xdotool click 1
+    sleep 0.3
+    touch "$dir/select_done"
+  fi
+  if wait_for_file "$dir/drag_ready" 120 "$pid"; then
+    xdotool mousemove --window "$win" "$x" "$y"
+    sleep 0.2
+    xdotool keydown x
+    xdotool mousedown 1
+    for step in 1 2 3 4 5 6; do
+      xdotool mousemove --window "$win" $((x + step * 10)) $((y + step * 6))
+      sleep 0.05
+    done
+    xdotool mouseup 1
+    xdotool keyup x
+    xdotool mousemove --window "$win" 1270 710
+    touch "$dir/drag_done"
+  fi
+  finish "$dir" "$pid"
+}
+
+check_objects() {
+  local dir=$OUT/objects cli=$BUILD_DIR/bin/phonglab-cli n0 a b size w h fov
+  echo "session 7: building a scene"
+  check_exit "$dir" "the script ran to the end"
+  n0=$(state "$dir/b00.txt" objects)
+  check "the + sphere button adds objects[$n0] last and selects it" \
+    test "$(state "$dir/b01.txt" objects)" = $((n0 + 1)) -a "$(state "$dir/b01.txt" selected_object)" = "$n0" \
+    -a "$(state "$dir/b01.txt" "object${n0}_kind")" = sphere
+  check "it stands at the camera's look-at point ($(state "$dir/b01.txt" "object${n0}_anchor"))" \
+    test "$(state "$dir/b01.txt" "object${n0}_anchor")" = "$(state "$dir/b01.txt" camera_look_at)"
+  check "material_preset gives the table's gold, n = 51.2 / 4 for Phong ($(state "$dir/b02.txt" material_shiny_gold_kd), n $(state "$dir/b02.txt" material_shiny_gold_n))" \
+    test "$(state "$dir/b02.txt" material_shiny_gold_kd)" = "0.75164 0.60648 0.22648" -a "$(state "$dir/b02.txt" material_shiny_gold_n)" = 12.8 \
+    -a "$(state "$dir/b02.txt" object6_material)" = shiny_gold
+  check "a click in the view selects the object under it ($(state "$dir/b03.txt" selected_object))" \
+    test "$(state "$dir/b03.txt" selected_object)" = 2
+  a=$(state "$dir/b03.txt" object2_anchor) b=$(state "$dir/b04.txt" object2_anchor)
+  check "dragging it with X held moves it along x only ($a -> $b)" \
+    awk -v a="$a" -v b="$b" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] > p[1] + 0.1 && q[2] == p[2] && q[3] == p[3]) }'
+  check "the drag shows on screen" greater "$(rmse "$dir/b02_gold.png" "$dir/b04_dragged.png" $SCENE_REGION)" 0.005
+  a=$(state "$dir/b05.txt" object6_anchor) b=$(state "$dir/b05.txt" object7_anchor)
+  check "a duplicate, dragged up with Y held, moved along y only ($a / $b)" \
+    awk -v a="$a" -v b="$b" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[2] > p[2] + 0.05 && q[3] == p[3]) }'
+  check "add_object mesh adds the OBJ as a mesh object" test "$(state "$dir/b06.txt" object8_kind)" = mesh
+  check "a broken OBJ is refused with the file's own message, nothing lost ($(state "$dir/b07.txt" objects_notice))" \
+    test "$(state "$dir/b07.txt" objects)" = 9 -a -n "$(state "$dir/b07.txt" objects_notice | grep 'broken.obj:2')"
+  check "a dropped file that is neither scene nor OBJ is refused ($(state "$dir/b08.txt" objects_notice))" \
+    test "$(state "$dir/b08.txt" objects)" = 9 -a -n "$(state "$dir/b08.txt" objects_notice | grep 'neither a scene')"
+  check "a dropped OBJ becomes a mesh object; a radius of -1 is refused ($(state "$dir/b09.txt" objects_notice))" \
+    test "$(state "$dir/b09.txt" objects)" = 10 -a "$(state "$dir/b09.txt" object9_kind)" = mesh \
+    -a -n "$(state "$dir/b09.txt" objects_notice | grep 'radius must be > 0')"
+  check "deleting objects[0] is undone by Ctrl+Z, one step ($(state "$dir/b10.txt" objects) objects, objects[0] a $(state "$dir/b10.txt" object0_kind))" \
+    test "$(state "$dir/b10.txt" objects)" = 10 -a "$(state "$dir/b10.txt" object0_kind)" = plane
+  check "phonglab-cli validate accepts the saved scene" "$cli" validate "$dir/built.json"
+  size=$(state "$dir/b11.txt" render) w=${size%x*} h=${size#*x} fov=$(state "$dir/b11.txt" camera_fov)
+  "$cli" render "$dir/built.json" --width "$w" --height "$h" --fov-y "$fov" --spp 1 -o "$dir/cli_built.pfm" >/dev/null
+  check "the CLI renders the saved scene to the previewer's image, bit for bit" cmp -s "$dir/built.pfm" "$dir/cli_built.pfm"
+}
+
 if ((INSIDE_X)); then
   session_view
   session_files
@@ -940,6 +1072,7 @@ if ((INSIDE_X)); then
   session_rays
   session_lecture
   session_conflict
+  session_objects
   exit 0
 fi
 
@@ -957,6 +1090,7 @@ check_instruments
 check_rays
 check_lecture
 check_conflict
+check_objects
 check_no_display
 echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))
