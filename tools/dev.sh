@@ -11,7 +11,7 @@ PACKAGES=(
   libglm-dev nlohmann-json3-dev libstb-dev libtinyobjloader-dev
   libgtest-dev libembree-dev
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri
-  xvfb xauth xdotool imagemagick fonts-dejavu-core
+  xvfb xauth xdotool imagemagick fonts-dejavu-core desktop-file-utils man-db dpkg-dev
   clang libclang-rt-14-dev
 )
 
