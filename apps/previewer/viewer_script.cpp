@@ -123,6 +123,15 @@ bool Viewer::push_item_input() {
   }
   push_click(at, script_.item_action.kind == ItemAction::Kind::kType);
   if (script_.item_action.kind == ItemAction::Kind::kType) {
+    // Ctrl+A: a text field's text is selected too, so TEXT replaces it as in a slider's.
+    InputStep select_all;
+    select_all.pos = at;
+    select_all.ctrl = true;
+    select_all.key = GLFW_KEY_A;
+    select_all.key_down = true;
+    script_.input.push_back(select_all);
+    select_all.key_down = false;
+    script_.input.push_back(select_all);
     InputStep typed;
     typed.pos = at;
     typed.text = script_.item_action.text;

@@ -7,6 +7,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "io/embedded_scenes.h"
 #include "ui/overlay.h"
@@ -39,6 +40,11 @@ GuardChoice end_choice(GuardChoice choice, GuardChoice scripted) {
 
 void scene_file_panel(SceneFileState& state, SceneFileActions& actions) {
   ImGui::TextWrapped("%s%s", state.source.c_str(), state.dirty ? "  (modified)" : "");
+  if (ImGui::Button("Open... (Ctrl+O)")) actions.browse_open = true;
+  locate("file.browse_open");
+  ImGui::SameLine();
+  if (ImGui::Button("Save as... (Ctrl+Shift+S)")) actions.browse_save = true;
+  locate("file.browse_save");
   input_text("path", state.path_field);
   if (ImGui::Button("Open")) actions.open = true;
   ImGui::SameLine();
@@ -140,6 +146,79 @@ GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardC
     choice = end_choice(choice, scripted);
   }
   return choice;
+}
+
+bool file_browser_dialog(bool open_now, const FileBrowserView& view, FileBrowserActions& actions) {
+  const char* title = view.save ? "Save scene as##browser" : "Open a scene or a mesh##browser";
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowSize(ImVec2(viewport->Size.x * 0.6f, viewport->Size.y * 0.7f), ImGuiCond_Appearing);
+  if (open_now) ImGui::OpenPopup(title);
+  ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(title, nullptr)) return false;
+  const FolderListing& listing = *view.listing;
+  ImGui::TextWrapped("%s", listing.folder.c_str());
+  ImGui::TextDisabled(view.save ? "Scene files (.json)" : "Scene files (.json) and meshes (.obj)");
+  const float footer = ImGui::GetFrameHeightWithSpacing() * 3 + ImGui::GetTextLineHeightWithSpacing() * 2;
+  const float side = ImGui::GetContentRegionAvail().x * 0.35f;
+  if (ImGui::BeginChild("##entries", ImVec2(-side, -footer), true)) {
+    if (!listing.error.empty()) ImGui::TextColored(kErrorColor, "%s", listing.error.c_str());
+    for (const FileEntry& e : listing.entries) {
+      const std::string label = e.folder ? "[" + e.name + "]" : e.name;
+      const bool selected = !e.folder && *view.name_field == e.name;
+      if (ImGui::Selectable(label.c_str(), selected, ImGuiSelectableFlags_AllowDoubleClick)) {
+        if (e.folder) {
+          actions.go_to = entry_path(listing, e);  // one click goes in: fewer steps than a double click
+        } else {
+          *view.name_field = e.name;
+          if (ImGui::IsMouseDoubleClicked(0)) actions.chosen = entry_path(listing, e);
+        }
+      }
+      locate("browser.entry." + e.name);
+    }
+  }
+  ImGui::EndChild();
+  ImGui::SameLine();
+  if (ImGui::BeginChild("##places", ImVec2(0, -footer), true)) {
+    ImGui::TextDisabled("Recent");
+    for (const std::string& path : *view.recent) {
+      // The name first (a long folder would hide it), the folder after it and in full on hover.
+      const std::filesystem::path p(path);
+      const std::string label = p.filename().string() + "   " + p.parent_path().string();
+      if (ImGui::Selectable(label.c_str())) actions.chosen = path;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", path.c_str());
+    }
+    if (view.recent->empty()) ImGui::TextDisabled("  (none yet)");
+    if (!view.save) {
+      ImGui::Separator();
+      ImGui::TextDisabled("Embedded scenes");
+      for (const EmbeddedScene& scene : embedded_scenes()) {
+        const std::string name(scene.name);
+        if (ImGui::Selectable(name.c_str())) actions.embedded = name;
+      }
+    }
+  }
+  ImGui::EndChild();
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  const bool entered =
+      input_text("file", *view.name_field, ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  locate("browser.name");
+  // A name is taken in the listed folder; a path as it is (relative to the working folder).
+  const auto typed_path = [&] {
+    const std::string& name = *view.name_field;
+    if (name.empty() || name[0] == '/') return name;
+    return listing.folder + "/" + name;
+  };
+  if (ImGui::Button(view.save ? "Save" : "Open") || entered) {
+    if (!view.name_field->empty()) actions.chosen = typed_path();
+  }
+  locate("browser.accept");
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) actions.cancel = true;
+  locate("browser.cancel");
+  if (!view.error.empty()) ImGui::TextColored(kErrorColor, "%s", view.error.c_str());
+  if (actions.cancel || !actions.chosen.empty() || !actions.embedded.empty()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+  return true;
 }
 
 }  // namespace phonglab::ui

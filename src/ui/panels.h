@@ -14,6 +14,7 @@
 #include "core/render/render.h"
 #include "core/scene/scene.h"
 #include "core/shading/shading.h"
+#include "interaction/file_browser.h"
 #include "interaction/history.h"
 #include "ui/overlay.h"
 
@@ -164,8 +165,29 @@ struct SceneFileActions {
   bool save_as = false;          // write to path_field
   bool reload = false;           // read file_path again
   std::string open_embedded;     // name of an embedded scene to open, or empty
+  bool browse_open = false;      // "Open..." (Ctrl+O): the file browser
+  bool browse_save = false;      // "Save as..." (Ctrl+Shift+S): the file browser
 };
 void scene_file_panel(SceneFileState& state, SceneFileActions& actions);
+
+// The Open and Save-as dialog: the folder's subfolders (double-click or Enter to go in) and the
+// files of the filter, the recent files, and for Open the embedded scenes; a name field that
+// takes a file name or a path (Enter takes it, Esc cancels). Requests come back in `actions`.
+struct FileBrowserView {
+  bool save = false;                           // Save as (else Open)
+  const FolderListing* listing = nullptr;
+  const std::vector<std::string>* recent = nullptr;
+  std::string* name_field = nullptr;           // edited in place
+  std::string error;                           // why the last choice failed
+};
+struct FileBrowserActions {
+  std::string go_to;     // a folder to list instead
+  std::string chosen;    // the file to open or save to
+  std::string embedded;  // an embedded scene to open
+  bool cancel = false;
+};
+// Whether the dialog is showing; `open_now` opens it.
+bool file_browser_dialog(bool open_now, const FileBrowserView& view, FileBrowserActions& actions);
 
 // Where screenshots go.
 struct ScreenshotState {

@@ -27,6 +27,8 @@ SELF=$SELF_DIR/$(basename "${BASH_SOURCE[0]}")
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-420}  # all sessions, seconds (sanitizer builds are slow)
+# The recent-files list of these sessions stays with their output, not in the user's state.
+export XDG_STATE_HOME=$OUT/state
 
 failures=0
 pass() { echo "  ok    $*"; }
@@ -1065,6 +1067,61 @@ check_objects() {
   check "the CLI renders the saved scene to the previewer's image, bit for bit" cmp -s "$dir/built.pfm" "$dir/cli_built.pfm"
 }
 
+# --- Session 8: the file browser (issue 16) -----------------------------------------------
+session_browser() {
+  local dir=$OUT/browser
+  mkdir -p "$dir/scenes/sub" "$dir/state"
+  cp "$SELF_DIR/../../assets/scenes/glass.json" "$dir/scenes/sub/glass.json"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+key O ctrl
+wait_frames 5
+dump_state $dir/f1.txt
+type_item browser.name $dir/scenes/sub
+wait_frames 3
+dump_state $dir/f2.txt
+screenshot $dir/f2_browser.png
+click_item browser.entry.glass.json
+wait_frames 2
+click_item browser.accept
+wait_idle 120
+dump_state $dir/f3.txt
+key S ctrl shift
+wait_frames 5
+type_item browser.name copy.json
+wait_idle 120
+dump_state $dir/f4.txt
+key O ctrl
+wait_frames 5
+screenshot $dir/f5_recent.png
+key ESCAPE
+wait_frames 3
+dump_state $dir/f5.txt
+quit
+EOF
+  XDG_STATE_HOME="$dir/state" "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_browser() {
+  local dir=$OUT/browser
+  echo "session 8: the file browser"
+  check_exit "$dir" "the script ran to the end"
+  check "Ctrl+O opens the browser in the working folder ($(state "$dir/f1.txt" file_browser_folder))" \
+    test "$(state "$dir/f1.txt" file_browser)" = open
+  check "a folder typed into its field is listed ($(state "$dir/f2.txt" file_browser_folder))" \
+    test "$(state "$dir/f2.txt" file_browser_folder)" = "$dir/scenes/sub" -a "$(state "$dir/f2.txt" file_browser)" = open
+  check "a click on a file and Open open it ($(state "$dir/f3.txt" source))" \
+    test "$(state "$dir/f3.txt" source)" = "$dir/scenes/sub/glass.json" -a -z "$(state "$dir/f3.txt" file_browser)"
+  check "Ctrl+Shift+S with a typed name saves there ($(state "$dir/f4.txt" status))" \
+    test "$(state "$dir/f4.txt" source)" = "$dir/scenes/sub/copy.json" -a -s "$dir/scenes/sub/copy.json"
+  check "the recent files list both, newest first, and is kept for the next session" \
+    test "$(state "$dir/f4.txt" recent0)" = "$dir/scenes/sub/copy.json" -a "$(state "$dir/f4.txt" recent1)" = "$dir/scenes/sub/glass.json" \
+    -a "$(head -n 1 "$dir/state/phonglab/recent")" = "$dir/scenes/sub/copy.json"
+  check "Esc closes the browser" test -z "$(state "$dir/f5.txt" file_browser)"
+}
+
 if ((INSIDE_X)); then
   session_view
   session_files
@@ -1073,6 +1130,7 @@ if ((INSIDE_X)); then
   session_lecture
   session_conflict
   session_objects
+  session_browser
   exit 0
 fi
 
@@ -1091,6 +1149,7 @@ check_rays
 check_lecture
 check_conflict
 check_objects
+check_browser
 check_no_display
 echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))
