@@ -233,9 +233,10 @@ std::optional<std::string> Viewer::script_scene_edit(const std::vector<std::stri
   if (name == "set" && w.size() >= 4 && w[1] == "object") {
     if (!object_word(2)) return "usage: set object I FIELD V..";
     std::vector<double> values;
-    if (w[3] == "material" && w.size() != 5) return "usage: set object I material NAME";
-    if (w[3] != "material" && !parse_numbers(w, 4, values)) return "set object: the values must be numbers";
-    set_object(index, w[3], values, w[3] == "material" ? w[4] : std::string());
+    const bool text = w[3] == "material" || w[3] == "name";
+    if (text && w.size() != 5) return "usage: set object I material|name TEXT";
+    if (!text && !parse_numbers(w, 4, values)) return "set object: the values must be numbers";
+    set_object(index, w[3], values, text ? w[4] : std::string());
     return "";
   }
   if (name == "new_material") {

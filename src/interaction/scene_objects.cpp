@@ -65,6 +65,8 @@ bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 Vec3 vec(const std::vector<double>& v) { return Vec3(v[0], v[1], v[2]); }
 
+std::size_t i_file(int object) { return static_cast<std::size_t>(object); }
+
 std::string shown(double v) {
   std::ostringstream text;
   text << v;
@@ -131,10 +133,16 @@ Vec3 object_anchor(const Scene& s, int object) {
   }
 }
 
+std::string object_name_of(const Scene& s, int object) {
+  const auto i = static_cast<std::size_t>(object);
+  return object >= 0 && i < s.object_names.size() ? s.object_names[i] : std::string();
+}
+
 std::string object_label(const Scene& s, int object) {
   const ObjectRef r = object_at(s, object);
   if (r.kind == Kind::kNone) return object_name(object);
-  std::string label = object_name(object) + ": " + std::string(kind_name(r.kind));
+  const std::string name = object_name_of(s, object);
+  std::string label = object_name(object) + (name.empty() ? "" : " \"" + name + "\"") + ": " + std::string(kind_name(r.kind));
   const int m = object_material(s, object);
   if (m >= 0 && m < static_cast<int>(s.materials.size())) label += ", " + s.materials[static_cast<std::size_t>(m)].name;
   if (r.kind == Kind::kMesh) label += " (" + s.meshes[static_cast<std::size_t>(r.index)].file + ")";
@@ -207,6 +215,7 @@ std::string delete_object(Scene& s, int object) {
   }
   erase_at(indices_of(s, r.kind), r.index);
   close_gap(s, object);
+  if (static_cast<std::size_t>(object) < s.object_names.size()) erase_at(s.object_names, object);
   return {};
 }
 
@@ -223,6 +232,11 @@ std::string duplicate_object(Scene& s, int object, int& copy) {
     default: s.meshes.push_back(s.meshes[i]); break;  // shares the geometry: it stands in the same place
   }
   indices_of(s, r.kind).push_back(copy);
+  const std::string name = object_name_of(s, object);
+  if (!name.empty()) {
+    s.object_names.resize(static_cast<std::size_t>(copy) + 1);
+    s.object_names[static_cast<std::size_t>(copy)] = name + " copy";
+  }
   return {};
 }
 
@@ -255,6 +269,12 @@ std::string set_object_field(Scene& s, int object, const std::string& field, con
   if (r.kind == Kind::kNone) return no_such_object(s, object);
   const auto i = static_cast<std::size_t>(r.index);
   const std::string what = object_name(object) + " is a " + std::string(kind_name(r.kind));
+  if (field == "name") {  // `material` carries the text
+    if (s.object_names.size() <= i_file(object)) s.object_names.resize(i_file(object) + 1);
+    s.object_names[i_file(object)] = material;
+    while (!s.object_names.empty() && s.object_names.back().empty()) s.object_names.pop_back();
+    return {};
+  }
   if (field == "material") {
     const int m = find_material(s, material);
     if (m < 0) return "no material named '" + material + "'";
@@ -301,7 +321,7 @@ std::string set_object_field(Scene& s, int object, const std::string& field, con
     (field == "translate" ? t.translate : field == "rotate_deg" ? t.rotate_deg : t.scale) = v;
     return {};
   }
-  return "unknown field '" + field + "' (center, radius, point, normal, v0, v1, v2, translate, rotate_deg, scale, material)";
+  return "unknown field '" + field + "' (center, radius, point, normal, v0, v1, v2, translate, rotate_deg, scale, material, name)";
 }
 
 int find_material(const Scene& s, const std::string& name) {

@@ -31,7 +31,8 @@ int object_material(const Scene& scene, int object);
 // A point that stands for the object: a sphere's centre, a plane's point, a triangle's centroid,
 // a mesh's translation.
 Vec3 object_anchor(const Scene& scene, int object);
-// "objects[2]: sphere, plastic" for lists and messages.
+// The object's optional name ("" for none); "objects[2] \"ball\": sphere, plastic" for lists and messages.
+std::string object_name_of(const Scene& scene, int object);
 std::string object_label(const Scene& scene, int object);
 
 // Where a new object goes: in front of the camera, at its look-at point, sized to a tenth of
@@ -56,8 +57,9 @@ std::string duplicate_object(Scene& scene, int object, int& copy);
 std::string move_object(Scene& scene, int object, const Vec3& delta);
 // `set object I FIELD V..` of the scripts and the Objects panel's fields: center, radius
 // (spheres), point, normal (planes), v0, v1, v2 (triangles), translate, rotate_deg, scale
-// (meshes), material NAME (any). `values` are the numbers (three, or one for radius; a scale
-// may be one number for all three axes); `material` the name for the material field.
+// (meshes), material NAME and name TEXT (any; an empty name removes it). `values` are the
+// numbers (three, or one for radius; a scale may be one number for all three axes); `material`
+// the text of the material and name fields.
 std::string set_object_field(Scene& scene, int object, const std::string& field, const std::vector<double>& values,
                              const std::string& material = {});
 // Whether an edit of this field changes a mesh's placement (its geometry must be loaded again).

@@ -29,6 +29,13 @@ void selected_fields(const Scene& scene, int selected, ObjectActions& actions) {
   const ObjectRef r = object_at(scene, selected);
   const auto i = static_cast<std::size_t>(r.index);
   ImGui::PushID(selected);
+  // Its name, kept in the file (Enter renames; empty: objects[i] and its kind).
+  std::string name = object_name_of(scene, selected);
+  if (input_text("name", name, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    actions.field = "name";
+    actions.material = name;
+  }
+  locate("objects.name");
   switch (r.kind) {
     case Kind::kSphere: {
       vec3_field("centre", "objects.center", scene.spheres[i].center, "center", actions);

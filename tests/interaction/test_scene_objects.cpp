@@ -209,3 +209,32 @@ TEST(MaterialPresets, TheClassicTableAsPublishedAndTheLecturesOwn) {
   EXPECT_EQ(m.ior, 2.417);
   EXPECT_TRUE(m.fresnel);
 }
+
+// The optional "name" of an object: read, shown, kept on save, moved with the object when others
+// are deleted, copied with a duplicate, and a name that is not a string is an error.
+TEST(SceneObjects, NamesAreReadKeptAndFollowTheirObjects) {
+  const std::string text = R"({"materials": {"m": {"kd": 0.5}}, "objects": [
+    {"type": "sphere", "center": [0, 0, -3], "radius": 1, "material": "m"},
+    {"type": "sphere", "name": "red ball", "center": [1, 0, -3], "radius": 0.5, "material": "m"},
+    {"type": "plane", "name": "floor", "point": [0, -1, 0], "normal": [0, 1, 0], "material": "m"}]})";
+  LoadResult loaded = load_scene_text(text, "named.json");
+  ASSERT_TRUE(loaded.ok()) << loaded.error_text();
+  Scene s = *loaded.scene;
+  EXPECT_EQ(object_name_of(s, 0), "");
+  EXPECT_EQ(object_name_of(s, 1), "red ball");
+  EXPECT_EQ(object_label(s, 2), "objects[2] \"floor\": plane, m");
+  EXPECT_TRUE(saves_losslessly(s));
+  EXPECT_NE(scene_to_json(s).find("\"name\": \"red ball\""), std::string::npos);
+  ASSERT_EQ(delete_object(s, 0), "");
+  EXPECT_EQ(object_name_of(s, 0), "red ball");
+  int copy = -1;
+  ASSERT_EQ(duplicate_object(s, 1, copy), "");
+  EXPECT_EQ(object_name_of(s, copy), "floor copy");
+  ASSERT_EQ(set_object_field(s, 0, "name", {}, "blue ball"), "");
+  EXPECT_EQ(object_name_of(s, 0), "blue ball");
+  EXPECT_TRUE(saves_losslessly(s));
+  const LoadResult bad = load_scene_text(R"({"materials": {"m": {}}, "objects": [
+    {"type": "sphere", "name": 7, "center": [0, 0, 0], "radius": 1, "material": "m"}]})", "bad.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error_text().find("objects[0].name"), std::string::npos) << bad.error_text();
+}

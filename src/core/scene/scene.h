@@ -127,6 +127,8 @@ struct Scene {
   std::vector<Mesh> meshes;
   // Index of the scene-file object each sphere/plane/triangle/mesh came from ("objects[i]").
   std::vector<int> sphere_object, plane_object, triangle_object, mesh_object;
+  // objects[i]'s optional "name", by that index (the vector may be shorter: the rest have none).
+  std::vector<std::string> object_names;
 };
 
 }  // namespace phonglab

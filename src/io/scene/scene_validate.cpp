@@ -56,11 +56,11 @@ constexpr std::array<std::string_view, 4> kDirectionalLightKeys = {"type", "dire
 constexpr std::array<std::string_view, 8> kMaterialKeys = {"ka", "kd", "ks", "n",
                                                            "kr", "kt", "ior", "fresnel"};
 constexpr std::array<std::string_view, 4> kObjectTypes = {"sphere", "plane", "triangle", "mesh"};
-constexpr std::array<std::string_view, 4> kSphereKeys = {"type", "center", "radius", "material"};
-constexpr std::array<std::string_view, 4> kPlaneKeys = {"type", "point", "normal", "material"};
-constexpr std::array<std::string_view, 4> kTriangleKeys = {"type", "vertices", "normals",
+constexpr std::array<std::string_view, 5> kSphereKeys = {"type", "name", "center", "radius", "material"};
+constexpr std::array<std::string_view, 5> kPlaneKeys = {"type", "name", "point", "normal", "material"};
+constexpr std::array<std::string_view, 5> kTriangleKeys = {"type", "name", "vertices", "normals",
                                                            "material"};
-constexpr std::array<std::string_view, 5> kMeshKeys = {"type", "file", "material", "transform", "ns"};
+constexpr std::array<std::string_view, 6> kMeshKeys = {"type", "name", "file", "material", "transform", "ns"};
 constexpr std::array<std::string_view, 3> kTransformKeys = {"scale", "rotate_deg", "translate"};
 constexpr std::array<std::string_view, 2> kNsMappings = {"as_is", "blinn_to_phong"};
 
@@ -271,8 +271,20 @@ class Validator : private JsonReader {
     }
   }
 
+  // An object's optional "name": shown and edited by the previewer, kept on save.
+  bool name(const Fields& f, Scene& s, int object) {
+    const Val* x = f.find("name");
+    if (x == nullptr) return true;
+    const std::optional<std::string> text = read_string(*x);
+    if (!text) return false;
+    if (s.object_names.size() <= static_cast<std::size_t>(object)) s.object_names.resize(static_cast<std::size_t>(object) + 1);
+    s.object_names[static_cast<std::size_t>(object)] = *text;
+    return true;
+  }
+
   void sphere(const Val& e, Scene& s, int object) {
     const Fields f = fields(e, kSphereKeys);
+    if (!name(f, s, object)) return;
     bool ok = require(e, f, {"center", "radius", "material"});
     Sphere sp;
     if (const Val* x = f.find("center")) ok = assign(sp.center, read_vec3(*x)) && ok;
@@ -285,6 +297,7 @@ class Validator : private JsonReader {
 
   void plane(const Val& e, Scene& s, int object) {
     const Fields f = fields(e, kPlaneKeys);
+    if (!name(f, s, object)) return;
     bool ok = require(e, f, {"point", "normal", "material"});
     Plane pl;
     if (const Val* x = f.find("point")) ok = assign(pl.point, read_vec3(*x)) && ok;
@@ -314,6 +327,7 @@ class Validator : private JsonReader {
 
   void triangle(const Val& e, Scene& s, int object) {
     const Fields f = fields(e, kTriangleKeys);
+    if (!name(f, s, object)) return;
     bool ok = require(e, f, {"vertices", "material"});
     Triangle tri;
     if (const Val* x = f.find("vertices")) {
@@ -370,6 +384,7 @@ class Validator : private JsonReader {
 
   void mesh(const Val& e, Scene& s, int object) {
     const Fields f = fields(e, kMeshKeys);
+    if (!name(f, s, object)) return;
     bool ok = require(e, f, {"file"});
     Mesh mesh;
     const Val* file = f.find("file");

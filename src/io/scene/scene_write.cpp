@@ -80,31 +80,41 @@ std::vector<ObjectLine> object_lines(const Scene& scene, const std::string& save
     return unindexed++;
   };
 
+  // `"type": ...` and, for a named object, its name after it.
+  const auto head = [&](const char* type, long long order) {
+    std::string text = std::string("{\"type\": \"") + type + "\"";
+    const auto i = static_cast<std::size_t>(order);
+    if (order >= 0 && i < scene.object_names.size() && !scene.object_names[i].empty()) {
+      text += ", \"name\": " + json_string(scene.object_names[i]);
+    }
+    return text;
+  };
   std::vector<ObjectLine> lines;
   for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];
-    lines.push_back({order_of(scene.sphere_object, i),
-                     "{\"type\": \"sphere\", \"center\": " + vec_text(s.center) +
+    const long long order = order_of(scene.sphere_object, i);
+    lines.push_back({order, head("sphere", order) + ", \"center\": " + vec_text(s.center) +
                          ", \"radius\": " + number_text(s.radius) +
                          ", \"material\": " + material_name(s.material) + "}"});
   }
   for (std::size_t i = 0; i < scene.planes.size(); ++i) {
     const Plane& p = scene.planes[i];
-    lines.push_back({order_of(scene.plane_object, i),
-                     "{\"type\": \"plane\", \"point\": " + vec_text(p.point) +
+    const long long order = order_of(scene.plane_object, i);
+    lines.push_back({order, head("plane", order) + ", \"point\": " + vec_text(p.point) +
                          ", \"normal\": " + vec_text(p.normal) +
                          ", \"material\": " + material_name(p.material) + "}"});
   }
   for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
     const Triangle& t = scene.triangles[i];
-    std::string line = "{\"type\": \"triangle\", \"vertices\": [" + vec_text(t.v0) + ", " +
+    const long long order = order_of(scene.triangle_object, i);
+    std::string line = head("triangle", order) + ", \"vertices\": [" + vec_text(t.v0) + ", " +
                        vec_text(t.v1) + ", " + vec_text(t.v2) + "]";
     if (t.has_vertex_normals) {
       line += ", \"normals\": [" + vec_text(t.n0) + ", " + vec_text(t.n1) + ", " +
               vec_text(t.n2) + "]";
     }
     line += ", \"material\": " + material_name(t.material) + "}";
-    lines.push_back({order_of(scene.triangle_object, i), std::move(line)});
+    lines.push_back({order, std::move(line)});
   }
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const Mesh& m = scene.meshes[i];
@@ -117,13 +127,14 @@ std::vector<ObjectLine> object_lines(const Scene& scene, const std::string& save
       const auto rel = std::filesystem::path(m.resolved_path).lexically_relative(dir.lexically_normal());
       if (!ec && !rel.empty()) file = rel.generic_string();
     }
-    std::string line = "{\"type\": \"mesh\", \"file\": " + json_string(file);
+    const long long order = order_of(scene.mesh_object, i);
+    std::string line = head("mesh", order) + ", \"file\": " + json_string(file);
     if (!m.material_override.empty()) line += ", \"material\": " + json_string(m.material_override);
     line += ", \"transform\": {\"scale\": " + vec_text(tr.scale) + ", \"rotate_deg\": " + vec_text(tr.rotate_deg) +
             ", \"translate\": " + vec_text(tr.translate) + "}";
     if (m.ns == NsMapping::kBlinnToPhong) line += ", \"ns\": \"blinn_to_phong\"";
     line += "}";
-    lines.push_back({order_of(scene.mesh_object, i), std::move(line)});
+    lines.push_back({order, std::move(line)});
   }
   std::stable_sort(lines.begin(), lines.end(),
                    [](const ObjectLine& a, const ObjectLine& b) { return a.order < b.order; });
