@@ -149,11 +149,12 @@ std::string term_caption(Term term, bool blinn) {
 }
 
 void keys_help() {
-  static constexpr std::array<std::array<const char*, 2>, 17> kRows = {{
+  static constexpr std::array<std::array<const char*, 2>, 21> kRows = {{
       {"left-drag", "orbit: the scene follows the hand"},
       {"right-drag, wheel", "dolly"},
       {"middle-drag, Shift+left-drag", "pan"},
-      {"click", "select the clicked object's material"},
+      {"click", "select the clicked object and its material"},
+      {"drag the selected object", "move it (X, Y or Z held: along that axis)"},
       {"Ctrl+click", "probe the pixel (its equation, its ray tree)"},
       {"drag a light marker or arrow", "move that light"},
       {"1", "the full image"},
@@ -165,6 +166,9 @@ void keys_help() {
       {"H", "hide or show the panels"},
       {"Ctrl+Z", "undo"},
       {"Ctrl+Shift+Z, Ctrl+Y", "redo"},
+      {"Ctrl+O", "open a scene or a mesh (the file browser)"},
+      {"Ctrl+S, Ctrl+Shift+S", "save, save as"},
+      {"drop a .json / .obj", "open it / add it as a mesh object"},
       {"F1, ?", "this help"},
       {"Esc", "close it"},
   }};

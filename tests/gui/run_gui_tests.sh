@@ -961,6 +961,13 @@ set object 6 material shiny_gold
 wait_idle 120
 screenshot $dir/b02_gold.png
 dump_state $dir/b02.txt
+show_item materials.preset
+click_item materials.preset
+wait_frames 3
+screenshot $dir/b02_presets.png
+click_item materials.preset
+wait_frames 3
+dump_state $dir/b02b.txt
 touch $dir/select_ready
 wait_file $dir/select_done 60
 wait_frames 3
