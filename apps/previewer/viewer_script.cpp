@@ -123,26 +123,23 @@ bool Viewer::push_item_input() {
   }
   push_click(at, script_.item_action.kind == ItemAction::Kind::kType);
   if (script_.item_action.kind == ItemAction::Kind::kType) {
-    // Ctrl+A: a text field's text is selected too, so TEXT replaces it as in a slider's.
-    InputStep select_all;
-    select_all.pos = at;
-    select_all.ctrl = true;
-    select_all.key = GLFW_KEY_A;
-    select_all.key_down = true;
-    script_.input.push_back(select_all);
-    select_all.key_down = false;
-    script_.input.push_back(select_all);
+    // A key pressed and released over the field (with Ctrl or not).
+    const auto tap = [&](int key, bool ctrl) {
+      InputStep step;
+      step.pos = at;
+      step.ctrl = ctrl;
+      step.key = key;
+      step.key_down = true;
+      script_.input.push_back(step);
+      step.key_down = false;
+      script_.input.push_back(step);
+    };
+    tap(GLFW_KEY_A, true);  // Ctrl+A: a text field's text is selected too, so TEXT replaces it as in a slider's
     InputStep typed;
     typed.pos = at;
     typed.text = script_.item_action.text;
     script_.input.push_back(typed);
-    InputStep enter;
-    enter.pos = at;
-    enter.key = GLFW_KEY_ENTER;
-    enter.key_down = true;
-    script_.input.push_back(enter);
-    enter.key_down = false;
-    script_.input.push_back(enter);
+    tap(GLFW_KEY_ENTER, false);
   }
   InputStep after;
   after.pos = at;

@@ -16,6 +16,13 @@ namespace {
 
 using Kind = ObjectRef::Kind;
 
+// A button that scripts can find by `name`; whether it was pressed.
+bool button(const char* label, const std::string& name) {
+  const bool pressed = ImGui::Button(label);
+  locate(name);
+  return pressed;
+}
+
 // One three-number field of the selected object: edited values come back as a request.
 void vec3_field(const char* label, const char* name, Vec3 v, const char* field, ObjectActions& actions) {
   if (drag_vec3(label, v, 0.01f, "%.3f")) {
@@ -103,22 +110,18 @@ void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, co
   // Added in front of the camera, at its look-at point, and selected.
   for (const Kind kind : {Kind::kSphere, Kind::kPlane, Kind::kTriangle}) {
     const std::string label = "+ " + std::string(kind_name(kind));
-    if (ImGui::Button(label.c_str())) actions.add = kind;
-    locate("objects.add_" + std::string(kind_name(kind)));
+    if (button(label.c_str(), "objects.add_" + std::string(kind_name(kind)))) actions.add = kind;
     ImGui::SameLine();
   }
   ImGui::BeginDisabled(selected < 0);
-  if (ImGui::Button("Duplicate")) actions.duplicate = selected;
-  locate("objects.duplicate");
+  if (button("Duplicate", "objects.duplicate")) actions.duplicate = selected;
   ImGui::SameLine();
-  if (ImGui::Button("Delete")) actions.remove = selected;
-  locate("objects.delete");
+  if (button("Delete", "objects.delete")) actions.remove = selected;
   ImGui::EndDisabled();
   input_text("##obj", mesh_path);
   locate("objects.mesh_path");
   ImGui::SameLine();
-  if (ImGui::Button("+ mesh (OBJ)")) actions.add = Kind::kMesh;
-  locate("objects.add_mesh");
+  if (button("+ mesh (OBJ)", "objects.add_mesh")) actions.add = Kind::kMesh;
   if (!notice.empty()) ImGui::TextColored(notice.rfind("added", 0) == 0 || notice.rfind("deleted", 0) == 0 ? kWarningColor : kErrorColor,
                                           "%s", notice.c_str());
   if (selected >= 0) {
@@ -131,18 +134,14 @@ void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, co
 
 void material_library(const Scene& scene, int selected, std::string& name_field, MaterialActions& actions) {
   const bool has = selected >= 0 && selected < static_cast<int>(scene.materials.size());
-  if (ImGui::Button("New")) actions.add = true;
-  locate("materials.new");
+  if (button("New", "materials.new")) actions.add = true;
   ImGui::SameLine();
   ImGui::BeginDisabled(!has);
-  if (ImGui::Button("Duplicate")) actions.duplicate = true;
-  locate("materials.duplicate");
+  if (button("Duplicate", "materials.duplicate")) actions.duplicate = true;
   ImGui::SameLine();
-  if (ImGui::Button("Delete")) actions.remove = true;
-  locate("materials.delete");
+  if (button("Delete", "materials.delete")) actions.remove = true;
   ImGui::SameLine();
-  if (ImGui::Button("Rename to")) actions.rename = name_field;
-  locate("materials.rename");
+  if (button("Rename to", "materials.rename")) actions.rename = name_field;
   ImGui::EndDisabled();
   ImGui::SameLine();
   input_text("##material_name", name_field);
