@@ -942,6 +942,7 @@ session_objects() {
   printf '# a tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$dir/tetra.obj"
   printf 'v 0 0 0\nf 1 2 3\n' >"$dir/broken.obj"
   printf 'not a scene\n' >"$dir/notes.txt"
+  cp "$SELF_DIR/../../assets/scenes/glass.json" "$dir/other.json"
   cat >"$dir/script.txt" <<EOF
 set render target_spp 1
 set display stats 0
@@ -997,11 +998,28 @@ wait_frames 3
 key Z ctrl
 wait_frames 3
 dump_state $dir/b10.txt
+add_object triangle
+set object 10 v0 0 0 0
+set object 10 v1 1 0 0
+set object 10 v2 2 0 0
+wait_frames 3
+dump_state $dir/b10t.txt
+drop $dir/other.json
+wait_frames 5
+dump_state $dir/b10g.txt
+modal cancel
+wait_frames 3
 wait_idle 120
 save_as $dir/built.json
 save_pfm $dir/built.pfm
 dump_state $dir/b11.txt
 screenshot $dir/b11_built.png
+$(for i in $(seq 1 11); do printf 'delete_object 0\nwait_frames 1\n'; done)
+wait_frames 3
+dump_state $dir/b12.txt
+key Z ctrl
+wait_frames 3
+dump_state $dir/b13.txt
 quit
 EOF
   "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
@@ -1068,6 +1086,13 @@ check_objects() {
     -a -n "$(state "$dir/b09.txt" objects_notice | grep 'radius must be > 0')"
   check "deleting objects[0] is undone by Ctrl+Z, one step ($(state "$dir/b10.txt" objects) objects, objects[0] a $(state "$dir/b10.txt" object0_kind))" \
     test "$(state "$dir/b10.txt" objects)" = 10 -a "$(state "$dir/b10.txt" object0_kind)" = plane
+  check "a triangle typed into a line is refused, its corners kept ($(state "$dir/b10t.txt" objects_notice))" \
+    test -n "$(state "$dir/b10t.txt" objects_notice | grep 'degenerate triangle')" -a "$(state "$dir/b10t.txt" objects)" = 11
+  check "a scene dropped on an edited one asks first; Cancel keeps the edits ($(state "$dir/b10g.txt" modal))" \
+    test "$(state "$dir/b10g.txt" modal)" = 1 -a "$(state "$dir/b11.txt" objects)" = 11
+  check "deleting every object leaves an empty scene and says so ($(state "$dir/b12.txt" objects_notice))" \
+    test "$(state "$dir/b12.txt" objects)" = 0 -a -n "$(state "$dir/b12.txt" objects_notice | grep 'last object')"
+  check "Ctrl+Z brings the last one back" test "$(state "$dir/b13.txt" objects)" = 1
   check "phonglab-cli validate accepts the saved scene" "$cli" validate "$dir/built.json"
   size=$(state "$dir/b11.txt" render) w=${size%x*} h=${size#*x} fov=$(state "$dir/b11.txt" camera_fov)
   "$cli" render "$dir/built.json" --width "$w" --height "$h" --fov-y "$fov" --spp 1 -o "$dir/cli_built.pfm" >/dev/null
