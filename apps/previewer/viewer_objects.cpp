@@ -103,16 +103,14 @@ std::string Viewer::delete_selected_or(int object) {
 
 std::string Viewer::duplicate(int object) {
   int copy = -1;
-  const bool mesh = ui::object_at(doc_.scene(), object).kind == ObjectRef::Kind::kMesh;
-  // The copy stands beside the original, a tenth of the view's distance to the right.
-  const ui::Placement where = ui::placement_in_front_of(view_camera());
-  const Vec3 beside = 2 * where.size * where.right;
-  const std::string error = edit_scene([&](Scene& s) {
-    std::string failed = ui::duplicate_object(s, object, copy);
-    if (!failed.empty()) return failed;
-    return ui::move_object(s, copy, Vec3(ui::tidy_float(beside.x), ui::tidy_float(beside.y), ui::tidy_float(beside.z)));
-  }, mesh);
-  if (error.empty()) select_object(copy);
+  // The copy stands where the original does, selected (its handle shows it): drag it away, as
+  // after Blender's Shift+D.
+  const std::string error = edit_scene([&](Scene& s) { return ui::duplicate_object(s, object, copy); }, false);
+  if (error.empty()) {
+    select_object(copy);
+    objects_notice_ = "duplicated objects[" + std::to_string(object) + "] as " + ui::object_label(doc_.scene(), copy) +
+                      ", in the same place: drag it away";
+  }
   return error;
 }
 
@@ -191,8 +189,9 @@ bool parse_numbers(const std::vector<std::string>& w, std::size_t first, std::ve
 // the panel does, in dump_state's objects_notice and on stderr, and the script goes on.
 std::optional<std::string> Viewer::script_scene_command(const std::vector<std::string>& w) {
   const std::optional<std::string> usage = script_scene_edit(w);
-  if (usage && usage->empty() && !objects_notice_.empty() && objects_notice_.rfind("added", 0) != 0 &&
-      objects_notice_.rfind("deleted", 0) != 0) {
+  const bool done = objects_notice_.rfind("added", 0) == 0 || objects_notice_.rfind("deleted", 0) == 0 ||
+                    objects_notice_.rfind("duplicated", 0) == 0;
+  if (usage && usage->empty() && !objects_notice_.empty() && !done) {
     std::cerr << "phonglab: " << w[0] << ": " << objects_notice_ << "\n";
   }
   return usage;

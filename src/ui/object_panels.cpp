@@ -122,8 +122,8 @@ void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, co
   locate("objects.mesh_path");
   ImGui::SameLine();
   if (button("+ mesh (OBJ)", "objects.add_mesh")) actions.add = Kind::kMesh;
-  if (!notice.empty()) ImGui::TextColored(notice.rfind("added", 0) == 0 || notice.rfind("deleted", 0) == 0 ? kWarningColor : kErrorColor,
-                                          "%s", notice.c_str());
+  const bool done = notice.rfind("added", 0) == 0 || notice.rfind("deleted", 0) == 0 || notice.rfind("duplicated", 0) == 0;
+  if (!notice.empty()) ImGui::TextColored(done ? kWarningColor : kErrorColor, "%s", notice.c_str());
   if (selected >= 0) {
     ImGui::TextDisabled("Drag it in the view (hold X, Y or Z for one axis), or type its numbers:");
     selected_fields(scene, selected, actions);

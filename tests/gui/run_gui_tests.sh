@@ -1074,8 +1074,8 @@ check_objects() {
     awk -v a="$a" -v b="$b" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] > p[1] + 0.1 && q[2] == p[2] && q[3] == p[3]) }'
   check "the drag shows on screen" greater "$(rmse "$dir/b02_gold.png" "$dir/b04_dragged.png" $SCENE_REGION)" 0.005
   a=$(state "$dir/b05.txt" object6_anchor) b=$(state "$dir/b05.txt" object7_anchor)
-  check "a duplicate, dragged up with Y held, moved along y only ($a / $b)" \
-    awk -v a="$a" -v b="$b" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[2] > p[2] + 0.05 && q[3] == p[3]) }'
+  check "a duplicate, made in place and dragged up with Y held, moved along y only ($a / $b)" \
+    awk -v a="$a" -v b="$b" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] == p[1] && q[2] > p[2] + 0.05 && q[3] == p[3]) }'
   check "add_object mesh adds the OBJ as a mesh object" test "$(state "$dir/b06.txt" object8_kind)" = mesh
   check "a broken OBJ is refused with the file's own message, nothing lost ($(state "$dir/b07.txt" objects_notice))" \
     test "$(state "$dir/b07.txt" objects)" = 9 -a -n "$(state "$dir/b07.txt" objects_notice | grep 'broken.obj:2')"
