@@ -337,10 +337,17 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
       if (w[4] != "x" && w[4] != "y" && w[4] != "z") return step.fail("usage: drag_object I DX DY [x|y|z]");
       axis_key = GLFW_KEY_X + (w[4][0] - 'x');
     }
-    if (index < 0 || index >= ui::object_count(doc_.scene())) return step.fail("no objects[" + w[1] + "]");
+    // No such object, or none to grab on screen: the program says so, as for a refused edit.
+    if (index < 0 || index >= ui::object_count(doc_.scene())) {
+      objects_notice_ = "no objects[" + w[1] + "]";
+      return true;
+    }
     select_object(index);
     const std::optional<ImVec2> from = object_screen_point(index);
-    if (!from) return step.fail("objects[" + w[1] + "] is behind the camera");
+    if (!from) {
+      objects_notice_ = "objects[" + w[1] + "] is behind the camera: nothing to grab";
+      return true;
+    }
     push_drag(0, *from, ImVec2(from->x + static_cast<float>(dx), from->y + static_cast<float>(dy)), 12, false, axis_key);
     return step.wait_for(ScriptWait::kInput, 99);
   }
