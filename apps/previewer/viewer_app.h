@@ -168,10 +168,11 @@ class Viewer {
   std::string edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move);  // one undo step
   std::string place_meshes(Scene& scene) const;  // meshes loaded again where their transforms say
   std::string add_object(ObjectRef::Kind kind, const std::string& obj_path);  // last, in front, selected
-  std::string delete_selected_or(int object);
+  std::string delete_object(int object);
+  std::string refuse(std::string why);           // objects_notice_ says why nothing changed; returns it
   std::string duplicate(int object);             // the copy beside the original, selected
   std::string set_object(int object, const std::string& field, const std::vector<double>& values,
-                         const std::string& material);
+                         const std::string& text);
   std::string apply_material_preset(const std::string& name, const std::string& preset);  // a new material if none is so named
   std::string add_material(const std::string& name);
   std::string drop_file(const std::string& path);  // a .json opens (guarded), an .obj becomes a mesh object
@@ -287,7 +288,7 @@ class Viewer {
   ui::ItemLocations item_locations_;  // named widgets' rectangles (io.UserData), for test scripts
   int selected_material_ = 0;
   int selected_object_ = -1;         // index into the file's objects, -1: none
-  std::string objects_notice_;       // the last object or material edit's result or refusal
+  ui::EditNotice objects_notice_;    // the last object or material edit's result or refusal
   std::string mesh_path_field_;      // the Objects panel's OBJ path
   std::string material_name_field_;  // the Materials panel's name for "Rename to"
   int selected_light_ = -1;

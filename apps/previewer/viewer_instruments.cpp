@@ -76,7 +76,7 @@ void Viewer::restore(std::optional<Scene> step) {
   scene = std::move(*step);
   selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
   if (selected_object_ >= ui::object_count(scene)) selected_object_ = -1;
-  objects_notice_.clear();
+  objects_notice_ = ui::EditNotice{};
   edits_.scene = true;
   restored_ = true;
 }

@@ -34,13 +34,18 @@ std::string Viewer::place_meshes(Scene& scene) const {
   return {};
 }
 
+std::string Viewer::refuse(std::string why) {
+  objects_notice_ = ui::EditNotice{why, true};
+  return why;
+}
+
 std::string Viewer::edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move) {
   Scene scene = doc_.scene();
   ui::complete_object_indices(scene);
   std::string error = edit(scene);
   if (error.empty() && meshes_move) error = place_meshes(scene);
-  objects_notice_ = error;
-  if (!error.empty()) return error;  // the scene stays as it was
+  if (!error.empty()) return refuse(error);  // the scene stays as it was
+  objects_notice_ = ui::EditNotice{};
   doc_.scene() = std::move(scene);
   edits_.scene = true;
   return {};
@@ -57,8 +62,8 @@ std::string Viewer::add_object(ObjectRef::Kind kind, const std::string& obj_path
   int added = -1;
   std::string error;
   if (kind == ObjectRef::Kind::kMesh) {
-    if (obj_path.empty()) return objects_notice_ = "a mesh object needs an OBJ file";
-    if (!is_obj_path(obj_path)) return objects_notice_ = "'" + obj_path + "' is not an OBJ file (.obj)";
+    if (obj_path.empty()) return refuse("a mesh object needs an OBJ file");
+    if (!is_obj_path(obj_path)) return refuse("'" + obj_path + "' is not an OBJ file (.obj)");
     const std::string file = std::filesystem::absolute(obj_path).lexically_normal().string();
     // Loaded where its file puts it, then moved so that its middle is the camera's look-at point.
     error = edit_scene([&](Scene& s) {
@@ -86,18 +91,18 @@ std::string Viewer::add_object(ObjectRef::Kind kind, const std::string& obj_path
   }
   if (error.empty()) {
     select_object(added);
-    objects_notice_ = "added " + ui::object_label(doc_.scene(), added);
+    objects_notice_.text = "added " + ui::object_label(doc_.scene(), added);
   }
   return error;
 }
 
-std::string Viewer::delete_selected_or(int object) {
+std::string Viewer::delete_object(int object) {
   const int count = ui::object_count(doc_.scene());
   const std::string error = edit_scene([&](Scene& s) { return ui::delete_object(s, object); }, false);
   if (!error.empty()) return error;
   selected_object_ = -1;
-  objects_notice_ = count == 1 ? "deleted the last object: the scene is empty (Ctrl+Z brings it back)"
-                               : "deleted objects[" + std::to_string(object) + "]";
+  objects_notice_.text = count == 1 ? "deleted the last object: the scene is empty (Ctrl+Z brings it back)"
+                                    : "deleted objects[" + std::to_string(object) + "]";
   return {};
 }
 
@@ -108,22 +113,22 @@ std::string Viewer::duplicate(int object) {
   const std::string error = edit_scene([&](Scene& s) { return ui::duplicate_object(s, object, copy); }, false);
   if (error.empty()) {
     select_object(copy);
-    objects_notice_ = "duplicated objects[" + std::to_string(object) + "] as " + ui::object_label(doc_.scene(), copy) +
-                      ", in the same place: drag it away";
+    objects_notice_.text = "duplicated objects[" + std::to_string(object) + "] as " +
+                           ui::object_label(doc_.scene(), copy) + ", in the same place: drag it away";
   }
   return error;
 }
 
 std::string Viewer::set_object(int object, const std::string& field, const std::vector<double>& values,
-                               const std::string& material) {
+                               const std::string& text) {
   const bool mesh = ui::object_at(doc_.scene(), object).kind == ObjectRef::Kind::kMesh;
   const bool moves = mesh && (ui::moves_mesh_geometry(field) || field == "material");
-  return edit_scene([&](Scene& s) { return ui::set_object_field(s, object, field, values, material); }, moves);
+  return edit_scene([&](Scene& s) { return ui::set_object_field(s, object, field, values, text); }, moves);
 }
 
 std::string Viewer::apply_material_preset(const std::string& name, const std::string& preset_name) {
   const ui::MaterialPreset* preset = ui::find_preset(preset_name);
-  if (preset == nullptr) return objects_notice_ = "no preset named '" + preset_name + "'";
+  if (preset == nullptr) return refuse("no preset named '" + preset_name + "'");
   int index = ui::find_material(doc_.scene(), name);
   const std::string error = edit_scene([&](Scene& s) {
     if (index < 0) {  // a new material of that name, starting from the preset
@@ -146,14 +151,14 @@ std::string Viewer::add_material(const std::string& name) {
 
 std::string Viewer::drop_file(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return objects_notice_ = "dropped '" + path + "': not a file";
+  if (!std::filesystem::is_regular_file(path, ec)) return refuse("dropped '" + path + "': not a file");
   if (is_obj_path(path)) return add_object(ObjectRef::Kind::kMesh, path);
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".json" || ext == ".JSON") {
     request(PendingAction{PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
     return {};
   }
-  return objects_notice_ = "dropped '" + path + "': neither a scene (.json) nor a mesh (.obj)";
+  return refuse("dropped '" + path + "': neither a scene (.json) nor a mesh (.obj)");
 }
 
 std::optional<ImVec2> Viewer::object_screen_point(int object) const {
@@ -188,11 +193,10 @@ bool parse_numbers(const std::vector<std::string>& w, std::size_t first, std::ve
 // refuse (a radius of -1, a material in use) is not a broken script: the program says why, as
 // the panel does, in dump_state's objects_notice and on stderr, and the script goes on.
 std::optional<std::string> Viewer::script_scene_command(const std::vector<std::string>& w) {
+  objects_notice_.refused = false;  // what this command refuses, not an earlier one
   const std::optional<std::string> usage = script_scene_edit(w);
-  const bool done = objects_notice_.rfind("added", 0) == 0 || objects_notice_.rfind("deleted", 0) == 0 ||
-                    objects_notice_.rfind("duplicated", 0) == 0;
-  if (usage && usage->empty() && !objects_notice_.empty() && !done) {
-    std::cerr << "phonglab: " << w[0] << ": " << objects_notice_ << "\n";
+  if (usage && usage->empty() && objects_notice_.refused) {
+    std::cerr << "phonglab: " << w[0] << ": " << objects_notice_.text << "\n";
   }
   return usage;
 }
@@ -213,7 +217,7 @@ std::optional<std::string> Viewer::script_scene_edit(const std::vector<std::stri
   if (name == "select_object") {
     if (w.size() != 2 || !object_word(1)) return "usage: select_object I";
     if (index < -1 || index >= ui::object_count(doc_.scene())) {
-      objects_notice_ = "no objects[" + w[1] + "]";
+      refuse("no objects[" + w[1] + "]");
       return "";
     }
     select_object(index);
@@ -221,7 +225,7 @@ std::optional<std::string> Viewer::script_scene_edit(const std::vector<std::stri
   }
   if (name == "delete_object") {
     if (w.size() != 2 || !object_word(1)) return "usage: delete_object I";
-    delete_selected_or(index);
+    delete_object(index);
     return "";
   }
   if (name == "duplicate_object") {

@@ -339,13 +339,13 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     }
     // No such object, or none to grab on screen: the program says so, as for a refused edit.
     if (index < 0 || index >= ui::object_count(doc_.scene())) {
-      objects_notice_ = "no objects[" + w[1] + "]";
+      refuse("no objects[" + w[1] + "]");
       return true;
     }
     select_object(index);
     const std::optional<ImVec2> from = object_screen_point(index);
     if (!from) {
-      objects_notice_ = "objects[" + w[1] + "] is behind the camera: nothing to grab";
+      refuse("objects[" + w[1] + "] is behind the camera: nothing to grab");
       return true;
     }
     push_drag(0, *from, ImVec2(from->x + static_cast<float>(dx), from->y + static_cast<float>(dy)), 12, false, axis_key);

@@ -123,7 +123,7 @@ void Viewer::sidebar_materials() {
   if (!actions.preset.empty() && m >= 0 && m < static_cast<int>(scene.materials.size())) {
     apply_material_preset(scene.materials[static_cast<std::size_t>(m)].name, actions.preset);
   }
-  if (!objects_notice_.empty()) ImGui::TextColored(ui::kErrorColor, "%s", objects_notice_.c_str());
+  if (objects_notice_.refused) ImGui::TextColored(ui::kErrorColor, "%s", objects_notice_.text.c_str());
 }
 
 void Viewer::sidebar_objects() {
@@ -133,9 +133,9 @@ void Viewer::sidebar_objects() {
   if (selected != selected_object_) select_object(selected);
   if (actions.add != ObjectRef::Kind::kNone) add_object(actions.add, mesh_path_field_);
   if (actions.duplicate >= 0) duplicate(actions.duplicate);
-  if (actions.remove >= 0) delete_selected_or(actions.remove);
+  if (actions.remove >= 0) delete_object(actions.remove);
   if (!actions.field.empty() && selected_object_ >= 0) {
-    set_object(selected_object_, actions.field, actions.values, actions.material);
+    set_object(selected_object_, actions.field, actions.values, actions.text);
   }
 }
 

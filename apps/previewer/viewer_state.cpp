@@ -120,7 +120,7 @@ void Viewer::write_layout_state(std::ostream& out) const {
   for (std::size_t i = 0; i < browser_.recent.size(); ++i) out << "recent" << i << "=" << browser_.recent[i] << "\n";
   out << "objects=" << ui::object_count(scene) << "\n"
       << "selected_object=" << selected_object_ << "\n"
-      << "objects_notice=" << objects_notice_ << "\n"
+      << "objects_notice=" << objects_notice_.text << "\n"
       << "materials=" << scene.materials.size() << "\n";
   for (int i = 0; i < ui::object_count(scene); ++i) {
     const int m = ui::object_material(scene, i);

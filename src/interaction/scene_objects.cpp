@@ -264,25 +264,25 @@ bool moves_mesh_geometry(const std::string& field) {
 }
 
 std::string set_object_field(Scene& s, int object, const std::string& field, const std::vector<double>& values,
-                             const std::string& material) {
+                             const std::string& text) {
   const ObjectRef r = object_at(s, object);
   if (r.kind == Kind::kNone) return no_such_object(s, object);
   const auto i = static_cast<std::size_t>(r.index);
   const std::string what = object_name(object) + " is a " + std::string(kind_name(r.kind));
-  if (field == "name") {  // `material` carries the text
+  if (field == "name") {
     if (s.object_names.size() <= i_file(object)) s.object_names.resize(i_file(object) + 1);
-    s.object_names[i_file(object)] = material;
+    s.object_names[i_file(object)] = text;
     while (!s.object_names.empty() && s.object_names.back().empty()) s.object_names.pop_back();
     return {};
   }
   if (field == "material") {
-    const int m = find_material(s, material);
-    if (m < 0) return "no material named '" + material + "'";
+    const int m = find_material(s, text);
+    if (m < 0) return "no material named '" + text + "'";
     switch (r.kind) {
       case Kind::kSphere: s.spheres[i].material = m; break;
       case Kind::kPlane: s.planes[i].material = m; break;
       case Kind::kTriangle: s.triangles[i].material = m; break;
-      default: s.meshes[i].material_override = material; break;  // its geometry must be loaded again
+      default: s.meshes[i].material_override = text; break;  // its geometry must be loaded again
     }
     return {};
   }

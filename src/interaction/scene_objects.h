@@ -58,10 +58,10 @@ std::string move_object(Scene& scene, int object, const Vec3& delta);
 // `set object I FIELD V..` of the scripts and the Objects panel's fields: center, radius
 // (spheres), point, normal (planes), v0, v1, v2 (triangles), translate, rotate_deg, scale
 // (meshes), material NAME and name TEXT (any; an empty name removes it). `values` are the
-// numbers (three, or one for radius; a scale may be one number for all three axes); `material`
-// the text of the material and name fields.
+// numbers (three, or one for radius; a scale may be one number for all three axes); `text` the
+// material's name or the object's new name.
 std::string set_object_field(Scene& scene, int object, const std::string& field, const std::vector<double>& values,
-                             const std::string& material = {});
+                             const std::string& text = {});
 // Whether an edit of this field changes a mesh's placement (its geometry must be loaded again).
 bool moves_mesh_geometry(const std::string& field);
 

@@ -40,7 +40,7 @@ void selected_fields(const Scene& scene, int selected, ObjectActions& actions) {
   std::string name = object_name_of(scene, selected);
   if (input_text("name", name, ImGuiInputTextFlags_EnterReturnsTrue)) {
     actions.field = "name";
-    actions.material = name;
+    actions.text = name;
   }
   locate("objects.name");
   switch (r.kind) {
@@ -82,7 +82,7 @@ void selected_fields(const Scene& scene, int selected, ObjectActions& actions) {
     for (const Material& m : scene.materials) {
       if (ImGui::Selectable(m.name.c_str(), m.name == shown)) {
         actions.field = "material";
-        actions.material = m.name;
+        actions.text = m.name;
       }
     }
     ImGui::EndCombo();
@@ -93,7 +93,7 @@ void selected_fields(const Scene& scene, int selected, ObjectActions& actions) {
 
 }  // namespace
 
-void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, const std::string& notice,
+void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, const EditNotice& notice,
                    ObjectActions& actions) {
   const int count = object_count(scene);
   if (selected >= count) selected = -1;
@@ -122,8 +122,7 @@ void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, co
   locate("objects.mesh_path");
   ImGui::SameLine();
   if (button("+ mesh (OBJ)", "objects.add_mesh")) actions.add = Kind::kMesh;
-  const bool done = notice.rfind("added", 0) == 0 || notice.rfind("deleted", 0) == 0 || notice.rfind("duplicated", 0) == 0;
-  if (!notice.empty()) ImGui::TextColored(done ? kWarningColor : kErrorColor, "%s", notice.c_str());
+  if (!notice.text.empty()) ImGui::TextColored(notice.refused ? kErrorColor : kWarningColor, "%s", notice.text.c_str());
   if (selected >= 0) {
     ImGui::TextDisabled("Drag it in the view (hold X, Y or Z for one axis), or type its numbers:");
     selected_fields(scene, selected, actions);

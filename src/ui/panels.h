@@ -38,6 +38,13 @@ void show_panel(Term& term, bool& small_multiples, bool blinn);
 // each beside the term of the equation it scales. `selected` may change without an edit.
 bool materials_panel(std::vector<Material>& materials, int& selected, SpecularModel model);
 
+// The last object or material edit's outcome, as the panels show it: what was done, or why
+// nothing was (`refused`).
+struct EditNotice {
+  std::string text;
+  bool refused = false;
+};
+
 // What the Objects panel asks for; the app carries it out, one undo step each.
 struct ObjectActions {
   ObjectRef::Kind add = ObjectRef::Kind::kNone;  // "+ sphere" ...; kMesh: from the OBJ path field
@@ -45,12 +52,12 @@ struct ObjectActions {
   int remove = -1;                               // object to delete, -1: none
   std::string field;                             // a field of the selected object was edited: its name
   std::vector<double> values;                    // its numbers
-  std::string material;                          // field "material": the chosen material's name
+  std::string text;                              // field "material": the chosen material's name; "name": the new name
 };
 // The scene's objects by index, kind and material; add, duplicate, delete; the selected one's
 // numbers and material. `selected` may change without an edit; `notice` is the last edit's
 // result or refusal.
-void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, const std::string& notice,
+void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, const EditNotice& notice,
                    ObjectActions& actions);
 
 // New, duplicate, rename (to `name_field`), delete and the preset library for the selected material.
