@@ -44,6 +44,7 @@ struct PosNode;
 class PosIndex;
 struct SceneFiles;
 struct MeshLoad;
+class Issues;
 
 bool is_digit(char c);
 bool is_space(char c);
@@ -218,6 +219,18 @@ class PosIndex {
   std::vector<PosNode> nodes_;            // node 0 is the root value
   std::vector<std::uint32_t> children_;   // each container's children, contiguous
 };
+
+// Passes 1 to 3 over one JSON text: the DOM, the number tokens patched because they overflow,
+// and the position index.
+struct ParsedText {
+  std::string patched;             // the text with overflowing numbers replaced, when there were any
+  Json root;
+  std::vector<Overflow> overflows;
+  std::optional<PosIndex> index;   // over the parsed text (`patched` or the original)
+};
+// Runs passes 1 to 3 over `text` into `out`; false (the problems in `issues`) when the text is
+// not JSON. `kind` names what the file should be in messages ("a scene file").
+bool parse_text(const std::string& text, std::string_view kind, Issues& issues, ParsedText& out);
 
 // Mesh files and other files a scene names.
 // Where a scene's mesh files come from: the disk, relative to the scene file's folder, or the

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/scene/camera.h"
 #include "io/scene/scene_load.h"
 
 namespace phonglab::scene_load {
@@ -289,6 +290,120 @@ class JsonReader {
   const Json& root_;
   const std::vector<Overflow>& overflows_;
   Issues& issues_;
+};
+
+inline constexpr std::array<std::string_view, 4> kCameraKeys = {"position", "look_at", "up", "fov_y"};
+inline constexpr std::array<std::string_view, 2> kLightTypes = {"point", "directional"};
+inline constexpr std::array<std::string_view, 4> kPointLightKeys = {"type", "position", "intensity", "enabled"};
+inline constexpr std::array<std::string_view, 4> kDirectionalLightKeys = {"type", "direction", "intensity", "enabled"};
+inline constexpr std::array<std::string_view, 8> kMaterialKeys = {"ka", "kd", "ks", "n", "kr", "kt", "ior", "fresnel"};
+
+// The scene members that other files carry too (a lesson step's changes): the camera, a light
+// and a material's coefficients, read by one set of rules.
+class SceneMembers : protected JsonReader {
+ protected:
+  using JsonReader::JsonReader;
+
+  // The camera's members over `cam` (a member left out keeps its value), each checked, and the
+  // view checked as a whole.
+  void read_camera(const Val& v, Camera& cam) {
+    if (!expect_object(v)) return;
+    const Fields f = fields(v, kCameraKeys);
+    const Val* position = f.find("position");
+    const Val* look_at = f.find("look_at");
+    const Val* up = f.find("up");
+    bool position_ok = true, look_ok = true, up_ok = true;
+    if (position) position_ok = assign(cam.position, read_vec3(*position));
+    if (look_at) look_ok = assign(cam.look_at, read_vec3(*look_at));
+    if (up) up_ok = assign(cam.up, read_direction(*up));
+    if (const Val* fov = f.find("fov_y")) {
+      if (auto x = read_number(*fov)) {
+        if (*x > 0 && *x < 180) {
+          cam.fov_y_deg = *x;
+        } else {
+          report(*fov, "must be in (0, 180) (got " + shown(*fov) + ")");
+        }
+      }
+    }
+    if (!position_ok || !look_ok) return;
+    const Vec3 view = cam.look_at - cam.position;
+    if (!normalizable(view)) {
+      if (look_at) {
+        report(*look_at, "must differ from camera.position (got " + shown(*look_at) + ")");
+      } else {
+        report(*position, "must differ from camera.look_at (got " + shown(*position) + ")");
+      }
+      return;
+    }
+    if (!up_ok) return;
+    if (!(view_up_sine(cam) > kMinViewUpSine)) {
+      if (up) {
+        report(*up, "must not be parallel to the view direction (got " + shown(*up) + ")");
+      } else {
+        const Val& at = look_at ? *look_at : *position;
+        report(at, "makes the view direction parallel to camera.up (got " + shown(at) + ")");
+      }
+    }
+  }
+
+  template <typename T>
+  static bool assign(T& target, const std::optional<T>& value) {
+    if (value) target = *value;
+    return value.has_value();
+  }
+
+  // Reads an element's "type" member (reporting it missing or not a string).
+  std::optional<std::pair<Val, std::string>> type_of(const Val& v) {
+    auto t = member(v, "type");
+    if (!t) {
+      report(v, "missing key \"type\"");
+      return std::nullopt;
+    }
+    auto s = read_string(*t);
+    if (!s) return std::nullopt;
+    return std::make_pair(std::move(*t), std::move(*s));
+  }
+
+  // One element of "lights"; nullopt (reported) when it is not a usable light.
+  std::optional<Light> read_light(const Val& e) {
+    if (!expect_object(e)) return std::nullopt;
+    const auto type = type_of(e);
+    if (!type) return std::nullopt;
+    Light light;
+    const bool point = type->second == "point";
+    if (!point && type->second != "directional") {
+      report(type->first, "unknown light type " + shown(type->first) +
+                              suggestion(type->second, kLightTypes, "expected one of"));
+      return std::nullopt;
+    }
+    const Fields f = fields(e, point ? std::span<const std::string_view>(kPointLightKeys)
+                                     : std::span<const std::string_view>(kDirectionalLightKeys));
+    bool ok = require(e, f, {point ? "position" : "direction"});
+    if (point) {
+      light.type = LightType::kPoint;
+      if (const Val* p = f.find("position")) ok = assign(light.position, read_vec3(*p)) && ok;
+    } else {
+      light.type = LightType::kDirectional;
+      if (const Val* d = f.find("direction")) ok = assign(light.direction, read_direction(*d)) && ok;
+    }
+    if (const Val* x = f.find("intensity")) ok = assign(light.intensity, read_color(*x)) && ok;
+    if (const Val* en = f.find("enabled")) ok = assign(light.enabled, read_bool(*en)) && ok;
+    return ok ? std::optional<Light>(light) : std::nullopt;
+  }
+
+  // A material's coefficients over `mat` (a member left out keeps its value).
+  void read_material_fields(const Val& m, Material& mat) {
+    if (!expect_object(m)) return;
+    const Fields f = fields(m, kMaterialKeys);
+    if (const Val* x = f.find("ka")) set(mat.ka, read_color(*x));
+    if (const Val* x = f.find("kd")) set(mat.kd, read_color(*x));
+    if (const Val* x = f.find("ks")) set(mat.ks, read_color(*x));
+    if (const Val* x = f.find("n")) set(mat.n, read_at_least_zero(*x));
+    if (const Val* x = f.find("kr")) set(mat.kr, read_color(*x));
+    if (const Val* x = f.find("kt")) set(mat.kt, read_color(*x));
+    if (const Val* x = f.find("ior")) set(mat.ior, read_positive(*x));
+    if (const Val* x = f.find("fresnel")) set(mat.fresnel, read_bool(*x));
+  }
 };
 
 }  // namespace phonglab::scene_load

@@ -2,6 +2,7 @@
 // pass 1, the prescan (NUL bytes, nesting, numbers that overflow double); pass 2, nlohmann's
 // syntax errors as positioned plain messages; pass 3, the position index (every value's offsets).
 #include "io/scene/scene_load.h"
+#include "io/scene/scene_reader.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -428,5 +429,54 @@ Issue syntax_issue(std::string_view t, const Json::parse_error& e, const Prescan
 
 // ---------------------------------------------------------------------------------------------
 // Pass 3: the position index.
+
+bool parse_text(const std::string& text, std::string_view kind, Issues& issues, ParsedText& out) {
+  if (text.size() >= kMaxTextBytes) {
+    issues.add({kNoOffset, "", "the text is too large (2 GiB or more)"});
+    return false;
+  }
+  const std::size_t start = has_bom(text) ? 3 : 0;
+  if (std::all_of(text.begin() + static_cast<std::ptrdiff_t>(start), text.end(), is_space)) {
+    issues.add({start, "", "the file is empty (expected a JSON object)"});
+    return false;
+  }
+  Prescan pre = prescan(text);
+  if (pre.too_deep != kNoOffset) {
+    issues.add({pre.too_deep, "", "nesting deeper than " + std::to_string(kMaxNesting) + " levels of arrays and objects"});
+    return false;
+  }
+  // Overflowing numbers become "0" plus spaces: the text keeps every offset and parses, and the
+  // readers report them as non-finite from the original text.
+  if (!pre.overflows.empty()) {
+    out.patched = text;
+    for (const Overflow& o : pre.overflows) {
+      out.patched.replace(o.offset, o.length, std::string(o.length, ' '));
+      out.patched[o.offset] = '0';
+    }
+  }
+  // nlohmann reads a NUL byte as the end of the input, so it only parses the text before one:
+  // a syntax error there is reported as such, else the NUL itself is the error.
+  std::string_view parsed_text = pre.overflows.empty() ? std::string_view(text) : std::string_view(out.patched);
+  if (pre.nul != kNoOffset) parsed_text = parsed_text.substr(0, pre.nul);
+  const std::string nul_message = "syntax error: unexpected byte 0x00 (" + std::string(kind) + " is text)";
+  try {
+    out.root = Json::parse(parsed_text);
+  } catch (const Json::parse_error& e) {
+    Issue issue = syntax_issue(std::string_view(text).substr(0, parsed_text.size()), e, pre);
+    if (pre.nul != kNoOffset && issue.offset >= pre.nul) issue = {pre.nul, "", nul_message};
+    issues.add(std::move(issue));
+    return false;
+  } catch (const Json::exception& e) {
+    issues.add({kNoOffset, "", std::string("cannot parse: ") + e.what()});
+    return false;
+  }
+  if (pre.nul != kNoOffset) {
+    issues.add({pre.nul, "", nul_message});
+    return false;
+  }
+  out.overflows = std::move(pre.overflows);
+  out.index.emplace(parsed_text);
+  return true;
+}
 
 }  // namespace phonglab::scene_load

@@ -45,16 +45,8 @@ namespace {
 constexpr std::array<std::string_view, 10> kSceneKeys = {
     "camera", "image", "ambient", "background", "max_depth", "min_weight", "specular_model",
     "lights", "materials", "objects"};
-constexpr std::array<std::string_view, 4> kCameraKeys = {"position", "look_at", "up", "fov_y"};
 constexpr std::array<std::string_view, 2> kImageKeys = {"width", "height"};
 constexpr std::array<std::string_view, 2> kSpecularModels = {"phong", "blinn"};
-constexpr std::array<std::string_view, 2> kLightTypes = {"point", "directional"};
-constexpr std::array<std::string_view, 4> kPointLightKeys = {"type", "position", "intensity",
-                                                             "enabled"};
-constexpr std::array<std::string_view, 4> kDirectionalLightKeys = {"type", "direction", "intensity",
-                                                                   "enabled"};
-constexpr std::array<std::string_view, 8> kMaterialKeys = {"ka", "kd", "ks", "n",
-                                                           "kr", "kt", "ior", "fresnel"};
 constexpr std::array<std::string_view, 4> kObjectTypes = {"sphere", "plane", "triangle", "mesh"};
 constexpr std::array<std::string_view, 5> kSphereKeys = {"type", "name", "center", "radius", "material"};
 constexpr std::array<std::string_view, 5> kPlaneKeys = {"type", "name", "point", "normal", "material"};
@@ -68,11 +60,11 @@ constexpr std::array<std::string_view, 2> kNsMappings = {"as_is", "blinn_to_phon
 
 
 // Pass 4 proper: the scene's own members, read through JsonReader.
-class Validator : private JsonReader {
+class Validator : private SceneMembers {
  public:
   Validator(std::string_view original, const PosIndex& index, const Json& root,
             const std::vector<Overflow>& overflows, Issues& issues, const SceneFiles& files, Issues& warnings)
-      : JsonReader(original, index, root, overflows, issues), files_(files), warnings_(warnings) {}
+      : SceneMembers(original, index, root, overflows, issues), files_(files), warnings_(warnings) {}
 
   Scene run() {
     Scene s;
@@ -82,7 +74,7 @@ class Validator : private JsonReader {
       return s;
     }
     const Fields top = fields(root, kSceneKeys);
-    if (const Val* v = top.find("camera")) camera(*v, s.camera);
+    if (const Val* v = top.find("camera")) read_camera(*v, s.camera);
     if (const Val* v = top.find("image")) image(*v, s);
     if (const Val* v = top.find("ambient")) set(s.ambient, read_color(*v));
     if (const Val* v = top.find("background")) set(s.background, read_color(*v));
@@ -101,52 +93,6 @@ class Validator : private JsonReader {
   }
 
  private:
-  void camera(const Val& v, Camera& cam) {
-    if (!expect_object(v)) return;
-    const Fields f = fields(v, kCameraKeys);
-    const Val* position = f.find("position");
-    const Val* look_at = f.find("look_at");
-    const Val* up = f.find("up");
-    bool position_ok = true, look_ok = true, up_ok = true;
-    if (position) position_ok = assign(cam.position, read_vec3(*position));
-    if (look_at) look_ok = assign(cam.look_at, read_vec3(*look_at));
-    if (up) up_ok = assign(cam.up, read_direction(*up));
-    if (const Val* fov = f.find("fov_y")) {
-      if (auto x = read_number(*fov)) {
-        if (*x > 0 && *x < 180) {
-          cam.fov_y_deg = *x;
-        } else {
-          report(*fov, "must be in (0, 180) (got " + shown(*fov) + ")");
-        }
-      }
-    }
-    if (!position_ok || !look_ok) return;
-    const Vec3 view = cam.look_at - cam.position;
-    if (!normalizable(view)) {
-      if (look_at) {
-        report(*look_at, "must differ from camera.position (got " + shown(*look_at) + ")");
-      } else {
-        report(*position, "must differ from camera.look_at (got " + shown(*position) + ")");
-      }
-      return;
-    }
-    if (!up_ok) return;
-    if (!(view_up_sine(cam) > kMinViewUpSine)) {
-      if (up) {
-        report(*up, "must not be parallel to the view direction (got " + shown(*up) + ")");
-      } else {
-        const Val& at = look_at ? *look_at : *position;
-        report(at, "makes the view direction parallel to camera.up (got " + shown(at) + ")");
-      }
-    }
-  }
-
-  template <typename T>
-  static bool assign(T& target, const std::optional<T>& value) {
-    if (value) target = *value;
-    return value.has_value();
-  }
-
   void image(const Val& v, Scene& s) {
     if (!expect_object(v)) return;
     const Fields f = fields(v, kImageKeys);
@@ -154,48 +100,11 @@ class Validator : private JsonReader {
     if (const Val* h = f.find("height")) set(s.height, read_int(*h, 1, kMaxImageSide));
   }
 
-  // Reads an element's "type" member (reporting it missing or not a string).
-  std::optional<std::pair<Val, std::string>> type_of(const Val& v) {
-    auto t = member(v, "type");
-    if (!t) {
-      report(v, "missing key \"type\"");
-      return std::nullopt;
-    }
-    auto s = read_string(*t);
-    if (!s) return std::nullopt;
-    return std::make_pair(std::move(*t), std::move(*s));
-  }
-
   void lights(const Val& v, Scene& s) {
     if (!expect_array(v)) return;
     const std::size_t count = element_count(v);
     for (std::size_t i = 0; i < count && !issues_.full(); ++i) {
-      const Val e = element(v, i);
-      if (!expect_object(e)) continue;
-      const auto type = type_of(e);
-      if (!type) continue;
-      Light light;
-      const bool point = type->second == "point";
-      if (!point && type->second != "directional") {
-        report(type->first, "unknown light type " + shown(type->first) +
-                                suggestion(type->second, kLightTypes, "expected one of"));
-        continue;
-      }
-      const Fields f = fields(e, point ? std::span<const std::string_view>(kPointLightKeys)
-                                       : std::span<const std::string_view>(kDirectionalLightKeys));
-      bool ok = require(e, f, {point ? "position" : "direction"});
-      if (point) {
-        light.type = LightType::kPoint;
-        if (const Val* p = f.find("position")) ok = assign(light.position, read_vec3(*p)) && ok;
-      } else {
-        light.type = LightType::kDirectional;
-        if (const Val* d = f.find("direction")) {
-          ok = assign(light.direction, read_direction(*d)) && ok;
-        }
-      }
-      if (const Val* x = f.find("intensity")) ok = assign(light.intensity, read_color(*x)) && ok;
-      if (const Val* en = f.find("enabled")) ok = assign(light.enabled, read_bool(*en)) && ok;
-      if (ok) s.lights.push_back(light);
+      if (auto light = read_light(element(v, i))) s.lights.push_back(*light);
     }
   }
 
@@ -211,17 +120,7 @@ class Validator : private JsonReader {
       material_names_.push_back(name);
       Material mat;
       mat.name = name;
-      if (expect_object(m)) {
-        const Fields f = fields(m, kMaterialKeys);
-        if (const Val* x = f.find("ka")) set(mat.ka, read_color(*x));
-        if (const Val* x = f.find("kd")) set(mat.kd, read_color(*x));
-        if (const Val* x = f.find("ks")) set(mat.ks, read_color(*x));
-        if (const Val* x = f.find("n")) set(mat.n, read_at_least_zero(*x));
-        if (const Val* x = f.find("kr")) set(mat.kr, read_color(*x));
-        if (const Val* x = f.find("kt")) set(mat.kt, read_color(*x));
-        if (const Val* x = f.find("ior")) set(mat.ior, read_positive(*x));
-        if (const Val* x = f.find("fresnel")) set(mat.fresnel, read_bool(*x));
-      }
+      read_material_fields(m, mat);
       s.materials.push_back(std::move(mat));
     }
   }
@@ -501,56 +400,9 @@ LoadResult load_text(const std::string& text, const std::string& file_name, cons
     return r;
   };
 
-  if (text.size() >= kMaxTextBytes) {
-    issues.add({kNoOffset, "", "the scene text is too large (2 GiB or more)"});
-    return finish(std::nullopt);
-  }
-  const std::size_t start = has_bom(text) ? 3 : 0;
-  if (std::all_of(text.begin() + static_cast<std::ptrdiff_t>(start), text.end(), is_space)) {
-    issues.add({start, "", "the file is empty (expected a JSON object)"});
-    return finish(std::nullopt);
-  }
-  const Prescan pre = prescan(text);
-  if (pre.too_deep != kNoOffset) {
-    issues.add({pre.too_deep, "", "nesting deeper than " + std::to_string(kMaxNesting) +
-                                      " levels of arrays and objects"});
-    return finish(std::nullopt);
-  }
-  // Overflowing numbers become "0" plus spaces: the text keeps every offset and parses, and the
-  // validator reports them as non-finite from the original text.
-  std::string patched;
-  if (!pre.overflows.empty()) {
-    patched = text;
-    for (const Overflow& o : pre.overflows) {
-      patched.replace(o.offset, o.length, std::string(o.length, ' '));
-      patched[o.offset] = '0';
-    }
-  }
-  // nlohmann reads a NUL byte as the end of the input, so it only parses the text before one:
-  // a syntax error there is reported as such, else the NUL itself is the error.
-  std::string_view parsed_text = pre.overflows.empty() ? text : patched;
-  if (pre.nul != kNoOffset) parsed_text = parsed_text.substr(0, pre.nul);
-
-  Json root;
-  try {
-    root = Json::parse(parsed_text);
-  } catch (const Json::parse_error& e) {
-    Issue issue = syntax_issue(std::string_view(text).substr(0, parsed_text.size()), e, pre);
-    if (pre.nul != kNoOffset && issue.offset >= pre.nul) {
-      issue = {pre.nul, "", "syntax error: unexpected byte 0x00 (a scene file is text)"};
-    }
-    issues.add(std::move(issue));
-    return finish(std::nullopt);
-  } catch (const Json::exception& e) {
-    issues.add({kNoOffset, "", std::string("cannot parse: ") + e.what()});
-    return finish(std::nullopt);
-  }
-  if (pre.nul != kNoOffset) {
-    issues.add({pre.nul, "", "syntax error: unexpected byte 0x00 (a scene file is text)"});
-    return finish(std::nullopt);
-  }
-  const PosIndex index(parsed_text);
-  Validator validator(text, index, root, pre.overflows, issues, files, warnings);
+  ParsedText parsed;
+  if (!parse_text(text, "a scene file", issues, parsed)) return finish(std::nullopt);
+  Validator validator(text, *parsed.index, parsed.root, parsed.overflows, issues, files, warnings);
   Scene scene = validator.run();
   return finish(std::move(scene));
 }
