@@ -19,6 +19,8 @@
 #include "core/accel/accel.h"
 #include "io/embedded_scenes.h"
 #include "io/figure.h"
+#include "io/handout.h"
+#include "io/lesson_io.h"
 #include "core/teaching/heat_map.h"
 #include "io/image_io.h"
 #include "core/packet/packet.h"
@@ -49,6 +51,11 @@ commands:
       The five term images and their sum in a labelled 3x2 grid (W x H each).
   validate SCENE       Parse and check a scene only.
   scenes               List the embedded scenes.
+  lessons              List the embedded lessons.
+  lesson LESSON -o DIR [--width W] [--height H] [--spp N] [--threads N]
+      The lesson's handout: DIR/step-NN.png (each step's image and caption; a
+      question's answer as step-NN-answer.png) and DIR/index.html, one page
+      holding them all. W x H: each image (default: its scene's size).
   bench [--out DIR] [--quick] [--threads N] [--only accel]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR
       (default bench-out/); --quick finishes in about a minute. --only accel:
@@ -59,6 +66,7 @@ commands:
       --scalar: without the packet tracer (the same image, traced ray by ray).
 
 SCENE is a scene file (JSON) or an embedded scene's name; default: lecture.
+LESSON is a lesson file (JSON) or an embedded lesson's name.
 Options: --help, --version.
 Exit codes: 0 success, 1 bad input, 2 bad usage.
 )";
@@ -214,6 +222,44 @@ int cmd_scenes(Args& args) {
   return kExitOk;
 }
 
+int cmd_lessons(Args& args) {
+  args.take_positional();
+  for (const EmbeddedLesson& l : embedded_lessons()) {
+    const LessonLoad load = load_lesson_arg(std::string(l.name));
+    if (!load.ok()) {
+      std::cerr << load.error_text() << "\n";
+      return kExitBadInput;
+    }
+    std::cout << l.name << std::string(l.name.size() < 12 ? 12 - l.name.size() : 1, ' ') << load.lesson->title << " ("
+              << load.lesson->steps.size() << " steps): " << load.lesson->description << "\n";
+  }
+  return kExitOk;
+}
+
+int cmd_lesson(Args& args) {
+  const auto out = args.take_value("-o");
+  HandoutOptions options;
+  options.width = args.take_int("--width", 1, 8192).value_or(0);
+  options.height = args.take_int("--height", 1, 8192).value_or(0);
+  options.spp = args.take_int("--spp", 1, 1 << 12).value_or(options.spp);
+  options.threads = args.take_int("--threads", 0, 1024).value_or(0);
+  const auto lesson_arg = args.take_positional();
+  if (!lesson_arg) throw UsageError{"lesson needs LESSON (see phonglab-cli lessons)"};
+  if (!out) throw UsageError{"lesson needs -o DIR"};
+  const LessonLoad load = load_lesson_arg(*lesson_arg);
+  if (!load.ok()) {
+    std::cerr << load.error_text() << "\n";
+    return kExitBadInput;
+  }
+  std::vector<std::string> written;
+  if (std::string err = write_handout(*load.lesson, *out, options, &written); !err.empty()) {
+    std::cerr << err << "\n";
+    return kExitBadInput;
+  }
+  for (const std::string& path : written) std::cout << path << "\n";
+  return kExitOk;
+}
+
 // `phonglab-cli bench ...` is phonglab-bench (apps/bench), installed beside phonglab-cli: the
 // bench links the numerics experiments and Embree, which the CLI itself never does.
 int cmd_bench(char** argv) {
@@ -259,6 +305,8 @@ int main(int argc, char** argv) {
     if (command == "figure") return cmd_figure(args);
     if (command == "validate") return cmd_validate(args);
     if (command == "scenes") return cmd_scenes(args);
+    if (command == "lessons") return cmd_lessons(args);
+    if (command == "lesson") return cmd_lesson(args);
     throw UsageError{"unknown command '" + command + "'"};
   } catch (const UsageError& e) {
     std::cerr << "phonglab-cli: " << e.message << "\n(see phonglab-cli --help)\n";

@@ -1,6 +1,7 @@
 // The previewer's teaching instruments: the probe, undo and redo, snapshot A and the compare
 // views, the heat map, "move your head" and the slide figure.
 #include "apps/previewer/viewer_app.h"
+#include "core/teaching/compare.h"
 #include "interaction/scene_objects.h"
 
 #include <algorithm>
@@ -157,16 +158,9 @@ std::vector<glm::vec3> Viewer::display_pixels() const {
     return out;
   }
   if (instruments_.compare == 0 || !a_comparable()) return shown_.pixels;
-  std::vector<glm::vec3> out(shown_.pixels.size());
-  const int wipe_x = static_cast<int>(std::lround(instruments_.wipe * static_cast<float>(shown_.width)));
-  for (int y = 0; y < shown_.height; ++y) {
-    for (int x = 0; x < shown_.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(shown_.width) + static_cast<std::size_t>(x);
-      if (instruments_.compare == 1) out[i] = x < wipe_x ? compare_.image.pixels[i] : shown_.pixels[i];
-      else out[i] = glm::abs(shown_.pixels[i] - compare_.image.pixels[i]) * instruments_.difference_gain;
-    }
-  }
-  return out;
+  return compare_pixels(shown_.pixels, compare_.image.pixels, shown_.width,
+                        instruments_.compare == 1 ? CompareView::kWipe : CompareView::kDifference,
+                        static_cast<double>(instruments_.wipe), static_cast<double>(instruments_.difference_gain));
 }
 
 Vec3 Viewer::head_pivot() const {
@@ -176,7 +170,7 @@ Vec3 Viewer::head_pivot() const {
 
 std::optional<Vec3> Viewer::head_eye() const {
   if (!instruments_.move_head) return std::nullopt;
-  return ui::head_eye(doc_.scene().camera, head_pivot(), static_cast<double>(instruments_.head_angle_deg));
+  return phonglab::head_eye(doc_.scene().camera, head_pivot(), static_cast<double>(instruments_.head_angle_deg));
 }
 
 void Viewer::save_figure(const std::string& path) {

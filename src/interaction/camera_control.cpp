@@ -133,16 +133,6 @@ double dolly_limit(const Scene& scene, const Camera& loaded) {
   return kDollyLimitFactor * std::max({radius, start, 1e-300});
 }
 
-Vec3 head_eye(const Camera& camera, const Vec3& pivot, double angle_deg) {
-  const CameraFrame frame = make_camera_frame(camera, 1, 1);
-  const Vec3 axis = glm::normalize(frame.up);
-  const Vec3 d = camera.position - pivot;
-  const double a = -glm::radians(angle_deg);  // about up, counter-clockwise seen from above: right is negative
-  // Rodrigues' rotation of d about the axis.
-  const Vec3 rotated = d * std::cos(a) + glm::cross(axis, d) * std::sin(a) + axis * glm::dot(axis, d) * (1 - std::cos(a));
-  return pivot + rotated;
-}
-
 double view_depth(const Camera& camera, const Vec3& p) {
   return glm::dot(p - camera.position, glm::normalize(camera.look_at - camera.position));
 }

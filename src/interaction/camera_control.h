@@ -60,9 +60,4 @@ double view_depth(const Camera& camera, const Vec3& p);
 // `pixel`: moving a light there keeps it in the camera's view plane.
 Vec3 unproject(const Camera& camera, ViewportPoint pixel, double depth, int width, int height);
 
-// "Move your head": the camera position turned by `angle_deg` about the camera's up axis
-// (orthogonal to the view) around `pivot` (the probed point): the eye used for V in shading,
-// at the same distance from the pivot. Positive turns to the viewer's right.
-Vec3 head_eye(const Camera& camera, const Vec3& pivot, double angle_deg);
-
 }  // namespace phonglab::ui

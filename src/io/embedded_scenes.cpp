@@ -9,6 +9,13 @@ const EmbeddedScene* find_embedded_scene(std::string_view name) {
   return nullptr;
 }
 
+const EmbeddedLesson* find_embedded_lesson(std::string_view name) {
+  for (const EmbeddedLesson& l : embedded_lessons()) {
+    if (l.name == name) return &l;
+  }
+  return nullptr;
+}
+
 std::optional<std::string> embedded_file(std::string_view path) {
   for (const EmbeddedFile& f : embedded_files()) {
     if (f.path != path) continue;

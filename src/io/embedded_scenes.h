@@ -1,4 +1,4 @@
-// Scenes compiled into the binaries, so the previewer and CLI need no files on disk.
+// Scenes and lessons compiled into the binaries, so the previewer and CLI need no files on disk.
 #pragma once
 
 #include <optional>
@@ -28,6 +28,14 @@ const EmbeddedScene* find_embedded_scene(std::string_view name);
 
 // Every embedded mesh file.
 std::span<const EmbeddedFile> embedded_files();
+
+// A lesson compiled in (assets/lessons/<name>.json, docs/lessons.md).
+struct EmbeddedLesson {
+  std::string_view name;  // what `phonglab-cli lessons` lists and LESSON accepts
+  std::string_view json;  // lesson file text
+};
+std::span<const EmbeddedLesson> embedded_lessons();
+const EmbeddedLesson* find_embedded_lesson(std::string_view name);
 
 // A file compiled in beside the embedded scenes (their meshes), by its path relative to
 // assets/scenes ("cornell/CornellBox-Original.obj"); nullopt when there is none.

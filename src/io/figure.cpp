@@ -28,6 +28,7 @@ Image render_term(const PreparedScene& scene, Term term, const FigureOptions& op
   RenderOptions render;
   render.term = term;
   render.threads = options.threads;
+  render.shading_eye = options.shading_eye;
   Accumulator accum;
   accum.reset(options.cell_width, options.cell_height);
   for (int s = 0; s < std::max(options.spp, 1); ++s) render_pass(scene, render, accum);

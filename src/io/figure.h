@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -18,6 +19,7 @@ struct FigureOptions {
   int cell_height = 180;  // pixels down one term image
   int spp = 1;            // samples per pixel of every term image
   int threads = 0;        // 0: all hardware threads (the pixels do not depend on it)
+  std::optional<Vec3> shading_eye;  // "move your head": RenderOptions::shading_eye
 };
 
 // The six cells in reading order: ambient, diffuse, specular / reflection, refraction, sum.

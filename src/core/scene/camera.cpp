@@ -60,4 +60,14 @@ void sample_offset(int x, int y, std::uint32_t index, double& u, double& v, std:
   v = fract(0.5 + rot_v + kA2 * index);
 }
 
+Vec3 head_eye(const Camera& camera, const Vec3& pivot, double angle_deg) {
+  const CameraFrame frame = make_camera_frame(camera, 1, 1);
+  const Vec3 axis = glm::normalize(frame.up);
+  const Vec3 d = camera.position - pivot;
+  const double a = -glm::radians(angle_deg);  // about up, counter-clockwise seen from above: right is negative
+  // Rodrigues' rotation of d about the axis.
+  const Vec3 rotated = d * std::cos(a) + glm::cross(axis, d) * std::sin(a) + axis * glm::dot(axis, d) * (1 - std::cos(a));
+  return pivot + rotated;
+}
+
 }  // namespace phonglab

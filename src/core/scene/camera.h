@@ -30,6 +30,11 @@ double view_up_sine(const Camera& camera);
 // F = normalize(look_at - position), R = normalize(F x up), U = R x F, h = tan(fov_y / 2).
 CameraFrame make_camera_frame(const Camera& camera, int width, int height);
 
+// "Move your head": the camera position turned by `angle_deg` about the camera's up axis
+// (orthogonal to the view) around `pivot` (the probed point): the eye used for V in shading,
+// at the same distance from the pivot. Positive turns to the viewer's right.
+Vec3 head_eye(const Camera& camera, const Vec3& pivot, double angle_deg);
+
 // The primary ray through image point (x + u, y + v); pixel (0, 0) is the top-left.
 Ray camera_ray(const CameraFrame& frame, int x, int y, double u, double v);
 
