@@ -113,6 +113,11 @@ class LessonReader : private SceneMembers {
     if (!r.ok()) {
       std::string why = r.errors.empty() ? "it does not load" : r.errors.front().to_string();
       if (r.errors.size() > 1) why += " (and " + std::to_string(r.errors.size() - 1) + " more)";
+      if (arg.find_first_of("/.") == std::string::npos) {
+        std::vector<std::string_view> names;
+        for (const EmbeddedScene& e : embedded_scenes()) names.push_back(e.name);
+        why += "; not an embedded scene either" + suggestion(arg, names, "embedded scenes");
+      }
       if (at != nullptr) report(*at, "the scene does not load: " + why);
     }
     return scenes_[arg] = r.scene;
