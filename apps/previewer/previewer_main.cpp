@@ -9,7 +9,7 @@
 namespace {
 
 constexpr std::string_view kUsage =
-    "usage: phonglab [SCENE]\n"
+    "usage: phonglab [SCENE] [--lesson LESSON]\n"
     "\n"
     "Interactive previewer of the lecture's Phong illumination and Whitted recursion.\n"
     "SCENE is a scene file (JSON) or the name of an embedded scene (default: lecture);\n"
@@ -22,6 +22,9 @@ constexpr std::string_view kUsage =
     "  F frames the scene, R resets the camera, H hides the panels.\n"
     "\n"
     "options:\n"
+    "  --lesson LESSON  present a lesson (an embedded lesson's name, e.g. shading, or a\n"
+    "               lesson file): arrows, Page Up/Down and space step through it, F11\n"
+    "               is presenter mode (full screen, caption large)\n"
     "  --help       this text\n"
     "  --version    the version\n";
 
@@ -47,7 +50,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     // Test hooks (not in --help): a command script, a timing log, the window size.
-    const bool takes_value = arg == "--script" || arg == "--stats-log" || arg == "--size";
+    const bool takes_value = arg == "--script" || arg == "--stats-log" || arg == "--size" || arg == "--lesson";
     if (takes_value && i + 1 >= argc) {
       std::cerr << "phonglab: " << arg << " needs a value\n" << kUsage;
       return 2;
@@ -60,6 +63,8 @@ int main(int argc, char** argv) {
       return 0;
     } else if (arg == "--script") {
       options.script_path = argv[++i];
+    } else if (arg == "--lesson") {
+      options.lesson_arg = argv[++i];
     } else if (arg == "--stats-log") {
       options.stats_log_path = argv[++i];
     } else if (arg == "--size") {

@@ -121,6 +121,7 @@ std::string Viewer::init() {
   }
   edits_.replaced = true;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
+  if (!options_.lesson_arg.empty()) open_lesson(options_.lesson_arg);  // a lesson that fails to load is shown in its panel
   if (!options_.script_path.empty()) {
     std::ifstream in(options_.script_path);
     if (!in) return "cannot read script " + options_.script_path;
@@ -175,6 +176,7 @@ int Viewer::run() {
     draw_overlays();
     handle_guard_modal();
     apply_edits(frame_start);
+    update_lesson();
     ImGui::Render();
     draw_gl(fb_width, fb_height);
     glfwSwapBuffers(window);
@@ -289,6 +291,11 @@ void Viewer::apply_edits(double frame_start) {
     edits_.camera = true;
   }
   edits_.frame_requested = edits_.reset_requested = false;
+  // Any change the lesson did not make itself leaves its step as written: exploring.
+  if (lesson_.lesson && !lesson_.applied && (edits_.scene || edits_.camera || edits_.settings || edits_.view)) {
+    lesson_.exploring = true;
+  }
+  lesson_.applied = false;
   if (edits_.scene) doc_.update_dirty();
   if (edits_.replaced) {
     dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());

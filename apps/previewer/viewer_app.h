@@ -22,6 +22,7 @@
 #include "apps/previewer/viewer_platform.h"
 #include "io/image_io.h"
 #include "core/render/progressive.h"
+#include "core/teaching/lesson.h"
 #include "interaction/history.h"
 #include "ui/panels.h"
 #include "ui/ray_tree_overlay.h"
@@ -32,6 +33,7 @@ struct ViewerOptions {
   std::string scene_arg = "lecture";  // embedded scene name or scene file
   int width = 1280;                   // window size, screen coordinates
   int height = 720;
+  std::string lesson_arg;             // a lesson to present from the start (name or file), or empty
   std::string script_path;            // test hook: commands run from the main loop
   std::string stats_log_path;         // test hook: frame times and edit latencies
 };
@@ -91,9 +93,9 @@ class Viewer {
   };
   // An action that would lose unsaved edits, waiting for the modal's answer.
   struct PendingAction {
-    enum class Kind : std::uint8_t { kNone, kQuit, kOpen, kReload };
+    enum class Kind : std::uint8_t { kNone, kQuit, kOpen, kReload, kLesson };
     Kind kind = Kind::kNone;
-    std::string arg;  // kOpen: what to open
+    std::string arg;  // kOpen: what to open; kLesson: the lesson's name (it waits in lesson_.waiting)
   };
   // The viewport: the window area left of the panels, in ImGui (window) coordinates.
   struct ViewportRect {
@@ -230,6 +232,21 @@ class Viewer {
   void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
   void update_title();                           // "phonglab - source *"
   bool image_is_final() const;                   // the renderer idles and its last image is on screen
+
+  // Lessons (viewer_lesson.cpp).
+  std::string open_lesson(const std::string& lesson_arg);  // "" or why not; unsaved edits are guarded as for Open
+  void start_lesson();                           // lesson_.waiting becomes the lesson, at its first step
+  void close_lesson();
+  void show_place(LessonPlace place);            // shows a step (or its answer) as written
+  void adopt_step_scene(int step);               // the step's scene becomes the document
+  void apply_step_view(const StepView& view);    // the term, instruments, probe, head and depth cut of a view
+  void update_lesson();                          // after apply_edits: the step's probe, its A, exploring
+  bool lesson_key(int key);                      // next, previous, presenter mode; true when taken
+  void set_presenting(bool on);                  // full screen, panels hidden, caption large
+  void sidebar_lessons();
+  void draw_lesson_caption(const std::vector<ui::ScreenRect>& taken);  // the step's caption over the image
+  std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
+  void write_lesson_state(std::ostream& out) const;
 
   // Scripts (viewer_script.cpp).
   void step_script(double now);                  // injects this frame's input, runs commands until one waits
@@ -413,6 +430,27 @@ class Viewer {
     std::ofstream log;
   };
   FrameStats stats_;
+  // The lesson being presented (viewer_lesson.cpp).
+  struct LessonState {
+    std::optional<Lesson> lesson;
+    std::optional<Lesson> waiting;  // opened while unsaved edits wait for the guard's answer
+    LessonPlace place;
+    int scene_step = -1;            // the step whose scene the document holds
+    StepView view;                  // the view shown (the step's, or its answer's)
+    bool exploring = false;         // something was changed since the step was shown
+    bool applied = false;           // this frame's edits are the lesson's own
+    bool probe_pending = false;     // probe the view's pixel once the step's snapshot exists
+    // A compare: A is taken of the compare source first, then the step itself is shown.
+    enum class CompareStage : std::uint8_t { kNone, kRequestA, kTakingA };
+    CompareStage compare_stage = CompareStage::kNone;
+    std::array<int, 2> shown_size{0, 0};  // the render size the step was shown at (0: not yet)
+    bool presenting = false;        // presenter mode
+    bool sidebar_before = true;     // the panels' visibility before presenter mode
+    bool unfold_panel = false;      // open the Lessons panel once (a lesson was opened)
+    std::string error;              // why the last open failed
+    std::string path_field;         // the panel's lesson file path
+  };
+  LessonState lesson_;
   // A test script being run (viewer_script.cpp).
   struct ScriptRun {
     std::vector<ScriptCommand> commands;

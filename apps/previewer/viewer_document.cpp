@@ -37,6 +37,18 @@ void SceneDocument::mark_saved() {
 
 void SceneDocument::update_dirty() { dirty_ = content(scene_) != saved_content_; }
 
+void SceneDocument::adopt(const Scene& scene, const std::string& source) {
+  scene_ = scene;
+  loaded_camera_ = scene_.camera;
+  file_path_.clear();
+  source_ = source;
+  mtime_.reset();
+  mark_saved();
+  loaded_ = true;
+  error_text_.clear();
+  status_ = "showing " + source_;
+}
+
 bool SceneDocument::open(const std::string& scene_arg) {
   LoadResult result = load_scene_arg(scene_arg);
   if (!result.ok()) {

@@ -17,6 +17,9 @@ class SceneDocument {
   // Opens SCENE: an embedded scene's name or a file path. On failure the current scene stays
   // and error_text() holds the diagnostics.
   bool open(const std::string& scene_arg);
+  // Makes `scene` the document, with no file behind it (a lesson's step: Save asks where, so
+  // the lesson file never changes unless saved explicitly); `source` names it.
+  void adopt(const Scene& scene, const std::string& source);
   // Reads the file again. With `keep_view`, the current camera stays if the file's camera is
   // the one last loaded (someone edited materials in a text editor, not the view).
   bool reload(bool keep_view);

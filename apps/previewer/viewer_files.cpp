@@ -43,6 +43,7 @@ void Viewer::perform(const PendingAction& action) {
     case PendingAction::Kind::kQuit: quit_ = true; break;
     case PendingAction::Kind::kOpen: open_scene(action.arg); break;
     case PendingAction::Kind::kReload: reload_scene(false); break;
+    case PendingAction::Kind::kLesson: start_lesson(); break;
     case PendingAction::Kind::kNone: break;
   }
 }
@@ -52,6 +53,7 @@ void Viewer::handle_guard_modal() {
   view.action = "quit";
   if (dialogs_.pending.kind == PendingAction::Kind::kOpen) view.action = "open " + dialogs_.pending.arg;
   if (dialogs_.pending.kind == PendingAction::Kind::kReload) view.action = "reload the file";
+  if (dialogs_.pending.kind == PendingAction::Kind::kLesson) view.action = "open the lesson " + dialogs_.pending.arg;
   view.can_save = !doc_.file_path().empty() && !doc_.opened_mesh();
   view.changed_on_disk = !doc_.file_path().empty() && doc_.changed_on_disk();
   const ui::GuardChoice choice = ui::unsaved_changes_modal(dialogs_.open_guard, view, file_state_.path_field, dialogs_.scripted_choice);

@@ -84,12 +84,15 @@ void Viewer::draw_overlays() {
   std::vector<ui::ScreenRect> taken;  // boxes and captions placed so far
   const ImVec2 top_left(viewport_.x + margin, viewport_.y + margin);
   const ImVec2 top_right(viewport_.x + viewport_.width - margin, viewport_.y + margin);
-  const ImVec2 bottom_left(viewport_.x + margin, viewport_.y + viewport_.height - margin);
-  const ImVec2 bottom_right(viewport_.x + viewport_.width - margin, viewport_.y + viewport_.height - margin);
+  // A lesson's caption takes the bottom of the view: the bottom boxes sit above it.
+  float bottom_y = viewport_.y + viewport_.height - margin;
+  if (const auto it = last.find("##lesson_caption"); it != last.end() && lesson_.lesson) bottom_y = it->second.min.y - margin;
+  const ImVec2 bottom_left(viewport_.x + margin, bottom_y);
+  const ImVec2 bottom_right(viewport_.x + viewport_.width - margin, bottom_y);
 
   // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left, the
   // heat scale bottom right.
-  if (display_.show_stats) {
+  if (display_.show_stats && !lesson_.presenting) {
     taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, overlay_rects_, [&] { draw_stats(); }));
   }
   draw_ray_tree_lines();
@@ -145,7 +148,9 @@ void Viewer::draw_overlays() {
     y = r.max.y + 4 * scale;
   }
   draw_cell_labels_and_probe_ring();
-  draw_light_markers(taken);
+  draw_lesson_caption(taken);
+  // A step that asks where the lights are hides their markers (until exploring).
+  if (!lesson_.lesson || lesson_.view.light_markers || lesson_.exploring) draw_light_markers(taken);
   draw_selected_object();
   if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
 
@@ -156,7 +161,7 @@ void Viewer::draw_overlays() {
     ui::text_on_plate(draw, ImVec2(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + (viewport_.height - size.y) / 2),
                       text, scale);
   }
-  if (!sidebar_visible_) {
+  if (!sidebar_visible_ && !lesson_.lesson) {
     // With the panels hidden, say how to get them back (bottom centre, clear of the corner boxes).
     const char* text = "H shows the panels  \xC2\xB7  F1 keys";
     const ImVec2 size = ImGui::CalcTextSize(text);

@@ -25,6 +25,7 @@ constexpr std::array<const char*, 3> kFontCandidates = {
 constexpr std::array<ImWchar, 11> kGlyphRanges = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2070, 0x209F,
                                                   0x2190, 0x21FF, 0x2200, 0x22FF, 0};
 constexpr float kFontPixels = 15.0f;  // at scale 1
+constexpr float kCaptionScale = 2.2f;  // lesson captions: this many times the UI font
 
 std::string glfw_error_text() {
   const char* description = nullptr;
@@ -178,10 +179,12 @@ void Platform::apply_scale(float scale) {
   ImGuiIO& io = ImGui::GetIO();
   io.Fonts->Clear();
   bool loaded = false;
+  caption_font_ = nullptr;
   for (const char* path : kFontCandidates) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) continue;
     if (io.Fonts->AddFontFromFileTTF(path, kFontPixels * scale, nullptr, kGlyphRanges.data()) != nullptr) {
+      caption_font_ = io.Fonts->AddFontFromFileTTF(path, kFontPixels * kCaptionScale * scale, nullptr, kGlyphRanges.data());
       loaded = true;
       break;
     }
@@ -190,6 +193,8 @@ void Platform::apply_scale(float scale) {
     ImFontConfig config;
     config.SizePixels = 13.0f * scale;  // the built-in font's native size
     io.Fonts->AddFontDefault(&config);
+    config.SizePixels = 13.0f * kCaptionScale * scale;
+    caption_font_ = io.Fonts->AddFontDefault(&config);
   }
   // The first time, the backend builds the font texture with its other GL objects on the
   // first frame; later, the texture is replaced here.
@@ -219,6 +224,22 @@ void Platform::apply_scale(float scale) {
 void Platform::update_scale() {
   const float scale = window_content_scale(window_) * user_scale_;
   if (scale != ui_scale_) apply_scale(scale);
+}
+
+void Platform::set_fullscreen(bool on) {
+  if (on == fullscreen_) return;
+  GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+  const GLFWvidmode* mode = monitor != nullptr ? glfwGetVideoMode(monitor) : nullptr;
+  if (on && mode == nullptr) return;  // no monitor to fill
+  if (on) {
+    glfwGetWindowPos(window_, &windowed_[0], &windowed_[1]);
+    glfwGetWindowSize(window_, &windowed_[2], &windowed_[3]);
+    glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+  } else {
+    glfwSetWindowMonitor(window_, nullptr, windowed_[0], windowed_[1], windowed_[2], windowed_[3], 0);
+  }
+  fullscreen_ = on;
+  note_event();
 }
 
 void Platform::begin_backend_frame() {

@@ -9,6 +9,8 @@
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
 
+struct ImFont;
+
 namespace phonglab {
 
 // A key press as GLFW reported it (repeats included), kept until the frame takes it.
@@ -60,6 +62,12 @@ class Platform {
   void push_key_press(KeyPress press);
   // Mouse button presses since the last call, where the cursor was when each happened.
   std::vector<MousePress> take_mouse_presses();
+  // The lesson captions' font: the UI font at kCaptionScale times its size (a projected hall
+  // reads it from the back); nullptr before the first frame.
+  ImFont* caption_font() const { return caption_font_; }
+  // Full screen on the primary monitor (presenter mode), or back to the window as it was.
+  void set_fullscreen(bool on);
+  bool fullscreen() const { return fullscreen_; }
   // Files dropped on the window since the last call (the drop callback), in order.
   void push_drop(std::string path) { drops_.push_back(std::move(path)); }
   std::vector<std::string> take_drops();
@@ -74,6 +82,9 @@ class Platform {
   float ui_scale_ = 0;
   float user_scale_ = 1;
   bool fonts_built_ = false;  // apply_scale ran before: the font texture exists
+  ImFont* caption_font_ = nullptr;
+  bool fullscreen_ = false;
+  int windowed_[4] = {0, 0, 0, 0};  // x, y, width, height before full screen
   double last_event_time_ = 0;
   std::vector<KeyPress> key_presses_;  // from the key callback, taken once per frame
   std::vector<MousePress> mouse_presses_;  // from the mouse button callback, likewise

@@ -27,7 +27,8 @@ namespace {
 constexpr double kDefaultWaitSeconds = 30;  // generous: sanitizer builds render slowly
 constexpr int kBenchGapFrames = 10;         // frames between bench edits: the renderer is mid-pass again
 
-// GLFW key code of a key name: one letter or digit, ESCAPE, F1 or SLASH.
+// GLFW key code of a key name: one letter or digit, ESCAPE, F1, F11, SLASH, RIGHT, LEFT, SPACE,
+// PAGE_UP or PAGE_DOWN.
 int key_code(const std::string& name) {
   if (name == "F1") return GLFW_KEY_F1;
   if (name == "SLASH") return GLFW_KEY_SLASH;
@@ -37,6 +38,12 @@ int key_code(const std::string& name) {
     if (c >= '0' && c <= '9') return GLFW_KEY_0 + (c - '0');
   }
   if (name == "ESCAPE") return GLFW_KEY_ESCAPE;
+  if (name == "RIGHT") return GLFW_KEY_RIGHT;
+  if (name == "LEFT") return GLFW_KEY_LEFT;
+  if (name == "SPACE") return GLFW_KEY_SPACE;
+  if (name == "PAGE_UP") return GLFW_KEY_PAGE_UP;
+  if (name == "PAGE_DOWN") return GLFW_KEY_PAGE_DOWN;
+  if (name == "F11") return GLFW_KEY_F11;
   return -1;
 }
 
@@ -182,7 +189,10 @@ bool Viewer::script_wait_done(double now) {
   switch (script_.wait) {
     case ScriptWait::kNone: return true;
     case ScriptWait::kFrames: done = --script_.frames_left <= 0; break;
-    case ScriptWait::kIdle: done = image_is_final(); break;
+    case ScriptWait::kIdle:
+      // A lesson's compare is done once its A is taken and the step itself is final.
+      done = image_is_final() && lesson_.compare_stage == LessonState::CompareStage::kNone && !lesson_.applied;
+      break;
     case ScriptWait::kImage:
       done = !upload_pending_ && drawn_serial_ > 0 && drawn_generation_ == renderer_.status().generation;
       break;
@@ -591,6 +601,9 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
 bool Viewer::run_script_command(const ScriptCommand& command, double now) {
   ScriptStep step{*this, command, command.words, now};
   if (const std::optional<std::string> error = script_scene_command(command.words)) {
+    return error->empty() ? true : step.fail(*error);
+  }
+  if (const std::optional<std::string> error = script_lesson_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
   for (const auto group : {&Viewer::script_wait_command, &Viewer::script_input_command, &Viewer::script_item_command,

@@ -36,6 +36,7 @@ void Viewer::write_state(const std::string& path) const {
   write_layout_state(out);
   write_rays_state(out);
   write_probe_state(out);
+  write_lesson_state(out);
 }
 
 // The document, the view and the renderer's progress.

@@ -14,6 +14,7 @@
 #include "core/render/render.h"
 #include "core/scene/scene.h"
 #include "core/shading/shading.h"
+#include "core/teaching/lesson.h"
 #include "interaction/file_browser.h"
 #include "interaction/history.h"
 #include "ui/overlay.h"
@@ -247,5 +248,26 @@ GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::str
 // Call every frame. Opens (with `open_now`) when Save finds that `file` changed on disk since it
 // was read or written: Overwrite, Reload from disk (losing the edits) or Cancel.
 GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted = GuardChoice::kNone);
+
+// What the Lessons panel shows.
+struct LessonPanelView {
+  const Lesson* lesson = nullptr;  // nullptr: none open
+  LessonPlace place;
+  bool exploring = false;          // something was changed since the step was shown
+  bool presenting = false;         // presenter mode (full screen, panels hidden)
+  std::string error;               // why the last open failed
+};
+// What it asks for; the app carries it out.
+struct LessonActions {
+  std::string open;  // an embedded lesson's name or the path field's file
+  int go_to = -1;    // a step to show as written (0-based), -1: none
+  bool next = false, prev = false;
+  bool back = false;     // the current step again, as written
+  bool present = false;  // presenter mode on or off
+  bool close = false;
+};
+// The embedded lessons and a path field, the open lesson's steps, next and previous, presenter
+// mode, and the way back from exploring. Nothing to edit.
+void lessons_panel(const LessonPanelView& view, std::string& path_field, LessonActions& actions);
 
 }  // namespace phonglab::ui
