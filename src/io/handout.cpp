@@ -17,8 +17,9 @@ namespace phonglab {
 
 namespace {
 
-constexpr int kTitleScale = 3;
+constexpr int kTitleScale = 3;        // font units to pixels of a page at least kLargePage wide
 constexpr int kCaptionScale = 2;
+constexpr int kLargePage = 640;       // narrower pages use one unit less (the text stays a third of the page)
 constexpr int kLineHeight = 12;  // stb_easy_font's line height in font units
 constexpr int kMargin = 12;
 const glm::vec3 kPageBackground{0.02f};
@@ -211,16 +212,18 @@ Image step_page(const Lesson& lesson, LessonPlace place, const HandoutOptions& o
   const LessonStep& step = lesson.steps.at(static_cast<std::size_t>(place.step));
   const Image image = render_step_view(lesson, place, options);
   const int text_width = std::max(1, image.width - 2 * kMargin);
+  const int smaller = image.width >= kLargePage ? 0 : 1;
+  const int title_scale = kTitleScale - smaller, caption_scale = kCaptionScale - smaller;
   char number[32];
   std::snprintf(number, sizeof number, "%d/%zu  ", place.step + 1, lesson.steps.size());
-  const auto title = wrap_text(number + ascii_text(step.title), kTitleScale, text_width);
-  auto caption = wrap_text(ascii_text(step.caption), kCaptionScale, text_width);
+  const auto title = wrap_text(number + ascii_text(step.title), title_scale, text_width);
+  auto caption = wrap_text(ascii_text(step.caption), caption_scale, text_width);
   std::vector<std::string> question;
-  if (step.has_question()) question = wrap_text("Q: " + ascii_text(step.question), kCaptionScale, text_width);
+  if (step.has_question()) question = wrap_text("Q: " + ascii_text(step.question), caption_scale, text_width);
   std::vector<std::string> answer;
-  if (place.revealed && step.has_question()) answer = wrap_text("A: " + ascii_text(step.answer), kCaptionScale, text_width);
-  const int title_h = static_cast<int>(title.size()) * kLineHeight * kTitleScale;
-  const int line_h = kLineHeight * kCaptionScale;
+  if (place.revealed && step.has_question()) answer = wrap_text("A: " + ascii_text(step.answer), caption_scale, text_width);
+  const int title_h = static_cast<int>(title.size()) * kLineHeight * title_scale;
+  const int line_h = kLineHeight * caption_scale;
   const int text_h = title_h + static_cast<int>(caption.size() + question.size() + answer.size()) * line_h + 3 * kMargin;
   Image page;
   page.width = image.width;
@@ -229,13 +232,13 @@ Image step_page(const Lesson& lesson, LessonPlace place, const HandoutOptions& o
   std::copy(image.pixels.begin(), image.pixels.end(), page.pixels.begin());
   int y = image.height + kMargin;
   for (const std::string& l : title) {
-    draw_label(page, kMargin, y, l, kTitleScale, kTitleColor, text_width);
-    y += kLineHeight * kTitleScale;
+    draw_label(page, kMargin, y, l, title_scale, kTitleColor, text_width);
+    y += kLineHeight * title_scale;
   }
   y += kMargin;
   const auto lines = [&](const std::vector<std::string>& list, glm::vec3 color) {
     for (const std::string& l : list) {
-      draw_label(page, kMargin, y, l, kCaptionScale, color, text_width);
+      draw_label(page, kMargin, y, l, caption_scale, color, text_width);
       y += line_h;
     }
   };
