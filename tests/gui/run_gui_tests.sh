@@ -1100,6 +1100,131 @@ check_objects() {
 }
 
 # --- Session 8: the file browser (issue 16) -----------------------------------------------
+session_lessons() {
+  local dir=$OUT/lessons
+  mkdir -p "$dir"
+  cat >"$dir/mine.json" <<'EOF'
+{"title": "Mine", "description": "a lesson file of the test's own",
+ "steps": [{"title": "The plastic sphere", "caption": "kd is 0.8, 0.15, 0.1.", "scene": "lecture"}]}
+EOF
+  cp "$dir/mine.json" "$dir/mine.before.json"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 4
+wait_idle 120
+dump_state $dir/n01.txt
+screenshot $dir/n01_ambient.png
+touch $dir/keys1_ready
+wait_file $dir/keys1_done 60
+wait_frames 5
+wait_idle 120
+dump_state $dir/n02.txt
+screenshot $dir/n02_answer.png
+touch $dir/keys2_ready
+wait_file $dir/keys2_done 60
+wait_frames 5
+wait_idle 120
+dump_state $dir/n03.txt
+lesson_goto 10
+wait_idle 120
+screenshot $dir/n10_no_light.png
+dump_state $dir/n10.txt
+key 2
+wait_frames 3
+wait_idle 120
+screenshot $dir/n10_ambient.png
+dump_state $dir/n10e.txt
+click_item lesson.back
+wait_frames 3
+wait_idle 120
+dump_state $dir/n10b.txt
+lesson_goto 6
+wait_idle 120
+lesson_next
+wait_idle 120
+screenshot $dir/n06_answer.png
+dump_state $dir/n06.txt
+touch $dir/keys3_ready
+wait_file $dir/keys3_done 60
+wait_frames 10
+wait_idle 120
+screenshot $dir/n06_presenter.png
+dump_state $dir/n06p.txt
+key ESCAPE
+wait_frames 5
+dump_state $dir/n06q.txt
+lesson_open $dir/missing.json
+wait_frames 2
+dump_state $dir/n_bad.txt
+lesson_open $dir/mine.json
+wait_idle 120
+set material plastic kd 0.1 0.1 0.9
+wait_frames 3
+key S ctrl
+wait_frames 5
+dump_state $dir/n_mine.txt
+key ESCAPE
+wait_frames 3
+quit
+EOF
+  "$BIN" --lesson shading --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
+  local pid=$! win=""
+  if wait_for_file "$dir/keys1_ready" 120 "$pid"; then
+    win=$(xdotool search --sync --limit 1 --name '^phonglab' 2>/dev/null | head -n 1)
+    xdotool windowfocus --sync "$win" 2>/dev/null
+    xdotool mousemove --window "$win" 400 300
+    xdotool key --delay 150 Right space
+    touch "$dir/keys1_done"
+  fi
+  if wait_for_file "$dir/keys2_ready" 120 "$pid"; then
+    xdotool key --delay 150 Next Next Prior
+    touch "$dir/keys2_done"
+  fi
+  if wait_for_file "$dir/keys3_ready" 120 "$pid"; then
+    xdotool key F11
+    touch "$dir/keys3_done"
+  fi
+  finish "$dir" "$pid"
+}
+
+check_lessons() {
+  local dir=$OUT/lessons mean max spread
+  echo "session 9: presenting a lesson"
+  check_exit "$dir" "the script ran to the end"
+  check "--lesson shading opens at its first step, the ambient term ($(state "$dir/n01.txt" lesson_title))" \
+    test "$(state "$dir/n01.txt" lesson)" = shading -a "$(state "$dir/n01.txt" lesson_step)" = 1 \
+    -a "$(state "$dir/n01.txt" lesson_steps)" = 11 -a "$(state "$dir/n01.txt" term)" = ambient
+  check "Right, then space: step 2 and its answer revealed ($(state "$dir/n02.txt" lesson_title))" \
+    test "$(state "$dir/n02.txt" lesson_step)" = 2 -a "$(state "$dir/n02.txt" lesson_revealed)" = 1 \
+    -a "$(state "$dir/n02.txt" term)" = diffuse
+  check "Page Down twice, Page Up once: step 3, the specular term" \
+    test "$(state "$dir/n03.txt" lesson_step)" = 3 -a "$(state "$dir/n03.txt" lesson_revealed)" = 0 \
+    -a "$(state "$dir/n03.txt" term)" = specular
+  # Below the horizon every pixel is an object's: with the lights muted the full image is the ambient term.
+  local d
+  d=$(rmse "$dir/n10_no_light.png" "$dir/n10_ambient.png" 860x150+10+440)
+  check "the lights muted: the image is the ambient term below the horizon (RMSE $d)" less "${d:-1}" 0.004
+  check "a term key while on a step is exploring; Back shows the step as written" \
+    test "$(state "$dir/n10e.txt" lesson_exploring)" = 1 -a "$(state "$dir/n10e.txt" term)" = ambient \
+    -a "$(state "$dir/n10b.txt" lesson_exploring)" = 0 -a "$(state "$dir/n10b.txt" term)" = full
+  mean=$(convert "$dir/n06_answer.png" -crop 880x400+0+150 +repage -colorspace Gray -format '%[fx:mean]' info:)
+  max=$(convert "$dir/n06_answer.png" -crop 880x400+0+150 +repage -colorspace Gray -format '%[fx:maxima]' info:)
+  check "move your head, revealed: |moved - unmoved| is dark but for the highlights (mean $mean, max $max)" \
+    awk -v m="$mean" -v x="$max" 'BEGIN { exit !(m < 0.06 && x > 0.5) }'
+  check "... shown as the compare view (compare=$(state "$dir/n06.txt" compare), $(state "$dir/n06.txt" compare_caption))" \
+    test "$(state "$dir/n06.txt" compare)" = 2 -a "$(state "$dir/n06.txt" lesson_revealed)" = 1
+  spread=$(stddev "$dir/n06_presenter.png" 1280x110+0+600)
+  check "F11: presenter mode, the panels hidden, the caption drawn large over the image (spread $spread)" \
+    test "$(state "$dir/n06p.txt" lesson_presenting)" = 1 -a "$(state "$dir/n06p.txt" sidebar)" = 0 \
+    -a "$(state "$dir/n06p.txt" overlay_lesson_caption | cut -d' ' -f3)" = 1280
+  check "... and Esc leaves it" test "$(state "$dir/n06q.txt" lesson_presenting)" = 0 -a "$(state "$dir/n06q.txt" sidebar)" = 1
+  check "a lesson that does not load is reported and the lesson stays ($(state "$dir/n_bad.txt" lesson_error))" \
+    test "$(state "$dir/n_bad.txt" lesson)" = shading -a -n "$(state "$dir/n_bad.txt" lesson_error)"
+  check "exploring a lesson file's step and Ctrl+S asks where to save; the lesson file is unchanged" \
+    test "$(state "$dir/n_mine.txt" lesson)" = mine -a "$(state "$dir/n_mine.txt" lesson_exploring)" = 1 \
+    -a "$(state "$dir/n_mine.txt" file_browser)" = save
+  check "... byte for byte" cmp -s "$dir/mine.json" "$dir/mine.before.json"
+}
+
 session_browser() {
   local dir=$OUT/browser
   mkdir -p "$dir/scenes/sub" "$dir/state"
@@ -1163,6 +1288,7 @@ if ((INSIDE_X)); then
   session_conflict
   session_objects
   session_browser
+  session_lessons
   exit 0
 fi
 
@@ -1182,6 +1308,7 @@ check_lecture
 check_conflict
 check_objects
 check_browser
+check_lessons
 check_no_display
 echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))
