@@ -249,3 +249,25 @@ TEST_F(CliTest, BenchOnlyAcceptsTheAccelSectionAndNoScene) {
   EXPECT_EQ(run_cli("bench --only speed").exit_code, 2);
   EXPECT_EQ(run_cli("bench lecture --only accel").exit_code, 2);
 }
+
+TEST_F(CliTest, LessonsListsTheEmbeddedLessonsAndLessonWritesTheHandout) {
+  const RunResult list = run_cli("lessons");
+  EXPECT_EQ(list.exit_code, 0);
+  EXPECT_NE(list.out.find("shading "), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("raytracing "), std::string::npos) << list.out;
+  EXPECT_EQ(run_cli("lesson shading").exit_code, 2) << "missing -o";
+  EXPECT_EQ(run_cli("lesson -o " + path("h")).exit_code, 2) << "missing LESSON";
+  const RunResult typo = run_cli("lesson shadin -o " + path("h"));
+  EXPECT_EQ(typo.exit_code, 1);
+  EXPECT_NE(typo.out.find("did you mean \"shading\"?"), std::string::npos) << typo.out;
+  const std::string bad = write("bad.json", "{\"title\": \"t\",\n \"steps\": [{\"title\": 1}]}");
+  const RunResult broken = run_cli("lesson " + bad + " -o " + path("h"));
+  EXPECT_EQ(broken.exit_code, 1);
+  EXPECT_NE(broken.out.find(bad + ":2:22: steps[0].title: must be a string (got 1)"), std::string::npos) << broken.out;
+  const RunResult ok = run_cli("lesson raytracing -o " + path("h") + " --width 64 --height 36 --spp 1");
+  EXPECT_EQ(ok.exit_code, 0) << ok.out;
+  EXPECT_TRUE(fs::exists(path("h/step-01.png")));
+  EXPECT_TRUE(fs::exists(path("h/step-03-answer.png"))) << "the shadow step's question";
+  EXPECT_TRUE(fs::exists(path("h/index.html")));
+  EXPECT_NE(ok.out.find("index.html"), std::string::npos);
+}
