@@ -28,6 +28,7 @@ shot instruments/h02_head_specular_difference.png head-difference.png
 shot objects/b04_dragged.png objects.png
 shot objects/b02_presets.png presets.png
 shot browser/f5_recent.png file-browser.png
+shot lessons/n06_presenter.png presenter.png
 # The viewport (left of the 400-pixel panels) of cut 0, 1, 2 in a row.
 convert "$SRC/rays/r04_cut0.png" "$SRC/rays/r05_cut1.png" "$SRC/rays/r06_cut2.png" -crop 880x720+0+0 +repage \
   -bordercolor black -border 4x0 +append -resize 960x -strip "$OUT/depth-cut.png"
