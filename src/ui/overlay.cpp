@@ -149,7 +149,7 @@ std::string term_caption(Term term, bool blinn) {
 }
 
 void keys_help() {
-  static constexpr std::array<std::array<const char*, 2>, 21> kRows = {{
+  static constexpr std::array<std::array<const char*, 2>, 24> kRows = {{
       {"left-drag", "orbit: the scene follows the hand"},
       {"right-drag, wheel", "dolly"},
       {"middle-drag, Shift+left-drag", "pan"},
@@ -169,6 +169,9 @@ void keys_help() {
       {"Ctrl+O", "open a scene or a mesh (the file browser)"},
       {"Ctrl+S, Ctrl+Shift+S", "save, save as"},
       {"drop a .json / .obj", "open it / add it as a mesh object"},
+      {"Right, Page Down, Space", "lesson: the answer, then the next step"},
+      {"Left, Page Up", "lesson: back"},
+      {"F11", "lesson: presenter mode (Esc leaves it)"},
       {"F1, ?", "this help"},
       {"Esc", "close it"},
   }};
