@@ -54,7 +54,7 @@ commands:
   lessons              List the embedded lessons.
   lesson LESSON -o DIR [--width W] [--height H] [--spp N] [--threads N]
       The lesson's handout: DIR/step-NN.png (each step's image and caption; a
-      question's answer as step-NN-answer.png) and DIR/index.html, one page
+      question's answer as answer-NN.png) and DIR/index.html, one page
       holding them all. W x H: each image (default: its scene's size).
   bench [--out DIR] [--quick] [--threads N] [--only accel]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR

@@ -138,7 +138,7 @@ std::string html_escape(const std::string& text) {
 
 std::string step_file(int step, bool answer) {
   char name[40];
-  std::snprintf(name, sizeof name, "step-%02d%s.png", step + 1, answer ? "-answer" : "");
+  std::snprintf(name, sizeof name, "%s-%02d.png", answer ? "answer" : "step", step + 1);
   return name;
 }
 

@@ -32,7 +32,7 @@ std::string ascii_text(const std::string& text);
 // `text` broken into lines of at most `max_width` pixels in draw_label's font at `scale`.
 std::vector<std::string> wrap_text(const std::string& text, int scale, int max_width);
 
-// Writes DIR/step-NN.png for every step (NN from 01; a question's answer as step-NN-answer.png)
+// Writes DIR/step-NN.png for every step (NN from 01; a question's answer as answer-NN.png)
 // and DIR/index.html, a page holding every image (inline, so it is one file to send) and the
 // captions. Creates DIR. `written` receives the paths. Empty string or the error.
 std::string write_handout(const Lesson& lesson, const std::string& dir, const HandoutOptions& options,

@@ -147,7 +147,8 @@ class LessonReader : private SceneMembers {
       std::vector<std::string_view> names;
       for (const Material& m : s.materials) names.push_back(m.name);
       for (auto& [name, m] : members(*x)) {
-        const auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const Material& mat) { return mat.name == name; });
+        const std::string wanted = name;  // (clang 14 does not capture structured bindings)
+        const auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const Material& mat) { return mat.name == wanted; });
         if (it == s.materials.end()) {
           issues_.add({index_.key_begin(m.node), m.path, "unknown material " + json_string(name) + suggestion(name, names, "the scene's materials")});
           continue;

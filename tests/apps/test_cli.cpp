@@ -267,7 +267,13 @@ TEST_F(CliTest, LessonsListsTheEmbeddedLessonsAndLessonWritesTheHandout) {
   const RunResult ok = run_cli("lesson raytracing -o " + path("h") + " --width 64 --height 36 --spp 1");
   EXPECT_EQ(ok.exit_code, 0) << ok.out;
   EXPECT_TRUE(fs::exists(path("h/step-01.png")));
-  EXPECT_TRUE(fs::exists(path("h/step-03-answer.png"))) << "the shadow step's question";
+  EXPECT_TRUE(fs::exists(path("h/answer-03.png"))) << "the shadow step's question";
   EXPECT_TRUE(fs::exists(path("h/index.html")));
   EXPECT_NE(ok.out.find("index.html"), std::string::npos);
+  int steps = 0;
+  for (const auto& entry : fs::directory_iterator(path("h"))) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("step-", 0) == 0) ++steps;
+  }
+  EXPECT_EQ(steps, 8) << "one step-NN.png per step of raytracing, the answers apart";
 }

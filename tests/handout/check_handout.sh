@@ -24,12 +24,12 @@ for lesson in $("$CLI" lessons | awk '{print $1}'); do
   dir=$OUT/$lesson
   "$CLI" lesson "$lesson" -o "$dir" --width 320 --height 180 --spp 1 >"$dir.files" 2>"$dir.err"
   check "$lesson: the handout is written ($(wc -l <"$dir.files") files)" test -s "$dir/index.html"
-  pngs=$(ls "$dir"/step-*.png 2>/dev/null | wc -l)
+  pngs=$(ls "$dir"/step-*.png "$dir"/answer-*.png 2>/dev/null | wc -l)
   # The page as written, plus a script that counts the images the browser decoded once loaded.
   sed 's|</body>|<script>addEventListener("load",()=>{const i=[...document.images];document.body.dataset.shown=i.filter(x=>x.complete\&\&x.naturalWidth>0).length+"/"+i.length})</script></body>|' \
     "$dir/index.html" >"$dir/check.html"
   shown=$(browse --dump-dom "file://$dir/check.html" | sed -n 's/.*data-shown="\([0-9]*\/[0-9]*\)".*/\1/p' | head -n 1)
-  check "$lesson: Chromium shows every image of the page ($shown of the $pngs step images)" test "$shown" = "$pngs/$pngs"
+  check "$lesson: Chromium shows every image of the page ($shown of the $pngs step and answer images)" test "$shown" = "$pngs/$pngs"
   browse --window-size=1000,1400 --screenshot="$dir/page.png" "file://$dir/index.html" >/dev/null
   # The first step's image sits below the title and caption: the page there is not blank.
   spread=$(convert "$dir/page.png" -crop 320x180+16+230 +repage -colorspace Gray -format '%[fx:standard_deviation]' info: 2>/dev/null)
