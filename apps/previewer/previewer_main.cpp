@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
       return 2;
     } else {
       options.scene_arg = arg;
-      have_scene = true;
+      options.scene_given = have_scene = true;
     }
   }
   return phonglab::run_viewer(options);

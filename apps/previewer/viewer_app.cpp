@@ -72,6 +72,7 @@ double percentile(std::vector<double> v, double p) {
 }  // namespace
 
 int run_viewer(const ViewerOptions& options) {
+  start_signal_watcher();  // before GLFW and Mesa start their threads
   std::string error;
   PlatformOptions platform_options;
   platform_options.width = options.width;
@@ -122,6 +123,7 @@ std::string Viewer::init() {
   edits_.replaced = true;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   if (!options_.lesson_arg.empty()) open_lesson(options_.lesson_arg);  // a lesson that fails to load is shown in its panel
+  find_recovery();
   if (!options_.script_path.empty()) {
     std::ifstream in(options_.script_path);
     if (!in) return "cannot read script " + options_.script_path;
@@ -142,6 +144,7 @@ int Viewer::run() {
   stats_.last_frame_start = glfwGetTime();
   while (!quit_) {
     wait_for_next_frame();
+    if (handle_signal()) break;
     const double frame_start = glfwGetTime();
     const double frame_seconds = frame_start - stats_.last_frame_start;
     stats_.last_frame_start = frame_start;
@@ -175,14 +178,18 @@ int Viewer::run() {
     draw_sidebar();
     draw_overlays();
     handle_guard_modal();
+    handle_recovery_modal();
     apply_edits(frame_start);
     update_lesson();
+    autosave(frame_start);
     ImGui::Render();
     draw_gl(fb_width, fb_height);
     glfwSwapBuffers(window);
     after_swap();
   }
   write_stats_summary("session");
+  if (!recovery_.keep) remove_recovery();  // a clean quit (saved, or the edits discarded)
+  if (exit_code_ != 0) return exit_code_;
   return script_.failed ? 3 : 0;
 }
 
@@ -296,7 +303,10 @@ void Viewer::apply_edits(double frame_start) {
     lesson_.exploring = true;
   }
   lesson_.applied = false;
-  if (edits_.scene) doc_.update_dirty();
+  if (edits_.scene) {
+    doc_.update_dirty();
+    recovery_.last_edit = frame_start;
+  }
   if (edits_.replaced) {
     dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());
     history_.reset(scene);

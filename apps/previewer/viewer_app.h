@@ -24,6 +24,7 @@
 #include "core/render/progressive.h"
 #include "core/teaching/lesson.h"
 #include "interaction/history.h"
+#include "interaction/recovery.h"
 #include "ui/panels.h"
 #include "ui/ray_tree_overlay.h"
 
@@ -34,13 +35,22 @@ struct ViewerOptions {
   int width = 1280;                   // window size, screen coordinates
   int height = 720;
   std::string lesson_arg;             // a lesson to present from the start (name or file), or empty
+  bool scene_given = false;           // SCENE was on the command line (else a recovery of any scene is offered)
   std::string script_path;            // test hook: commands run from the main loop
   std::string stats_log_path;         // test hook: frame times and edit latencies
 };
 
 // Opens the window and runs until the user quits. Returns the process exit code: 0, 1 when
-// there is no display (the message points at phonglab-cli), 3 when a test script failed.
+// there is no display (the message points at phonglab-cli), 3 when a test script failed,
+// 128 + the signal for SIGINT, SIGTERM and SIGHUP (130, 143, 129; unsaved edits are kept in a
+// recovery file first).
 int run_viewer(const ViewerOptions& options);
+
+// SIGINT, SIGTERM and SIGHUP go to one thread that notes them and wakes the main loop (call
+// before any other thread starts, so they all block them); a second one ends at once.
+void start_signal_watcher();
+// The signal that arrived, 0 while none did.
+int pending_signal();
 
 // One scripted frame of input, injected into ImGui as if it came from the window system.
 struct InputStep {
@@ -232,6 +242,16 @@ class Viewer {
   void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
   void update_title();                           // "phonglab - source *"
   bool image_is_final() const;                   // the renderer idles and its last image is on screen
+
+  // Recovery of unsaved edits (viewer_recovery.cpp).
+  std::optional<std::pair<std::string, bool>> recovery_source() const;  // (source, embedded) of the document; nullopt: none to recover
+  void autosave(double now);                     // a few seconds after the last edit: the recovery file
+  std::string write_recovery();                  // the document's recovery file, written now; its path or ""
+  void remove_recovery();                        // the recovery file this session wrote or restored, gone
+  void find_recovery();                          // at start: a recovery to offer
+  void handle_recovery_modal();                  // the offer and its answer
+  void restore_recovery(const ui::RecoveryEntry& entry);
+  bool handle_signal();                          // a signal arrived: the recovery written, the exit code set
 
   // Lessons (viewer_lesson.cpp).
   std::string open_lesson(const std::string& lesson_arg);  // "" or why not; unsaved edits are guarded as for Open
@@ -451,6 +471,20 @@ class Viewer {
     std::string path_field;         // the panel's lesson file path
   };
   LessonState lesson_;
+  // Unsaved edits kept in the state folder until they are saved (viewer_recovery.cpp).
+  struct Recovery {
+    std::string written;       // this document's recovery file, once written or restored ("" none)
+    std::string written_text;  // what it holds (unchanged edits are not written again)
+    double last_edit = 0;      // glfwGetTime() of the last scene edit
+    std::optional<ui::RecoveryEntry> offer;  // found at start, waiting for an answer
+    bool open_modal = false;   // open the offer's dialog this frame
+    bool modal_visible = false;
+    int scripted = 0;          // `modal restore|discard|later`: 1, 2, 3
+    bool keep = false;         // exiting on a signal: the file stays for the next start
+    std::string error;         // why the last write failed
+  };
+  Recovery recovery_;
+  int exit_code_ = 0;          // set by handle_signal
   // A test script being run (viewer_script.cpp).
   struct ScriptRun {
     std::vector<ScriptCommand> commands;

@@ -41,6 +41,7 @@ void SceneDocument::adopt(const Scene& scene, const std::string& source) {
   scene_ = scene;
   loaded_camera_ = scene_.camera;
   file_path_.clear();
+  embedded_name_.clear();
   source_ = source;
   mtime_.reset();
   mark_saved();
@@ -59,9 +60,11 @@ bool SceneDocument::open(const std::string& scene_arg) {
   loaded_camera_ = scene_.camera;
   if (find_embedded_scene(scene_arg) != nullptr) {
     file_path_.clear();
+    embedded_name_ = scene_arg;
     source_ = "embedded scene '" + scene_arg + "'";
   } else {
     file_path_ = scene_arg;
+    embedded_name_.clear();
     source_ = scene_arg;
   }
   mtime_ = current_mtime();
@@ -138,6 +141,7 @@ bool SceneDocument::save_as(const std::string& path) {
   }
   if (!write(path)) return false;
   file_path_ = path;
+  embedded_name_.clear();
   source_ = path;
   loaded_camera_ = scene_.camera;
   mtime_ = current_mtime();

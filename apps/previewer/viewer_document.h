@@ -40,6 +40,8 @@ class SceneDocument {
   const Scene& scene() const { return scene_; }
   // Camera as loaded from the file (for Reset).
   const Camera& loaded_camera() const { return loaded_camera_; }
+  // The embedded scene the document was opened from; empty for a file or a lesson's step.
+  const std::string& embedded_name() const { return embedded_name_; }
   // File the scene came from and saves to; empty for an embedded scene.
   const std::string& file_path() const { return file_path_; }
   // "embedded scene 'lecture'" or the path.
@@ -65,6 +67,7 @@ class SceneDocument {
   Scene scene_;
   Camera loaded_camera_;
   std::string file_path_;
+  std::string embedded_name_;
   std::string source_;
   bool dirty_ = false;
   bool loaded_ = false;

@@ -1,5 +1,6 @@
 // The previewer's file actions: open, reload, save (with the unsaved-changes guard and the check for changes made on disk), and screenshots.
 #include "apps/previewer/viewer_app.h"
+#include "interaction/recovery.h"
 
 #include <algorithm>
 #include <array>
@@ -103,6 +104,7 @@ void Viewer::open_scene(const std::string& scene_arg) {
     return;
   }
   selected_object_ = -1;
+  remove_recovery();  // the guard was passed: the last document's edits were saved or discarded
   if (!doc_.file_path().empty()) remember_recent(doc_.file_path());
   file_state_.error_text.clear();
   file_state_.status = doc_.status();
@@ -125,6 +127,7 @@ void Viewer::reload_scene(bool keep_view) {
     file_state_.error_text = doc_.error_text();
     return;
   }
+  remove_recovery();  // reloading discarded the edits (the guard asked first)
   file_state_.error_text.clear();
   file_state_.status = doc_.status();
   file_state_.changed_on_disk = false;
@@ -243,12 +246,8 @@ std::vector<std::string> browser_filter(bool save) {
 }  // namespace
 
 std::string Viewer::recent_path() {
-  const char* state = std::getenv("XDG_STATE_HOME");
-  const char* home = std::getenv("HOME");
-  const std::string base = state != nullptr && *state != '\0' ? std::string(state)
-                           : home != nullptr                   ? std::string(home) + "/.local/state"
-                                                               : std::string();
-  return base.empty() ? std::string() : base + "/phonglab/recent";
+  const std::string base = ui::state_dir();
+  return base.empty() ? std::string() : base + "/recent";
 }
 
 // The recent files as the last session left them, read once, on first use.

@@ -55,6 +55,7 @@ void Viewer::adopt_step_scene(int step) {
   std::snprintf(source, sizeof source, "lesson '%s', step %d: %s", lesson.name.c_str(), step + 1,
                 lesson.steps[static_cast<std::size_t>(step)].scene.c_str());
   doc_.adopt(lesson.steps[static_cast<std::size_t>(step)].prepared_scene, source);
+  remove_recovery();  // the guard was passed when the lesson opened; explorations are nobody's file
   lesson_.scene_step = step;
   file_state_.source = doc_.source();
   file_state_.file_path.clear();

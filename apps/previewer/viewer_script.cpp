@@ -531,9 +531,16 @@ std::optional<bool> Viewer::script_file_command(ScriptStep& step) {
     return true;
   }
   if (name == "modal") {
-    constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload";
+    constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload (the recovery offer: restore|discard|later)";
     if (w.size() != 2) return step.fail(kUsage);
-    if (!dialogs_.guard_visible && !dialogs_.conflict_visible) return step.fail("no unsaved-changes or changed-on-disk dialog is open");
+    if (recovery_.modal_visible && !dialogs_.guard_visible && !dialogs_.conflict_visible) {
+      if (w[1] == "restore") recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kRestore);
+      else if (w[1] == "discard") recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kDiscard);
+      else if (w[1] == "later") recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
+      else return step.fail(kUsage);
+      return true;
+    }
+    if (!dialogs_.guard_visible && !dialogs_.conflict_visible) return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
     if (w[1] == "save") dialogs_.scripted_choice = ui::GuardChoice::kSave;
     else if (w[1] == "save_as") dialogs_.scripted_choice = ui::GuardChoice::kSaveAs;
     else if (w[1] == "discard") dialogs_.scripted_choice = ui::GuardChoice::kDiscard;

@@ -37,6 +37,8 @@ void Viewer::write_state(const std::string& path) const {
   write_rays_state(out);
   write_probe_state(out);
   write_lesson_state(out);
+  out << "recovery_offer=" << (recovery_.offer ? recovery_.offer->source : "") << "\n"
+      << "recovery_file=" << recovery_.written << "\n";
 }
 
 // The document, the view and the renderer's progress.

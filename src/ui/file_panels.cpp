@@ -132,6 +132,29 @@ GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::str
   return choice;
 }
 
+RecoveryChoice recovery_modal(bool open_now, const std::string& source, const std::string& saved,
+                              RecoveryChoice scripted) {
+  constexpr const char* kTitle = "Unsaved edits were kept";
+  RecoveryChoice choice = RecoveryChoice::kNone;
+  if (begin_centred_modal(kTitle, open_now)) {
+    ImGui::Text("phonglab ended before these edits of %s were saved.", source.c_str());
+    ImGui::Text("They were kept %s.", saved.c_str());
+    ImGui::Spacing();
+    if (ImGui::Button("Restore")) choice = RecoveryChoice::kRestore;
+    locate("recovery.restore");
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) choice = RecoveryChoice::kDiscard;
+    locate("recovery.discard");
+    ImGui::SameLine();
+    if (ImGui::Button("Not now") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = RecoveryChoice::kLater;
+    locate("recovery.later");
+    if (scripted != RecoveryChoice::kNone) choice = scripted;
+    if (choice != RecoveryChoice::kNone) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  return choice;
+}
+
 GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted) {
   constexpr const char* kTitle = "The file changed on disk";
   GuardChoice choice = GuardChoice::kNone;

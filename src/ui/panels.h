@@ -245,6 +245,12 @@ struct GuardView {
 GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
                                   GuardChoice scripted = GuardChoice::kNone);
 
+// The offer of a recovery file at start: Restore, Discard, or Not now (kept for the next start).
+enum class RecoveryChoice : std::uint8_t { kNone, kRestore, kDiscard, kLater };
+// Call every frame while an offer waits. `source` names the scene, `saved` says when (text).
+RecoveryChoice recovery_modal(bool open_now, const std::string& source, const std::string& saved,
+                              RecoveryChoice scripted = RecoveryChoice::kNone);
+
 // Call every frame. Opens (with `open_now`) when Save finds that `file` changed on disk since it
 // was read or written: Overwrite, Reload from disk (losing the edits) or Cancel.
 GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted = GuardChoice::kNone);

@@ -21,6 +21,7 @@ fi
 BUILD_DIR=$(cd "${1:?usage: run_gui_tests.sh BUILD_DIR [OUT_DIR]}" && pwd)
 OUT=${2:-$BUILD_DIR/gui-tests}
 BIN=$BUILD_DIR/bin/phonglab
+CLI=$BUILD_DIR/bin/phonglab-cli
 SELF_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 SELF=$SELF_DIR/$(basename "${BASH_SOURCE[0]}")
 # Sanitizer builds: GL drivers and X libraries keep allocations alive until exit on purpose.
@@ -63,6 +64,7 @@ apart() {
     if (split(a, p, " ") != 4 || split(b, q, " ") != 4) exit 1
     exit !(p[1] + p[3] <= q[1] || q[1] + q[3] <= p[1] || p[2] + p[4] <= q[2] || q[2] + q[4] <= p[2]) }'
 }
+quiet() { "$@" >/dev/null 2>&1; }
 greater() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 > b + 0) }'; }
 less() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 < b + 0) }'; }
 finish() {  # finish DIR PID: waits for the session's program and keeps its exit status
@@ -1100,6 +1102,84 @@ check_objects() {
 }
 
 # --- Session 8: the file browser (issue 16) -----------------------------------------------
+# run_until_killed DIR NAME SIGNAL SCRIPT_LINES: the previewer on lecture (state in DIR/state) runs
+# the lines, touches DIR/NAME.ready and waits; the shell sends SIGNAL and keeps the exit status.
+run_until_killed() {
+  local dir=$1 name=$2 sig=$3 lines=$4 pid
+  printf '%s\ntouch %s\nwait_file %s 120\n' "$lines" "$dir/$name.ready" "$dir/never" >"$dir/$name.txt"
+  XDG_STATE_HOME="$dir/state" "$BIN" lecture --size 1280x720 --script "$dir/$name.txt" >"$dir/$name.out" 2>"$dir/$name.err" &
+  pid=$!
+  if wait_for_file "$dir/$name.ready" 120 "$pid"; then kill "-$sig" "$pid"; fi
+  wait "$pid"
+  echo "$?" >"$dir/$name.exit"
+  # The file as this kill left it (the next session rewrites it).
+  cp "$(sed -n 's/^recovery: //p' "$dir/$name.err")" "$dir/$name.json" 2>/dev/null
+}
+
+session_recovery() {
+  local dir=$OUT/recovery
+  mkdir -p "$dir"
+  run_until_killed "$dir" term TERM "set render target_spp 2
+wait_idle 120
+set material plastic kd 0.1 0.9 0.1
+wait_idle 120"
+  run_until_killed "$dir" int INT "set render target_spp 2
+wait_idle 120
+set material shiny kd 0.9 0.6 0.1
+set light 0 intensity 0.5 0.9 0.9
+wait_idle 120
+save_png $dir/edited.png"
+  # The next start on that scene offers the edits back.
+  cat >"$dir/restore.txt" <<EOF
+set render target_spp 2
+wait_frames 5
+dump_state $dir/r1.txt
+screenshot $dir/r1_offer.png
+modal restore
+wait_frames 3
+wait_idle 120
+save_png $dir/restored.png
+dump_state $dir/r2.txt
+save_as $dir/saved.json
+wait_frames 3
+dump_state $dir/r3.txt
+quit
+EOF
+  XDG_STATE_HOME="$dir/state" "$BIN" lecture --size 1280x720 --script "$dir/restore.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+  if [[ -e "$dir/state/phonglab/recovery/embedded-lecture.json" ]]; then echo kept; else echo gone; fi >"$dir/after_save"
+  # Autosave: a few seconds after an edit the file is there, and a crash (SIGKILL) leaves it.
+  run_until_killed "$dir" crash KILL "set render target_spp 2
+wait_idle 120
+set material matte kd 0.9 0.1 0.9
+wait_file $dir/state/phonglab/recovery/embedded-lecture.json 30"
+}
+
+check_recovery() {
+  local dir=$OUT/recovery file d
+  echo "session 10: nothing lost (recovery)"
+  file=$(sed -n 's/^recovery: //p' "$dir/term.err")
+  check "kill -TERM with unsaved edits: exit 143, 'recovery: PATH' on stderr ($file)" \
+    test "$(cat "$dir/term.exit")" = 143 -a -n "$file" -a -s "$dir/term.json"
+  check "... phonglab-cli validate accepts it" quiet "$CLI" validate "$dir/term.json"
+  check "... and it holds the edit (plastic kd 0.1 0.9 0.1)" grep -q '"kd": \[0.1, 0.9, 0.1\]' "$dir/term.json"
+  check "kill -INT: exit 130 and the recovery file ($(sed -n 's/^recovery: //p' "$dir/int.err"))" \
+    test "$(cat "$dir/int.exit")" = 130 -a -s "$dir/int.json"
+  check "... phonglab-cli validate accepts it" quiet "$CLI" validate "$dir/int.json"
+  check "... holding the edit (shiny kd 0.9 0.6 0.1)" grep -q '"kd": \[0.9, 0.6, 0.1\]' "$dir/int.json"
+  check_exit "$dir" "the restoring session ran to the end"
+  check "the next start on the scene offers the edits ($(state "$dir/r1.txt" recovery_offer))" \
+    test "$(state "$dir/r1.txt" recovery_offer)" = lecture -a "$(state "$dir/r1.txt" dirty)" = 0
+  d=$(compare -metric AE "$dir/edited.png" "$dir/restored.png" null: 2>&1)
+  check "restored, the image is the edited one pixel for pixel ($d pixels differ), unsaved" \
+    test "$d" = 0 -a "$(state "$dir/r2.txt" dirty)" = 1
+  check "a clean save removes the recovery file ($(cat "$dir/after_save"))" \
+    test -z "$(state "$dir/r3.txt" recovery_file)" -a "$(cat "$dir/after_save")" = gone -a "$(state "$dir/r3.txt" dirty)" = 0
+  check "autosave: the file appears a few seconds after an edit, and SIGKILL leaves it (exit $(cat "$dir/crash.exit"))" \
+    test "$(cat "$dir/crash.exit")" = 137 -a -s "$dir/state/phonglab/recovery/embedded-lecture.json"
+  check "... holding that edit" grep -q '"kd": \[0.9, 0.1, 0.9\]' "$dir/state/phonglab/recovery/embedded-lecture.json"
+}
+
 session_lessons() {
   local dir=$OUT/lessons
   mkdir -p "$dir"
@@ -1289,6 +1369,7 @@ if ((INSIDE_X)); then
   session_objects
   session_browser
   session_lessons
+  session_recovery
   exit 0
 fi
 
@@ -1309,6 +1390,7 @@ check_conflict
 check_objects
 check_browser
 check_lessons
+check_recovery
 check_no_display
 echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))

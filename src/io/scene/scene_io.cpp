@@ -114,8 +114,8 @@ bool is_obj_path(const std::string& path) {
 }
 
 LoadResult load_scene_text(const std::string& text, const std::string& file_name,
-                           const std::string& base_dir) {
-  return load_scene_text_from(text, file_name, SceneFiles{base_dir, false});
+                           const std::string& base_dir, bool embedded_meshes) {
+  return load_scene_text_from(text, file_name, SceneFiles{embedded_meshes ? "" : base_dir, embedded_meshes});
 }
 
 LoadResult reload_meshes(const Scene& scene, const std::string& base_dir, bool embedded) {

@@ -21,9 +21,10 @@ struct LoadResult {
   std::string error_text() const;        // all errors, one per line
 };
 
-// Parses scene JSON. `file_name` is used in diagnostics; `base_dir` resolves mesh paths.
+// Parses scene JSON. `file_name` is used in diagnostics; `base_dir` resolves mesh paths (with
+// `embedded_meshes`, relative mesh paths name the embedded scenes' files instead).
 LoadResult load_scene_text(const std::string& text, const std::string& file_name,
-                           const std::string& base_dir = ".");
+                           const std::string& base_dir = ".", bool embedded_meshes = false);
 
 // Reads and parses a scene file; an unreadable file is an error, not an exception. A path
 // ending in .obj opens that mesh alone, with a camera framing it and a light.
