@@ -34,18 +34,27 @@ bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 // What tinyobjloader does not check: the line of every face (so index errors can name it) and
 // vertex coordinates that are not finite numbers (it would read "nan" as 0).
+// The largest positive index of one kind met in the faces, as written, and where.
+struct LargestIndex {
+  long value = 0;
+  int line = 0;
+  std::string token;   // the face vertex it is part of
+  std::string digits;  // the index as the file wrote it
+};
+
 struct Prescan {
   std::vector<int> face_lines;  // line of each face with 3 or more vertices, in file order
   std::vector<double> vertices;  // x, y, z of each `v`, correctly rounded (std::from_chars)
   std::size_t max_triangles = 0;  // of the fans of those faces
   std::vector<Diagnostic> errors;
+  LargestIndex largest[3];  // vertices, texture coordinates, normals
 };
 
 // Checks one face vertex ("v", "v/t", "v//n", "v/t/n") where tinyobjloader would stop at the
 // first bad one without a line: indices must be integers other than 0, and relative (negative)
 // ones must not reach before the first element read so far (`read`: vertices, texture
 // coordinates, normals). Returns the problem, or "".
-std::string check_face_vertex(std::string_view token, const long read[3]) {
+std::string check_face_vertex(std::string_view token, const long read[3], LargestIndex largest[3], int line) {
   static const char* const kKinds[3] = {"vertex", "texture", "normal"};
   std::size_t start = 0;
   for (int kind = 0; kind < 3 && start <= token.size(); ++kind) {
@@ -71,9 +80,10 @@ std::string check_face_vertex(std::string_view token, const long read[3]) {
       return "face vertex '" + std::string(token) + "': index 0 (OBJ indices start at 1; negative ones count back)";
     }
     if (index < 0 && -index > read[kind]) {
-      return "relative " + std::string(kKinds[kind]) + " index " + std::to_string(index) +
+      return "relative " + std::string(kKinds[kind]) + " index " + std::string(digits) +
              " reaches before the first " + kKinds[kind] + " (" + std::to_string(read[kind]) + " read so far)";
     }
+    if (index > largest[kind].value) largest[kind] = {index, line, std::string(token), std::string(digits)};
   }
   return "";
 }
@@ -106,7 +116,7 @@ Prescan prescan(std::string_view text, const std::string& name) {
         ++vertices;
         const std::size_t begin = j;
         while (j < l.size() && !is_blank(l[j])) ++j;
-        if (problem.empty()) problem = check_face_vertex(l.substr(begin, j - begin), read);
+        if (problem.empty()) problem = check_face_vertex(l.substr(begin, j - begin), read, out.largest, line);
       }
       if (!problem.empty()) out.errors.push_back(line_diagnostic(name, line, problem));
       if (vertices >= 3) {
@@ -136,6 +146,81 @@ Prescan prescan(std::string_view text, const std::string& name) {
         out.vertices.push_back(x);
         p = token_end;
       }
+    }
+  }
+  // A positive index may name an element further down, so the largest of each kind is checked
+  // against the whole file's count here, in the file's own digits (tinyobjloader keeps indices
+  // in an int, where 99999999999 would wrap).
+  static const char* const kWhat[3][2] = {{"vertex", "vertices"}, {"texture", "texture coordinates"}, {"normal", "normals"}};
+  for (const int kind : {0, 2}) {  // texture coordinates are not used: their indices are not checked
+    const LargestIndex& big = out.largest[kind];
+    if (big.value <= read[kind] || out.errors.size() >= kMaxErrors) continue;
+    out.errors.push_back(line_diagnostic(name, big.line,
+                                         std::string(kWhat[kind][0]) + " index " + big.digits + " is out of range (the file has " +
+                                             std::to_string(read[kind]) + " " +
+                                             (read[kind] == 1 ? kWhat[kind][0] : kWhat[kind][1]) + ")"));
+  }
+  std::sort(out.errors.begin(), out.errors.end(), [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
+  return out;
+}
+
+// The numbers of an MTL's colour and scalar statements that tinyobjloader would replace without
+// a word (it reads "nan" as 0) or that the mapping replaces (negative, out of range): a warning
+// for each, with the number as the file wrote it and what is used instead.
+std::vector<Diagnostic> mtl_value_warnings(std::string_view text, const std::string& file) {
+  struct Rule {
+    std::string_view key;
+    double lo, hi;               // the range kept
+    std::string_view instead;    // what a value outside it becomes
+  };
+  static constexpr Rule kRules[] = {
+      {"Ka", 0, 1e300, "0"}, {"Kd", 0, 1e300, "0"}, {"Ks", 0, 1e300, "0"}, {"Ke", 0, 1e300, "0"}, {"Tf", 0, 1e300, "0"},
+      {"Ns", 0, 1e300, "0"}, {"Ni", 1e-300, 1e300, "1.5"}, {"d", 0, 1, "the nearest of 0 and 1"},
+      {"Tr", 0, 1, "the nearest of 0 and 1"}};
+  constexpr std::size_t kMaxWarnings = 50;
+  std::vector<Diagnostic> out;
+  std::string material = "(before any newmtl)";
+  int line = 0;
+  for (std::size_t pos = 0; pos < text.size() && out.size() < kMaxWarnings;) {
+    ++line;
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view l = text.substr(pos, end - pos);
+    pos = end + 1;
+    std::vector<std::string_view> words;
+    for (std::size_t i = 0; i < l.size();) {
+      while (i < l.size() && is_blank(l[i])) ++i;
+      const std::size_t b = i;
+      while (i < l.size() && !is_blank(l[i])) ++i;
+      if (i > b) words.push_back(l.substr(b, i - b));
+    }
+    if (words.empty() || words[0][0] == '#') continue;
+    if (words[0] == "newmtl" && words.size() > 1) {
+      material = std::string(words[1]);
+      continue;
+    }
+    const Rule* rule = nullptr;
+    for (const Rule& r : kRules) {
+      if (r.key == words[0]) rule = &r;
+    }
+    if (rule == nullptr) continue;
+    for (std::size_t w = 1; w < words.size() && w <= 3; ++w) {
+      const std::string_view word = words[w];
+      if (word == "spectral" || word == "xyz") break;  // other notations: not numbers to check
+      double x = 0;
+      const char* first = word.data() + (word[0] == '+' ? 1 : 0);
+      const auto [after, ec] = std::from_chars(first, word.data() + word.size(), x);
+      std::string why;
+      if (ec != std::errc() || after != word.data() + word.size() || !std::isfinite(x)) {
+        why = "is not a finite number";
+      } else if (x < rule->lo || x > rule->hi) {
+        why = rule->lo > 0 ? "must be > 0" : rule->hi <= 1 ? "must be in 0..1" : "must be >= 0";
+      }
+      if (why.empty()) continue;
+      out.push_back(line_diagnostic(file, line,
+                                    "material '" + material + "': " + std::string(rule->key) + " " + std::string(word) + " " +
+                                        why + "; using " + std::string(rule->instead),
+                                    Diagnostic::Severity::kWarning));
     }
   }
   return out;
@@ -192,6 +277,7 @@ class MtlReader final : public tinyobj::MaterialReader {
                                              "; its faces get the default material"));
       return false;
     }
+    for (Diagnostic& w : mtl_value_warnings(*text, mat_id)) warnings_.push_back(std::move(w));
     std::istringstream stream(*text);
     std::string mtl_warn;
     tinyobj::LoadMtl(mat_map, materials, &stream, &mtl_warn, err);
@@ -206,27 +292,19 @@ class MtlReader final : public tinyobj::MaterialReader {
   const std::string& obj_name_;
 };
 
-// A coefficient from the MTL: finite and >= 0, else 0 with a warning.
-double coefficient(double x, const std::string& what, const std::string& material, std::vector<Diagnostic>& warnings) {
-  if (std::isfinite(x) && x >= 0) return x;
-  warnings.push_back(line_diagnostic("", 0, "material '" + material + "': " + what + " must be finite and >= 0; using 0"));
-  return 0;
-}
+// A coefficient from the MTL: finite and >= 0, else 0 (mtl_value_warnings said so, at its line).
+double coefficient(double x) { return std::isfinite(x) && x >= 0 ? x : 0; }
 
-Color mtl_color(const double c[3], const std::string& what, const std::string& material,
-                std::vector<Diagnostic>& warnings) {
-  return Color(coefficient(c[0], what, material, warnings), coefficient(c[1], what, material, warnings),
-               coefficient(c[2], what, material, warnings));
-}
+Color mtl_color(const double c[3]) { return Color(coefficient(c[0]), coefficient(c[1]), coefficient(c[2])); }
 
 // The MTL mapping (docs/scene-format.md has it as a table).
-Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<Diagnostic>& warnings) {
+Material map_material(const tinyobj::material_t& m, NsMapping ns) {
   Material out;
   out.name = m.name;
-  out.ka = mtl_color(m.ambient, "Ka", m.name, warnings);
-  out.kd = mtl_color(m.diffuse, "Kd", m.name, warnings);
-  out.ks = mtl_color(m.specular, "Ks", m.name, warnings);
-  const double shininess = coefficient(m.shininess, "Ns", m.name, warnings);
+  out.ka = mtl_color(m.ambient);
+  out.kd = mtl_color(m.diffuse);
+  out.ks = mtl_color(m.specular);
+  const double shininess = coefficient(m.shininess);
   out.n = ns == NsMapping::kBlinnToPhong ? shininess / 4 : shininess;
   out.ior = std::isfinite(m.ior) && m.ior > 0 ? m.ior : 1.5;
   const int illum = m.illum;
@@ -239,7 +317,7 @@ Material map_material(const tinyobj::material_t& m, NsMapping ns, std::vector<Di
   // transmitted fraction, so Tf 1 (or none) is opaque; the Wavefront spec calls it the transmitted
   // fraction itself, but the files met in practice follow Max. d is the opaque fraction (coverage):
   // light passes where neither blocks it, kt = 1 - d*Tf, for glass illums and for d below 1.
-  const Color tf = mtl_color(m.transmittance, "Tf", m.name, warnings);
+  const Color tf = mtl_color(m.transmittance);
   const double dissolve = std::isfinite(m.dissolve) ? std::clamp(m.dissolve, 0.0, 1.0) : 1.0;
   const Color blocked = is_zero(tf) ? Color(1) : glm::min(tf, Color(1));  // tinyobjloader's 0 0 0: no Tf
   if (dissolve < 1 || refractive) out.kt = Color(1) - dissolve * blocked;
@@ -316,10 +394,7 @@ void add_parse_warnings(const Parsed& p, const std::string& obj_name, NsMapping 
                                   [&](const Diagnostic& o) { return o.message == w.message; });
     if (!seen) out.warnings.push_back(std::move(w));
   }
-  std::vector<Diagnostic> mapping_warnings;
-  for (const tinyobj::material_t& m : p.mtl) out.materials.push_back(map_material(m, ns, mapping_warnings));
-  for (Diagnostic& w : mapping_warnings) w.file = obj_name;
-  out.warnings.insert(out.warnings.end(), mapping_warnings.begin(), mapping_warnings.end());
+  for (const tinyobj::material_t& m : p.mtl) out.materials.push_back(map_material(m, ns));
 }
 
 // Per material: the area, area-weighted centroid and face count of its faces (for emitters).

@@ -682,10 +682,15 @@ TEST(MeshMaterials, MtlMapsOntoTheLecturesCoefficientsAsTheDocsTableSays) {
   EXPECT_EQ(bare.n, 1);
   EXPECT_EQ(bare.ior, 1);
   expect_color(bare.kd, 0, 0, 0, "bare.kd");
-  // Negative coefficients become 0 with a warning; Ni <= 0 becomes 1.5.
+  // Negative coefficients become 0 with a warning at their line, the number as written; Ni <= 0 becomes 1.5.
+  const std::string mtl = kMappingMtl;
+  const int bad_line = 1 + static_cast<int>(std::count(mtl.begin(), mtl.begin() + static_cast<std::ptrdiff_t>(mtl.find("Kd -1")), '\n'));
   expect_color(mat("bad").kd, 0, 0.5, 0.5, "Kd -1");
   EXPECT_EQ(mat("bad").ior, 1.5);
-  EXPECT_TRUE(contains(all_warnings(r), "m.obj: material 'bad': Kd must be finite and >= 0; using 0")) << all_warnings(r);
+  EXPECT_TRUE(contains(all_warnings(r), "m.mtl:" + std::to_string(bad_line) + ": material 'bad': Kd -1 must be >= 0; using 0"))
+      << all_warnings(r);
+  EXPECT_TRUE(contains(all_warnings(r), "m.mtl:" + std::to_string(bad_line + 1) + ": material 'bad': Ni 0 must be > 0; using 1.5"))
+      << all_warnings(r);
   fs::remove_all(dir);
 }
 
@@ -958,6 +963,50 @@ TEST(MeshAccel, TransformedMeshesAmongOtherObjectsThroughTheBvhEqualBruteForce) 
       {"type": "plane", "point": [0, -3, 0], "normal": [0, 1, 0], "material": "m"}]})"));
   fs::remove_all(dir);
   expect_bvh_equals_brute_force(p, {-2.5, -2.5, -2.5}, {2.5, 2.5, 2.5}, 20000, seed);
+}
+
+}  // namespace
+}  // namespace phonglab
+
+// ----- Regressions found by hand and by fuzzing (issue 18) -------------------------------------
+
+namespace phonglab {
+namespace {
+
+TEST(MeshRegressions, AnIndexBeyondIntIsReportedAsWrittenNotWrapped) {
+  const fs::path dir = temp_dir("huge_index");
+  write(dir / "big.obj", std::string(kThreeVertices) + "f 1 2 99999999999\n");  // line 7
+  const LoadResult r = load_in(dir, mesh_scene("big.obj"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_TRUE(contains(r.error_text(), "big.obj:7: vertex index 99999999999 is out of range (the file has 3 vertices)"))
+      << r.error_text();
+  write(dir / "big.obj", std::string(kThreeVertices) + "f 1//1 2//1 3//4294967297\n");
+  EXPECT_TRUE(contains(load_in(dir, mesh_scene("big.obj")).error_text(),
+                       "big.obj:7: normal index 4294967297 is out of range (the file has 1 normal)"));
+  fs::remove_all(dir);
+}
+
+TEST(MeshRegressions, EveryReplacedMtlValueIsAWarningWithTheNumberAsWritten) {
+  const fs::path dir = temp_dir("mtl_values");
+  write(dir / "m.mtl", "newmtl red\nKd nan 1 1\nKs -0.5 0 1e999\nNi 0\nd 1.5\nNs -3\nKa 0.10 0.2 0.3\n");
+  write(dir / "m.obj", std::string("mtllib m.mtl\nusemtl red\n") + kThreeVertices + "f 1 2 3\n");
+  const LoadResult r = load_in(dir, mesh_scene("m.obj"));
+  ASSERT_TRUE(r.ok()) << r.error_text();
+  const std::string w = all_warnings(r);
+  for (const char* expected : {"m.mtl:2: material 'red': Kd nan is not a finite number; using 0",
+                               "m.mtl:3: material 'red': Ks -0.5 must be >= 0; using 0",
+                               "m.mtl:3: material 'red': Ks 1e999 is not a finite number; using 0",
+                               "m.mtl:4: material 'red': Ni 0 must be > 0; using 1.5",
+                               "m.mtl:5: material 'red': d 1.5 must be in 0..1; using the nearest of 0 and 1",
+                               "m.mtl:6: material 'red': Ns -3 must be >= 0; using 0"}) {
+    EXPECT_TRUE(contains(w, expected)) << expected << "\n" << w;
+  }
+  EXPECT_FALSE(contains(w, "Ka")) << "a value in range is not warned about";
+  const Material& red = r.scene->materials.back();
+  EXPECT_EQ(red.kd, Color(0, 1, 1));
+  EXPECT_EQ(red.ks, Color(0, 0, 0));
+  EXPECT_EQ(red.ior, 1.5);
+  fs::remove_all(dir);
 }
 
 }  // namespace

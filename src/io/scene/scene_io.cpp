@@ -70,15 +70,14 @@ LoadResult load_obj_scene(const std::string& path) {
   const std::string name = std::filesystem::path(path).filename().string();
   MeshLoad loaded = load_mesh(files, name, MeshTransform{}, NsMapping::kAsIs, -1, 0);
   LoadResult r;
-  const auto diagnostic = [&](std::string message) {
-    Diagnostic d;
-    d.file = path;
-    d.message = std::move(message);
+  // The mesh's own problems name the OBJ by the path it was opened with, an MTL's the MTL's path.
+  const auto diagnostic = [&](Diagnostic d) {
+    d.file = d.file.empty() || d.file == name ? path : (std::filesystem::path(dir) / d.file).string();
     return d;
   };
-  for (const Diagnostic& w : loaded.warnings) r.warnings.push_back(diagnostic(w.to_string()));
+  for (const Diagnostic& w : loaded.warnings) r.warnings.push_back(diagnostic(w));
   set_severity(r.warnings, Diagnostic::Severity::kWarning);
-  for (const Diagnostic& e : loaded.errors) r.errors.push_back(diagnostic(e.to_string()));
+  for (const Diagnostic& e : loaded.errors) r.errors.push_back(diagnostic(e));
   if (!r.errors.empty()) return r;
   Scene scene;
   scene.ambient = Color(0.2);
