@@ -60,13 +60,8 @@ test_all() {
   build build-tsan -DPHONGLAB_SANITIZE=thread -DPHONGLAB_GUI=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
   (cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure)
 
-  echo "== fuzzing the scene loader for 20 s (libFuzzer, ASan, UBSan)"
-  local corpus
-  corpus=$(mktemp -d)
-  cp assets/scenes/*.json "$corpus"/
-  build-asan/bin/phonglab_fuzz_scene -max_total_time=20 -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
-    -print_final_stats=1 "$corpus" 2>&1 | tail -n 3
-  rm -rf "$corpus"
+  echo "== fuzzing the scene loader, OBJ + MTL and lesson files, 20 s side by side (libFuzzer, ASan, UBSan)"
+  tools/fuzz.sh 20
 
   echo "== all tests passed in $((SECONDS - start)) s"
 }

@@ -117,6 +117,12 @@ LoadResult load_scene_text(const std::string& text, const std::string& file_name
   return load_scene_text_from(text, file_name, SceneFiles{embedded_meshes ? "" : base_dir, embedded_meshes});
 }
 
+LoadResult load_scene_text_with(const std::string& text, const std::string& file_name, const FileReader& files) {
+  SceneFiles from;
+  from.reader = &files;
+  return load_scene_text_from(text, file_name, from);
+}
+
 LoadResult reload_meshes(const Scene& scene, const std::string& base_dir, bool embedded) {
   const std::string dir = base_dir.empty() ? "." : base_dir;
   LoadResult result = load_scene_text_from(scene_to_json(scene, embedded ? "" : dir), "the edited scene",

@@ -8,6 +8,7 @@
 
 #include "core/scene/scene.h"
 #include "io/diagnostic.h"
+#include "io/obj_io.h"
 
 namespace phonglab {
 
@@ -25,6 +26,10 @@ struct LoadResult {
 // `embedded_meshes`, relative mesh paths name the embedded scenes' files instead).
 LoadResult load_scene_text(const std::string& text, const std::string& file_name,
                            const std::string& base_dir = ".", bool embedded_meshes = false);
+
+// Parses scene JSON whose mesh files (and their MTLs) come from `files` by the names the scene
+// and its OBJs give them: scenes held in memory, and the OBJ/MTL fuzzer.
+LoadResult load_scene_text_with(const std::string& text, const std::string& file_name, const FileReader& files);
 
 // Reads and parses a scene file; an unreadable file is an error, not an exception. A path
 // ending in .obj opens that mesh alone, with a camera framing it and a light.

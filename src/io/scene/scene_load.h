@@ -238,10 +238,12 @@ bool parse_text(const std::string& text, std::string_view kind, Issues& issues, 
 struct SceneFiles {
   std::string base_dir = ".";
   bool embedded = false;
+  const FileReader* reader = nullptr;  // set: every file comes from it (load_scene_text_with)
 
   // `relative` as written in the scene (or in an OBJ's mtllib, joined to the OBJ's folder).
   std::optional<std::string> read(const std::string& relative, std::string& error) const {
     namespace fs = std::filesystem;
+    if (reader != nullptr) return (*reader)(relative, error);
     const fs::path p(relative);
     if (embedded && !p.is_absolute()) {  // an absolute path (a mesh added to an embedded scene) is on disk
       const std::string key = p.lexically_normal().generic_string();

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Runs the fuzzers (libFuzzer with ASan and UBSan, built by tools/dev.sh test in build-asan):
+#
+#   tools/fuzz.sh SECONDS [TARGET...]    TARGET: scene, obj, lesson (default: all three, side by side)
+#
+# Each starts from its seed corpus (scene: assets/scenes; obj: tests/fuzz/corpus/obj; lesson:
+# tests/fuzz/corpus/lesson and assets/lessons) in a fresh temporary folder and prints libFuzzer's
+# final statistics (stat::number_of_executed_units is the executions). Any crash, hang (-timeout),
+# sanitizer report or NaN (the targets abort on one) fails the run; the input is kept in
+# BUILD/fuzz-crashes/. BUILD defaults to build-asan (FUZZ_BUILD=...).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_EACH=${1:?usage: tools/fuzz.sh SECONDS [scene|obj|lesson ...]}
+shift
+TARGETS=("$@")
+((${#TARGETS[@]})) || TARGETS=(scene obj lesson)
+BUILD=${FUZZ_BUILD:-build-asan}
+mkdir -p "$BUILD/fuzz-crashes"
+pids=()
+for t in "${TARGETS[@]}"; do
+  corpus=$(mktemp -d)
+  case $t in
+    scene) cp assets/scenes/*.json "$corpus"/; max_len=4096 ;;
+    obj) cp tests/fuzz/corpus/obj/* "$corpus"/; max_len=8192 ;;
+    lesson) cp tests/fuzz/corpus/lesson/* assets/lessons/*.json "$corpus"/; max_len=8192 ;;
+    *) echo "tools/fuzz.sh: unknown target $t" >&2; exit 2 ;;
+  esac
+  (
+    "$BUILD/bin/phonglab_fuzz_$t" -max_total_time="$SECONDS_EACH" -max_len="$max_len" -timeout=10 -rss_limit_mb=2048 \
+      -print_final_stats=1 -artifact_prefix="$BUILD/fuzz-crashes/$t-" "$corpus" >"$corpus.log" 2>&1
+    status=$?
+    echo "== fuzz $t: exit $status, $(sed -n 's/^stat::number_of_executed_units: *//p' "$corpus.log") executions in $SECONDS_EACH s"
+    ((status == 0)) || tail -n 30 "$corpus.log"
+    rm -rf "$corpus" "$corpus.log"
+    exit "$status"
+  ) &
+  pids+=($!)
+done
+failed=0
+for pid in "${pids[@]}"; do wait "$pid" || failed=1; done
+exit "$failed"
