@@ -496,6 +496,13 @@ class Viewer {
     std::deque<InputStep> input;
     ItemAction item_action;  // the widget action waiting for its widget to scroll into view
     bool failed = false;
+    // The soak test's random walk (tests/gui/soak.sh): a command that fails is reported and
+    // skipped (`lenient 1`), dialogs are answered as they open (`auto_modal discard`), and the
+    // script ends at a time (`stop_after S`).
+    bool lenient = false;
+    int ignored = 0;                    // commands that failed and were skipped
+    ui::GuardChoice auto_answer = ui::GuardChoice::kNone;
+    double stop_at = 0;                 // glfwGetTime() to quit at; 0: none
     std::string screenshot;             // window screenshot to take after drawing this frame
     int bench_left = 0;                 // bench_edits: edits still to make
     int bench_gap_frames = 0;           // frames to wait after an image before the next edit

@@ -75,6 +75,13 @@ std::vector<ScriptCommand> parse_script(const std::string& text) {
 }
 
 void Viewer::fail_script(const ScriptCommand& command, const std::string& message) {
+  if (script_.lenient) {
+    std::cerr << "phonglab: script line " << command.line << " (" << command.words.front() << "): " << message << " (skipped)\n";
+    ++script_.ignored;
+    script_.wait = ScriptWait::kNone;
+    script_.item_action = ItemAction{};
+    return;
+  }
   std::cerr << "phonglab: script line " << command.line << " (" << command.words.front() << "): " << message << "\n";
   if (stats_.log) stats_.log << "script_error line " << command.line << ": " << message << "\n";
   script_.failed = true;
@@ -167,6 +174,15 @@ void Viewer::step_script(double now) {
     if (step.key >= 0) io.KeysDown[step.key] = step.key_down;
     for (const char c : step.text) io.AddInputCharacter(static_cast<unsigned char>(c));
     platform_.note_event();
+  }
+  if (script_.stop_at > 0 && now >= script_.stop_at) {
+    quit_ = true;
+    return;
+  }
+  if (script_.auto_answer != ui::GuardChoice::kNone) {
+    if (dialogs_.guard_visible) dialogs_.scripted_choice = script_.auto_answer;
+    if (dialogs_.conflict_visible) dialogs_.scripted_choice = ui::GuardChoice::kCancel;
+    if (recovery_.modal_visible) recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
   }
   if (script_.failed || (script_.index >= script_.commands.size() && script_.wait == ScriptWait::kNone)) return;
   if (script_.wait != ScriptWait::kNone) {
@@ -600,6 +616,22 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
   }
   if (name == "quit") {
     quit_ = true;
+    return true;
+  }
+  if (name == "lenient") {
+    if (w.size() != 2 || (w[1] != "0" && w[1] != "1")) return step.fail("usage: lenient 0|1");
+    script_.lenient = w[1] == "1";
+    return true;
+  }
+  if (name == "auto_modal") {
+    if (w.size() != 2 || (w[1] != "discard" && w[1] != "off")) return step.fail("usage: auto_modal discard|off");
+    script_.auto_answer = w[1] == "discard" ? ui::GuardChoice::kDiscard : ui::GuardChoice::kNone;
+    return true;
+  }
+  if (name == "stop_after") {
+    double s = 0;
+    if (w.size() != 2 || !parse_double(w[1], s) || s <= 0) return step.fail("usage: stop_after SECONDS");
+    script_.stop_at = step.now + s;
     return true;
   }
   return std::nullopt;

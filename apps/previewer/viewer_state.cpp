@@ -37,6 +37,7 @@ void Viewer::write_state(const std::string& path) const {
   write_rays_state(out);
   write_probe_state(out);
   write_lesson_state(out);
+  out << "script_skipped=" << script_.ignored << "\n";
   out << "recovery_offer=" << (recovery_.offer ? recovery_.offer->source : "") << "\n"
       << "recovery_file=" << recovery_.written << "\n";
 }

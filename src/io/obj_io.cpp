@@ -1,4 +1,5 @@
 #include "io/obj_io.h"
+#include "io/memory_budget.h"
 
 #include <algorithm>
 #include <array>
@@ -224,6 +225,36 @@ std::vector<Diagnostic> mtl_value_warnings(std::string_view text, const std::str
     }
   }
   return out;
+}
+
+// What a mesh will hold, counted before it is parsed (for the memory estimate): `v` and `vn`
+// lines, and the triangles of the fans of `f` lines (vertices - 2 each).
+struct ObjCounts {
+  std::size_t vertices = 0, normals = 0, triangles = 0;
+};
+ObjCounts count_obj(std::string_view text) {
+  ObjCounts c;
+  for (std::size_t pos = 0; pos < text.size();) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::size_t i = pos;
+    while (i < end && is_blank(text[i])) ++i;
+    if (i + 1 < end && text[i] == 'v' && is_blank(text[i + 1])) {
+      ++c.vertices;
+    } else if (i + 2 < end && text[i] == 'v' && text[i + 1] == 'n' && is_blank(text[i + 2])) {
+      ++c.normals;
+    } else if (i + 1 < end && text[i] == 'f' && is_blank(text[i + 1])) {
+      std::size_t corners = 0;
+      for (std::size_t j = i + 1; j < end && text[j] != '#';) {
+        while (j < end && is_blank(text[j])) ++j;
+        if (j < end && text[j] != '#') ++corners;
+        while (j < end && !is_blank(text[j])) ++j;
+      }
+      if (corners >= 3) c.triangles += corners - 2;
+    }
+    pos = end + 1;
+  }
+  return c;
 }
 
 // The OBJ text as a stream for tinyobjloader, read in place (std::istringstream would copy it:
@@ -513,6 +544,15 @@ ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& 
     set_severity(out.warnings, Diagnostic::Severity::kWarning);
     return std::move(out);
   };
+  // Refused before anything is allocated when it would not fit (the kernel would kill us instead).
+  const ObjCounts counts = count_obj(obj_text);
+  const std::string refusal = memory_refusal(
+      mesh_bytes_needed(counts.vertices, counts.normals, counts.triangles), available_memory(), "the mesh",
+      std::to_string(counts.triangles) + " triangles, " + std::to_string(counts.vertices) + " vertices");
+  if (!refusal.empty()) {
+    out.errors.push_back(line_diagnostic(obj_name, 0, refusal));
+    return finish();
+  }
   Parsed p = parse_obj(obj_text, obj_name, read_mtl, on_prescan, out.warnings);
   if (!p.pre.errors.empty()) {
     out.warnings.clear();  // the MTL's: only the errors of a file the prescan rejects

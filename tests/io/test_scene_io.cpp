@@ -2,7 +2,10 @@
 // JSON round trip, the atomic writer, and inputs that must never crash or hang the loader.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <chrono>
@@ -827,11 +830,11 @@ TEST(SceneLoader, AtomicWriterCreatesAndReplacesWithoutLeavingTemporaries) {
 
 TEST(SceneLoader, AtomicWriterFailureKeepsTheTargetAndRemovesTheTemporary) {
   const fs::path dir = temp_dir("atomic_fail");
-  // A directory cannot be replaced by a file: the rename fails after the data was written.
+  // A directory is never replaced by a file.
   const fs::path target = dir / "taken";
   fs::create_directories(target / "inside");
   const std::string err = write_file_atomically(target.string(), "data");
-  EXPECT_EQ(err.rfind(target.string() + ": cannot replace the file: ", 0), 0u) << err;
+  EXPECT_EQ(err, target.string() + ": is a folder: nothing was written") << err;
   EXPECT_TRUE(fs::is_directory(target / "inside"));
   EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"taken"});
   // A missing directory fails before anything is created.
@@ -839,6 +842,42 @@ TEST(SceneLoader, AtomicWriterFailureKeepsTheTargetAndRemovesTheTemporary) {
   const std::string err2 = write_file_atomically(missing, "data");
   EXPECT_NE(err2.find("No such file or directory"), std::string::npos) << err2;
   EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"taken"});
+  fs::remove_all(dir);
+}
+
+// Saving when the disk is full or the folder cannot be written: a clear error, the old file
+// intact, no temporary left (issue 18).
+TEST(SceneLoader, AtomicWriterOnAFullDiskKeepsTheOldFile) {
+  const fs::path dir = temp_dir("atomic_full");
+  const std::string path = (dir / "scene.json").string();
+  ASSERT_EQ(write_file_atomically(path, "the old scene"), "");
+  // A disk that fills up midway: writes past the file-size limit fail (EFBIG) as ENOSPC would.
+  struct rlimit before {};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &before), 0);
+  void (*old_handler)(int) = std::signal(SIGXFSZ, SIG_IGN);
+  struct rlimit small = before;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  const std::string err = write_file_atomically(path, std::string(1 << 20, 'x'));
+  setrlimit(RLIMIT_FSIZE, &before);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(err.rfind(path + ": write failed: ", 0), 0u) << err;
+  EXPECT_EQ(read_file(path), "the old scene");
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"scene.json"}) << "the temporary is removed";
+  // /dev/full is a device: never replaced by a file, nothing written.
+  if (fs::exists("/dev/full")) {
+    EXPECT_EQ(write_file_atomically("/dev/full", "x"), "/dev/full: is not a regular file (a device or a pipe): nothing was written");
+    EXPECT_TRUE(fs::is_character_file("/dev/full"));
+  }
+  // A folder that cannot be written (root ignores permission bits; /proc refuses everyone).
+  const std::string ro = write_file_atomically("/proc/phonglab-test.json", "x");
+  EXPECT_EQ(ro.rfind("/proc/phonglab-test.json: cannot create temporary file ", 0), 0u) << ro;
+  // A link is followed: the file it names is replaced, the link stays a link.
+  const fs::path link = dir / "link.json";
+  fs::create_symlink(path, link);
+  ASSERT_EQ(write_file_atomically(link.string(), "through the link"), "");
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read_file(path), "through the link");
   fs::remove_all(dir);
 }
 

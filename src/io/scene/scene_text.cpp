@@ -3,6 +3,7 @@
 // syntax errors as positioned plain messages; pass 3, the position index (every value's offsets).
 #include "io/scene/scene_load.h"
 #include "io/scene/scene_reader.h"
+#include "io/memory_budget.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -438,6 +439,13 @@ bool parse_text(const std::string& text, std::string_view kind, Issues& issues, 
   const std::size_t start = has_bom(text) ? 3 : 0;
   if (std::all_of(text.begin() + static_cast<std::ptrdiff_t>(start), text.end(), is_space)) {
     issues.add({start, "", "the file is empty (expected a JSON object)"});
+    return false;
+  }
+  // Refused before the DOM is built when it would not fit (the kernel would kill us instead).
+  if (std::string refusal = memory_refusal(json_bytes_needed(text.size()), available_memory(), "reading " + std::string(kind),
+                                           byte_size(text.size()) + " of JSON");
+      !refusal.empty()) {
+    issues.add({kNoOffset, "", std::move(refusal)});
     return false;
   }
   Prescan pre = prescan(text);

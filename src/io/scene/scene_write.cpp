@@ -236,7 +236,20 @@ std::string temp_suffix() {
 
 }  // namespace
 
-std::string write_file_atomically(const std::string& path, const std::string& text) {
+std::string write_file_atomically(const std::string& given, const std::string& text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  // A link is followed (the file it names is replaced, the link stays); a device or a pipe is
+  // never replaced by a file (Save as /dev/full would take the device away).
+  std::string path = given;
+  if (fs::is_symlink(given, ec)) {
+    const fs::path real = fs::weakly_canonical(given, ec);
+    if (!ec) path = real.string();
+  }
+  if (const fs::file_status st = fs::status(path, ec); !ec && fs::exists(st) && !fs::is_regular_file(st)) {
+    return given + ": " + (fs::is_directory(st) ? "is a folder" : "is not a regular file (a device or a pipe)") +
+           ": nothing was written";
+  }
   std::string temp;
   int fd = -1;
   constexpr int kAttempts = 100;
