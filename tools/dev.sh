@@ -51,16 +51,16 @@ test_all() {
 
   # One clang build serves both the sanitizer run of the tests and the fuzzer (libFuzzer's
   # coverage instrumentation costs the tests little and saves a second full build).
-  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang) and tests"
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang) and tests (at $((SECONDS - start)) s)"
   CC=clang CXX=clang++ build build-asan -DPHONGLAB_SANITIZE='address;undefined' -DPHONGLAB_FUZZ=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure --parallel "$(nproc)")
 
-  echo "== ThreadSanitizer: the renderer's threading tests"
+  echo "== ThreadSanitizer: the renderer's threading tests (at $((SECONDS - start)) s)"
   build build-tsan -DPHONGLAB_SANITIZE=thread -DPHONGLAB_GUI=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
   (cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure)
 
-  echo "== fuzzing the scene loader, OBJ + MTL and lesson files, 20 s side by side (libFuzzer, ASan, UBSan)"
+  echo "== fuzzing the scene loader, OBJ + MTL and lesson files, 20 s side by side (libFuzzer, ASan, UBSan; at $((SECONDS - start)) s)"
   tools/fuzz.sh 20
 
   echo "== all tests passed in $((SECONDS - start)) s"
