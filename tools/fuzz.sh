@@ -29,8 +29,14 @@ for t in "${TARGETS[@]}"; do
     "$BUILD/bin/phonglab_fuzz_$t" -max_total_time="$SECONDS_EACH" -max_len="$max_len" -timeout=10 -rss_limit_mb=2048 \
       -print_final_stats=1 -artifact_prefix="$BUILD/fuzz-crashes/$t-" "$corpus" >"$corpus.log" 2>&1
     status=$?
-    echo "== fuzz $t: exit $status, $(sed -n 's/^stat::number_of_executed_units: *//p' "$corpus.log") executions in $SECONDS_EACH s"
-    ((status == 0)) || tail -n 30 "$corpus.log"
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$corpus.log")
+    rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$corpus.log")
+    if ((status == 0)); then
+      echo "== fuzz $t: $runs executions in $SECONDS_EACH s ($rate a second), no failure"
+    else
+      echo "== fuzz $t: FAILED after $runs executions ($rate a second); the input is in $BUILD/fuzz-crashes/"
+      tail -n 30 "$corpus.log"
+    fi
     rm -rf "$corpus" "$corpus.log"
     exit "$status"
   ) &

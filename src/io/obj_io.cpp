@@ -80,7 +80,7 @@ std::string check_face_vertex(std::string_view token, const long read[3], Larges
     if (index == 0) {
       return "face vertex '" + std::string(token) + "': index 0 (OBJ indices start at 1; negative ones count back)";
     }
-    if (index < 0 && -index > read[kind]) {
+    if (index < 0 && index < -read[kind]) {  // (not -index: the most negative long has no negation)
       return "relative " + std::string(kKinds[kind]) + " index " + std::string(digits) +
              " reaches before the first " + kKinds[kind] + " (" + std::to_string(read[kind]) + " read so far)";
     }

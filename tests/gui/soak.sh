@@ -63,7 +63,7 @@ y() { echo $((RANDOM % 720)); }
 } >"$OUT/script.txt"
 
 start=$SECONDS
-XDG_STATE_HOME="$OUT/state" ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0} \
+XDG_STATE_HOME="$OUT/state" ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
   "$BIN" lecture --size 1280x720 --script "$OUT/script.txt" --stats-log "$OUT/stats.log" >"$OUT/stdout.txt" 2>"$OUT/stderr.txt"
 status=$?
 elapsed=$((SECONDS - start))

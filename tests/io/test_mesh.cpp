@@ -1011,3 +1011,21 @@ TEST(MeshRegressions, EveryReplacedMtlValueIsAWarningWithTheNumberAsWritten) {
 
 }  // namespace
 }  // namespace phonglab
+
+namespace phonglab {
+namespace {
+
+// Found by phonglab_fuzz_obj (tests/fuzz/corpus/obj/regression-most-negative-index.txt): the
+// most negative long as a relative index was negated to compare it (undefined behaviour).
+TEST(MeshRegressions, TheMostNegativeIndexIsAnErrorNotAnOverflow) {
+  const fs::path dir = temp_dir("most_negative");
+  write(dir / "neg.obj", std::string(kThreeVertices) + "f 1 2 -9223372036854775808\n");  // line 7
+  EXPECT_TRUE(contains(load_in(dir, mesh_scene("neg.obj")).error_text(),
+                       "neg.obj:7: relative vertex index -9223372036854775808 reaches before the first vertex (3 read so far)"));
+  write(dir / "neg.obj", std::string(kThreeVertices) + "f 1 2 -99999999999999999999\n");  // beyond long: strtol's verdict
+  EXPECT_FALSE(load_in(dir, mesh_scene("neg.obj")).ok());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace phonglab
