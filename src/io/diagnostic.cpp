@@ -22,4 +22,13 @@ std::string Diagnostic::to_string() const {
   return s;
 }
 
+std::string diagnostics_text(const std::vector<Diagnostic>& list) {
+  std::string s;
+  for (const Diagnostic& d : list) {
+    if (!s.empty()) s += '\n';
+    s += d.to_string();
+  }
+  return s;
+}
+
 }  // namespace phonglab

@@ -31,6 +31,9 @@ inline Diagnostic line_diagnostic(std::string file, int line, std::string messag
   return d;
 }
 
+// Every diagnostic of `list` by to_string(), one a line.
+std::string diagnostics_text(const std::vector<Diagnostic>& list);
+
 // Sets the severity of every diagnostic of `list` (a producer's warnings, on its way out).
 inline void set_severity(std::vector<Diagnostic>& list, Diagnostic::Severity severity) {
   for (Diagnostic& d : list) d.severity = severity;

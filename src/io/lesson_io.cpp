@@ -18,14 +18,7 @@ namespace phonglab {
 
 using namespace scene_load;
 
-std::string LessonLoad::error_text() const {
-  std::string s;
-  for (const Diagnostic& d : errors) {
-    if (!s.empty()) s += '\n';
-    s += d.to_string();
-  }
-  return s;
-}
+std::string LessonLoad::error_text() const { return diagnostics_text(errors); }
 
 namespace {
 

@@ -1009,12 +1009,6 @@ TEST(MeshRegressions, EveryReplacedMtlValueIsAWarningWithTheNumberAsWritten) {
   fs::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace phonglab
-
-namespace phonglab {
-namespace {
-
 // Found by phonglab_fuzz_obj (tests/fuzz/corpus/obj/regression-most-negative-index.txt): the
 // most negative long as a relative index was negated to compare it (undefined behaviour).
 TEST(MeshRegressions, TheMostNegativeIndexIsAnErrorNotAnOverflow) {

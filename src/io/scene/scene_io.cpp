@@ -41,14 +41,7 @@ namespace phonglab {
 
 using namespace scene_load;  // the loader's own parts (src/io/scene/scene_load.h)
 
-std::string LoadResult::error_text() const {
-  std::string s;
-  for (const Diagnostic& d : errors) {
-    if (!s.empty()) s += '\n';
-    s += d.to_string();
-  }
-  return s;
-}
+std::string LoadResult::error_text() const { return diagnostics_text(errors); }
 
 namespace {
 
