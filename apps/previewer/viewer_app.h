@@ -230,6 +230,7 @@ class Viewer {
   void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
   void perform(const PendingAction& action);     // runs it
   void open_scene(const std::string& scene_arg);
+  void document_replaced();                      // a new document: its selection, status and recovery anew
   void reload_scene(bool keep_view);
   void save_scene(bool as);                      // Save (false) or Save as the path field (true), then dialogs_.after_save
   bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
@@ -264,7 +265,7 @@ class Viewer {
   bool lesson_key(int key);                      // next, previous, presenter mode; true when taken
   void set_presenting(bool on);                  // full screen, panels hidden, caption large
   void sidebar_lessons();
-  void draw_lesson_caption(const std::vector<ui::ScreenRect>& taken);  // the step's caption over the image
+  void draw_lesson_caption();                    // the step's caption across the bottom of the view
   std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
   void write_lesson_state(std::ostream& out) const;
 
@@ -476,6 +477,7 @@ class Viewer {
     std::string written;       // this document's recovery file, once written or restored ("" none)
     std::string written_text;  // what it holds (unchanged edits are not written again)
     double last_edit = 0;      // glfwGetTime() of the last scene edit
+    double written_for = -1;   // the last_edit the file holds (autosave writes once per burst of edits)
     std::optional<ui::RecoveryEntry> offer;  // found at start, waiting for an answer
     bool open_modal = false;   // open the offer's dialog this frame
     bool modal_visible = false;

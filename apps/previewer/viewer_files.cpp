@@ -103,21 +103,25 @@ void Viewer::open_scene(const std::string& scene_arg) {
     file_state_.error_text = doc_.error_text();  // the old scene stays
     return;
   }
-  selected_object_ = -1;
-  remove_recovery();  // the guard was passed: the last document's edits were saved or discarded
+  document_replaced();
   if (!doc_.file_path().empty()) remember_recent(doc_.file_path());
-  file_state_.error_text.clear();
-  file_state_.status = doc_.status();
-  file_state_.changed_on_disk = false;
   file_state_.path_field = doc_.file_path().empty() ? scene_arg : doc_.file_path();
-  selected_material_ = 0;
-  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
-  picked_text_.clear();
   probed_.tree.reset();
   // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
   compare_.image = ProgressiveFrame{};
   compare_.requested = compare_.dropped = false;
   instruments_.compare = 0;
+}
+
+void Viewer::document_replaced() {
+  remove_recovery();  // the guard was passed: the last document's edits were saved or discarded
+  file_state_.error_text.clear();
+  file_state_.status = doc_.status();
+  file_state_.changed_on_disk = false;
+  selected_object_ = -1;
+  selected_material_ = 0;
+  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
+  picked_text_.clear();
   drag_ = Drag{};
   edits_.replaced = true;
 }

@@ -25,10 +25,11 @@ std::string Viewer::open_lesson(const std::string& lesson_arg) {
   }
   lesson_.error.clear();
   lesson_.waiting = std::move(load.lesson);
-  // A lesson replaces the scene: unsaved edits of a file are asked about first (a lesson's own
-  // explorations are not: they were never anyone's file).
-  if (lesson_.lesson) doc_.adopt(doc_.scene(), doc_.source());
-  request(PendingAction{PendingAction::Kind::kLesson, lesson_.waiting->name});
+  // A lesson replaces the scene: unsaved edits of a file are asked about first; a lesson's own
+  // explorations are not (they were never anyone's file).
+  const PendingAction action{PendingAction::Kind::kLesson, lesson_.waiting->name};
+  if (lesson_.lesson) perform(action);
+  else request(action);
   return "";
 }
 
@@ -55,18 +56,8 @@ void Viewer::adopt_step_scene(int step) {
   std::snprintf(source, sizeof source, "lesson '%s', step %d: %s", lesson.name.c_str(), step + 1,
                 lesson.steps[static_cast<std::size_t>(step)].scene.c_str());
   doc_.adopt(lesson.steps[static_cast<std::size_t>(step)].prepared_scene, source);
-  remove_recovery();  // the guard was passed when the lesson opened; explorations are nobody's file
   lesson_.scene_step = step;
-  file_state_.source = doc_.source();
-  file_state_.file_path.clear();
-  file_state_.error_text.clear();
-  file_state_.status = doc_.status();
-  selected_object_ = -1;
-  selected_material_ = 0;
-  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
-  picked_text_.clear();
-  drag_ = Drag{};
-  edits_.replaced = true;
+  document_replaced();  // the probe and A are the step view's (apply_step_view, the compare stages)
 }
 
 void Viewer::apply_step_view(const StepView& view) {
@@ -205,7 +196,7 @@ void Viewer::sidebar_lessons() {
   if (actions.close) close_lesson();
 }
 
-void Viewer::draw_lesson_caption(const std::vector<ui::ScreenRect>& taken) {
+void Viewer::draw_lesson_caption() {
   if (!lesson_.lesson || viewport_.width < 1) return;
   const LessonStep& step = lesson_.lesson->steps[static_cast<std::size_t>(lesson_.place.step)];
   ImFont* font = platform_.caption_font();
@@ -233,10 +224,7 @@ void Viewer::draw_lesson_caption(const std::vector<ui::ScreenRect>& taken) {
   float height = pad;
   for (const Line& l : lines) height += font->CalcTextSizeA(l.size, FLT_MAX, wrap, l.text.c_str()).y + pad * 0.4f;
   height += pad * 0.6f;
-  float top = viewport_.y + viewport_.height - height;
-  for (const ui::ScreenRect& r : taken) {
-    if (r.max.y > top && r.min.y < top + height) top = std::min(top, viewport_.y + viewport_.height - height);
-  }
+  const float top = viewport_.y + viewport_.height - height;  // the bottom boxes move above it (draw_overlays)
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   draw->AddRectFilled(ImVec2(viewport_.x, top), ImVec2(viewport_.x + viewport_.width, viewport_.y + viewport_.height),
                       IM_COL32(0, 0, 0, 190));

@@ -148,7 +148,7 @@ void Viewer::draw_overlays() {
     y = r.max.y + 4 * scale;
   }
   draw_cell_labels_and_probe_ring();
-  draw_lesson_caption(taken);
+  draw_lesson_caption();
   // A step that asks where the lights are hides their markers (until exploring).
   if (!lesson_.lesson || lesson_.view.light_markers || lesson_.exploring) draw_light_markers(taken);
   draw_selected_object();

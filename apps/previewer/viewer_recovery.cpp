@@ -109,7 +109,9 @@ void Viewer::autosave(double now) {
     remove_recovery();  // saved, or every edit undone: nothing to keep
     return;
   }
-  if (now - recovery_.last_edit >= kAutosaveDelay) write_recovery();
+  // Once per burst of edits: the file is written when the last edit is kAutosaveDelay old, not again each frame.
+  if (recovery_.written_for == recovery_.last_edit || now - recovery_.last_edit < kAutosaveDelay) return;
+  if (!write_recovery().empty()) recovery_.written_for = recovery_.last_edit;
 }
 
 bool Viewer::handle_signal() {
@@ -186,6 +188,7 @@ void Viewer::restore_recovery(const ui::RecoveryEntry& entry) {
   doc_.update_dirty();
   recovery_.written = entry.scene_path;  // this document's now: removed once saved, rewritten on edits
   recovery_.written_text.clear();
+  recovery_.written_for = recovery_.last_edit;  // the file holds what is restored
   file_state_.status = "restored the unsaved edits kept in " + entry.scene_path;
   edits_.replaced = true;
 }

@@ -70,8 +70,9 @@ void draw_ring(Image& image, double cx, double cy, double radius, glm::vec3 colo
   }
 }
 
-Image render_plain(const PreparedScene& prepared, const StepView& view, int width, int height, const HandoutOptions& options) {
-  const std::optional<Vec3> eye = view_shading_eye(prepared, view, width, height);
+// The view's image; `eye` is its shading eye (view_shading_eye), found once per view.
+Image render_plain(const PreparedScene& prepared, const StepView& view, const std::optional<Vec3>& eye, int width, int height,
+                   const HandoutOptions& options) {
   if (view.small_multiples) {
     FigureOptions figure;
     figure.cell_width = std::max(1, width / 3);
@@ -91,13 +92,13 @@ Image render_plain(const PreparedScene& prepared, const StepView& view, int widt
   return mean_image(accum);
 }
 
-void draw_probe(Image& image, const PreparedScene& prepared, const StepView& view) {
+void draw_probe(Image& image, const PreparedScene& prepared, const StepView& view, const std::optional<Vec3>& eye) {
   const auto pixel = probe_in(prepared.scene(), view, image.width, image.height);
   if (!pixel) return;
   const int px = (*pixel)[0], py = (*pixel)[1];
   if (view.ray_tree) {
     const PixelProbe probe = probe_pixel(prepared, image.width, image.height, px, py,
-                                         view_shading_eye(prepared, view, image.width, image.height));
+                                         eye);
     const CameraFrame frame = make_camera_frame(prepared.scene().camera, image.width, image.height);
     const auto segments = ray_tree_segments(prepared.scene(), probe.root);
     for (const ScreenSegment& s : project_ray_tree(frame, segments, ray_tree_near(prepared.scene(), probe.root))) {
@@ -150,14 +151,16 @@ Image render_step_view(const Lesson& lesson, LessonPlace place, const HandoutOpt
   const int width = options.width > 0 ? options.width : step.prepared_scene.width;
   const int height = options.height > 0 ? options.height : step.prepared_scene.height;
   const PreparedScene prepared(view_scene(step.prepared_scene, view));
-  Image image = render_plain(prepared, view, width, height, options);
+  const std::optional<Vec3> eye = view_shading_eye(prepared, view, width, height);
+  Image image = render_plain(prepared, view, eye, width, height, options);
   if (view.compare != CompareView::kNone && !view.small_multiples) {
     const CompareSource source = compare_source(lesson, place.step, view);
     const PreparedScene a_scene(view_scene(lesson.steps[static_cast<std::size_t>(source.step)].prepared_scene, source.view));
-    const Image a = render_plain(a_scene, source.view, width, height, options);
+    const Image a = render_plain(a_scene, source.view, view_shading_eye(a_scene, source.view, width, height), width, height,
+                                 options);
     image.pixels = compare_pixels(image.pixels, a.pixels, width, view.compare, view.wipe, view.difference_gain);
   }
-  if (!view.small_multiples) draw_probe(image, prepared, view);
+  if (!view.small_multiples) draw_probe(image, prepared, view, eye);
   return image;
 }
 

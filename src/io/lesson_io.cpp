@@ -72,14 +72,15 @@ class LessonReader : private SceneMembers {
     require(v, f, {"title", "caption"});
     if (const Val* x = f.find("title")) set(s.title, read_string(*x));
     if (const Val* x = f.find("caption")) set(s.caption, read_string(*x));
-    if (const Val* x = f.find("scene")) {
-      set(scene_arg_, read_string(*x));
-      scene_val_ = *x;
+    const Val* named = f.find("scene");
+    if (named != nullptr) {
+      set(scene_arg_, read_string(*named));
     } else if (i == 0) {
       report(v, "missing key \"scene\" (the first step names its scene; later steps keep the one before)");
     }
     s.scene = scene_arg_;
-    const std::optional<Scene> base = scene_arg_.empty() ? std::nullopt : load(scene_arg_, f.find("scene") ? f.find("scene") : &scene_val_);
+    // A scene is first loaded where a step names it; later steps keeping it reuse that load.
+    const std::optional<Scene> base = scene_arg_.empty() ? std::nullopt : load(scene_arg_, named);
     if (!base) return s;
     s.prepared_scene = *base;
     if (const Val* x = f.find("changes")) changes(*x, s.prepared_scene);
@@ -98,11 +99,10 @@ class LessonReader : private SceneMembers {
   // The scene a step names, loaded once per lesson; reported at `at` when it does not load.
   std::optional<Scene> load(const std::string& arg, const Val* at) {
     if (const auto it = scenes_.find(arg); it != scenes_.end()) return it->second;
-    std::string path = arg;
-    if (!find_embedded_scene(arg) && !std::filesystem::path(arg).is_absolute()) {
-      path = (std::filesystem::path(base_dir_) / arg).lexically_normal().string();
-    }
-    LoadResult r = find_embedded_scene(arg) ? load_scene_arg(arg) : load_scene_file(path);
+    const bool embedded = find_embedded_scene(arg) != nullptr;
+    const std::filesystem::path file(arg);
+    LoadResult r = embedded ? load_scene_arg(arg)
+                            : load_scene_file(file.is_absolute() ? arg : (base_dir_ / file).lexically_normal().string());
     if (!r.ok()) {
       std::string why = r.errors.empty() ? "it does not load" : r.errors.front().to_string();
       if (r.errors.size() > 1) why += " (and " + std::to_string(r.errors.size() - 1) + " more)";
@@ -262,7 +262,6 @@ class LessonReader : private SceneMembers {
 
   std::string base_dir_;
   std::string scene_arg_;  // the scene of the step being read (a step without "scene" keeps it)
-  Val scene_val_;          // where it was named
   std::map<std::string, std::optional<Scene>> scenes_;
   std::vector<std::pair<Val, int>> compare_refs_;  // "against": N, checked once every step is known
 };

@@ -68,6 +68,11 @@ std::string memory_refusal(std::size_t need, std::optional<std::size_t> availabl
          " are available";
 }
 
+std::string refuse_if_too_large(std::size_t need, const std::string& what, const std::string& detail) {
+  constexpr std::size_t kAlwaysFits = std::size_t{16} << 20;
+  return need < kAlwaysFits ? std::string() : memory_refusal(need, available_memory(), what, detail);
+}
+
 std::size_t mesh_bytes_needed(std::size_t vertices, std::size_t normals, std::size_t triangles) {
   return vertices * kBytesPerVertex + normals * kBytesPerNormal + triangles * kBytesPerTriangle;
 }

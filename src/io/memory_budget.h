@@ -19,6 +19,10 @@ std::optional<std::size_t> available_memory();
 std::string memory_refusal(std::size_t need, std::optional<std::size_t> available, const std::string& what,
                            const std::string& detail);
 
+// memory_refusal against available_memory(), which is read only for inputs of 16 MiB or more
+// (every small scene, mesh and lesson loads without opening /proc).
+std::string refuse_if_too_large(std::size_t need, const std::string& what, const std::string& detail);
+
 // Bytes shown as "512 KiB", "12.3 MiB", "8.1 GiB".
 std::string byte_size(std::size_t bytes);
 

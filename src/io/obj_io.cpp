@@ -546,8 +546,8 @@ ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& 
   };
   // Refused before anything is allocated when it would not fit (the kernel would kill us instead).
   const ObjCounts counts = count_obj(obj_text);
-  const std::string refusal = memory_refusal(
-      mesh_bytes_needed(counts.vertices, counts.normals, counts.triangles), available_memory(), "the mesh",
+  const std::string refusal = refuse_if_too_large(
+      mesh_bytes_needed(counts.vertices, counts.normals, counts.triangles), "the mesh",
       std::to_string(counts.triangles) + " triangles, " + std::to_string(counts.vertices) + " vertices");
   if (!refusal.empty()) {
     out.errors.push_back(line_diagnostic(obj_name, 0, refusal));

@@ -442,8 +442,8 @@ bool parse_text(const std::string& text, std::string_view kind, Issues& issues, 
     return false;
   }
   // Refused before the DOM is built when it would not fit (the kernel would kill us instead).
-  if (std::string refusal = memory_refusal(json_bytes_needed(text.size()), available_memory(), "reading " + std::string(kind),
-                                           byte_size(text.size()) + " of JSON");
+  if (std::string refusal = refuse_if_too_large(json_bytes_needed(text.size()), "reading " + std::string(kind),
+                                                byte_size(text.size()) + " of JSON");
       !refusal.empty()) {
     issues.add({kNoOffset, "", std::move(refusal)});
     return false;
