@@ -43,7 +43,9 @@ ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std:
   p.term_images = small_multiples;  // one trace, five sums
   p.target_spp = s.target_spp;
   p.threads = s.threads;
-  p.term = s.term;
+  // The small multiples' last cell is the full image, the sum of the five term images: the
+  // main image is then the full one, whichever term the panel has selected.
+  p.term = small_multiples ? Term::kFull : s.term;
   p.interactive_divisor = kInteractiveDivisor;
   p.live_images_per_s = s.live_images_per_s;
   p.tree_budget_bytes = static_cast<std::size_t>(std::max(s.tree_budget_mib, 0)) << 20;
@@ -123,7 +125,9 @@ std::string Viewer::init() {
   edits_.replaced = true;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   if (!options_.lesson_arg.empty()) open_lesson(options_.lesson_arg);  // a lesson that fails to load is shown in its panel
-  find_recovery();
+  // A lesson's steps are nobody's file: what an earlier session kept is offered once it closes.
+  recovery_.after_lesson = lesson_.lesson.has_value() || lesson_.waiting.has_value();
+  if (!recovery_.after_lesson) find_recovery();
   if (!options_.script_path.empty()) {
     std::ifstream in(options_.script_path);
     if (!in) return "cannot read script " + options_.script_path;
@@ -316,15 +320,26 @@ void Viewer::apply_edits(double frame_start) {
     commit_pending_ = true;
   }
   restored_ = false;
-  // One undo step per gesture: a slider drag or a light drag commits when it ends.
-  if (commit_pending_ && !ImGui::IsAnyItemActive() && drag_.mode != DragMode::kLight) {
+  // One undo step per gesture: a slider drag, a light drag or an object drag commits when it ends.
+  if (commit_pending_ && !ImGui::IsAnyItemActive() && drag_.mode == DragMode::kNone) {
     history_.commit(scene);
     commit_pending_ = false;
   }
 
-  // "Move your head": a new shading eye (angle, probe or camera changed) restarts the renderers.
+  // "Move your head": a new shading eye (angle, probe or camera changed) re-shades. While the
+  // angle slider is held, the next eye waits for the image of the last one, as a drag's scene
+  // edit does: each restart would cancel the re-shade under way, and a cancelled re-shade leaves
+  // no trees to re-shade from (the view would fall to coarse re-traces until the hand stops).
   const std::optional<Vec3> eye = head_eye();
-  if (eye != shading_eye_) {
+  const bool holding = interacting_ || edits_.while_active || ImGui::IsAnyItemActive();
+  const bool image_pending = renderer_.status().published_generation < sent_generation_;
+  if (eye != shading_eye_ && holding && image_pending && !edits_.eye_deferred) {
+    edits_.eye_deferred = true;
+    edits_.eye_deferred_since = frame_start;
+  }
+  const bool eye_waits = holding && image_pending && frame_start - edits_.eye_deferred_since < kMaxDeferral;
+  if (eye != shading_eye_ && !(edits_.eye_deferred && eye_waits)) {
+    edits_.eye_deferred = false;
     shading_eye_ = eye;
     edits_.settings = true;
     if (probed_.tree) refresh_probe();

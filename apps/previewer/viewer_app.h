@@ -222,6 +222,7 @@ class Viewer {
   void draw_head_plot();                         // the "move your head" plot's contents
   void draw_cell_labels_and_probe_ring();        // small multiples' labels, the probed pixel's ring
   ImVec2 probe_point_in_cell(int cell) const;    // the probed pixel's centre as cell `cell` shows it
+  bool light_markers_shown() const;
   void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
   void draw_ray_tree_lines();                    // the probed tree over the full image's cell
   void draw_selected_object();                   // its outline or handle where the view shows it
@@ -385,6 +386,8 @@ class Viewer {
     bool while_active = false;     // a slider drag is editing: render coarse while it lasts
     bool deferred = false;         // a drag's edit waits for the renderer's current first image
     double deferred_since = 0;     // glfwGetTime() of the oldest deferred edit
+    bool eye_deferred = false;     // a held head-angle drag's new eye waits, the same way
+    double eye_deferred_since = 0;
   };
   EditFlags edits_;
   // The unsaved-changes and changed-on-disk dialogs and what waits for them.
@@ -483,6 +486,7 @@ class Viewer {
     bool modal_visible = false;
     int scripted = 0;          // `modal restore|discard|later`: 1, 2, 3
     bool keep = false;         // exiting on a signal: the file stays for the next start
+    bool after_lesson = false; // started with a lesson: the offer waits until it closes (never over a slide)
     std::string error;         // why the last write failed
   };
   Recovery recovery_;

@@ -137,7 +137,9 @@ std::string Viewer::compare_caption() const {
   return text;
 }
 
-bool Viewer::heat_shown() const { return render_settings_.term == Term::kRays && instruments_.compare == 0; }
+bool Viewer::heat_shown() const {
+  return render_settings_.term == Term::kRays && instruments_.compare == 0 && !instruments_.small_multiples;
+}
 
 void Viewer::set_heat_map(bool on) {
   if (on == (render_settings_.term == Term::kRays)) return;

@@ -48,6 +48,10 @@ void Viewer::close_lesson() {
   lesson_.compare_stage = LessonState::CompareStage::kNone;
   lesson_.exploring = false;
   set_presenting(false);
+  if (recovery_.after_lesson) {
+    recovery_.after_lesson = false;
+    find_recovery();
+  }
 }
 
 void Viewer::adopt_step_scene(int step) {
@@ -116,7 +120,7 @@ void Viewer::update_lesson() {
     return;
   }
   if (lesson_.probe_pending && snapshot_ && render_width_ > 0 && render_height_ > 0) {
-    if (const auto pixel = probe_in(doc_.scene(), lesson_.view, render_width_, render_height_)) {
+    if (const auto pixel = probe_in(doc_.scene(), snapshot_->scene().camera, lesson_.view, render_width_, render_height_)) {
       probed_.x = (*pixel)[0];
       probed_.y = (*pixel)[1];
       refresh_probe();

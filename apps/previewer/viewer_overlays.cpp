@@ -149,8 +149,7 @@ void Viewer::draw_overlays() {
   }
   draw_cell_labels_and_probe_ring();
   draw_lesson_caption();
-  // A step that asks where the lights are hides their markers (until exploring).
-  if (!lesson_.lesson || lesson_.view.light_markers || lesson_.exploring) draw_light_markers(taken);
+  if (light_markers_shown()) draw_light_markers(taken);
   draw_selected_object();
   if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
 
@@ -258,6 +257,13 @@ void Viewer::draw_cell_labels_and_probe_ring() {
   // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
   if (!probed_.tree || render_width_ <= 0 || render_height_ <= 0) return;
   for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
+}
+
+bool Viewer::light_markers_shown() const {
+  // Hidden by the Display toggle, over the small multiples (the markers belong to the one full
+  // view), and where a lesson's step asks where the lights are (until exploring).
+  if (!display_.light_markers || instruments_.small_multiples) return false;
+  return !lesson_.lesson || lesson_.view.light_markers || lesson_.exploring;
 }
 
 void Viewer::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {

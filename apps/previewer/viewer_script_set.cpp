@@ -145,12 +145,13 @@ bool Viewer::set_instrument(const std::vector<std::string>& w) {
   return true;
 }
 
-// `set display exposure|srgb|stats|stats_details|sidebar|ui_size V`.
+// `set display exposure|srgb|light_markers|stats|stats_details|sidebar|ui_size V`.
 bool Viewer::set_display_field(const std::vector<std::string>& w) {
   double v = 0;
   if (!parse_double(w[3], v)) return false;
   if (w[2] == "exposure") display_.exposure_ev = static_cast<float>(v);
   else if (w[2] == "srgb") display_.srgb = v != 0;
+  else if (w[2] == "light_markers") display_.light_markers = v != 0;
   else if (w[2] == "stats") display_.show_stats = v != 0;
   else if (w[2] == "stats_details") display_.stats_details = v != 0;
   else if (w[2] == "sidebar") sidebar_visible_ = v != 0;

@@ -83,6 +83,7 @@ void Viewer::write_document_state(std::ostream& out) const {
       << "sidebar_toggles=" << sidebar_toggles_ << "\n"
       << "help=" << (help_visible_ ? 1 : 0) << "\n"
       << "ui_size=" << display_.ui_size << "\n"
+      << "light_markers=" << (display_.light_markers ? 1 : 0) << "\n"
       << "stats_details=" << (display_.stats_details ? 1 : 0) << "\n"
       << "camera_notice=" << camera_notice_ << "\n"
       << "camera_distance=" << glm::length(scene.camera.position - scene.camera.look_at) << "\n"

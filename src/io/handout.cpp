@@ -93,7 +93,7 @@ Image render_plain(const PreparedScene& prepared, const StepView& view, const st
 }
 
 void draw_probe(Image& image, const PreparedScene& prepared, const StepView& view, const std::optional<Vec3>& eye) {
-  const auto pixel = probe_in(prepared.scene(), view, image.width, image.height);
+  const auto pixel = probe_in(prepared.scene(), prepared.scene().camera, view, image.width, image.height);
   if (!pixel) return;
   const int px = (*pixel)[0], py = (*pixel)[1];
   if (view.ray_tree) {

@@ -146,6 +146,7 @@ void probe_panel(const ProbeView& view, bool& all_digits);
 struct DisplaySettings {
   float exposure_ev = 0;  // stops: pixels are scaled by 2^exposure_ev
   bool srgb = true;       // sRGB transfer curve (true) or raw linear values (false)
+  bool light_markers = true;  // the lights' markers and labels over the view ("where is the light?")
   bool show_stats = true; // the stats overlay over the viewport (one summary line)
   bool stats_details = false;  // the overlay's full table (frame times, rays, tracer)
   float ui_size_dragged = -1;  // the UI size slider's value while it is held (applied on release); <0: not held

@@ -83,6 +83,8 @@ bool display_panel(DisplaySettings& display) {
     display.exposure_ev = 0;
     edited = true;
   }
+  edited |= ImGui::Checkbox("light markers", &display.light_markers);
+  help_marker("Off hides the lights' markers and labels: ask the hall where the light is.");
   edited |= ImGui::Checkbox("sRGB display", &display.srgb);
   help_marker("Off shows the linear values unencoded (too dark): the reason images are sRGB-encoded.");
   edited |= ImGui::Checkbox("stats line", &display.show_stats);
@@ -125,7 +127,9 @@ bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions,
   if (settings.compare == 2) {
     edited |= ImGui::SliderFloat("gain", &settings.difference_gain, 1.0f, 64.0f, "\xC3\x97%.0f", ImGuiSliderFlags_Logarithmic);
   } else {
-    edited |= ImGui::SliderFloat("wipe", &settings.wipe, 0.0f, 1.0f, "A | live at %.2f");
+    // Its own label: a widget that shared the radio button's ID ("wipe") took the button's
+    // mouse state for its own and aborted ImGui's button logic.
+    edited |= ImGui::SliderFloat("split", &settings.wipe, 0.0f, 1.0f, "A | live at %.2f");
   }
   locate("instruments.wipe");
   ImGui::EndDisabled();
@@ -147,6 +151,7 @@ bool instruments_panel(InstrumentSettings& settings, InstrumentActions& actions,
               "the view stays. Diffuse and ambient stay the same; specular (and reflection) change.");
   ImGui::BeginDisabled(!settings.move_head);
   edited |= ImGui::SliderFloat("head angle", &settings.head_angle_deg, -90.0f, 90.0f, "%.0f deg");
+  locate("instruments.head_angle");
   if (ImGui::Button("Eye A = this eye, then show |live - A|")) actions.head_reference = true;
   help_marker("Keeps the finished image as A; move the head: the difference has no diffuse term left.");
   ImGui::EndDisabled();

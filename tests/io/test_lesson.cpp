@@ -19,6 +19,7 @@
 #include "io/image_io.h"
 #include "io/lesson_io.h"
 #include "io/scene/scene_io.h"
+#include "interaction/camera_control.h"
 
 namespace phonglab {
 namespace {
@@ -284,6 +285,45 @@ TEST(EmbeddedLessons, TheShadowStepsPointSeesNoLight) {
   ASSERT_EQ(probe.root.lights.size(), s.lights.size());
   for (const auto& light : probe.root.lights) EXPECT_FALSE(light.visible);
   EXPECT_EQ(probe.root.total, probe.root.terms.ambient) << "only ka*Ia remains, as the answer says";
+}
+
+// In any window shape the previewer widens the field of view (ui::fit_to_view) and renders at
+// the view's size: a step's probe still names the point the step's own image shows there, as
+// `phonglab-cli probe` gives it at the scene's size: the same object, each light lit or not
+// alike, and a ray within one shown pixel of the step's.
+TEST(EmbeddedLessons, ProbedStepsNameTheSamePointAtAnyViewSize) {
+  int checked = 0;
+  for (const std::string name : {"shading", "raytracing"}) {
+    const Lesson lesson = embedded(name);
+    for (const LessonStep& step : lesson.steps) {
+      for (const StepView* view : {&step.view, &step.answer_view}) {
+        if (!view->probe) continue;
+        const Scene& s = step.prepared_scene;
+        const PixelProbe ref = probe_pixel(PreparedScene(s), s.width, s.height, (*view->probe)[0], (*view->probe)[1]);
+        for (const auto& [w, h] : {std::pair{880, 720}, std::pair{1920, 1080}, std::pair{400, 900}}) {
+          SCOPED_TRACE(name + ": " + step.title + " at " + std::to_string(w) + "x" + std::to_string(h));
+          Scene shown = s;
+          shown.camera = ui::fit_to_view(s.camera, static_cast<double>(s.width) / s.height, static_cast<double>(w) / h);
+          const auto pixel = probe_in(s, shown.camera, *view, w, h);
+          ASSERT_TRUE(pixel);
+          const PixelProbe got = probe_pixel(PreparedScene(shown), w, h, (*pixel)[0], (*pixel)[1]);
+          ASSERT_EQ(got.root.hit, ref.root.hit);
+          const double pixel_angle = 2 * std::tan(glm::radians(shown.camera.fov_y_deg) / 2) / h;
+          EXPECT_LT(std::acos(std::min(1.0, glm::dot(glm::normalize(got.root.dir), glm::normalize(ref.root.dir)))),
+                    pixel_angle);
+          if (!ref.root.hit) continue;
+          EXPECT_EQ(got.root.object.kind, ref.root.object.kind);
+          EXPECT_EQ(got.root.object.index, ref.root.object.index);
+          ASSERT_EQ(got.root.lights.size(), ref.root.lights.size());
+          for (std::size_t l = 0; l < ref.root.lights.size(); ++l) {
+            EXPECT_EQ(got.root.lights[l].visible, ref.root.lights[l].visible) << "light " << l;
+          }
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GE(checked, 6);
 }
 
 std::string read_all(const std::filesystem::path& p) {

@@ -39,20 +39,24 @@ Scene view_scene(const Scene& scene, const StepView& view) {
   return s;
 }
 
-std::optional<std::array<int, 2>> probe_in(const Scene& scene, const StepView& view, int width, int height) {
+std::optional<std::array<int, 2>> probe_in(const Scene& scene, const Camera& shown, const StepView& view, int width,
+                                           int height) {
   if (!view.probe || width < 1 || height < 1) return std::nullopt;
-  const auto scaled = [](int p, int from, int to) {
-    const double centre = (p + 0.5) * to / std::max(1, from);
-    return std::clamp(static_cast<int>(std::floor(centre)), 0, to - 1);
-  };
-  return std::array<int, 2>{scaled((*view.probe)[0], scene.width, width), scaled((*view.probe)[1], scene.height, height)};
+  // The step's pixel centre seen from the step's camera in the scene's own image, then found in
+  // the shown image: the same eye, so the point along that ray projects where the hit does.
+  const CameraFrame step = make_camera_frame(scene.camera, std::max(scene.width, 1), std::max(scene.height, 1));
+  const Ray ray = camera_ray(step, (*view.probe)[0], (*view.probe)[1], 0.5, 0.5);
+  const std::optional<ImagePoint> at = project_point(make_camera_frame(shown, width, height), ray.origin + ray.dir);
+  if (!at || !std::isfinite(at->x) || !std::isfinite(at->y)) return std::nullopt;
+  const auto pixel = [](double p, int size) { return static_cast<int>(std::clamp(std::floor(p), 0.0, size - 1.0)); };
+  return std::array<int, 2>{pixel(at->x, width), pixel(at->y, height)};
 }
 
 std::optional<Vec3> view_shading_eye(const PreparedScene& prepared, const StepView& view, int width, int height) {
   if (!view.head_angle_deg) return std::nullopt;
   const Scene& scene = prepared.scene();
   Vec3 pivot = scene.camera.look_at;
-  if (const auto pixel = probe_in(scene, view, width, height)) {
+  if (const auto pixel = probe_in(scene, scene.camera, view, width, height)) {
     const PixelProbe probe = probe_pixel(prepared, width, height, (*pixel)[0], (*pixel)[1]);
     if (probe.root.hit) pivot = probe.root.p;
   }

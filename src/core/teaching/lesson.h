@@ -67,9 +67,12 @@ const std::string& caption_at(const LessonStep& step, bool revealed);
 
 // The scene rendered for a view: the step's scene with its depth cut applied.
 Scene view_scene(const Scene& scene, const StepView& view);
-// The probed pixel of `view` in an image of width x height (the step's pixel scaled from the
-// scene's own image size, its centre kept); nullopt without a probe.
-std::optional<std::array<int, 2>> probe_in(const Scene& scene, const StepView& view, int width, int height);
+// The probed pixel of `view` in an image of width x height seen through `shown` (the scene's
+// camera, or the previewer's fitted to a view of another shape, from the same eye): the pixel
+// that sees what the step's pixel sees in the scene's own image (scene.width x scene.height
+// through scene.camera). nullopt without a probe, or when it is not in front of `shown`.
+std::optional<std::array<int, 2>> probe_in(const Scene& scene, const Camera& shown, const StepView& view, int width,
+                                           int height);
 // "Move your head": the eye that shades a view, turned about the probed hit (the look-at point
 // when nothing is probed or the probe meets nothing); nullopt when the head is not moved.
 std::optional<Vec3> view_shading_eye(const PreparedScene& prepared, const StepView& view, int width, int height);

@@ -1,0 +1,190 @@
+#!/usr/bin/env bash
+# A lecturer's rehearsal, under Xvfb with Mesa's llvmpipe: what tripped a full rehearsal up, each
+# driven the way the hall would and checked on screen or in the state dumps.
+#
+#   tests/gui/run_hall_tests.sh BUILD_DIR [OUT_DIR]
+#
+# Session 1 (instruments): the wipe slider dragged after Snapshot A; the small multiples' sum
+# cell with another term selected; no light markers over the small multiples and a Display
+# toggle for them; the head-angle slider held at full resolution; one object drag, one undo step.
+# Session 2 (lessons): a leftover recovery is not offered over a lesson's first slide, only once
+# the lesson closes; a step's probe names the same point at two view sizes (the CLI's probe).
+# Exit status 0 when every check passes. Needs: xvfb-run, xdotool, ImageMagick.
+set -u
+
+if [[ "${1:-}" == "--inside-x" ]]; then
+  INSIDE_X=1
+  shift
+else
+  INSIDE_X=0
+fi
+BUILD_DIR=$(cd "${1:?usage: run_hall_tests.sh BUILD_DIR [OUT_DIR]}" && pwd)
+OUT=${2:-$BUILD_DIR/hall-tests}
+BIN=$BUILD_DIR/bin/phonglab
+CLI=$BUILD_DIR/bin/phonglab-cli
+SELF_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+SELF=$SELF_DIR/$(basename "${BASH_SOURCE[0]}")
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"  # Mesa keeps allocations
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-420}
+export XDG_STATE_HOME=$OUT/state
+# shellcheck source=tests/gui/lib.sh
+source "$SELF_DIR/lib.sh"
+
+# The 880x720 view of a 1280x720 window in 3 x 2 cells of 293x360: the specular term's is the
+# top right, the full image's the bottom right.
+SPECULAR_CELL=293x300+586+40
+FULL_CELL=293x300+586+400
+
+session_instruments() {
+  local dir=$OUT/instruments
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+click_item instruments.snapshot_a
+wait_idle 120
+drag_item instruments.wipe -60 0 10
+wait_frames 3
+set instruments compare 1
+wait_frames 3
+drag_item instruments.wipe -60 0 10
+wait_frames 3
+dump_state $dir/w.txt
+set instruments compare 0
+key 4
+key M
+wait_frames 3
+wait_idle 120
+screenshot $dir/m_specular_selected.png
+dump_state $dir/m.txt
+key 1
+wait_frames 3
+wait_idle 120
+screenshot $dir/m_full_selected.png
+key M
+wait_frames 3
+wait_idle 120
+dump_state $dir/b.txt
+set display light_markers 0
+wait_frames 3
+dump_state $dir/c.txt
+set display light_markers 1
+set instruments head 1
+wait_frames 3
+wait_idle 120
+stats_reset
+drag_item instruments.head_angle 120 0 40
+stats_summary head
+set instruments head 0
+wait_frames 3
+wait_idle 120
+dump_state $dir/o1.txt
+drag_object 2 80 0
+wait_frames 3
+wait_idle 120
+dump_state $dir/o2.txt
+undo
+wait_frames 3
+wait_idle 120
+dump_state $dir/o3.txt
+quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" --stats-log "$dir/stats.log" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_instruments() {
+  local dir=$OUT/instruments same other levels
+  echo "session 1: the instruments"
+  check_exit "$dir" "dragging the wipe slider after Snapshot A (and with the wipe chosen) does not abort"
+  check "... the wipe is shown ($(state "$dir/w.txt" compare_caption))" test "$(state "$dir/w.txt" compare)" = 1
+  same=$(rmse "$dir/m_specular_selected.png" "$dir/m_full_selected.png" "$FULL_CELL")
+  other=$(rmse_regions "$dir/m_specular_selected.png" "$FULL_CELL" "$SPECULAR_CELL")
+  check "the small multiples' sum cell is the full image with 4 (specular) selected (RMSE $same to term 1's)" \
+    less "${same:-1}" 0.002
+  check "... and not the specular cell (RMSE $other)" greater "${other:-0}" 0.05
+  check "no light markers over the small multiples ($(state "$dir/m.txt" light0_marker))" \
+    test -z "$(state "$dir/m.txt" light0_marker)" -a -n "$(state "$dir/b.txt" light0_marker)"
+  check "Display's light markers off hides them (light_markers=$(state "$dir/c.txt" light_markers))" \
+    test "$(state "$dir/c.txt" light_markers)" = 0 -a -z "$(state "$dir/c.txt" light0_marker)"
+  levels=$(sed -n 's/^levels head //p' "$dir/stats.log")
+  check "the head-angle slider held: every image at full resolution ($levels)" \
+    test -n "$levels" -a -z "$(echo "$levels" | grep -E '(half|quarter|eighth)=[1-9]')"
+  check "one object drag is one undo step ($(state "$dir/o1.txt" undo) -> $(state "$dir/o2.txt" undo))" \
+    test "$(state "$dir/o2.txt" undo)" = $(($(state "$dir/o1.txt" undo) + 1))
+  check "... it moved the sphere, and one Ctrl+Z puts it back ($(state "$dir/o2.txt" object2_anchor) -> $(state "$dir/o3.txt" object2_anchor))" \
+    test "$(state "$dir/o3.txt" object2_anchor)" = "$(state "$dir/o1.txt" object2_anchor)" \
+    -a "$(state "$dir/o2.txt" object2_anchor)" != "$(state "$dir/o1.txt" object2_anchor)"
+}
+
+session_lessons() {
+  local dir=$OUT/lessons
+  mkdir -p "$dir"
+  # A session on lecture with unsaved edits, ended by SIGTERM: its recovery file stays.
+  run_until_killed "$dir" edited TERM "set render target_spp 1
+wait_idle 120
+set material matte kd 0.9 0.1 0.9
+wait_frames 3"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_frames 5
+wait_idle 120
+dump_state $dir/l1.txt
+lesson_goto 3
+wait_frames 5
+wait_idle 120
+dump_state $dir/l3.txt
+screenshot $dir/l3_880.png
+resize 1600 900
+wait_frames 10
+wait_idle 120
+dump_state $dir/l3big.txt
+screenshot $dir/l3_1200.png
+click_item lesson.close
+wait_frames 5
+dump_state $dir/closed.txt
+modal later
+wait_frames 3
+quit
+EOF
+  XDG_STATE_HOME="$dir/state" "$BIN" --lesson raytracing --size 1280x720 --script "$dir/script.txt" \
+    >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_lessons() {
+  local dir=$OUT/lessons want f
+  echo "session 2: lessons"
+  check "a killed session left a recovery of lecture (exit $(cat "$dir/edited.exit"))" \
+    test "$(cat "$dir/edited.exit")" = 143 -a -s "$dir/edited.json"
+  check_exit "$dir" "the lesson session ran to the end"
+  check "no recovery offered over the first slide (offer '$(state "$dir/l1.txt" recovery_offer)', step $(state "$dir/l1.txt" lesson_step))" \
+    test -z "$(state "$dir/l1.txt" recovery_offer)" -a "$(state "$dir/l1.txt" lesson_step)" = 1
+  check "... it is offered once the lesson closes ($(state "$dir/closed.txt" recovery_offer))" \
+    test "$(state "$dir/closed.txt" recovery_offer)" = lecture -a -z "$(state "$dir/closed.txt" lesson)"
+  want=$("$CLI" probe lecture --pixel 300,360 | sed -n 's/^pixel value (linear) = (\([^)]*\)).*/\1/p' | tr -d ' ' | tr ',' ' ')
+  for f in l3 l3big; do
+    check "'Shadow rays' at $(state "$dir/$f.txt" render): both shadow rays blocked, I = $(state "$dir/$f.txt" probe_total) as the CLI's probe ($want)" \
+      test "$(state "$dir/$f.txt" probe_blocked)" = 2 -a "$(state "$dir/$f.txt" probe_total)" = "$want"
+  done
+}
+
+if ((INSIDE_X)); then
+  session_instruments
+  session_lessons
+  exit 0
+fi
+
+for tool in xvfb-run xdotool convert compare; do
+  command -v "$tool" >/dev/null || { echo "run_hall_tests.sh: needs $tool"; exit 2; }
+done
+[[ -x "$BIN" ]] || { echo "run_hall_tests.sh: no previewer at $BIN"; exit 2; }
+rm -rf "$OUT"
+mkdir -p "$OUT"
+start=$SECONDS
+timeout "$TIMEOUT" xvfb-run -a -s '-screen 0 1920x1080x24' "$SELF" --inside-x "$BUILD_DIR" "$OUT"
+check_instruments
+check_lessons
+echo "hall tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
+((failures == 0))
