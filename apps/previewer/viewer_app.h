@@ -88,7 +88,7 @@ class Viewer {
 
  private:
   // What a mouse drag in the viewport does.
-  enum class DragMode : std::uint8_t { kNone, kOrbit, kPan, kDolly, kLight, kObject };
+  enum class DragMode : std::uint8_t { kNone, kOrbit, kPan, kDolly, kLight, kObject, kWipe };
   struct Drag {
     DragMode mode = DragMode::kNone;
     int button = 0;          // ImGui mouse button that started it
@@ -223,6 +223,8 @@ class Viewer {
   void draw_cell_labels_and_probe_ring();        // small multiples' labels, the probed pixel's ring
   ImVec2 probe_point_in_cell(int cell) const;    // the probed pixel's centre as cell `cell` shows it
   bool light_markers_shown() const;
+  std::optional<float> wipe_line_x() const;      // where the wipe's split line is drawn, when it is
+  void draw_wipe_line();
   void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
   void draw_ray_tree_lines();                    // the probed tree over the full image's cell
   void draw_selected_object();                   // its outline or handle where the view shows it

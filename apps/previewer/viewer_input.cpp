@@ -80,6 +80,12 @@ void Viewer::handle_viewport_input() {
     }
   }
 
+  // The wipe's split line, grabbed anywhere along its height.
+  const std::optional<float> wipe_x = wipe_line_x();
+  const float wipe_grab = ui::light_marker_radius(platform_.ui_scale());
+  const bool wipe_hovered = mouse_is_ours && hovered_light_ < 0 && wipe_x && std::abs(mouse.x - *wipe_x) <= wipe_grab;
+  if (wipe_hovered || drag_.mode == DragMode::kWipe) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+
   if (drag_.mode == DragMode::kNone) {
     if (mouse_is_ours) {
       for (int button = 0; button < 3; ++button) {
@@ -93,6 +99,8 @@ void Viewer::handle_viewport_input() {
           drag_.light = hovered_light_;
           drag_.light_depth = ui::view_depth(view, scene.lights[static_cast<std::size_t>(hovered_light_)].position);
           selected_light_ = hovered_light_;
+        } else if (button == ImGuiMouseButton_Left && wipe_hovered) {
+          drag_.mode = DragMode::kWipe;  // the split line follows the pointer
         } else if (button == ImGuiMouseButton_Left && !io.KeyShift && grab_object(mouse, object_under(mouse))) {
           // The selected object, grabbed by its marker or its surface: moved in the view plane.
         } else if (button == ImGuiMouseButton_Left) {
@@ -112,7 +120,7 @@ void Viewer::handle_viewport_input() {
     const ImVec2 d = io.MouseDelta;
     // A grabbed light follows the pointer from the first pixel (an arrow at the edge brings the
     // light into view at once); the camera waits for the drag threshold, so a click stays a click.
-    const bool grabbed = drag_.mode == DragMode::kLight || drag_.mode == DragMode::kObject;
+    const bool grabbed = drag_.mode == DragMode::kLight || drag_.mode == DragMode::kObject || drag_.mode == DragMode::kWipe;
     const bool moving = (drag_.moved || grabbed) && (d.x != 0 || d.y != 0);
     if (moving) drag_viewport(mouse, d, view, view_w, view_h);
   } else {
@@ -123,7 +131,8 @@ void Viewer::handle_viewport_input() {
     }
     drag_ = Drag{};
   }
-  interacting_ = drag_.mode != DragMode::kNone &&
+  // Moving the wipe's line changes what is shown of two finished images, not what is rendered.
+  interacting_ = drag_.mode != DragMode::kNone && drag_.mode != DragMode::kWipe &&
                  (drag_.moved || drag_.mode == DragMode::kLight || drag_.mode == DragMode::kObject);
   handle_keys();
 }
@@ -163,6 +172,10 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
       break;
     case DragMode::kObject:
       drag_object_to(mouse, view_w, view_h);
+      break;
+    case DragMode::kWipe:
+      instruments_.wipe = std::clamp((mouse.x - viewport_.x) / std::max(viewport_.width, 1.0f), 0.0f, 1.0f);
+      upload_pending_ = upload_pending_ || !shown_.pixels.empty();
       break;
     case DragMode::kNone:
       break;

@@ -149,6 +149,7 @@ void Viewer::draw_overlays() {
   }
   draw_cell_labels_and_probe_ring();
   draw_lesson_caption();
+  draw_wipe_line();
   if (light_markers_shown()) draw_light_markers(taken);
   draw_selected_object();
   if (hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
@@ -257,6 +258,32 @@ void Viewer::draw_cell_labels_and_probe_ring() {
   // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
   if (!probed_.tree || render_width_ <= 0 || render_height_ <= 0) return;
   for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
+}
+
+std::optional<float> Viewer::wipe_line_x() const {
+  if (instruments_.compare != 1 || !a_comparable() || instruments_.small_multiples) return std::nullopt;
+  // compare_pixels shows A left of column wipe * width: the line is drawn at that edge.
+  return viewport_.x + instruments_.wipe * viewport_.width;
+}
+
+void Viewer::draw_wipe_line() {
+  const std::optional<float> x = wipe_line_x();
+  if (!x) return;
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const float scale = platform_.ui_scale();
+  const float top = viewport_.y, bottom = viewport_.y + viewport_.height, mid = (top + bottom) / 2;
+  draw->AddLine(ImVec2(*x, top), ImVec2(*x, bottom), IM_COL32(0, 0, 0, 160), 4 * scale);
+  draw->AddLine(ImVec2(*x, top), ImVec2(*x, bottom), IM_COL32(255, 255, 255, 230), 2 * scale);
+  // A handle in the middle, with arrows: it can be dragged.
+  const float r = 1.5f * ui::light_marker_radius(scale);
+  draw->AddCircleFilled(ImVec2(*x, mid), r, IM_COL32(255, 255, 255, 230));
+  draw->AddCircle(ImVec2(*x, mid), r, IM_COL32(0, 0, 0, 200), 0, 1.5f * scale);
+  const ImU32 arrow = IM_COL32(40, 40, 40, 255);
+  const float a = r * 0.55f;
+  draw->AddTriangleFilled(ImVec2(*x - a * 1.6f, mid), ImVec2(*x - a * 0.4f, mid - a), ImVec2(*x - a * 0.4f, mid + a), arrow);
+  draw->AddTriangleFilled(ImVec2(*x + a * 1.6f, mid), ImVec2(*x + a * 0.4f, mid + a), ImVec2(*x + a * 0.4f, mid - a), arrow);
+  ui::text_on_plate(draw, ImVec2(*x - ImGui::CalcTextSize("A").x - 10 * scale, mid + r + 6 * scale), "A", scale);
+  ui::text_on_plate(draw, ImVec2(*x + 8 * scale, mid + r + 6 * scale), "live", scale);
 }
 
 bool Viewer::light_markers_shown() const {

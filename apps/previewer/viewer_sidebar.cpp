@@ -54,7 +54,8 @@ void Viewer::draw_sidebar() {
   if (ImGui::Begin("##sidebar", nullptr, flags)) {
     // Text wraps at the panel's edge at any UI size; labels sit right of the widgets.
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::PushItemWidth(-ImGui::GetFontSize() * 6.5f);
+    // The label column holds the longest label with its "(?)" ("ray-tree memory (?)").
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
     ImGui::TextDisabled("phonglab %s   H hides the panels, F1 lists the keys", PHONGLAB_VERSION);
     // In the order a lecture uses them: what is shown, the coefficients, the lights, the probe
     // and the instruments; then the camera, the file and the settings.
@@ -160,9 +161,8 @@ void Viewer::sidebar_lights() {
 }
 
 void Viewer::sidebar_probe() {
-  // A fixed height, scrolled inside: a probe arriving never moves the panels below.
-  const float height = ImGui::GetTextLineHeightWithSpacing() * 15;
-  if (ImGui::BeginChild("##probe", ImVec2(0, height), true, ImGuiWindowFlags_HorizontalScrollbar)) {
+  // In the sidebar itself, wrapped at its width: the wheel scrolls the panels, never a box inside.
+  {
     ui::ProbeView view;
     view.scene = snapshot_ ? &snapshot_->scene() : nullptr;
     view.probe = probed_.tree ? &*probed_.tree : nullptr;
@@ -182,7 +182,6 @@ void Viewer::sidebar_probe() {
     ui::probe_panel(view, probed_.every_digit);
     if (probed_.every_digit != digits_before) refresh_probe();
   }
-  ImGui::EndChild();
 }
 
 void Viewer::sidebar_instruments() {

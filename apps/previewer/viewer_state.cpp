@@ -140,6 +140,7 @@ void Viewer::write_layout_state(std::ostream& out) const {
       << "undo=" << history_.undo_count() << "\n"
       << "redo=" << history_.redo_count() << "\n"
       << "multiples=" << (instruments_.small_multiples ? 1 : 0) << "\n"
+      << "wipe=" << instruments_.wipe << "\n"
       << "compare=" << instruments_.compare << "\n"
       << "have_a=" << (compare_.image.pixels.empty() ? 0 : 1) << "\n"
       << "head=" << (shading_eye_ ? 1 : 0) << "\n";

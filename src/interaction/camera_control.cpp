@@ -23,6 +23,8 @@ constexpr double kPoleMargin = 0.01;
 constexpr double kMinRelativeDistance = 1e-9;
 // Widest vertical field of view fitting may give: a 1-pixel-wide window stays a usable camera.
 constexpr double kMaxFittedFovDeg = 170;
+// What F leaves free on each side of the framed objects: this fraction of the image's width or height.
+constexpr double kFrameMargin = 0.04;
 // How far the wheel may take the eye: this many times the scene's size (or the file's distance).
 constexpr double kDollyLimitFactor = 20;
 
@@ -103,16 +105,47 @@ void pan(Camera& camera, double dx_px, double dy_px, double viewport_height_px) 
 bool frame_scene(Camera& camera, const Scene& scene, double aspect) {
   const Aabb bounds = scene_bounds(scene);
   if (bounds.empty()) return false;  // no finite objects (planes are infinite)
-  const Vec3 lo = bounds.lo, hi = bounds.hi;
-  const Vec3 center = 0.5 * (lo + hi);
-  const double radius = std::max(0.5 * glm::length(hi - lo), 1e-12);
-  const double half_fov_y = glm::radians(camera.fov_y_deg) / 2;
-  const double half_fov_x = std::atan(std::tan(half_fov_y) * (aspect > 0 ? aspect : 1));
-  // The bounding sphere touches the narrower side of the view; 1.05 leaves a small margin.
-  const double distance = 1.05 * radius / std::sin(std::min(half_fov_x, half_fov_y));
+  const Vec3 center = 0.5 * (bounds.lo + bounds.hi);
+  const Vec3 f = glm::normalize(camera.look_at - camera.position);
+  const Vec3 right = glm::normalize(glm::cross(f, camera.up));
+  const Vec3 up = glm::cross(right, f);
+  // The view's half angles less a margin: the objects keep kFrameMargin of the image free
+  // on each side.
+  const double tan_y = std::tan(glm::radians(camera.fov_y_deg) / 2) * (1 - 2 * kFrameMargin);
+  const double tan_x = tan_y * (aspect > 0 ? aspect : 1);
+  const double hy = std::atan(tan_y), hx = std::atan(tan_x);
+  // The eye at center + s R + t U - d F, looking along F. A ball of radius r at (x, y, z) in the
+  // view's axes about the centre is inside the right side of half angle h when
+  // d sin h + s cos h >= r + x cos h - z sin h, and inside the left side when
+  // d sin h - s cos h >= r - x cos h - z sin h (likewise up and down with t). With A and B the
+  // largest right sides of the two, d = (A + B) / (2 sin h) and s = (A - B) / (2 cos h) is the
+  // nearest eye that keeps every object in: the objects then touch both sides.
+  double right_need = -1e300, left_need = -1e300, top_need = -1e300, bottom_need = -1e300;
+  const auto keep = [&](const Vec3& p, double r) {
+    const Vec3 q = p - center;
+    const double x = glm::dot(q, right), y = glm::dot(q, up), z = glm::dot(q, f);
+    right_need = std::max(right_need, r + x * std::cos(hx) - z * std::sin(hx));
+    left_need = std::max(left_need, r - x * std::cos(hx) - z * std::sin(hx));
+    top_need = std::max(top_need, r + y * std::cos(hy) - z * std::sin(hy));
+    bottom_need = std::max(bottom_need, r - y * std::cos(hy) - z * std::sin(hy));
+  };
+  for (const Sphere& s : scene.spheres) keep(s.center, s.radius);
+  for (const Triangle& t : scene.triangles) {
+    for (const Vec3& v : {t.v0, t.v1, t.v2}) keep(v, 0);
+  }
+  for (const Mesh& m : scene.meshes) {
+    const Aabb& b = m.geometry->bounds;
+    for (int corner = 0; corner < 8; ++corner) {
+      keep(Vec3(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y, corner & 4 ? b.hi.z : b.lo.z), 0);
+    }
+  }
+  const double d = std::max({(right_need + left_need) / (2 * std::sin(hx)), (top_need + bottom_need) / (2 * std::sin(hy)),
+                             1e-12 * std::max(1.0, glm::length(bounds.hi - bounds.lo))});
+  const Vec3 eye = center + (right_need - left_need) / (2 * std::cos(hx)) * right +
+                   (top_need - bottom_need) / (2 * std::cos(hy)) * up - d * f;
   Camera framed = camera;
-  framed.look_at = center;
-  framed.position = center - glm::normalize(camera.look_at - camera.position) * distance;
+  framed.position = eye;
+  framed.look_at = eye + d * f;
   if (!camera_is_valid(framed)) return false;
   camera = framed;
   return true;

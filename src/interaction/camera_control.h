@@ -39,8 +39,9 @@ Camera fit_to_view(const Camera& camera, double framed_aspect, double view_aspec
 // drag of (dx_px, dy_px) in a viewport `viewport_height_px` pixels tall.
 void pan(Camera& camera, double dx_px, double dy_px, double viewport_height_px);
 
-// Aims at the centre of the finite objects (spheres, triangles, meshes) from a distance that fits
-// them in a view of this aspect (width / height). False, camera unchanged, when there are none.
+// Aims at the centre of the finite objects' bounds (spheres, triangles, meshes) along the view
+// direction, from the nearest distance that keeps every object inside a view of this aspect
+// (width / height) with a small margin. False, camera unchanged, when there are none.
 bool frame_scene(Camera& camera, const Scene& scene, double aspect);
 
 // A viewport position in pixels, x right and y down from the top-left.

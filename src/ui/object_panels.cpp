@@ -2,6 +2,7 @@
 // nothing themselves: each press or field comes back as a request the app carries out through
 // src/interaction/scene_objects.h, so a refusal keeps the scene and is shown as `notice`.
 #include <algorithm>
+#include <cfloat>
 #include <array>
 #include <string>
 
@@ -139,10 +140,13 @@ void material_library(const Scene& scene, int selected, std::string& name_field,
   if (button("Duplicate", "materials.duplicate")) actions.duplicate = true;
   ImGui::SameLine();
   if (button("Delete", "materials.delete")) actions.remove = true;
-  ImGui::SameLine();
+  ImGui::EndDisabled();
+  // The new name on a row of its own, as wide as the panel leaves it: never past the edge.
+  ImGui::BeginDisabled(!has);
   if (button("Rename to", "materials.rename")) actions.rename = name_field;
   ImGui::EndDisabled();
   ImGui::SameLine();
+  ImGui::SetNextItemWidth(-FLT_MIN);
   input_text("##material_name", name_field);
   locate("materials.name");
   // The preset library, by group: one press, one undo step.

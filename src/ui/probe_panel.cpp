@@ -22,6 +22,13 @@ void rgb_text(const char* label, const Color& c, int digits) {
 
 void vec_text(const char* label, const Vec3& v, int digits) { rgb_text(label, v, digits); }
 
+// One number in the values' column.
+void number_row(const char* label, double value, int digits) {
+  ImGui::TextUnformatted(label);
+  ImGui::SameLine(ImGui::GetFontSize() * 6.0f);
+  ImGui::Text("%.*g", digits, value);
+}
+
 }  // namespace
 
 void head_plot(const HeadPlotView& view) {
@@ -105,8 +112,6 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
                         "term and light by light, appears here.");
     return;
   }
-  // Numbers never wrap inside themselves: this panel scrolls sideways instead.
-  ImGui::PushTextWrapPos(-1.0f);
   const int d = all_digits ? 17 : 4;
   const PixelProbe& probe = *view.probe;
   const ProbeNode& root = probe.root;
@@ -120,7 +125,6 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
   ImGui::Text("(%d, %d, %d) at %+.1f EV", view.srgb[0], view.srgb[1], view.srgb[2], static_cast<double>(view.exposure_ev));
   if (!root.hit) {
     ImGui::TextDisabled("The ray misses: the pixel is the background.");
-    ImGui::PopTextWrapPos();
     return;
   }
   vec_text("P", root.p, d);
@@ -150,18 +154,20 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
     }
     vec_text("L", light.l, d);
     vec_text(blinn ? "H" : "R", light.r, d);
-    ImGui::Text("N\xC2\xB7L = %.*g   %s = %.*g   ^n = %.*g", d, light.n_dot_l, blinn ? "N\xC2\xB7H" : "R\xC2\xB7V", d,
-                light.r_dot_v, d, light.spec_factor);
+    // One cosine a row: each fits the panel's width at any number of digits.
+    number_row("N\xC2\xB7L", light.n_dot_l, d);
+    number_row(blinn ? "N\xC2\xB7H" : "R\xC2\xB7V", light.r_dot_v, d);
+    number_row(blinn ? "(N\xC2\xB7H)^n" : "max(0,R\xC2\xB7V)^n", light.spec_factor, d);
     rgb_text("diffuse", light.diffuse, d);
     rgb_text("specular", light.specular, d);
     ImGui::PopID();
   }
   ImGui::Separator();
   if (ImGui::TreeNodeEx("The equation with the numbers (and the children)", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::TextUnformatted(view.report.c_str());
+    // Wrapped at the panel's edge: long lines continue below instead of off to the side.
+    ImGui::TextWrapped("%s", view.report.c_str());
     ImGui::TreePop();
   }
-  ImGui::PopTextWrapPos();
 }
 
 }  // namespace phonglab::ui

@@ -138,8 +138,13 @@ std::string i_a() { return font_has(0x2090) ? "I\xE2\x82\x90" : "I_a"; }
 std::string i_l() { return font_has(0x2097) ? "I\xE2\x82\x97" : "I_l"; }
 
 void help_marker(const char* text) {
+  // Whole or on the next line, never broken as "(?" and ")".
+  const float width = ImGui::CalcTextSize("(?)").x;
   ImGui::SameLine();
+  if (ImGui::GetContentRegionAvail().x < width) ImGui::NewLine();
+  ImGui::PushTextWrapPos(-1.0f);
   ImGui::TextDisabled("(?)");
+  ImGui::PopTextWrapPos();
   if (ImGui::IsItemHovered()) {
     ImGui::BeginTooltip();
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);

@@ -4,7 +4,8 @@
 #
 #   tests/gui/run_hall_tests.sh BUILD_DIR [OUT_DIR]
 #
-# Session 1 (instruments): the wipe slider dragged after Snapshot A; the small multiples' sum
+# Session 1 (instruments): the wipe slider dragged after Snapshot A, the wipe's line dragged in
+# the view; the small multiples' sum
 # cell with another term selected; no light markers over the small multiples and a Display
 # toggle for them; the head-angle slider held at full resolution; one object drag, one undo step.
 # Session 2 (lessons): a leftover recovery is not offered over a lesson's first slide, only once
@@ -51,6 +52,12 @@ wait_frames 3
 drag_item instruments.wipe -60 0 10
 wait_frames 3
 dump_state $dir/w.txt
+set instruments wipe 0.5
+wait_frames 3
+drag left 440 500 616 500 10
+wait_frames 3
+dump_state $dir/w2.txt
+screenshot $dir/wipe_line.png
 set instruments compare 0
 key 4
 key M
@@ -99,6 +106,8 @@ check_instruments() {
   echo "session 1: the instruments"
   check_exit "$dir" "dragging the wipe slider after Snapshot A (and with the wipe chosen) does not abort"
   check "... the wipe is shown ($(state "$dir/w.txt" compare_caption))" test "$(state "$dir/w.txt" compare)" = 1
+  check "the wipe's line dragged in the view from the middle to 616 px: wipe $(state "$dir/w2.txt" wipe), the camera kept" \
+    test "$(state "$dir/w2.txt" wipe)" = 0.7 -a "$(state "$dir/w2.txt" camera_position)" = "$(state "$dir/w.txt" camera_position)"
   same=$(rmse "$dir/m_specular_selected.png" "$dir/m_full_selected.png" "$FULL_CELL")
   other=$(rmse_regions "$dir/m_specular_selected.png" "$FULL_CELL" "$SPECULAR_CELL")
   check "the small multiples' sum cell is the full image with 4 (specular) selected (RMSE $same to term 1's)" \

@@ -1,13 +1,17 @@
 // The viewport's camera control: the orbit follows the hand and stops short of the poles, the
 // dolly has a far limit, and a narrow view widens the field of view so the framed scene stays.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
 #include "core/scene/camera.h"
+#include "core/teaching/ray_tree_view.h"
 #include "interaction/camera_control.h"
 #include "interaction/numbers.h"
+#include "io/embedded_scenes.h"
+#include "io/scene/scene_io.h"
 
 namespace phonglab {
 namespace {
@@ -71,6 +75,44 @@ TEST(CameraControl, DollyStopsAtItsFarLimit) {
   EXPECT_NEAR(glm::length(c.position - c.look_at), 100, 1e-9);
   ui::dolly(c, 0.5, 100);
   EXPECT_NEAR(glm::length(c.position - c.look_at), 50, 1e-9);
+}
+
+// F frames tight: every sphere's silhouette inside the image, and together they span nearly all
+// of its width or its height, from any direction and at any aspect.
+TEST(CameraControl, FrameSceneFitsTheObjectsTightly) {
+  const LoadResult loaded = load_scene_arg("lecture");
+  ASSERT_TRUE(loaded.ok());
+  for (const double aspect : {16.0 / 9, 1.0, 0.5}) {
+    for (const double yaw : {0.0, 0.7, 2.0}) {
+      Scene scene = *loaded.scene;
+      ui::orbit(scene.camera, yaw, 0.2);
+      ASSERT_TRUE(ui::frame_scene(scene.camera, scene, aspect));
+      const int h = 900, w = static_cast<int>(std::lround(h * aspect));
+      const CameraFrame frame = make_camera_frame(scene.camera, w, h);
+      const Vec3 right = glm::normalize(frame.right), up = glm::normalize(frame.up);
+      double x0 = w, x1 = 0, y0 = h, y1 = 0;
+      for (const Sphere& s : scene.spheres) {
+        // The silhouette's extremes seen from the eye: tangent points in the view's axes.
+        const Vec3 to = s.center - frame.origin;
+        const double dist = glm::length(to);
+        const double tan_r = s.radius / std::sqrt(dist * dist - s.radius * s.radius);
+        for (const Vec3& axis : {right, up}) {
+          for (const double side : {-1.0, 1.0}) {
+            const Vec3 dir = glm::normalize(glm::normalize(to) + side * tan_r * glm::normalize(axis - glm::dot(axis, glm::normalize(to)) * glm::normalize(to)));
+            const auto p = project_point(frame, frame.origin + dir);
+            ASSERT_TRUE(p);
+            x0 = std::min(x0, p->x), x1 = std::max(x1, p->x), y0 = std::min(y0, p->y), y1 = std::max(y1, p->y);
+          }
+        }
+      }
+      SCOPED_TRACE("aspect " + std::to_string(aspect) + ", yaw " + std::to_string(yaw));
+      EXPECT_GE(x0, 0);
+      EXPECT_LE(x1, w);
+      EXPECT_GE(y0, 0);
+      EXPECT_LE(y1, h);
+      EXPECT_GT(std::max((x1 - x0) / w, (y1 - y0) / h), 0.85);
+    }
+  }
 }
 
 TEST(CameraControl, FitToViewKeepsTheFramedWidthInANarrowView) {
