@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "io/image_io.h"
 #include "core/render/render.h"
@@ -26,15 +27,25 @@ struct FigureOptions {
 inline constexpr std::array<Term, 6> kFigureTerms = {Term::kAmbient,    Term::kDiffuse,    Term::kSpecular,
                                                      Term::kReflection, Term::kRefraction, Term::kFull};
 
-// The label under a cell: the term's name and its place in the equation (ASCII only).
+// The label under a cell: the term's name and its place in the equation, in ASCII for the
+// bitmap font (the Unicode equation's symbols spelled out: sum_l for the sum over the lights
+// l, I_a and I_l for the subscripts, * for the middle dot, N.L for N·L).
 std::string_view figure_label(Term term);
 
 // Height in pixels of the label strip under every cell.
 int figure_label_height();
 
+// Pixels of background between two cells, across and down.
+int figure_gutter();
+
+// The font scale of every label of a figure with cells `cell_width` wide: 2 when all six
+// labels fit on one line, else 1 (a label then takes up to the strip's two lines).
+int figure_label_scale(int cell_width);
+
 // Renders the six term images of a prepared scene and lays them out as
-// 3 columns x 2 rows, each cell with its label strip below: the montage is
-// 3*cell_width x 2*(cell_height + figure_label_height()) pixels, linear RGB.
+// 3 columns x 2 rows, each cell with its label strip below, figure_gutter() pixels of
+// background between the cells: the montage is 3*cell_width + 2*gutter x
+// 2*(cell_height + figure_label_height()) + gutter pixels, linear RGB.
 Image make_figure(const PreparedScene& scene, const FigureOptions& options);
 
 // Draws `text` in a built-in bitmap font (stb_easy_font) into `image`, top-left at (x, y),
@@ -44,6 +55,10 @@ void draw_label(Image& image, int x, int y, std::string_view text, int scale, gl
 
 // Width in pixels of `text` in draw_label's font at `scale`.
 int label_width(std::string_view text, int scale);
+
+// `text` broken at its spaces into lines of at most `max_width` pixels in draw_label's font at
+// `scale` (a word wider than that gets a line of its own).
+std::vector<std::string> wrap_text(std::string_view text, int scale, int max_width);
 
 // make_figure written as an 8-bit sRGB PNG (or a PFM by extension). Empty string or the error.
 std::string write_figure(const std::string& path, const PreparedScene& scene, const FigureOptions& options);

@@ -7,8 +7,10 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <utility>
 
 #include "core/scene/camera.h"
+#include "core/scene/math.h"
 #include "core/teaching/ray_tree_view.h"
 #include "io/figure.h"
 #include "io/scene/scene_io.h"
@@ -17,28 +19,29 @@ namespace phonglab {
 
 namespace {
 
-constexpr int kTitleScale = 3;        // font units to pixels of a page at least kLargePage wide
-constexpr int kCaptionScale = 2;
-constexpr int kLargePage = 640;       // narrower pages use one unit less (the text stays a third of the page)
-constexpr int kLineHeight = 12;  // stb_easy_font's line height in font units
-constexpr int kMargin = 12;
-const glm::vec3 kPageBackground{0.02f};
-const glm::vec3 kTitleColor{1.0f};
-const glm::vec3 kCaptionColor{0.8f};
-const glm::vec3 kQuestionColor{1.0f, 0.75f, 0.2f};
-const glm::vec3 kProbeColor{1.0f, 0.9f, 0.1f};
+const glm::vec3 kOutline{0.0f};  // under every line and marker, so it reads on any image
 
-glm::vec3 segment_color(TreeSegmentKind kind) {
+// An sRGB colour given as the previewer's 8-bit one, in the image's linear RGB.
+glm::vec3 srgb(int r, int g, int b) {
+  const auto lin = [](int c) { return static_cast<float>(srgb_to_linear(c / 255.0)); };
+  return {lin(r), lin(g), lin(b)};
+}
+
+// The overlay's colours (src/ui/ray_tree_overlay.cpp, segment_color): bounces by depth 1..4+.
+glm::vec3 segment_color(TreeSegmentKind kind, int depth) {
+  const int bounce = std::clamp(depth, 1, 4) - 1;
+  static const glm::vec3 kReflection[4] = {srgb(0, 230, 255), srgb(60, 140, 255), srgb(140, 100, 255), srgb(210, 90, 255)};
+  static const glm::vec3 kRefraction[4] = {srgb(70, 255, 110), srgb(190, 255, 50), srgb(0, 185, 110), srgb(150, 210, 140)};
   switch (kind) {
-    case TreeSegmentKind::kPrimary: return {1.0f, 1.0f, 1.0f};
-    case TreeSegmentKind::kShadowVisible: return {1.0f, 0.85f, 0.2f};
-    case TreeSegmentKind::kShadowBlocked: return {0.9f, 0.15f, 0.1f};
-    case TreeSegmentKind::kReflection: return {0.2f, 0.8f, 1.0f};
-    case TreeSegmentKind::kRefraction: return {0.3f, 1.0f, 0.4f};
-    case TreeSegmentKind::kArrowN: return {0.3f, 0.4f, 1.0f};
-    case TreeSegmentKind::kArrowL: return {1.0f, 0.85f, 0.2f};
-    case TreeSegmentKind::kArrowR: return {1.0f, 0.3f, 0.8f};
-    case TreeSegmentKind::kArrowV: return {0.9f, 0.9f, 0.9f};
+    case TreeSegmentKind::kPrimary: return srgb(245, 245, 245);
+    case TreeSegmentKind::kShadowVisible: return srgb(255, 220, 40);
+    case TreeSegmentKind::kShadowBlocked: return srgb(255, 55, 45);
+    case TreeSegmentKind::kReflection: return kReflection[bounce];
+    case TreeSegmentKind::kRefraction: return kRefraction[bounce];
+    case TreeSegmentKind::kArrowN: return srgb(255, 255, 255);
+    case TreeSegmentKind::kArrowL: return srgb(255, 220, 40);
+    case TreeSegmentKind::kArrowR: return srgb(255, 80, 220);
+    case TreeSegmentKind::kArrowV: return srgb(255, 150, 40);
   }
   return {1.0f, 1.0f, 1.0f};
 }
@@ -47,36 +50,218 @@ void plot(Image& image, int x, int y, glm::vec3 color) {
   if (x >= 0 && y >= 0 && x < image.width && y < image.height) image.at(x, y) = color;
 }
 
-// A line two pixels wide, stepped along its longer axis.
-void draw_line(Image& image, ImagePoint a, ImagePoint b, glm::vec3 color) {
+// A line `width` pixels wide, stepped along its longer axis.
+void draw_line(Image& image, ImagePoint a, ImagePoint b, glm::vec3 color, int width = 2) {
   const double dx = b.x - a.x, dy = b.y - a.y;
   const int steps = std::max(1, static_cast<int>(std::ceil(std::max(std::abs(dx), std::abs(dy)))));
+  const int lo = -(width - 1) / 2, hi = width / 2;
   for (int i = 0; i <= steps; ++i) {
     const double t = static_cast<double>(i) / steps;
     const int x = static_cast<int>(std::floor(a.x + t * dx)), y = static_cast<int>(std::floor(a.y + t * dy));
-    plot(image, x, y, color);
-    plot(image, x + 1, y, color);
-    plot(image, x, y + 1, color);
+    for (int oy = lo; oy <= hi; ++oy) {
+      for (int ox = lo; ox <= hi; ++ox) plot(image, x + ox, y + oy, color);
+    }
   }
 }
 
-void draw_ring(Image& image, double cx, double cy, double radius, glm::vec3 color) {
+// A line with a dark outline under it.
+void draw_outlined(Image& image, ImagePoint a, ImagePoint b, glm::vec3 color) {
+  draw_line(image, a, b, kOutline, 4);
+  draw_line(image, a, b, color, 2);
+}
+
+void draw_disc(Image& image, double cx, double cy, double radius, glm::vec3 color) {
+  const int x0 = static_cast<int>(std::floor(cx - radius)), x1 = static_cast<int>(std::ceil(cx + radius));
+  const int y0 = static_cast<int>(std::floor(cy - radius)), y1 = static_cast<int>(std::ceil(cy + radius));
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const double ex = x + 0.5 - cx, ey = y + 0.5 - cy;
+      if (ex * ex + ey * ey <= radius * radius) plot(image, x, y, color);
+    }
+  }
+}
+
+void draw_ring(Image& image, double cx, double cy, double radius, glm::vec3 color, int width = 2) {
   const int n = std::max(16, static_cast<int>(radius * 8));
   for (int i = 0; i < n; ++i) {
     const double a = 2 * 3.14159265358979323846 * i / n;
     const double b = 2 * 3.14159265358979323846 * (i + 1) / n;
     draw_line(image, {cx + radius * std::cos(a), cy + radius * std::sin(a)}, {cx + radius * std::cos(b), cy + radius * std::sin(b)},
-              color);
+              color, width);
   }
 }
+
+void draw_triangle(Image& image, ImagePoint a, ImagePoint b, ImagePoint c, glm::vec3 color) {
+  const auto edge = [](ImagePoint p, ImagePoint q, double x, double y) { return (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x); };
+  const double area = edge(a, b, c.x, c.y);
+  if (area == 0) return;
+  const int x0 = static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))), x1 = static_cast<int>(std::ceil(std::max({a.x, b.x, c.x})));
+  const int y0 = static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))), y1 = static_cast<int>(std::ceil(std::max({a.y, b.y, c.y})));
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const double px = x + 0.5, py = y + 0.5;
+      const double w0 = edge(b, c, px, py) / area, w1 = edge(c, a, px, py) / area, w2 = edge(a, b, px, py) / area;
+      if (w0 >= 0 && w1 >= 0 && w2 >= 0) plot(image, x, y, color);
+    }
+  }
+}
+
+// Text on a dark plate, top-left at (x, y), kept inside the image.
+void draw_tag(Image& image, int x, int y, const std::string& text, int scale, glm::vec3 color) {
+  const int w = label_width(text, scale), h = 10 * scale, pad = 2 * scale;
+  x = std::clamp(x, pad, std::max(pad, image.width - w - pad));
+  y = std::clamp(y, pad, std::max(pad, image.height - h - pad));
+  for (int py = y - pad; py < y + h + pad; ++py) {
+    for (int px = x - pad; px < x + w + pad; ++px) plot(image, px, py, kOutline);
+  }
+  draw_label(image, x, y + scale, text, scale, color, w + 1);
+}
+
+// Pixels of the marks: a bit larger on larger images, as the previewer's scale with its UI.
+double mark_size(const Image& image) { return std::max(5.0, image.height / 77.0); }
+int text_scale(const Image& image) { return image.height >= 500 ? 2 : 1; }
+
+bool is_arrow(TreeSegmentKind kind) { return kind >= TreeSegmentKind::kArrowN; }
+
+const char* arrow_letter(TreeSegmentKind kind, bool blinn) {
+  switch (kind) {
+    case TreeSegmentKind::kArrowN: return "N";
+    case TreeSegmentKind::kArrowL: return "L";
+    case TreeSegmentKind::kArrowR: return blinn ? "H" : "R";
+    case TreeSegmentKind::kArrowV: return "V";
+    default: return "";
+  }
+}
+
+// The ray tree as the previewer's overlay draws it (src/ui/ray_tree_overlay.cpp, draw_ray_tree),
+// in three layers: the arrows' shafts, the rays over them (a shadow ray runs along its L arrow,
+// and its red end at the occluder must show), then the arrowheads and their letters. A ray's
+// end: the primary hit a dot, a blocked shadow ray a cross at the occluder, a seen one a ring.
+void draw_ray_tree(Image& image, const std::vector<ScreenSegment>& segments, bool blinn, int lit_lights) {
+  const double mark = mark_size(image) * 0.8;
+  const int scale = text_scale(image);
+  for (int pass = 0; pass < 3; ++pass) {
+    for (const ScreenSegment& s : segments) {
+      if (is_arrow(s.kind) != (pass != 1)) continue;
+      const glm::vec3 color = segment_color(s.kind, s.depth);
+      const ImagePoint a = s.from, b = s.to;
+      if (pass < 2) draw_outlined(image, a, b, color);
+      if (pass == 0 || !s.to_visible) continue;
+      if (pass == 2) {
+        const double dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
+        std::string letter = arrow_letter(s.kind, blinn);
+        if ((s.kind == TreeSegmentKind::kArrowL || s.kind == TreeSegmentKind::kArrowR) && lit_lights > 1) {
+          letter += std::to_string(s.light);
+        }
+        if (len < 3) {  // seen end-on (V, unless the head moves): a ring with a dot
+          draw_ring(image, b.x, b.y, mark, color);
+          draw_disc(image, b.x, b.y, 1.5, color);
+          draw_tag(image, static_cast<int>(b.x - mark) - label_width(letter, scale) - 3, static_cast<int>(b.y - mark) - 10 * scale,
+                   letter, scale, color);
+          continue;
+        }
+        const double ux = dx / len, uy = dy / len, head = std::min(1.6 * mark, 0.5 * len);
+        const ImagePoint base{b.x - ux * head, b.y - uy * head};
+        draw_triangle(image, b, {base.x - uy * head * 0.5, base.y + ux * head * 0.5}, {base.x + uy * head * 0.5, base.y - ux * head * 0.5},
+                      color);
+        const int w = label_width(letter, scale), h = 10 * scale;
+        draw_tag(image, static_cast<int>(b.x + ux * (h * 0.8 + 2) - w / 2.0), static_cast<int>(b.y + uy * (h * 0.8 + 2) - h / 2.0),
+                 letter, scale, color);
+        continue;
+      }
+      switch (s.kind) {
+        case TreeSegmentKind::kPrimary:
+          draw_disc(image, b.x, b.y, mark * 0.8 * 1.3, kOutline);
+          draw_disc(image, b.x, b.y, mark * 0.8, color);
+          break;
+        case TreeSegmentKind::kShadowBlocked:
+          draw_line(image, {b.x - mark, b.y - mark}, {b.x + mark, b.y + mark}, color);
+          draw_line(image, {b.x - mark, b.y + mark}, {b.x + mark, b.y - mark}, color);
+          break;
+        case TreeSegmentKind::kShadowVisible: draw_ring(image, b.x, b.y, mark * 0.7, color); break;
+        case TreeSegmentKind::kReflection:
+        case TreeSegmentKind::kRefraction:
+          draw_disc(image, b.x, b.y, mark * 0.7, color);
+          draw_tag(image, static_cast<int>(b.x + mark + 2), static_cast<int>(b.y) - 10 * scale - 2, std::to_string(s.depth), scale,
+                   color);
+          break;
+        default: break;
+      }
+    }
+  }
+}
+
+// The probed pixel's mark: the previewer's ring with its four ticks (src/ui/overlay.cpp, draw_probe_ring).
+void draw_probe_ring(Image& image, double cx, double cy) {
+  const double r = std::max(6.0, image.height / 60.0);
+  const glm::vec3 yellow = srgb(255, 230, 0);
+  draw_ring(image, cx, cy, r, kOutline, 4);
+  draw_ring(image, cx, cy, r, yellow);
+  for (const auto& [ux, uy] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}}) {
+    draw_line(image, {cx + ux * r, cy + uy * r}, {cx + ux * 2.2 * r, cy + uy * 2.2 * r}, yellow);
+  }
+}
+
+}  // namespace
+
+void draw_light_markers(Image& image, const Scene& scene) {
+  const CameraFrame frame = make_camera_frame(scene.camera, image.width, image.height);
+  const double r = mark_size(image);
+  const int scale = text_scale(image);
+  const double inset = 2.5 * r;
+  for (int i = 0; i < static_cast<int>(scene.lights.size()); ++i) {
+    const Light& light = scene.lights[static_cast<std::size_t>(i)];
+    if (light.type != LightType::kPoint) continue;
+    const std::optional<ImagePoint> at = project_point(frame, light.position);
+    if (!at || !std::isfinite(at->x) || !std::isfinite(at->y)) continue;  // behind the eye: none, as in the previewer
+    const double m = std::max(max_channel(light.intensity), 1e-9);
+    const glm::vec3 fill = light.enabled ? glm::vec3(static_cast<float>(light.intensity.x / m), static_cast<float>(light.intensity.y / m),
+                                                     static_cast<float>(light.intensity.z / m))
+                                         : glm::vec3(0.13f);
+    const ImagePoint p{std::clamp(at->x, inset, std::max(inset, image.width - inset)),
+                       std::clamp(at->y, inset, std::max(inset, image.height - inset))};
+    if (p.x != at->x || p.y != at->y) {
+      // Outside the image: an arrowhead at its edge pointing at the light.
+      const double dx = at->x - p.x, dy = at->y - p.y, len = std::hypot(dx, dy);
+      const double ux = dx / len, uy = dy / len;
+      const ImagePoint tip{p.x + ux * r * 1.5, p.y + uy * r * 1.5};
+      const ImagePoint left{p.x - uy * r, p.y + ux * r}, right{p.x + uy * r, p.y - ux * r};
+      draw_triangle(image, {tip.x + ux * 2, tip.y + uy * 2}, {left.x - uy * 1.5, left.y + ux * 1.5},
+                    {right.x + uy * 1.5, right.y - ux * 1.5}, kOutline);
+      draw_triangle(image, tip, left, right, fill);
+    } else {
+      // Short rays around the disc read as "a light", not as a scene object.
+      for (int k = 0; k < 8; ++k) {
+        const double a = k * 0.7853981633974483;
+        const ImagePoint from{p.x + std::cos(a) * r * 1.3, p.y + std::sin(a) * r * 1.3};
+        const ImagePoint to{p.x + std::cos(a) * r * 1.9, p.y + std::sin(a) * r * 1.9};
+        draw_outlined(image, from, to, fill);
+      }
+      draw_disc(image, p.x, p.y, r + 1.5, kOutline);
+      if (light.enabled) draw_disc(image, p.x, p.y, r, fill);
+      else draw_ring(image, p.x, p.y, r - 1, fill);
+    }
+    // The label beside it, up and to the right (left of it near the right edge).
+    char label_text[16];  // (snprintf: GCC 12 warns, -Wrestrict, a false positive, on "L" + std::to_string)
+    std::snprintf(label_text, sizeof label_text, "L%d", i);
+    const std::string label = label_text;
+    const int w = label_width(label, scale);
+    const int gap = static_cast<int>(std::lround(2.2 * r));
+    const int x = p.x + gap + w + 4 < image.width ? static_cast<int>(p.x) + gap : static_cast<int>(p.x) - gap - w;
+    const int y = p.y - gap - 10 * scale >= 0 ? static_cast<int>(p.y) - gap - 10 * scale : static_cast<int>(p.y) + gap;
+    draw_tag(image, x, y, label, scale, glm::vec3(1.0f));
+  }
+}
+
+namespace {
 
 // The view's image; `eye` is its shading eye (view_shading_eye), found once per view.
 Image render_plain(const PreparedScene& prepared, const StepView& view, const std::optional<Vec3>& eye, int width, int height,
                    const HandoutOptions& options) {
   if (view.small_multiples) {
     FigureOptions figure;
-    figure.cell_width = std::max(1, width / 3);
-    figure.cell_height = std::max(1, (height - 2 * figure_label_height()) / 2);
+    figure.cell_width = std::max(1, (width - 2 * figure_gutter()) / 3);
+    figure.cell_height = std::max(1, (height - 2 * figure_label_height() - figure_gutter()) / 2);
     figure.spp = options.spp;
     figure.threads = options.threads;
     figure.shading_eye = eye;
@@ -96,16 +281,25 @@ void draw_probe(Image& image, const PreparedScene& prepared, const StepView& vie
   const auto pixel = probe_in(prepared.scene(), prepared.scene().camera, view, image.width, image.height);
   if (!pixel) return;
   const int px = (*pixel)[0], py = (*pixel)[1];
-  if (view.ray_tree) {
-    const PixelProbe probe = probe_pixel(prepared, image.width, image.height, px, py,
-                                         eye);
-    const CameraFrame frame = make_camera_frame(prepared.scene().camera, image.width, image.height);
-    const auto segments = ray_tree_segments(prepared.scene(), probe.root);
-    for (const ScreenSegment& s : project_ray_tree(frame, segments, ray_tree_near(prepared.scene(), probe.root))) {
-      draw_line(image, s.from, s.to, segment_color(s.kind));
-    }
+  draw_probe_ring(image, px + 0.5, py + 0.5);
+  if (!view.ray_tree) return;
+  const PixelProbe probe = probe_pixel(prepared, image.width, image.height, px, py, eye);
+  const CameraFrame frame = make_camera_frame(prepared.scene().camera, image.width, image.height);
+  const auto segments = project_ray_tree(frame, ray_tree_segments(prepared.scene(), probe.root),
+                                         ray_tree_near(prepared.scene(), probe.root));
+  int lit_lights = 0;
+  for (const ProbeLight& light : probe.root.lights) lit_lights += light.lit_side ? 1 : 0;
+  draw_ray_tree(image, segments, prepared.scene().specular_model == SpecularModel::kBlinn, lit_lights);
+  // Seen from the eye the primary ray is a point (it runs through the pixel into the picture):
+  // say which ray that dot ends.
+  for (const ScreenSegment& s : segments) {
+    if (s.kind != TreeSegmentKind::kPrimary || !s.to_visible || std::hypot(s.to.x - s.from.x, s.to.y - s.from.y) >= 3) continue;
+    const int scale = text_scale(image);
+    const int r = static_cast<int>(std::lround(std::max(6.0, image.height / 60.0)));
+    const char* const tag = "ray from the eye";  // centred below the ring's lower tick
+    draw_tag(image, px - label_width(tag, scale) / 2, py + static_cast<int>(2.4 * r) + 3, tag, scale,
+             segment_color(TreeSegmentKind::kPrimary, 0));
   }
-  draw_ring(image, px + 0.5, py + 0.5, std::max(6.0, image.height / 60.0), kProbeColor);
 }
 
 std::string base64(const std::string& bytes) {
@@ -160,95 +354,11 @@ Image render_step_view(const Lesson& lesson, LessonPlace place, const HandoutOpt
                                  options);
     image.pixels = compare_pixels(image.pixels, a.pixels, width, view.compare, view.wipe, view.difference_gain);
   }
-  if (!view.small_multiples) draw_probe(image, prepared, view, eye);
+  // The marks belong to the one full view, as in the previewer: none over the small multiples.
+  if (view.small_multiples) return image;
+  draw_probe(image, prepared, view, eye);
+  if (view.light_markers) draw_light_markers(image, prepared.scene());
   return image;
-}
-
-std::string ascii_text(const std::string& text) {
-  static const std::pair<std::string_view, std::string_view> kSpelled[] = {
-      {"\xC2\xB7", "*"},   {"\xCE\xA3", "sum "}, {"\xC3\x97", "x"},     {"\xE2\x88\x92", "-"}, {"\xE2\x80\x94", " - "},
-      {"\xE2\x80\x93", "-"}, {"\xE2\x80\x99", "'"}, {"\xE2\x80\x9C", "\""}, {"\xE2\x80\x9D", "\""}, {"\xE2\x89\xA5", ">="},
-      {"\xE2\x89\xA4", "<="}, {"\xE2\x86\x92", "->"}, {"\xCE\xB7", "eta"}, {"\xC2\xB0", " deg"}, {"\xE2\x80\xA6", "..."}};
-  std::string out;
-  for (std::size_t i = 0; i < text.size();) {
-    bool matched = false;
-    for (const auto& [from, to] : kSpelled) {
-      if (text.compare(i, from.size(), from) == 0) {
-        out += to;
-        i += from.size();
-        matched = true;
-        break;
-      }
-    }
-    if (matched) continue;
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c < 0x80) {
-      out += c == '\n' ? ' ' : text[i];
-      ++i;
-    } else {
-      out += '?';  // any other character: one mark for its bytes
-      ++i;
-      while (i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80) ++i;
-    }
-  }
-  return out;
-}
-
-std::vector<std::string> wrap_text(const std::string& text, int scale, int max_width) {
-  std::vector<std::string> lines;
-  std::istringstream words(text);
-  std::string word, line;
-  while (words >> word) {
-    const std::string longer = line.empty() ? word : line + " " + word;
-    if (!line.empty() && label_width(longer, scale) > max_width) {
-      lines.push_back(line);
-      line = word;
-    } else {
-      line = longer;
-    }
-  }
-  if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
-Image step_page(const Lesson& lesson, LessonPlace place, const HandoutOptions& options) {
-  const LessonStep& step = lesson.steps.at(static_cast<std::size_t>(place.step));
-  const Image image = render_step_view(lesson, place, options);
-  const int text_width = std::max(1, image.width - 2 * kMargin);
-  const int smaller = image.width >= kLargePage ? 0 : 1;
-  const int title_scale = kTitleScale - smaller, caption_scale = kCaptionScale - smaller;
-  char number[32];
-  std::snprintf(number, sizeof number, "%d/%zu  ", place.step + 1, lesson.steps.size());
-  const auto title = wrap_text(number + ascii_text(step.title), title_scale, text_width);
-  auto caption = wrap_text(ascii_text(step.caption), caption_scale, text_width);
-  std::vector<std::string> question;
-  if (step.has_question()) question = wrap_text("Q: " + ascii_text(step.question), caption_scale, text_width);
-  std::vector<std::string> answer;
-  if (place.revealed && step.has_question()) answer = wrap_text("A: " + ascii_text(step.answer), caption_scale, text_width);
-  const int title_h = static_cast<int>(title.size()) * kLineHeight * title_scale;
-  const int line_h = kLineHeight * caption_scale;
-  const int text_h = title_h + static_cast<int>(caption.size() + question.size() + answer.size()) * line_h + 3 * kMargin;
-  Image page;
-  page.width = image.width;
-  page.height = image.height + text_h;
-  page.pixels.assign(static_cast<std::size_t>(page.width) * static_cast<std::size_t>(page.height), kPageBackground);
-  std::copy(image.pixels.begin(), image.pixels.end(), page.pixels.begin());
-  int y = image.height + kMargin;
-  for (const std::string& l : title) {
-    draw_label(page, kMargin, y, l, title_scale, kTitleColor, text_width);
-    y += kLineHeight * title_scale;
-  }
-  y += kMargin;
-  const auto lines = [&](const std::vector<std::string>& list, glm::vec3 color) {
-    for (const std::string& l : list) {
-      draw_label(page, kMargin, y, l, caption_scale, color, text_width);
-      y += line_h;
-    }
-  };
-  lines(caption, kCaptionColor);
-  lines(question, kQuestionColor);
-  lines(answer, kTitleColor);
-  return page;
 }
 
 std::string write_handout(const Lesson& lesson, const std::string& dir, const HandoutOptions& options,
@@ -259,18 +369,20 @@ std::string write_handout(const Lesson& lesson, const std::string& dir, const Ha
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(lesson.title)
        << "</title>\n<style>\nbody{font-family:sans-serif;max-width:70em;margin:2em auto;padding:0 1em;color:#222}\n"
-          "img{max-width:100%;display:block;margin:.5em 0}\n.step{margin-bottom:3em}\n.question{color:#a60}\n"
+          "img{max-width:100%;display:block;margin:.5em 0}\n.step{margin-bottom:3em}\n.question{color:#a60}\n.of{font-size:60%;font-weight:normal;color:#777}\n"
           "</style>\n</head>\n<body>\n<h1>"
        << html_escape(lesson.title) << "</h1>\n<p>" << html_escape(lesson.description) << "</p>\n";
-  for (int i = 0; i < static_cast<int>(lesson.steps.size()); ++i) {
+  const int steps = static_cast<int>(lesson.steps.size());
+  for (int i = 0; i < steps; ++i) {
     const LessonStep& step = lesson.steps[static_cast<std::size_t>(i)];
     html << "<section class=\"step\" id=\"step-" << i + 1 << "\">\n<h2>" << i + 1 << ". " << html_escape(step.title)
-         << "</h2>\n<p>" << html_escape(step.caption) << "</p>\n";
+         << " <span class=\"of\">(step " << i + 1 << " of " << steps << ")</span></h2>\n<p>" << html_escape(step.caption)
+         << "</p>\n";
     for (const bool revealed : {false, true}) {
       if (revealed && !step.has_question()) break;
       const std::string name = step_file(i, revealed);
       const std::string path = (std::filesystem::path(dir) / name).string();
-      const std::string png = encode_png_srgb(step_page(lesson, {i, revealed}, options));
+      const std::string png = encode_png_srgb(render_step_view(lesson, {i, revealed}, options));
       if (std::string err = write_file_atomically(path, png); !err.empty()) return path + ": " + err;
       if (written != nullptr) written->push_back(path);
       if (revealed) html << "<p><b>Answer:</b> " << html_escape(step.answer) << "</p>\n";

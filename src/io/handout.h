@@ -1,7 +1,8 @@
 // Lesson handouts: every step rendered as it is presented (its term or small multiples, the
-// head moved, the depth cut, the compare against A, the probed pixel and its ray tree), its
-// caption set below the image, and an HTML page holding them all. Deterministic: the same
-// lesson and options give the same bytes for any thread count.
+// head moved, the depth cut, the compare against A, the probed pixel and its ray tree, the
+// light markers), and an HTML page holding them all with each step's number, title, caption,
+// question and answer. Deterministic: the same lesson and options give the same bytes for any
+// thread count.
 #pragma once
 
 #include <string>
@@ -19,18 +20,17 @@ struct HandoutOptions {
   int threads = 0;  // 0: all hardware threads (the bytes do not depend on it)
 };
 
-// The image a step shows at `place` (linear RGB), without its caption.
+// The image a step shows at `place` (linear RGB), as the previewer's view shows it: its term
+// or small multiples, the compare, and over the full view the probed pixel's ring and its ray
+// tree (the overlay's colours and marks) and, unless the view hides them, the light markers.
+// No text of the step: the title, caption, question and answer are the page's (index.html).
 Image render_step_view(const Lesson& lesson, LessonPlace place, const HandoutOptions& options);
 
-// The step's page: its image with the title and caption below (and the question, or the
-// answer once revealed), in the PNG font (ASCII: the equation's symbols are spelled out).
-Image step_page(const Lesson& lesson, LessonPlace place, const HandoutOptions& options);
-
-// Text as the PNG font can draw it: the equation's symbols (middle dot, sigma, ...) spelled in ASCII.
-std::string ascii_text(const std::string& text);
-
-// `text` broken into lines of at most `max_width` pixels in draw_label's font at `scale`.
-std::vector<std::string> wrap_text(const std::string& text, int scale, int max_width);
+// The previewer's light markers drawn into `image` (seen through scene.camera at the image's
+// size): each point light a filled disc in its colour (hollow when muted) with short rays
+// around it and its label "L0", "L1", ...; one outside the image an arrowhead at the edge
+// pointing at it; none for a light behind the eye or a directional one.
+void draw_light_markers(Image& image, const Scene& scene);
 
 // Writes DIR/step-NN.png for every step (NN from 01; a question's answer as answer-NN.png)
 // and DIR/index.html, a page holding every image (inline, so it is one file to send) and the

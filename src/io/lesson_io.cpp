@@ -3,6 +3,7 @@
 // file's own rules (SceneMembers).
 #include "io/lesson_io.h"
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <map>
@@ -101,19 +102,47 @@ class LessonReader : private SceneMembers {
     if (const auto it = scenes_.find(arg); it != scenes_.end()) return it->second;
     const bool embedded = find_embedded_scene(arg) != nullptr;
     const std::filesystem::path file(arg);
-    LoadResult r = embedded ? load_scene_arg(arg)
-                            : load_scene_file(file.is_absolute() ? arg : (base_dir_ / file).lexically_normal().string());
+    const std::filesystem::path path = file.is_absolute() ? file : (base_dir_ / file).lexically_normal();
+    LoadResult r = embedded ? load_scene_arg(arg) : load_scene_file(path.string());
     if (!r.ok()) {
       std::string why = r.errors.empty() ? "it does not load" : r.errors.front().to_string();
       if (r.errors.size() > 1) why += " (and " + std::to_string(r.errors.size() - 1) + " more)";
-      if (arg.find_first_of("/.") == std::string::npos) {
-        std::vector<std::string_view> names;
-        for (const EmbeddedScene& e : embedded_scenes()) names.push_back(e.name);
-        why += "; not an embedded scene either" + suggestion(arg, names, "embedded scenes");
-      }
+      if (!embedded) why += misspelt_scene(arg, path);
       if (at != nullptr) report(*at, "the scene does not load: " + why);
     }
     return scenes_[arg] = r.scene;
+  }
+
+  // What follows "cannot read file" for a scene `arg` (resolved to `path`) that is neither
+  // embedded nor an existing file: a bare name, the nearest embedded scene's; a path, the file
+  // of the nearest name in its folder (as the lesson would write it), else the nearest
+  // embedded scene's name for its stem. Empty when the file exists (it does not load: its own
+  // errors say why).
+  static std::string misspelt_scene(const std::string& arg, const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec)) return "";
+    std::vector<std::string_view> embedded;
+    for (const EmbeddedScene& e : embedded_scenes()) embedded.push_back(e.name);
+    if (arg.find_first_of("/.") == std::string::npos) return "; not an embedded scene either" + suggestion(arg, embedded, "embedded scenes");
+    std::vector<std::string> files;
+    for (std::filesystem::directory_iterator it(path.parent_path().empty() ? "." : path.parent_path(), ec), end; !ec && it != end;
+         it.increment(ec)) {
+      std::error_code type_ec;
+      if (it->is_regular_file(type_ec)) files.push_back(it->path().filename().string());
+      if (files.size() >= 10000) break;  // a huge folder: the first ten thousand names are enough to guess from
+    }
+    std::sort(files.begin(), files.end());  // the same suggestion whatever order the folder lists them in
+    const std::vector<std::string_view> names(files.begin(), files.end());
+    const std::string name = path.filename().string();
+    if (const auto near = closest(name, names)) {
+      const std::string parent = std::filesystem::path(arg).parent_path().string();
+      const std::string written = parent.empty() ? std::string(*near) : (std::filesystem::path(parent) / std::string(*near)).string();
+      return " (did you mean " + json_string(written) + "?)";
+    }
+    if (const auto near = closest(path.stem().string(), embedded)) {
+      return "; nor the embedded scene's name (did you mean " + json_string(*near) + "?)";
+    }
+    return "";
   }
 
   void changes(const Val& v, Scene& s) {
@@ -266,6 +295,19 @@ class LessonReader : private SceneMembers {
   std::vector<std::pair<Val, int>> compare_refs_;  // "against": N, checked once every step is known
 };
 
+// A problem inside a step says which step, as the previewer and the handouts number them (from 1):
+// `steps[2].show.probe[0]: (step 3) must be ...`; the JSON path keeps the file's own index.
+void number_steps(std::vector<Diagnostic>& errors) {
+  for (Diagnostic& d : errors) {
+    constexpr std::string_view kSteps = "steps[";
+    if (d.path.compare(0, kSteps.size(), kSteps) != 0) continue;
+    std::size_t i = kSteps.size(), index = 0;
+    while (i < d.path.size() && d.path[i] >= '0' && d.path[i] <= '9' && index < 1000000) index = index * 10 + static_cast<std::size_t>(d.path[i++] - '0');
+    if (i == kSteps.size() || i >= d.path.size() || d.path[i] != ']') continue;
+    d.message = "(step " + std::to_string(index + 1) + ") " + d.message;
+  }
+}
+
 LessonLoad load_text_checked(const std::string& text, const std::string& file_name, const std::string& base_dir) {
   Issues issues;
   LessonLoad r;
@@ -277,6 +319,7 @@ LessonLoad load_text_checked(const std::string& text, const std::string& file_na
   }
   const bool truncated = issues.full();
   r.errors = to_diagnostics(text, std::move(issues.list()), truncated, file_name);
+  number_steps(r.errors);
   if (r.errors.empty() && lesson) {
     lesson->name = std::filesystem::path(file_name).stem().string();
     r.lesson = std::move(lesson);

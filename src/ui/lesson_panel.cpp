@@ -2,12 +2,43 @@
 // and the way back from exploring to the step as written.
 #include "ui/panels.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <string_view>
+#include <vector>
 
 #include "io/embedded_scenes.h"
 #include "ui/widgets.h"
 
 namespace phonglab::ui {
+
+namespace {
+
+// Every diagnostic of a lesson that does not load, one a line as the loader writes them
+// (file:line:col: json.path: (step N) message, with its suggestion), each wrapped to the
+// panel; many of them scroll in a box of their own.
+void lesson_errors(const std::string& text) {
+  std::vector<std::string_view> lines;
+  for (std::size_t at = 0; at <= text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    if (end > at) lines.emplace_back(text.data() + at, end - at);
+    at = end + 1;
+  }
+  const ImVec4 red(1, 0.45f, 0.35f, 1);
+  if (lines.size() > 1) ImGui::TextColored(red, "the lesson does not load: %zu problems", lines.size());
+  constexpr std::size_t kShownWithoutScrolling = 6;
+  const bool scroll = lines.size() > kShownWithoutScrolling;
+  if (scroll) ImGui::BeginChild("##lesson_errors", ImVec2(-1, ImGui::GetTextLineHeightWithSpacing() * 10), true);
+  ImGui::PushStyleColor(ImGuiCol_Text, red);
+  for (const std::string_view line : lines) {
+    if (lines.size() > 1) ImGui::Bullet();
+    ImGui::TextWrapped("%.*s", static_cast<int>(line.size()), line.data());
+  }
+  ImGui::PopStyleColor();
+  if (scroll) ImGui::EndChild();
+}
+
+}  // namespace
 
 void lessons_panel(const LessonPanelView& view, std::string& path_field, LessonActions& actions) {
   for (const EmbeddedLesson& l : embedded_lessons()) {
@@ -23,7 +54,7 @@ void lessons_panel(const LessonPanelView& view, std::string& path_field, LessonA
   ImGui::SameLine();
   if (ImGui::Button("Open##lesson") && !path_field.empty()) actions.open = path_field;
   locate("lesson.open");
-  if (!view.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.35f, 1), "%s", view.error.c_str());
+  if (!view.error.empty()) lesson_errors(view.error);
   if (view.lesson == nullptr) {
     ImGui::TextDisabled("a lesson walks through the lecture step by step");
     return;

@@ -263,7 +263,7 @@ TEST_F(CliTest, LessonsListsTheEmbeddedLessonsAndLessonWritesTheHandout) {
   const std::string bad = write("bad.json", "{\"title\": \"t\",\n \"steps\": [{\"title\": 1}]}");
   const RunResult broken = run_cli("lesson " + bad + " -o " + path("h"));
   EXPECT_EQ(broken.exit_code, 1);
-  EXPECT_NE(broken.out.find(bad + ":2:22: steps[0].title: must be a string (got 1)"), std::string::npos) << broken.out;
+  EXPECT_NE(broken.out.find(bad + ":2:22: steps[0].title: (step 1) must be a string (got 1)"), std::string::npos) << broken.out;
   const RunResult ok = run_cli("lesson raytracing -o " + path("h") + " --width 64 --height 36 --spp 1");
   EXPECT_EQ(ok.exit_code, 0) << ok.out;
   EXPECT_TRUE(fs::exists(path("h/step-01.png")));

@@ -143,8 +143,9 @@ TEST(Figure, IsDeterministicAndHasTheGridSize) {
            (static_cast<unsigned>(static_cast<unsigned char>(bytes_a[at + 2])) << 8) |
            static_cast<unsigned>(static_cast<unsigned char>(bytes_a[at + 3]));
   };
-  EXPECT_EQ(be32(16), 3u * 96u);
-  EXPECT_EQ(be32(20), 2u * (54u + static_cast<unsigned>(figure_label_height())));
+  const auto gutter = static_cast<unsigned>(figure_gutter());
+  EXPECT_EQ(be32(16), 3u * 96u + 2u * gutter);
+  EXPECT_EQ(be32(20), 2u * (54u + static_cast<unsigned>(figure_label_height())) + gutter);
   std::filesystem::remove_all(dir);
 }
 
@@ -155,10 +156,20 @@ TEST(Figure, CellsAreTheTermImagesAndLabelsAreDrawn) {
   options.cell_height = kHeight;
   const Image figure = make_figure(scene, options);
   const int row_h = kHeight + figure_label_height();
+  const int gutter = figure_gutter();
+  ASSERT_GE(gutter, 2);
+  const glm::vec3 background = figure.at(0, kHeight);  // the label strip's
   for (std::size_t cell = 0; cell < kFigureTerms.size(); ++cell) {
     const Accumulator term = render_once(scene, kFigureTerms[cell]);
-    const int x0 = static_cast<int>(cell % 3) * kWidth;
-    const int y0 = static_cast<int>(cell / 3) * row_h;
+    const int x0 = static_cast<int>(cell % 3) * (kWidth + gutter);
+    const int y0 = static_cast<int>(cell / 3) * (row_h + gutter);
+    // The gutters: background between the cells, across and down.
+    if (cell % 3 < 2) {
+      for (int y = y0; y < y0 + kHeight; ++y) ASSERT_EQ(figure.at(x0 + kWidth, y), background) << "cell " << cell;
+    }
+    if (cell < 3) {
+      for (int x = x0; x < x0 + kWidth; ++x) ASSERT_EQ(figure.at(x, y0 + row_h), background) << "cell " << cell;
+    }
     for (int y = 0; y < kHeight; y += 5) {
       for (int x = 0; x < kWidth; x += 5) {
         ASSERT_EQ(figure.at(x0 + x, y0 + y), glm::vec3(term.mean(x, y))) << "cell " << cell;
@@ -170,6 +181,22 @@ TEST(Figure, CellsAreTheTermImagesAndLabelsAreDrawn) {
     }
     EXPECT_GT(lit, 20) << "cell " << cell << " has a label";
   }
+}
+
+TEST(Figure, OneLabelSizeAndTheSymbolsSpelledOut) {
+  // The large font only where every label fits a cell; else every label is small.
+  EXPECT_EQ(figure_label_scale(480), 2);
+  EXPECT_EQ(figure_label_scale(160), 1);
+  for (const Term t : kFigureTerms) {
+    EXPECT_LE(label_width(figure_label(t), 2), 480 - 8) << figure_label(t);
+  }
+  EXPECT_EQ(figure_label(Term::kAmbient), "ambient ka*I_a");
+  EXPECT_NE(figure_label(Term::kDiffuse).find("sum_l vis*I_l*kd"), std::string_view::npos);
+  EXPECT_NE(figure_label(Term::kSpecular).find("sum_l vis*I_l*ks"), std::string_view::npos);
+  // A small label is broken into lines that fit the cell.
+  const auto lines = wrap_text(figure_label(Term::kSpecular), 1, 160 - 8);
+  EXPECT_EQ(lines.size(), 2U);
+  for (const auto& l : lines) EXPECT_LE(label_width(l, 1), 160 - 8) << l;
 }
 
 TEST(Figure, BadUsageExitsTwo) {

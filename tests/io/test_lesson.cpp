@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,9 @@
 #include <string>
 
 #include "core/render/render.h"
+#include "core/scene/camera.h"
+#include "core/scene/math.h"
+#include "core/teaching/ray_tree_view.h"
 #include "core/teaching/lesson.h"
 #include "io/embedded_scenes.h"
 #include "io/figure.h"
@@ -71,23 +75,23 @@ TEST(LessonFile, ErrorsArePositionedWithTheJsonPath) {
   EXPECT_EQ(errors_of("{\"title\": \"t\",\n \"stepz\": []}"),
             "bad.json:1:1: missing key \"steps\"\nbad.json:2:2: stepz: unknown key (did you mean \"steps\"?)");
   const std::string base = "{\"title\": \"t\", \"steps\": [\n";
-  EXPECT_NE(errors_of(base + "{\"title\": \"a\", \"caption\": \"c\"}]}").find("bad.json:2:1: steps[0]: missing key \"scene\""),
+  EXPECT_NE(errors_of(base + "{\"title\": \"a\", \"caption\": \"c\"}]}").find("bad.json:2:1: steps[0]: (step 1) missing key \"scene\""),
             std::string::npos);
   EXPECT_NE(errors_of(base + "{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"lectur\"}]}")
-                .find("bad.json:2:41: steps[0].scene: the scene does not load: "),
+                .find("bad.json:2:41: steps[0].scene: (step 1) the scene does not load: "),
             std::string::npos);
   EXPECT_NE(errors_of(base + "{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"lectur\"}]}")
                 .find("not an embedded scene either (did you mean \"lecture\"?)"),
             std::string::npos);
   const std::string step = "{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"lecture\", ";
   EXPECT_NE(errors_of(base + step + "\"changes\": {\"materials\": {\"plastik\": {\"kd\": 1}}}}]}")
-                .find("steps[0].changes.materials.plastik: unknown material \"plastik\" (did you mean \"plastic\"?)"),
+                .find("steps[0].changes.materials.plastik: (step 1) unknown material \"plastik\" (did you mean \"plastic\"?)"),
             std::string::npos);
   EXPECT_NE(errors_of(base + step + "\"changes\": {\"materials\": {\"plastic\": {\"kd\": -1}}}}]}")
-                .find("steps[0].changes.materials.plastic.kd: must be >= 0 (got -1)"),
+                .find("steps[0].changes.materials.plastic.kd: (step 1) must be >= 0 (got -1)"),
             std::string::npos);
   EXPECT_NE(errors_of(base + step + "\"show\": {\"probe\": [960, 10]}}]}")
-                .find("steps[0].show.probe[0]: must be an integer in 0..959 (got 960)"),
+                .find("steps[0].show.probe[0]: (step 1) must be an integer in 0..959 (got 960)"),
             std::string::npos);
   EXPECT_NE(errors_of(base + step + "\"show\": {\"ray_tree\": true}}]}").find("add \"probe\": [x, y]"), std::string::npos);
   EXPECT_NE(errors_of(base + step + "\"show\": {\"compare\": {\"against\": 5}}}]}").find("there is no step 5 (the lesson has 1)"),
@@ -95,7 +99,7 @@ TEST(LessonFile, ErrorsArePositionedWithTheJsonPath) {
   EXPECT_NE(errors_of(base + step + "\"show\": {\"compare\": {\"against\": \"head\"}}}]}").find("needs \"head_angle_deg\""),
             std::string::npos);
   EXPECT_NE(errors_of(base + step + "\"question\": \"why?\"}]}").find("missing key \"answer\""), std::string::npos);
-  EXPECT_NE(errors_of(base + step + "\"show\": {\"solo\": 2}}]}").find("steps[0].show.solo: must be an integer in 0..1 (got 2)"),
+  EXPECT_NE(errors_of(base + step + "\"show\": {\"solo\": 2}}]}").find("steps[0].show.solo: (step 1) must be an integer in 0..1 (got 2)"),
             std::string::npos);
   EXPECT_NE(errors_of(base + step + "\"show\": {\"term\": \"difuse\"}}]}").find("unknown term \"difuse\" (did you mean \"diffuse\"?)"),
             std::string::npos);
@@ -167,8 +171,8 @@ TEST(EmbeddedLessons, EveryStepRendersWithoutNaN) {
         Accumulator accum;
         accum.reset(kW, kH);
         EXPECT_EQ(render_pass(prepared, options, accum).nan_count, 0U) << e.name << " step " << i + 1;
-        const Image page = step_page(lesson, {i, revealed}, small());
-        EXPECT_GT(page.height, kH) << "the caption is set below the image";
+        const Image page = render_step_view(lesson, {i, revealed}, small());
+        EXPECT_EQ(page.height, kH) << "the image only: its text is the HTML page's";
         for (const glm::vec3& p : page.pixels) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z)) << e.name << " step " << i + 1;
       }
     }
@@ -213,11 +217,12 @@ TEST(EmbeddedLessons, TheDiffuseTermDoesNotChangeWithTheHead) {
     HandoutOptions o = small();
     Lesson copy = lesson;
     copy.steps[static_cast<std::size_t>(i)].view.probe.reset();
+    copy.steps[static_cast<std::size_t>(i)].view.light_markers = false;
     copy.steps[static_cast<std::size_t>(i)].view.head_angle_deg = step.view.head_angle_deg;
     return render_step_view(copy, {i, false}, o);
   }();
   for (const glm::vec3& p : without_ring.pixels) ASSERT_EQ(p, glm::vec3(0));
-  EXPECT_NE(shown.pixels, without_ring.pixels) << "the probed pixel is marked";
+  EXPECT_NE(shown.pixels, without_ring.pixels) << "the probed pixel and the lights are marked";
   // ... while the specular term, and so the full image, does change: the highlight moves.
   const Image spec0 = plain(step.prepared_scene, Term::kSpecular);
   const Image spec1 = plain(step.prepared_scene, Term::kSpecular, eye);
@@ -266,10 +271,13 @@ TEST(EmbeddedLessons, DepthCutStepsEqualTheCliMaxDepth) {
       const LessonStep& step = lesson.steps[static_cast<std::size_t>(i)];
       if (!step.view.depth_cut || step.view.probe) continue;
       ++cut_steps;
-      // `phonglab-cli render SCENE --max-depth D`: the scene file's own scene with max_depth = D.
+      // `phonglab-cli render SCENE --max-depth D`: the scene file's own scene with max_depth = D
+      // (the step's image without its light markers).
       Scene cli = *load_scene_arg(step.scene).scene;
       cli.max_depth = *step.view.depth_cut;
-      EXPECT_EQ(render_step_view(lesson, {i, false}, small()).pixels, plain(cli, Term::kFull).pixels) << e.name << " " << i + 1;
+      Lesson unmarked = lesson;
+      unmarked.steps[static_cast<std::size_t>(i)].view.light_markers = false;
+      EXPECT_EQ(render_step_view(unmarked, {i, false}, small()).pixels, plain(cli, Term::kFull).pixels) << e.name << " " << i + 1;
     }
   }
   EXPECT_GE(cut_steps, 3);
@@ -358,12 +366,174 @@ TEST(Handout, SameBytesForAnyThreadCountAndEveryImageInThePage) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(Handout, CaptionsAreSpelledForThePngFontAndWrapped) {
-  EXPECT_EQ(ascii_text("ka\xC2\xB7Ia + \xCE\xA3_l"), "ka*Ia + sum _l");
-  EXPECT_EQ(ascii_text("caf\xC3\xA9"), "caf?");
-  const auto lines = wrap_text("one two three four five six seven", 2, 100);
-  EXPECT_GT(lines.size(), 1U);
-  for (const auto& l : lines) EXPECT_LE(label_width(l, 2), 100);
+// The caption is written once, in the page (Unicode, with the step's number and title); the
+// PNG is the image alone.
+TEST(Handout, TheTextIsThePagesAndThePngIsTheImage) {
+  const Lesson lesson = embedded("shading");
+  const auto dir = std::filesystem::temp_directory_path() / ("phonglab_handout_text_" + std::to_string(::getpid()));
+  ASSERT_EQ(write_handout(lesson, dir.string(), small()), "");
+  const std::string png = read_all(dir / "step-01.png");
+  ASSERT_GT(png.size(), 24U);
+  const auto be32 = [&](std::size_t at) {
+    return static_cast<unsigned>(static_cast<unsigned char>(png[at])) << 24 | static_cast<unsigned>(static_cast<unsigned char>(png[at + 1])) << 16 |
+           static_cast<unsigned>(static_cast<unsigned char>(png[at + 2])) << 8 | static_cast<unsigned>(static_cast<unsigned char>(png[at + 3]));
+  };
+  EXPECT_EQ(be32(16), static_cast<unsigned>(kW));
+  EXPECT_EQ(be32(20), static_cast<unsigned>(kH)) << "no text below the image";
+  const std::string html = read_all(dir / "index.html");
+  EXPECT_NE(html.find("<h2>1. Ambient alone <span class=\"of\">(step 1 of 11)</span></h2>"), std::string::npos);
+  EXPECT_NE(html.find("I = ka\xC2\xB7I\xE2\x82\x90. The ambient term"), std::string::npos) << "Ia as the panels write it";
+  EXPECT_NE(html.find("This is the end of the lesson."), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// The lessons write the equation's symbols as the panels do (src/ui/widgets.cpp i_a(), i_l():
+// I with a subscript a or l), never "Ia" (which reads as "la" in a sans-serif font); the last
+// step says that the lesson has ended.
+TEST(EmbeddedLessons, CaptionsWriteTheSubscriptsAndTheLastStepEndsTheLesson) {
+  for (const EmbeddedLesson& e : embedded_lessons()) {
+    const Lesson lesson = embedded(std::string(e.name));
+    for (const LessonStep& step : lesson.steps) {
+      for (const std::string* text : {&step.title, &step.caption, &step.question, &step.answer}) {
+        EXPECT_EQ(text->find("Ia"), std::string::npos) << e.name << ": " << *text;
+        EXPECT_EQ(text->find("I_l"), std::string::npos) << e.name << ": " << *text;
+        EXPECT_EQ(text->find("I_a"), std::string::npos) << e.name << ": " << *text;
+      }
+    }
+    EXPECT_NE(lesson.steps.back().caption.find("end of the lesson"), std::string::npos) << e.name;
+  }
+}
+
+// The shadow step asks "Is this point lit?" over the probed point alone; its answer shows what
+// the question hid: the ray tree, the shadow rays red (blocked) and ending at the red sphere.
+TEST(Handout, TheShadowAnswerShowsTheBlockedShadowRaysTheQuestionHides) {
+  const Lesson lesson = embedded("raytracing");
+  const int i = step_titled(lesson, "Shadow rays");
+  const LessonStep& step = lesson.steps[static_cast<std::size_t>(i)];
+  ASSERT_TRUE(step.has_question());
+  EXPECT_FALSE(step.view.ray_tree) << "the question does not give the answer away";
+  EXPECT_TRUE(step.answer_view.ray_tree);
+  HandoutOptions o = small();
+  o.width = 480;
+  o.height = 270;
+  const auto dir = std::filesystem::temp_directory_path() / ("phonglab_handout_shadow_" + std::to_string(::getpid()));
+  ASSERT_EQ(write_handout(lesson, dir.string(), o), "");
+  char name[2][32];
+  std::snprintf(name[0], sizeof name[0], "step-%02d.png", i + 1);
+  std::snprintf(name[1], sizeof name[1], "answer-%02d.png", i + 1);
+  EXPECT_NE(read_all(dir / name[0]), read_all(dir / name[1]));
+  std::filesystem::remove_all(dir);
+
+  const Image question = render_step_view(lesson, {i, false}, o);
+  const Image answer = render_step_view(lesson, {i, true}, o);
+  // The overlay's red (sRGB 255, 55, 45) in linear RGB: no rendered pixel of this scene is that colour.
+  const auto red = [](const glm::vec3& p) { return p.x > 0.9f && p.y < 0.06f && p.z < 0.05f; };
+  EXPECT_EQ(std::count_if(question.pixels.begin(), question.pixels.end(), red), 0) << "no shadow ray in the question";
+  // Each blocked shadow ray is drawn red up to the occluder, where it stops (its cross).
+  const Scene& s = step.prepared_scene;
+  const PreparedScene prepared(s);
+  const auto pixel = probe_in(s, s.camera, step.answer_view, o.width, o.height);
+  ASSERT_TRUE(pixel);
+  const PixelProbe probe = probe_pixel(prepared, o.width, o.height, (*pixel)[0], (*pixel)[1]);
+  const auto segments = project_ray_tree(make_camera_frame(s.camera, o.width, o.height), ray_tree_segments(s, probe.root),
+                                         ray_tree_near(s, probe.root));
+  int blocked = 0;
+  for (const ScreenSegment& seg : segments) {
+    if (seg.kind != TreeSegmentKind::kShadowBlocked) continue;
+    ++blocked;
+    ASSERT_TRUE(seg.to_visible);
+    // The occluder: the red sphere (the probe's own test says both rays meet it).
+    const int x = static_cast<int>(seg.to.x), y = static_cast<int>(seg.to.y);
+    int red_near_end = 0, red_beyond = 0;
+    const double dx = seg.to.x - seg.from.x, dy = seg.to.y - seg.from.y, len = std::hypot(dx, dy);
+    for (int oy = -2; oy <= 2; ++oy) {
+      for (int ox = -2; ox <= 2; ++ox) red_near_end += red(answer.at(x + ox, y + oy)) ? 1 : 0;
+    }
+    // Well past the occluder along the ray: not red (the ray stops there).
+    const int bx = static_cast<int>(seg.to.x + dx / len * 20), by = static_cast<int>(seg.to.y + dy / len * 20);
+    if (bx >= 0 && by >= 0 && bx < answer.width && by < answer.height) red_beyond = red(answer.at(bx, by)) ? 1 : 0;
+    EXPECT_GT(red_near_end, 3) << "the blocked ray is red where it meets the occluder";
+    EXPECT_EQ(red_beyond, 0) << "and does not go on";
+    // Half way along it too (over the L arrow it runs along).
+    const int mx = static_cast<int>(seg.from.x + dx * 0.6), my = static_cast<int>(seg.from.y + dy * 0.6);
+    int red_mid = 0;
+    for (int oy = -1; oy <= 1; ++oy) {
+      for (int ox = -1; ox <= 1; ++ox) red_mid += red(answer.at(mx + ox, my + oy)) ? 1 : 0;
+    }
+    EXPECT_GT(red_mid, 0) << "the blocked ray is drawn over its L arrow";
+  }
+  EXPECT_EQ(blocked, 2);
+}
+
+// "light_markers": false hides the lights' markers in the question; the answer shows them, at
+// each point light's projected position in its colour.
+TEST(Handout, LightMarkersAreHiddenByTheQuestionAndShownByTheAnswer) {
+  const Lesson lesson = embedded("shading");
+  const int i = step_titled(lesson, "Diffuse: kd\xC2\xB7max(0, N\xC2\xB7L)");
+  const LessonStep& step = lesson.steps[static_cast<std::size_t>(i)];
+  ASSERT_FALSE(step.view.light_markers);
+  ASSERT_TRUE(step.answer_view.light_markers);
+  HandoutOptions o = small();
+  o.width = 480;
+  o.height = 270;
+  const Image question = render_step_view(lesson, {i, false}, o);
+  const Image answer = render_step_view(lesson, {i, true}, o);
+  EXPECT_NE(question.pixels, answer.pixels);
+  const CameraFrame frame = make_camera_frame(step.prepared_scene.camera, o.width, o.height);
+  // The marker's place: the light's projection, or for one outside the picture (the lecture's
+  // main light is, up and to the right) the edge point towards it, where an arrowhead points at it.
+  const double r = std::max(5.0, o.height / 77.0), inset = 2.5 * r;
+  int markers = 0;
+  std::vector<ImagePoint> places;
+  for (const Light& light : step.prepared_scene.lights) {
+    if (light.type != LightType::kPoint) continue;
+    const auto at = project_point(frame, light.position);
+    if (!at) continue;  // behind the eye
+    ++markers;
+    const ImagePoint p{std::clamp(at->x, inset, o.width - inset), std::clamp(at->y, inset, o.height - inset)};
+    const double dx = at->x - p.x, dy = at->y - p.y, len = std::hypot(dx, dy);
+    const double ux = len > 0 ? dx / len : 0, uy = len > 0 ? dy / len : 0;
+    const int x = static_cast<int>(p.x + ux * 0.5 * r), y = static_cast<int>(p.y + uy * 0.5 * r);
+    const double m = max_channel(light.intensity);
+    const glm::vec3 colour(static_cast<float>(light.intensity.x / m), static_cast<float>(light.intensity.y / m),
+                           static_cast<float>(light.intensity.z / m));
+    EXPECT_EQ(answer.at(x, y), colour) << "the answer's marker in the light's colour at " << x << ", " << y;
+    EXPECT_NE(question.at(x, y), colour) << "none in the question";
+    places.push_back(p);
+  }
+  EXPECT_GE(markers, 1) << "the lecture's main light is in front of the eye";
+  // Everywhere away from the markers (and their labels) the two images are the same.
+  for (int y = 0; y < o.height; ++y) {
+    for (int x = 0; x < o.width; ++x) {
+      if (question.at(x, y) == answer.at(x, y)) continue;
+      const bool near = std::any_of(places.begin(), places.end(), [&](const ImagePoint& p) { return std::hypot(x - p.x, y - p.y) < 8 * r; });
+      ASSERT_TRUE(near) << x << ", " << y << " differs, away from every marker";
+    }
+  }
+}
+
+TEST(LessonFile, ErrorsNumberTheStepFromOneAndSuggestTheScene) {
+  const std::string base = "{\"title\": \"t\", \"steps\": [\n";
+  const std::string step = "{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"lecture\"}";
+  EXPECT_NE(errors_of(base + step + ",\n" + step + ",\n{\"title\": \"a\", \"caption\": \"c\", \"show\": {\"solo\": 2}}]}")
+                .find("bad.json:4:49: steps[2].show.solo: (step 3) must be an integer in 0..1 (got 2)"),
+            std::string::npos);
+  // A misspelt file next to the lesson: the file of the nearest name in that folder.
+  const auto dir = std::filesystem::temp_directory_path() / ("phonglab_lesson_scene_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "scenes");
+  std::ofstream(dir / "scenes" / "mirrors-2.json") << "{}";
+  std::ofstream(dir / "scenes" / "other.json") << "{}";
+  const LessonLoad load = load_lesson_text(base + "{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"scenes/mirors-2.json\"}]}",
+                                           "bad.json", dir.string());
+  EXPECT_NE(load.error_text().find("(step 1) the scene does not load: "), std::string::npos) << load.error_text();
+  EXPECT_NE(load.error_text().find("(did you mean \"scenes/mirrors-2.json\"?)"), std::string::npos) << load.error_text();
+  // A file name that is nothing like the folder's: the embedded scene its stem is nearest.
+  EXPECT_NE(load_lesson_text(base + "{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"scenes/lectur.json\"}]}", "bad.json",
+                             dir.string())
+                .error_text()
+                .find("(did you mean \"lecture\"?)"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
