@@ -1,5 +1,5 @@
-// phonglab-bench: the speed-versus-error report and the frame timer, run as `phonglab-cli bench`
-// (the CLI executes this program, installed beside it). Usage in phonglab-cli --help.
+// phonglab-bench: the speed-versus-error report and the frame timer, also run as `phonglab-cli
+// bench` (the CLI executes this program, installed beside it). Usage: kUsage, phonglab-bench --help.
 // Exit codes: 0 success, 1 bad input, 2 bad usage.
 #include <algorithm>
 #include <cstdio>
@@ -17,6 +17,7 @@
 #include "core/packet/packet.h"
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
+#include "io/diagnostic.h"
 
 namespace {
 
@@ -24,17 +25,26 @@ using namespace phonglab;
 using namespace phonglab::cli;
 using bench::median;
 
-constexpr const char* kUsage = R"(usage: phonglab-cli bench [--out DIR] [--quick] [--threads N] [--only accel]
-       phonglab-cli bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar] [--edited]
-                           [--reshade shading|light]
+constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [--threads N] [--only accel]
+       phonglab-bench SCENE [--frames N] [--width W] [--height H] [--threads N]
+                      [--scalar] [--edited] [--reshade shading|light]
+  (also run as `phonglab-cli bench ...`, which executes phonglab-bench)
+
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
-  (default bench-out/); --quick finishes in about a minute. --only accel: the
-  acceleration section and the yardsticks alone (accel.md, accel.csv, yardsticks.csv). With SCENE: time Whitted
-  frames (1 spp) of one scene and print the median; --scalar: without the packet
-  tracer (the same image, traced ray by ray); --edited: a new snapshot of the scene each
-  frame, as after every edit in the previewer. --reshade: record the first sample's ray trees
-  once, then time re-shading an edit of kd (shading) or a light's position (light) against
-  render_pass of the same scene, checking the images are bit-identical.
+  (default bench-out/); --quick finishes in about a minute (default: the full
+  report). --only accel: the acceleration section and the yardsticks alone
+  (accel.md, accel.csv, yardsticks.csv; default: every section).
+  With SCENE: time N Whitted frames (default 15; 1 spp each) of one scene at
+  W x H (default 1280 x 720, whatever the scene's size) and print the median;
+  --scalar: without the packet tracer (the same image, traced ray by ray);
+  --edited: a new snapshot of the scene each frame, as after every edit in the
+  previewer. --reshade: record the first sample's ray trees once, then time
+  re-shading an edit of kd (shading) or a light's position (light) against
+  render_pass of the same scene, checking the images are bit-identical
+  (default: plain frames).
+  --threads N: worker threads (default 0: all hardware threads).
+  SCENE is a scene file (JSON) or an embedded scene's name.
+  Exit codes: 0 success, 1 bad input, 2 bad usage.
 )";
 
 // Re-shaded frames: the trees of the first sample recorded once, then each frame an edit of the
@@ -45,17 +55,18 @@ int time_reshading(const std::string& scene_arg, const std::string& kind, int fr
   std::optional<Scene> scene = load_or_report(scene_arg);
   if (!scene) return kExitBadInput;
   if (scene->materials.empty() || (kind == "light" && scene->lights.empty())) {
-    std::fprintf(stderr, "phonglab-cli bench: --reshade %s needs a material and a light\n", kind.c_str());
+    std::fprintf(stderr, "phonglab-bench: --reshade %s needs a material and a light\n", kind.c_str());
     return kExitBadInput;
   }
   auto prepared = std::make_shared<const PreparedScene>(*scene);
   std::unique_ptr<RayTrees> trees = RayTrees::record(prepared, width, height, std::nullopt, threads, std::size_t{4} << 30);
   if (!trees) {
-    std::fprintf(stderr, "phonglab-cli bench: the trees do not fit in 4 GiB\n");
+    std::fprintf(stderr, "phonglab-bench: the trees do not fit in 4 GiB\n");
     return kExitBadInput;
   }
-  std::printf("scene %s, %dx%d, %d threads: trees recorded in %.1f ms, %zu nodes, %.1f MiB\n", scene_arg.c_str(), width,
-              height, resolve_thread_count(threads), trees->record_seconds() * 1e3, trees->node_count(),
+  const std::string thread_count = counted(static_cast<std::size_t>(resolve_thread_count(threads)), "thread");
+  std::printf("scene %s, %dx%d, %s: trees recorded in %.1f ms, %zu nodes, %.1f MiB\n", scene_arg.c_str(), width,
+              height, thread_count.c_str(), trees->record_seconds() * 1e3, trees->node_count(),
               static_cast<double>(trees->memory_bytes()) / (1 << 20));
   RenderOptions options;
   options.threads = threads;
@@ -108,8 +119,9 @@ int time_frames(const std::string& scene_arg, int frames, int width, int height,
     mrays.push_back(static_cast<double>(pass.rays.total()) / pass.seconds / 1e6);
     rays = pass.rays;
   }
-  std::printf("scene %s, %dx%d, 1 spp, %d threads, %zu frames%s, %s tracer\n", scene_arg.c_str(), width, height,
-              resolve_thread_count(options.threads), ms.size(), edited ? " (a new snapshot each)" : "",
+  std::printf("scene %s, %dx%d, 1 spp, %s, %s%s, %s tracer\n", scene_arg.c_str(), width, height,
+              counted(static_cast<std::size_t>(resolve_thread_count(options.threads)), "thread").c_str(),
+              counted(ms.size(), "frame").c_str(), edited ? " (a new snapshot each)" : "",
               options.packets && packet_tracing_applies(*fresh) ? "packet (AVX2)" : "scalar");
   std::printf("rays per frame: %llu (primary %llu, shadow %llu, reflection %llu, refraction %llu)\n",
               static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
@@ -133,7 +145,7 @@ int run(Args& args) {
   const auto reshade = args.take_value("--reshade");
   const auto positional = args.take_positional();
   if (only) {
-    if (*only != "accel" || positional) throw UsageError{"bench --only takes 'accel' and no SCENE"};
+    if (*only != "accel" || positional) throw UsageError{"--only takes 'accel' and no SCENE"};
     return write_accel_report(AccelBenchOptions{quick, threads.value_or(0)}, out_dir.value_or("bench-out"));
   }
   if (!positional) {  // no SCENE: the whole speed-versus-error report
@@ -144,7 +156,7 @@ int run(Args& args) {
     return run_bench_report(report);
   }
   if (reshade) {
-    if (*reshade != "shading" && *reshade != "light") throw UsageError{"bench --reshade takes 'shading' or 'light'"};
+    if (*reshade != "shading" && *reshade != "light") throw UsageError{"--reshade takes 'shading' or 'light'"};
     return time_reshading(*positional, *reshade, frames.value_or(15), width.value_or(1280), height.value_or(720),
                           threads.value_or(0));
   }
@@ -164,7 +176,7 @@ int main(int argc, char** argv) {
   try {
     return run(args);
   } catch (const UsageError& e) {
-    std::cerr << "phonglab-cli bench: " << e.message << "\n(see phonglab-cli --help)\n";
+    std::cerr << "phonglab-bench: " << e.message << "\n(see phonglab-bench --help)\n";
     return kExitUsage;
   }
 }

@@ -11,12 +11,14 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/common/args.h"
 #include "core/accel/accel.h"
+#include "io/diagnostic.h"
 #include "io/embedded_scenes.h"
 #include "io/figure.h"
 #include "io/handout.h"
@@ -34,37 +36,59 @@ using namespace phonglab;
 using namespace phonglab::cli;
 using Clock = std::chrono::steady_clock;
 
+// Samples per pixel of `render` and `figure` without --spp: enough for smooth edges (--spp 1
+// renders the pixel centres only).
+constexpr int kDefaultSpp = 16;
+
 constexpr const char* kUsage = R"(usage: phonglab-cli <command> [options]
 
 commands:
   render [SCENE] -o OUT [--width W] [--height H] [--spp N] [--term T]
          [--max-depth D] [--fov-y DEG] [--threads N] [--stats FILE.json]
       Render to OUT (.pfm: linear float32, unclamped; .png: 8-bit sRGB).
-      --fov-y: the camera's vertical field of view instead of the scene's
-         (the previewer's dump_state camera_fov, to match a narrow view).
+      W x H: the image's size (default: the scene's image size, 960 x 540 in a
+         file without one). N: samples per pixel (default 16, anti-aliased;
+         --spp 1 renders the pixel centres only). D: the recursion depth
+         (default: the scene's max_depth).
+      --fov-y: the camera's vertical field of view (default: the scene's; the
+         previewer's dump_state camera_fov, to match a narrow view).
       T: full (default), ambient, diffuse, specular, reflection, refraction,
          or the debug views normal, depth, rays. A .png of rays is a heat map
          (0 black .. the image's maximum pale yellow; the maximum is printed).
+      --stats: the times, rays by kind and Mrays/s as JSON (default: none).
   probe [SCENE] --pixel X,Y [--json] [--width W] [--height H]
-      The illumination equation of that pixel's centre ray, term by term.
+      The illumination equation of that pixel's centre ray, term by term, as
+      text (--json: as JSON). W x H: the image the pixel is in (default: the
+      scene's image size).
   figure [SCENE] -o OUT.png [--width W] [--height H] [--spp N] [--threads N]
-      The five term images and their sum in a labelled 3x2 grid (W x H each).
+      The five term images and their sum in a labelled 3x2 grid, each W x H
+      (default 320 x 180) at N samples per pixel (default 16).
   validate SCENE       Parse and check a scene only.
   scenes               List the embedded scenes.
   lessons              List the embedded lessons.
   lesson LESSON -o DIR [--width W] [--height H] [--spp N] [--threads N]
       The lesson's handout: DIR/step-NN.png (each step's image and caption; a
       question's answer as answer-NN.png) and DIR/index.html, one page
-      holding them all. W x H: each image (default: its scene's size).
+      holding them all. W x H: each image (default: its scene's image size);
+      N: samples per pixel (default 4).
   bench [--out DIR] [--quick] [--threads N] [--only accel]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR
-      (default bench-out/); --quick finishes in about a minute. --only accel:
-      the acceleration section and the yardsticks alone (accel.md, accel.csv,
-      yardsticks.csv).
+      (default bench-out/); --quick finishes in about a minute (default: the
+      full report). --only accel: the acceleration section and the yardsticks
+      alone (accel.md, accel.csv, yardsticks.csv; default: every section).
   bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
-      Time Whitted frames (1 spp) of one scene and print the median.
+              [--edited] [--reshade shading|light]
+      Time N Whitted frames (default 15; 1 spp each) of one scene at W x H
+      (default 1280 x 720, whatever the scene's size) and print the median.
       --scalar: without the packet tracer (the same image, traced ray by ray).
+      --edited: a new snapshot of the scene each frame, as after every edit.
+      --reshade: re-shading an edit of kd (shading) or a light (light) from
+      the first sample's ray trees, timed against a fresh render (default:
+      plain frames).
+      This is phonglab-bench, installed beside phonglab-cli.
 
+--threads N: worker threads (default 0: all hardware threads); the images are
+the same for every thread count.
 SCENE is a scene file (JSON) or an embedded scene's name; default: lecture.
 LESSON is a lesson file (JSON) or an embedded lesson's name.
 Options: --help, --version.
@@ -92,7 +116,11 @@ int cmd_render(Args& args) {
   RenderOptions options;
   if (term_arg) {
     const auto term = term_from_name(*term_arg);
-    if (!term) throw UsageError{"unknown --term '" + *term_arg + "'"};
+    if (!term) {
+      std::vector<std::string_view> names;
+      for (int t = 0; t <= static_cast<int>(Term::kRays); ++t) names.push_back(term_name(static_cast<Term>(t)));
+      throw UsageError{"unknown --term '" + *term_arg + "'" + suggestion_for(*term_arg, names, "expected one of")};
+    }
     options.term = *term;
   }
   options.threads = threads.value_or(0);
@@ -112,7 +140,7 @@ int cmd_render(Args& args) {
   Accumulator accum;
   accum.reset(scene->width, scene->height);
   const auto t_render = Clock::now();
-  const PassStats total = render_passes(prepared, options, accum, spp.value_or(1));
+  const PassStats total = render_passes(prepared, options, accum, spp.value_or(kDefaultSpp));
   const double render_ms = ms_since(t_render);
 
   Image image = mean_image(accum);
@@ -183,7 +211,7 @@ int cmd_figure(Args& args) {
   FigureOptions options;
   options.cell_width = args.take_int("--width", 1, 8192).value_or(options.cell_width);
   options.cell_height = args.take_int("--height", 1, 8192).value_or(options.cell_height);
-  options.spp = args.take_int("--spp", 1, 1 << 16).value_or(options.spp);
+  options.spp = args.take_int("--spp", 1, 1 << 16).value_or(kDefaultSpp);
   options.threads = args.take_int("--threads", 0, 1024).value_or(0);
   const std::string scene_arg = args.take_positional().value_or(default_scene_name());
   if (!out) throw UsageError{"figure needs -o OUT.png"};
@@ -201,14 +229,14 @@ int cmd_validate(Args& args) {
   if (!scene_arg) throw UsageError{"validate needs SCENE"};
   std::optional<Scene> scene = load_or_report(*scene_arg);
   if (!scene) return kExitBadInput;
-  std::cout << *scene_arg << ": ok (" << scene->spheres.size() << " spheres, " << scene->planes.size()
-            << " planes, " << scene->triangles.size() << " triangles, ";
+  std::cout << *scene_arg << ": ok (" << counted(scene->spheres.size(), "sphere") << ", "
+            << counted(scene->planes.size(), "plane") << ", " << counted(scene->triangles.size(), "triangle") << ", ";
   if (!scene->meshes.empty()) {
     std::size_t mesh_triangles = 0;
     for (const Mesh& m : scene->meshes) mesh_triangles += m.geometry->triangles.size();
-    std::cout << scene->meshes.size() << " meshes of " << mesh_triangles << " triangles, ";
+    std::cout << counted(scene->meshes.size(), "mesh", "meshes") << " of " << counted(mesh_triangles, "triangle") << ", ";
   }
-  std::cout << scene->lights.size() << " lights, " << scene->materials.size() << " materials)\n";
+  std::cout << counted(scene->lights.size(), "light") << ", " << counted(scene->materials.size(), "material") << ")\n";
   return kExitOk;
 }
 
@@ -231,7 +259,7 @@ int cmd_lessons(Args& args) {
       return kExitBadInput;
     }
     std::cout << l.name << std::string(l.name.size() < 12 ? 12 - l.name.size() : 1, ' ') << load.lesson->title << " ("
-              << load.lesson->steps.size() << " steps): " << load.lesson->description << "\n";
+              << counted(load.lesson->steps.size(), "step") << "): " << load.lesson->description << "\n";
   }
   return kExitOk;
 }

@@ -12,21 +12,24 @@ constexpr std::string_view kUsage =
     "usage: phonglab [SCENE] [--lesson LESSON]\n"
     "\n"
     "Interactive previewer of the lecture's Phong illumination and Whitted recursion.\n"
-    "SCENE is a scene file (JSON) or the name of an embedded scene (default: lecture);\n"
-    "`phonglab-cli scenes` lists them.\n"
+    "SCENE is a scene file (JSON) or the name of an embedded scene (default:\n"
+    "lecture; `phonglab-cli scenes` lists them).\n"
     "\n"
     "  left-drag orbit, right-drag or wheel dolly, middle- or shift+left-drag pan,\n"
     "  click an object to select it and its material, drag the selected object to\n"
     "  move it (X, Y or Z held: along that axis), drag a light's marker to move it,\n"
     "  drop a .json on the window to open it or an .obj to add it as a mesh,\n"
-    "  F frames the scene, R resets the camera, H hides the panels.\n"
+    "  F frames the scene, R resets the camera, H hides the panels; 1 .. 6 show the\n"
+    "  image or one term, M all five, Shift+1 .. 9 solo a light; Ctrl+O opens,\n"
+    "  Ctrl+S saves, Ctrl+Shift+S saves as, Ctrl+Z undoes; F1 lists the keys.\n"
     "\n"
     "options:\n"
-    "  --lesson LESSON  present a lesson (an embedded lesson's name, e.g. shading, or a\n"
-    "               lesson file): arrows, Page Up/Down and space step through it, F11\n"
-    "               is presenter mode (full screen, caption large)\n"
-    "  --help       this text\n"
-    "  --version    the version\n";
+    "  --lesson LESSON  present a lesson (an embedded lesson's name, e.g. shading,\n"
+    "                   or a lesson file): arrows, Page Up/Down and space step\n"
+    "                   through it, F11 is presenter mode (full screen, caption\n"
+    "                   large)\n"
+    "  --help           this text\n"
+    "  --version        the version\n";
 
 // Parses "1280x720".
 bool parse_size(const std::string& text, int& width, int& height) {

@@ -1,5 +1,7 @@
 #include "io/diagnostic.h"
 
+#include "io/scene/scene_load.h"
+
 namespace phonglab {
 
 std::string Diagnostic::to_string() const {
@@ -29,6 +31,18 @@ std::string diagnostics_text(const std::vector<Diagnostic>& list) {
     s += d.to_string();
   }
   return s;
+}
+
+std::string suggestion_for(std::string_view word, std::span<const std::string_view> candidates,
+                           std::string_view list_intro) {
+  return scene_load::suggestion(word, candidates, list_intro);
+}
+
+std::string counted(std::size_t n, std::string_view one, std::string_view many) {
+  std::string s = std::to_string(n) + ' ';
+  if (n == 1) return s += one;
+  if (many.empty()) return (s += one) += 's';
+  return s += many;
 }
 
 }  // namespace phonglab

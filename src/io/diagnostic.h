@@ -2,8 +2,11 @@
 // OBJ and MTL. Errors make the input unusable; warnings say what was tolerated or replaced.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace phonglab {
@@ -38,5 +41,14 @@ std::string diagnostics_text(const std::vector<Diagnostic>& list);
 inline void set_severity(std::vector<Diagnostic>& list, Diagnostic::Severity severity) {
   for (Diagnostic& d : list) d.severity = severity;
 }
+
+// What a message says after a word the user typed that is none of `candidates`: the loaders'
+// suggestion, " (did you mean "x"?)" for the nearest within two edits (any case), else
+// " (LIST_INTRO: a, b, ...)". For any reader of typed names (scene keys, a CLI option's value).
+std::string suggestion_for(std::string_view word, std::span<const std::string_view> candidates,
+                           std::string_view list_intro);
+
+// "1 plane", "2 planes", "0 planes": a count and its noun (`many`: the plural when not one + s).
+std::string counted(std::size_t n, std::string_view one, std::string_view many = {});
 
 }  // namespace phonglab

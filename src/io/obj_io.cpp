@@ -548,7 +548,7 @@ ObjIndexedMesh load_obj_indexed(const std::string& obj_text, const std::string& 
   const ObjCounts counts = count_obj(obj_text);
   const std::string refusal = refuse_if_too_large(
       mesh_bytes_needed(counts.vertices, counts.normals, counts.triangles), "the mesh",
-      std::to_string(counts.triangles) + " triangles, " + std::to_string(counts.vertices) + " vertices");
+      counted(counts.triangles, "triangle") + ", " + counted(counts.vertices, "vertex", "vertices"));
   if (!refusal.empty()) {
     out.errors.push_back(line_diagnostic(obj_name, 0, refusal));
     return finish();

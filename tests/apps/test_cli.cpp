@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -75,6 +76,86 @@ TEST_F(CliTest, VersionAndHelpExitZero) {
   const RunResult help = run_cli("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("render"), std::string::npos);
+}
+
+TEST_F(CliTest, HelpStatesEveryDefaultWithinEightyColumns) {
+  const RunResult help = run_cli("--help");
+  ASSERT_EQ(help.exit_code, 0);
+  for (const char* words : {"default: the scene's image size",  // render, probe: --width/--height
+                            "default 16, anti-aliased", "--spp 1 renders the pixel centres only",
+                            "default: the scene's max_depth", "field of view (default: the scene's",
+                            "full (default)", "default: none",                            // --term, --stats
+                            "(default 320 x 180) at N samples per pixel (default 16)",    // figure
+                            "(default: its scene's image size);\n      N: samples per pixel (default 4)",  // lesson
+                            "(default bench-out/)", "default 15; 1 spp each", "(default 1280 x 720",
+                            "(default 0: all hardware threads)", "default: lecture"}) {
+    EXPECT_NE(help.out.find(words), std::string::npos) << words << "\n" << help.out;
+  }
+  std::istringstream lines(help.out);
+  for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 80u) << line;
+}
+
+TEST_F(CliTest, RenderAndFigureDefaultToSixteenSamplesAndSpp1IsThePixelCentres) {
+  ASSERT_EQ(run_cli("render lecture --width 16 --height 9 -o " + path("d.pfm") + " --stats " + path("d.json")).exit_code, 0);
+  std::ifstream in(path("d.json"));
+  EXPECT_EQ(nlohmann::json::parse(in)["samples_per_pixel"], 16);
+  ASSERT_EQ(run_cli("render lecture --width 16 --height 9 --spp 16 -o " + path("16.pfm")).exit_code, 0);
+  ASSERT_EQ(run_cli("render lecture --width 16 --height 9 --spp 1 -o " + path("1.pfm")).exit_code, 0);
+  const Image by_default = phonglab::read_pfm(path("d.pfm"));
+  const Image sixteen = phonglab::read_pfm(path("16.pfm"));
+  const Image centres = phonglab::read_pfm(path("1.pfm"));
+  ASSERT_EQ(by_default.pixels.size(), 16u * 9u);
+  EXPECT_EQ(by_default.pixels, sixteen.pixels);
+  EXPECT_NE(by_default.pixels, centres.pixels) << "the edges are anti-aliased";
+  // --spp 1 is the pixel centres: what the probe traces.
+  const RunResult probe = run_cli("probe lecture --width 16 --height 9 --json --pixel 8,5");
+  ASSERT_EQ(probe.exit_code, 0) << probe.out;
+  const nlohmann::json j = nlohmann::json::parse(probe.out);
+  EXPECT_FLOAT_EQ(static_cast<float>(j["total"][0].get<double>()), centres.at(8, 5).x);
+  // figure: the same default.
+  const std::string figure = "figure lecture --width 24 --height 16 -o ";
+  ASSERT_EQ(run_cli(figure + path("fd.png")).exit_code, 0);
+  ASSERT_EQ(run_cli(figure + path("f16.png") + " --spp 16").exit_code, 0);
+  ASSERT_EQ(run_cli(figure + path("f1.png") + " --spp 1").exit_code, 0);
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream f(path(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  EXPECT_EQ(bytes("fd.png"), bytes("f16.png"));
+  EXPECT_NE(bytes("fd.png"), bytes("f1.png"));
+}
+
+TEST_F(CliTest, MisspeltTermGetsASuggestion) {
+  const RunResult typo = run_cli("render lecture -o " + path("x.pfm") + " --term specualr");
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.out.find("unknown --term 'specualr' (did you mean \"specular\"?)"), std::string::npos) << typo.out;
+  const RunResult far = run_cli("render lecture -o " + path("x.pfm") + " --term glossy");
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_NE(far.out.find("(expected one of: full, ambient, diffuse, specular, reflection, refraction, normal, depth, rays)"),
+            std::string::npos)
+      << far.out;
+  EXPECT_FALSE(fs::exists(path("x.pfm")));
+}
+
+TEST_F(CliTest, ValidateCountsOneInTheSingular) {
+  const std::string scene = write("half.json", kHalfScene);
+  const RunResult r = run_cli("validate " + scene);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find(": ok (0 spheres, 1 plane, 0 triangles, 1 light, 1 material)"), std::string::npos) << r.out;
+  const RunResult lecture = run_cli("validate lecture");
+  EXPECT_NE(lecture.out.find(" spheres, 1 plane, 0 triangles, 2 lights, "), std::string::npos) << lecture.out;
+}
+
+TEST_F(CliTest, BenchUsageNamesItself) {
+  const RunResult help = run_cli("bench --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_EQ(help.out.rfind("usage: phonglab-bench ", 0), 0u) << help.out;
+  EXPECT_NE(help.out.find("default 15"), std::string::npos) << help.out;
+  const RunResult bad = run_cli("bench --reshade colour lecture");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.out.rfind("phonglab-bench: ", 0), 0u) << bad.out;
+  EXPECT_NE(bad.out.find("(see phonglab-bench --help)"), std::string::npos) << bad.out;
+  EXPECT_EQ(bad.out.find("phonglab-cli"), std::string::npos) << bad.out;
 }
 
 TEST_F(CliTest, BadUsageExitsTwo) {
@@ -170,7 +251,8 @@ TEST_F(CliTest, WidthHeightOverridesAndStatsFile) {
 }
 
 TEST_F(CliTest, ProbeTotalEqualsRenderedPixel) {
-  ASSERT_EQ(run_cli("render lecture -o " + path("l.pfm") + " --width 64 --height 36").exit_code, 0);
+  // --spp 1: the pixel centres, the rays the probe traces.
+  ASSERT_EQ(run_cli("render lecture -o " + path("l.pfm") + " --width 64 --height 36 --spp 1").exit_code, 0);
   const Image img = phonglab::read_pfm(path("l.pfm"));
   ASSERT_EQ(img.width, 64);
   for (auto [x, y] : {std::pair{32, 20}, {10, 30}, {50, 5}, {40, 25}}) {
@@ -207,13 +289,13 @@ TEST_F(CliTest, TermImagesMatchTermFlag) {
 }
 
 TEST_F(CliTest, RaysPngIsAHeatMapScaledToTheImageMaximumWhileThePfmKeepsTheCounts) {
-  const RunResult png = run_cli("render glass --width 32 --height 18 --term rays -o " + path("heat.png"));
+  const RunResult png = run_cli("render glass --width 32 --height 18 --spp 1 --term rays -o " + path("heat.png"));
   ASSERT_EQ(png.exit_code, 0) << png.out;
   EXPECT_TRUE(fs::file_size(path("heat.png")) > 0);
   double printed_max = 0;
   ASSERT_EQ(std::sscanf(png.out.c_str(), "heat map: 0 (black) .. %lf (pale yellow) rays per pixel", &printed_max), 1)
       << png.out;
-  ASSERT_EQ(run_cli("render glass --width 32 --height 18 --term rays -o " + path("rays.pfm")).exit_code, 0);
+  ASSERT_EQ(run_cli("render glass --width 32 --height 18 --spp 1 --term rays -o " + path("rays.pfm")).exit_code, 0);
   const Image counts = phonglab::read_pfm(path("rays.pfm"));
   ASSERT_EQ(counts.width, 32);
   float max = 0;

@@ -160,7 +160,8 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
   placed.resize(kept);
   if (degenerate > 0) {
     out.warnings.push_back(line_diagnostic(
-        file, 0, std::to_string(degenerate) + " triangles have zero area after the transform; left out", Diagnostic::Severity::kWarning));
+        file, 0, counted(static_cast<std::size_t>(degenerate), "triangle") + (degenerate == 1 ? " has" : " have") +
+                  " zero area after the transform; left out", Diagnostic::Severity::kWarning));
   }
   if (placed.empty()) {
     out.errors.push_back(line_diagnostic(file, 0, "no triangle of non-zero area after the transform"));
