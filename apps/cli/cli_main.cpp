@@ -67,9 +67,9 @@ commands:
   scenes               List the embedded scenes.
   lessons              List the embedded lessons.
   lesson LESSON -o DIR [--width W] [--height H] [--spp N] [--threads N]
-      The lesson's handout: DIR/step-NN.png (each step's image and caption; a
-      question's answer as answer-NN.png) and DIR/index.html, one page
-      holding them all. W x H: each image (default: its scene's image size);
+      The lesson's handout: DIR/step-NN.png (each step's image; a question's
+      answer as answer-NN.png) and DIR/index.html, one page holding them all
+      with the captions. W x H: each image (default: its scene's image size);
       N: samples per pixel (default 4).
   bench [--out DIR] [--quick] [--threads N] [--only accel]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR

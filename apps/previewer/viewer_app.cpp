@@ -35,6 +35,7 @@ constexpr double kFilePollPeriod = 0.5;     // "poll mtime about twice a second"
 constexpr float kSidebarWidth = 400;        // panel width at UI scale 1, ImGui units
 constexpr int kInteractiveDivisor = 4;      // while dragging, refine no further than 1/4 resolution
 constexpr double kMaxDeferral = 1.0;        // a drag's edit waits at most this long for the renderer, s
+constexpr float kPresenterScale = 1.9f;     // presenter mode's UI size at 1080 lines (in proportion to the height)
 
 ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std::optional<Vec3>& shading_eye,
                                          bool small_multiples) {
@@ -162,6 +163,15 @@ int Viewer::run() {
     }
     stats_.was_rendering = !renderer_.status().idle;
 
+    // Presenter mode reads from the back of a hall: every text and marker grows with the window's
+    // height (the UI font about 28 px at 1080 lines, the caption's title about 60 px).
+    float presenter = 1;
+    if (lesson_.presenting) {
+      int window_w = 0, window_h = 0;
+      glfwGetWindowSize(window, &window_w, &window_h);
+      presenter = std::max(1.0f, static_cast<float>(window_h) / 1080.0f * kPresenterScale);
+    }
+    platform_.set_user_scale(display_.ui_size * presenter);
     platform_.update_scale();
     if (glfwWindowShouldClose(window)) {
       // Closing goes through the unsaved-changes guard like any other way of quitting.
@@ -349,9 +359,13 @@ void Viewer::apply_edits(double frame_start) {
     multiples_sent_ = instruments_.small_multiples;
     edits_.settings = true;
   }
+  // A lesson's difference keeps the live image at A's samples: the target follows it.
+  if (target_spp() != sent_target_spp_) edits_.settings = true;
   if (edits_.settings) {
     const std::uint64_t before = renderer_.status().generation;
-    const std::uint64_t generation = renderer_.set_settings(progressive_settings(render_settings_, shading_eye_, multiples_sent_));
+    ui::RenderSettings settings = render_settings_;
+    settings.target_spp = sent_target_spp_ = target_spp();
+    const std::uint64_t generation = renderer_.set_settings(progressive_settings(settings, shading_eye_, multiples_sent_));
     if (generation != before) {
       sent_generation_ = generation;
       note_restart(generation, frame_start);

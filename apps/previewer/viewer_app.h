@@ -206,7 +206,8 @@ class Viewer {
   void undo();                                   // Ctrl+Z: the scene before the last edit
   void redo();                                   // Ctrl+Shift+Z
   void restore(std::optional<Scene> step);       // makes an undo/redo step the scene, if any
-  void snapshot_a();                             // asks for A: the image shown, once it is done
+  void snapshot_a(bool first_full = false);      // asks for A: the image shown, once it is done (or at full resolution)
+  int target_spp() const;                        // the renderer's target: a lesson's difference stays at A's samples
   void take_a_when_final();                      // takes the asked-for A when the image is done
   bool a_comparable() const;                     // A and the live image can be compared as the view asks
   void save_figure(const std::string& path);     // the slide figure of the current snapshot
@@ -430,6 +431,7 @@ class Viewer {
     ProgressiveFrame image;  // snapshot A (pixels empty: none)
     bool requested = false;  // Snapshot A was pressed; A is taken when the image is done
     bool dropped = false;    // an edit came before that image was done: no A
+    bool first_full = false; // a lesson's A: its first full-resolution image, not its last
   };
   CompareState compare_;
   // The small multiples: a texture per term, from the main renderer's term images
@@ -438,6 +440,7 @@ class Viewer {
     std::array<ImageView, kTermCells> views;
   };
   bool multiples_sent_ = false;  // whether the renderer was last asked for term images
+  int sent_target_spp_ = 0;      // the target spp the renderer was last given
   TermCells terms_;
   // Frame pacing and the stats log's measurements.
   struct FrameStats {

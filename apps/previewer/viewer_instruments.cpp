@@ -82,11 +82,14 @@ void Viewer::restore(std::optional<Scene> step) {
   restored_ = true;
 }
 
-void Viewer::snapshot_a() {
+void Viewer::snapshot_a(bool first_full) {
   // A is the finished image of what is on screen now, never a half-converged one (its noise
   // would show in |live - A| as if something had changed). Until it is done, A waits; an edit
-  // before then means the image asked for no longer exists.
+  // before then means the image asked for no longer exists. A lesson's A is its first image at
+  // full resolution (every pixel's centre sample): the answer is on screen in seconds, and its
+  // difference stays exact by keeping the live image at A's samples (target_spp).
   compare_.requested = true;
+  compare_.first_full = first_full;
   a_generation_ = renderer_.status().generation;
   compare_.dropped = false;
   if (instruments_.compare == 0) instruments_.compare = 1;
@@ -100,10 +103,18 @@ void Viewer::take_a_when_final() {
     compare_.dropped = true;
     return;
   }
-  if (!image_is_final() || shown_.pixels.empty()) return;
+  const bool ready = compare_.first_full ? shown_.generation == a_generation_ && shown_.divisor == 1 : image_is_final();
+  if (!ready || shown_.pixels.empty()) return;
   compare_.image = shown_;
   compare_.requested = false;
   upload_pending_ = true;
+}
+
+int Viewer::target_spp() const {
+  const bool lesson_difference = lesson_.lesson && !lesson_.exploring && compare_.first_full && instruments_.compare == 2 &&
+                                 !compare_.image.pixels.empty();
+  const int target = std::max(render_settings_.target_spp, 1);
+  return lesson_difference ? std::min(target, static_cast<int>(std::max(compare_.image.spp, 1u))) : target;
 }
 
 bool Viewer::a_comparable() const {
@@ -117,7 +128,9 @@ bool Viewer::a_comparable() const {
 
 std::string Viewer::compare_caption() const {
   char text[160];
-  if (compare_.requested) {
+  if (compare_.requested && compare_.first_full) {
+    std::snprintf(text, sizeof text, "A is taken at its first full-resolution image");
+  } else if (compare_.requested) {
     std::snprintf(text, sizeof text, "A is taken when the image is done (%u of %d spp)", shown_.spp,
                   render_settings_.target_spp);
   } else if (compare_.image.pixels.empty()) {

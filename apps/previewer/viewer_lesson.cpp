@@ -129,7 +129,7 @@ void Viewer::update_lesson() {
   }
   using Stage = LessonState::CompareStage;
   if (lesson_.compare_stage == Stage::kRequestA) {
-    snapshot_a();
+    snapshot_a(true);
     lesson_.compare_stage = Stage::kTakingA;
   } else if (lesson_.compare_stage == Stage::kTakingA) {
     if (compare_.dropped) {
@@ -187,7 +187,7 @@ void Viewer::sidebar_lessons() {
   view.place = lesson_.place;
   view.exploring = lesson_.exploring;
   view.presenting = lesson_.presenting;
-  view.error = lesson_.error.substr(0, lesson_.error.find('\n'));
+  view.error = lesson_.error;  // every diagnostic, each with its suggestion
   ui::LessonActions actions;
   ui::lessons_panel(view, lesson_.path_field, actions);
   if (!actions.open.empty()) open_lesson(actions.open);
@@ -208,7 +208,7 @@ void Viewer::draw_lesson_caption() {
   const float scale = platform_.ui_scale();
   // Large in presenter mode (read from the back of a hall), the panel's size beside the panels.
   const float size = lesson_.presenting ? font->FontSize : font->FontSize * 0.6f;
-  const float small = size * 0.62f;
+  const float small = size * 0.7f;
   const float pad = 10 * scale;
   const float wrap = std::max(viewport_.width - 4 * pad, 50.0f);
   char head[512];
@@ -222,7 +222,11 @@ void Viewer::draw_lesson_caption() {
   std::vector<Line> lines = {{head, size, IM_COL32(255, 255, 255, 255)}, {step.caption, small, IM_COL32(225, 225, 225, 255)}};
   if (step.has_question()) lines.push_back({"Q: " + step.question, small, IM_COL32(255, 200, 70, 255)});
   if (step.has_question() && lesson_.place.revealed) lines.push_back({"A: " + step.answer, small, IM_COL32(140, 235, 140, 255)});
-  const char* hint = step.has_question() && !lesson_.place.revealed ? "\xE2\x86\x92 / space: the answer" : "\xE2\x86\x92 / space: next   \xE2\x86\x90: back";
+  const bool posed = step.has_question() && !lesson_.place.revealed;
+  const bool last = lesson_next(*lesson_.lesson, lesson_.place) == lesson_.place;
+  const char* hint = posed ? "\xE2\x86\x92 / space: the answer"
+                     : last ? "the end of the lesson   \xE2\x86\x90: back"
+                            : "\xE2\x86\x92 / space: next   \xE2\x86\x90: back";
   lines.push_back({std::string(hint) + (lesson_.presenting ? "   F11 / Esc: leave presenter mode" : "   F11: presenter mode"),
                    small * 0.75f, IM_COL32(170, 170, 170, 255)});
   float height = pad;

@@ -90,8 +90,8 @@ void Viewer::draw_overlays() {
   const ImVec2 bottom_left(viewport_.x + margin, bottom_y);
   const ImVec2 bottom_right(viewport_.x + viewport_.width - margin, bottom_y);
 
-  // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left, the
-  // heat scale bottom right.
+  // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left (top
+  // left when presenting), the heat scale bottom right.
   if (display_.show_stats && !lesson_.presenting) {
     taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, overlay_rects_, [&] { draw_stats(); }));
   }
@@ -121,8 +121,10 @@ void Viewer::draw_overlays() {
                                    [&] { ui::ray_tree_legend(tree_segments_, blinn); }));
   }
   if (instruments_.move_head && snapshot_) {
-    taken.push_back(
-        overlay_window("##head_plot", bottom_left, ImVec2(0, 1), taken, last, overlay_rects_, [&] { draw_head_plot(); }));
+    // In presenter mode (no stats box) top left: the large caption leaves the bottom little room.
+    const bool top = lesson_.presenting;
+    taken.push_back(overlay_window("##head_plot", top ? top_left : bottom_left, ImVec2(0, top ? 0.0f : 1.0f), taken, last,
+                                   overlay_rects_, [&] { draw_head_plot(); }));
   }
   if (heat_shown() && heat_max_ > 0) {
     taken.push_back(overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), taken, last, overlay_rects_,
@@ -208,7 +210,7 @@ void Viewer::draw_stats() {
   stats.image_width = shown_.width;
   stats.image_height = shown_.height;
   stats.spp = shown_.spp;
-  stats.target_spp = render_settings_.target_spp;
+  stats.target_spp = target_spp();
   stats.frame = shown_.stats;
   stats.idle = status.idle;
   stats.interacting = interacting_ || edits_.while_active;

@@ -155,10 +155,7 @@ bool Viewer::set_display_field(const std::vector<std::string>& w) {
   else if (w[2] == "stats") display_.show_stats = v != 0;
   else if (w[2] == "stats_details") display_.stats_details = v != 0;
   else if (w[2] == "sidebar") sidebar_visible_ = v != 0;
-  else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) {
-    display_.ui_size = static_cast<float>(v);
-    platform_.set_user_scale(display_.ui_size);
-  }
+  else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) display_.ui_size = static_cast<float>(v);
   else return false;
   return true;
 }

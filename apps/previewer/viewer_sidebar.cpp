@@ -78,7 +78,7 @@ void Viewer::draw_sidebar() {
     if (header("Camera", false)) sidebar_camera();
     if (header("Scene file", true)) sidebar_file();
     if (header("Render settings", false)) sidebar_render();
-    if (header("Display", false) && ui::display_panel(display_)) platform_.set_user_scale(display_.ui_size);
+    if (header("Display", false)) ui::display_panel(display_);  // the UI size applies from the next frame
     if (header("Screenshot", false)) {
       ui::ScreenshotActions actions;
       ui::screenshot_panel(screenshot_state_, actions);

@@ -83,6 +83,7 @@ void Viewer::write_document_state(std::ostream& out) const {
       << "sidebar_toggles=" << sidebar_toggles_ << "\n"
       << "help=" << (help_visible_ ? 1 : 0) << "\n"
       << "ui_size=" << display_.ui_size << "\n"
+      << "ui_scale=" << platform_.ui_scale() << "\n"
       << "light_markers=" << (display_.light_markers ? 1 : 0) << "\n"
       << "stats_details=" << (display_.stats_details ? 1 : 0) << "\n"
       << "camera_notice=" << camera_notice_ << "\n"

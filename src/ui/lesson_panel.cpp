@@ -71,11 +71,14 @@ void lessons_panel(const LessonPanelView& view, std::string& path_field, LessonA
   ImGui::SameLine();
   if (ImGui::Button(view.presenting ? "Leave presenter (F11)" : "Present (F11)")) actions.present = true;
   locate("lesson.present");
-  if (view.exploring) {
-    ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "exploring: edits here change no file");
-    if (ImGui::Button("Back to the step as written")) actions.back = true;
-    locate("lesson.back");
-  }
+  // Always drawn (disabled when there is nothing to go back to): the step list below never moves.
+  ImGui::BeginDisabled(!view.exploring);
+  if (ImGui::Button("Back to the step as written")) actions.back = true;
+  locate("lesson.back");
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (view.exploring) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "exploring: no file changes");
+  else ImGui::TextDisabled("as written");
   if (ImGui::BeginListBox("##steps", ImVec2(-1, ImGui::GetTextLineHeightWithSpacing() * 8))) {
     for (int i = 0; i < static_cast<int>(lesson.steps.size()); ++i) {
       char label[256];
