@@ -2,6 +2,7 @@
 // bench` (the CLI executes this program, installed beside it). Usage: kUsage, phonglab-bench --help.
 // Exit codes: 0 success, 1 bad input, 2 bad usage.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include "core/packet/packet.h"
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
+#include "core/scene/camera.h"
 #include "io/diagnostic.h"
 
 namespace {
@@ -27,7 +29,7 @@ using bench::median;
 
 constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [--threads N] [--only accel]
        phonglab-bench SCENE [--frames N] [--width W] [--height H] [--threads N]
-                      [--scalar] [--edited] [--reshade shading|light]
+                      [--scalar] [--edited] [--reshade shading|light|head]
   (also run as `phonglab-cli bench ...`, which executes phonglab-bench)
 
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
@@ -39,17 +41,77 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
   --scalar: without the packet tracer (the same image, traced ray by ray);
   --edited: a new snapshot of the scene each frame, as after every edit in the
   previewer. --reshade: record the first sample's ray trees once, then time
-  re-shading an edit of kd (shading) or a light's position (light) against
-  render_pass of the same scene, checking the images are bit-identical
-  (default: plain frames).
+  re-shading an edit of kd (shading), a light's position (light) or the
+  "move your head" angle (head) against render_pass of the same scene,
+  checking the images are bit-identical; then the live path of a kd or a
+  light-intensity slider (within 1e-12 of render_pass; default: plain frames).
   --threads N: worker threads (default 0: all hardware threads).
   SCENE is a scene file (JSON) or an embedded scene's name.
   Exit codes: 0 success, 1 bad input, 2 bad usage.
 )";
 
-// Re-shaded frames: the trees of the first sample recorded once, then each frame an edit of the
-// first material's kd ("shading") or of the first light's position ("light") re-shaded, against
-// a fresh render_pass of the same edited scene, alternating; the images are compared bit for bit.
+// The edit of frame f: the first material's kd (shading), the first light's position (light),
+// or the "move your head" angle (head, an eye turned about the look-at point).
+void edit_for_frame(Scene& scene, const std::string& kind, int f, std::optional<Vec3>& eye) {
+  if (kind == "light") scene.lights[0].position.x += f % 2 == 0 ? 0.25 : -0.2;
+  else if (kind == "head") eye = head_eye(scene.camera, scene.camera.look_at, f % 2 == 0 ? 20.0 : -15.0);
+  else scene.materials[0].kd.x = f % 2 == 0 ? 0.2 : 0.6;
+}
+
+// The largest |a - b| over the larger of |a| and |b|, channel by channel (0 where both are 0).
+double relative_difference(const Accumulator& a, const Accumulator& b) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.sum.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double scale = std::max(std::abs(a.sum[i][c]), std::abs(b.sum[i][c]));
+      if (scale > 0) worst = std::max(worst, std::abs(a.sum[i][c] - b.sum[i][c]) / scale);
+    }
+  }
+  return worst;
+}
+
+// The live path of a slider, against render_pass, alternating, from trees recorded once: the
+// first material's kd (shading) or the first light's intensity (light), every frame against
+// the same trees as while a hand drags. The first frame takes the per-pixel sums as well.
+// Prints `live re-shade X ms (R× render_pass)`; false when the live image strays past 1e-12.
+bool time_live(const Scene& loaded, const std::string& kind, int frames, int width, int height, int threads) {
+  if (kind == "head") {
+    std::printf("live re-shade: none for the head (V is not linear; the exact re-shade is the live image)\n");
+    return true;
+  }
+  Scene scene = loaded;
+  auto base = std::make_shared<const PreparedScene>(scene);
+  std::unique_ptr<RayTrees> trees = RayTrees::record(base, width, height, std::nullopt, threads, std::size_t{4} << 30);
+  if (!trees) return false;
+  RenderOptions options;
+  options.threads = threads;
+  std::vector<double> live_ms, render_ms;
+  double first_ms = 0, worst = 0;
+  for (int f = 0; f < frames; ++f) {
+    if (kind == "light") scene.lights[0].intensity = loaded.lights[0].intensity * (f % 2 == 0 ? 0.5 : 1.3);
+    else scene.materials[0].kd.x = f % 2 == 0 ? 0.2 : 0.6;
+    const PreparedScene prepared(scene);
+    Accumulator live, rendered;
+    live.reset(width, height);
+    rendered.reset(width, height);
+    const PassStats l = trees->recombine(prepared, Term::kFull, threads, live);
+    const PassStats p = render_pass(prepared, options, rendered);
+    if (!l.completed) return false;
+    (f == 0 ? first_ms : live_ms.emplace_back()) = l.seconds * 1e3;
+    render_ms.push_back(p.seconds * 1e3);
+    worst = std::max(worst, relative_difference(live, rendered));
+  }
+  if (live_ms.empty()) live_ms.push_back(first_ms);
+  std::printf("%s: live re-shade %.2f ms (%.1f\u00d7 render_pass), the first with its sums %.2f ms; "
+              "largest relative difference from render_pass %.1e\n",
+              kind == "light" ? "light intensity" : "kd", median(live_ms), median(render_ms) / median(live_ms), first_ms,
+              worst);
+  return worst <= 1e-12;
+}
+
+// Re-shaded frames: the trees of the first sample recorded once, then each frame an edit (see
+// edit_for_frame) re-shaded, against a fresh render_pass of the same edited scene, alternating;
+// the images are compared bit for bit. Then the live path (time_live).
 int time_reshading(const std::string& scene_arg, const std::string& kind, int frames, int width, int height,
                    int threads) {
   std::optional<Scene> scene = load_or_report(scene_arg);
@@ -58,6 +120,7 @@ int time_reshading(const std::string& scene_arg, const std::string& kind, int fr
     std::fprintf(stderr, "phonglab-bench: --reshade %s needs a material and a light\n", kind.c_str());
     return kExitBadInput;
   }
+  const Scene loaded = *scene;
   auto prepared = std::make_shared<const PreparedScene>(*scene);
   std::unique_ptr<RayTrees> trees = RayTrees::record(prepared, width, height, std::nullopt, threads, std::size_t{4} << 30);
   if (!trees) {
@@ -73,14 +136,15 @@ int time_reshading(const std::string& scene_arg, const std::string& kind, int fr
   std::vector<double> reshade_ms, render_ms;
   bool identical = true;
   RayCounts recast;
+  std::optional<Vec3> eye;
   for (int f = 0; f < frames; ++f) {
-    if (kind == "light") scene->lights[0].position.x += f % 2 == 0 ? 0.25 : -0.2;
-    else scene->materials[0].kd.x = f % 2 == 0 ? 0.2 : 0.6;
+    edit_for_frame(*scene, kind, f, eye);
     prepared = std::make_shared<const PreparedScene>(*scene);
     Accumulator reshaded, rendered;
     reshaded.reset(width, height);
     rendered.reset(width, height);
-    const PassStats r = trees->reshade(prepared, Term::kFull, std::nullopt, threads, reshaded);
+    options.shading_eye = eye;
+    const PassStats r = trees->reshade(prepared, Term::kFull, eye, threads, reshaded);
     const PassStats p = render_pass(*prepared, options, rendered);
     reshade_ms.push_back(r.seconds * 1e3);
     render_ms.push_back(p.seconds * 1e3);
@@ -90,7 +154,8 @@ int time_reshading(const std::string& scene_arg, const std::string& kind, int fr
   std::printf("%s edit: median re-shade %.2f ms (shadow rays cast %llu), median render_pass %.2f ms (%.1fx); images %s\n",
               kind.c_str(), median(reshade_ms), static_cast<unsigned long long>(recast.shadow), median(render_ms),
               median(render_ms) / median(reshade_ms), identical ? "bit-identical" : "DIFFERENT");
-  return identical ? kExitOk : kExitBadInput;
+  const bool live = time_live(loaded, kind, frames, width, height, threads);
+  return identical && live ? kExitOk : kExitBadInput;
 }
 
 // Frames of one scene, timed.
@@ -156,7 +221,9 @@ int run(Args& args) {
     return run_bench_report(report);
   }
   if (reshade) {
-    if (*reshade != "shading" && *reshade != "light") throw UsageError{"--reshade takes 'shading' or 'light'"};
+    if (*reshade != "shading" && *reshade != "light" && *reshade != "head") {
+      throw UsageError{"--reshade takes 'shading', 'light' or 'head'"};
+    }
     return time_reshading(*positional, *reshade, frames.value_or(15), width.value_or(1280), height.value_or(720),
                           threads.value_or(0));
   }

@@ -77,13 +77,14 @@ commands:
       full report). --only accel: the acceleration section and the yardsticks
       alone (accel.md, accel.csv, yardsticks.csv; default: every section).
   bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
-              [--edited] [--reshade shading|light]
+              [--edited] [--reshade shading|light|head]
       Time N Whitted frames (default 15; 1 spp each) of one scene at W x H
       (default 1280 x 720, whatever the scene's size) and print the median.
       --scalar: without the packet tracer (the same image, traced ray by ray).
       --edited: a new snapshot of the scene each frame, as after every edit.
-      --reshade: re-shading an edit of kd (shading) or a light (light) from
-      the first sample's ray trees, timed against a fresh render (default:
+      --reshade: re-shading an edit of kd (shading), a light (light) or the
+      head (head) from the first sample's ray trees, timed against a fresh
+      render, then the live path of a kd or light-intensity slider (default:
       plain frames).
       This is phonglab-bench, installed beside phonglab-cli.
 

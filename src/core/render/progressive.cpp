@@ -172,6 +172,8 @@ struct ProgressiveRenderer::Job {
   std::size_t start_level = 0;  // where this generation started (finer while interacting: live_start_level)
   bool reshade = false;         // the next pass re-shades the stored trees instead of tracing
   bool reshaded = false;        // this generation's first image was re-shaded
+  bool live = false;            // the next pass recombines the stored trees' sums (a linear edit, hand on)
+  bool live_shown = false;      // the image is the live one: the exact re-shade is owed
   LevelTimes level_times;       // the last pass at each level, for live_start_level
   Accumulator accum;
   std::uint64_t nan_count = 0;
@@ -195,6 +197,11 @@ void ProgressiveRenderer::run() {
   }
   Job job;
   while (wait_for_work(job)) {
+    if (job.live_shown && !job.interacting) {
+      // The hand stopped: the live image is replaced by the exact re-shade, bit for bit render_pass's.
+      job.live_shown = job.live = false;
+      job.reshade = job.accum_stale = true;
+    }
     if (job.accum_stale) {
       const ProgressiveLevel& lv = job.levels[job.level];
       if (job.reshade) {
@@ -210,13 +217,22 @@ void ProgressiveRenderer::run() {
       job.accum_stale = false;
     }
     PassStats pass;
-    if (job.reshade) {
+    if (job.live && job.interacting) {
+      pass = job.trees->recombine(*job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_);
+      job.live = false;
+      if (!pass.completed && !cancel_.load()) {
+        job.accum_stale = true;  // a sum the trees cannot give: the exact re-shade instead
+        continue;
+      }
+      job.reshade = false;
+      job.live_shown = pass.completed;
+    } else if (job.reshade) {
       pass = job.trees->reshade(job.scene, job.settings.term, job.settings.shading_eye, job.settings.threads,
                                 job.accum, &cancel_);
       job.reshade = false;
       // Half updated, or full of holes that every later re-shade would trace again: the next
-      // traced generation records anew.
-      if (!pass.completed || job.trees->worn()) {
+      // traced generation records anew. (A cancelled re-shade of shading alone keeps them.)
+      if ((!pass.completed && !job.trees->usable()) || job.trees->worn()) {
         job.trees.reset();
         job.trees_serve = false;
       }
@@ -267,7 +283,7 @@ bool ProgressiveRenderer::wait_for_work(Job& job) {
       const bool coarse = job.level + 1 < job.levels.size();
       const auto target = static_cast<std::uint32_t>(std::max(job.settings.target_spp, 1));
       const std::uint32_t samples = job.accum_stale ? 0 : job.accum.samples;
-      work = !capped && (coarse || samples < target);
+      work = !capped && (coarse || samples < target || job.live_shown);
     }
     if (work) {
       idle_ = false;
@@ -292,6 +308,11 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
                     job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
   job.reshade = job.trees_serve && reshades(settings_.term);
   job.reshaded = job.reshade;
+  // While the hand is on, a linear edit is recombined from the trees' sums (its exact re-shade
+  // follows when the hand stops).
+  job.live = job.reshade && interacting_ &&
+             job.trees->recombines(*job.scene, width_, height_, settings_.term, settings_.shading_eye, settings_.term_images);
+  job.live_shown = false;
   if (job.reshade) {
     job.level = job.levels.size() - 1;
   } else {
@@ -328,6 +349,7 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   back_.stats.nan_count = job.nan_count;
   back_.stats.packets = pass.packets;
   back_.stats.reshaded = job.reshaded && job.accum.samples == 1;
+  back_.stats.live = job.live_shown;
   back_.stats.tree_bytes = job.trees ? job.trees->memory_bytes() : 0;
   bool published = false;
   {

@@ -59,6 +59,8 @@ struct FrameStats {
   std::uint64_t serial = 0;           // counts every image ever published (1, 2, ...)
   bool packets = false;               // PassStats::packets of that pass
   bool reshaded = false;              // re-shaded from the stored ray trees, not traced
+  bool live = false;                  // the live path's image of a linear edit (RayTrees::recombine):
+                                      // equal to rounding; the exact re-shade follows when the hand stops
   std::size_t tree_bytes = 0;         // memory the stored ray trees take (0: none kept)
 };
 

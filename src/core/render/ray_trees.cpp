@@ -5,87 +5,13 @@
 #include <utility>
 
 #include "core/packet/packet.h"
+#include "core/render/scene_changes.h"
 #include "core/render/threads.h"
+#include "core/render/tile_work.h"
 
 namespace phonglab {
 
 namespace {
-
-bool any(const std::vector<bool>& flags) { return std::find(flags.begin(), flags.end(), true) != flags.end(); }
-
-// What differs between two snapshots of a scene: one comparison for the edit's scope, for what
-// the re-shade brings up to date at each stored hit, and for which pixels it shades again.
-struct Changes {
-  bool retrace = false;                // camera, geometry, a table's length, a light's type
-  std::vector<bool> light_moved;       // its shadow rays are cast again
-  std::vector<bool> light_shading;     // its intensity or mute
-  std::vector<bool> material_shading;  // its ka, kd, ks or n
-  std::vector<bool> n_changed;         // the specular factor of its hits is taken again
-  std::vector<bool> bounce_changed;    // kr, kt, ior or Fresnel: its hits' F is taken again
-  std::vector<bool> ior_changed;       // its hits' refracted rays go elsewhere: traced again
-  bool limits_changed = false;         // the depth limit or the pruning weight
-  bool depth_grew = false;             // hits that had no children may now: their F is taken
-  bool eye_moved = false;              // V at the primary hits: their specular cosines are taken again
-  bool model_changed = false;          // every specular cosine is computed again
-  bool ambient_changed = false, background_changed = false;
-
-  // Something stored at the hits must be brought up to date.
-  bool stale_hits() const {
-    return any(light_moved) || any(n_changed) || any(bounce_changed) || model_changed || depth_grew || eye_moved;
-  }
-  EditScope scope() const {
-    if (retrace) return EditScope::kRetrace;
-    if (limits_changed || any(bounce_changed)) return EditScope::kBounces;
-    if (any(light_moved)) return EditScope::kLights;
-    if (any(light_shading) || any(material_shading) || model_changed || eye_moved || ambient_changed ||
-        background_changed) {
-      return EditScope::kShading;
-    }
-    return EditScope::kNothing;
-  }
-  // The reach bits of the pixels whose values change: those of the materials whose shading or
-  // bounce changed and the background's, when it changed; every pixel for anything else.
-  std::uint64_t dirty_reach(bool other_term) const {
-    if (other_term || any(light_moved) || any(light_shading) || model_changed || eye_moved || ambient_changed ||
-        limits_changed) {
-      return ~std::uint64_t{0};
-    }
-    std::uint64_t dirty = background_changed ? RayTrees::kBackground : 0;
-    for (std::size_t i = 0; i < material_shading.size(); ++i) {
-      if (material_shading[i] || bounce_changed[i]) dirty |= RayTrees::reach_bit(static_cast<int>(i));
-    }
-    return dirty;
-  }
-};
-
-Changes changes_between(const Scene& a, const Scene& b) {
-  Changes c;
-  c.retrace = !(a.camera == b.camera) || a.spheres != b.spheres || a.planes != b.planes ||
-              a.triangles != b.triangles || a.meshes != b.meshes || a.materials.size() != b.materials.size() ||
-              a.lights.size() != b.lights.size();
-  if (c.retrace) return c;
-  for (std::size_t i = 0; i < b.lights.size(); ++i) {
-    const Light& x = a.lights[i];
-    const Light& y = b.lights[i];
-    c.retrace = c.retrace || x.type != y.type;
-    c.light_moved.push_back(x.position != y.position || x.direction != y.direction);
-    c.light_shading.push_back(x.intensity != y.intensity || x.enabled != y.enabled);
-  }
-  for (std::size_t i = 0; i < b.materials.size(); ++i) {
-    const Material& x = a.materials[i];
-    const Material& y = b.materials[i];
-    c.material_shading.push_back(x.ka != y.ka || x.kd != y.kd || x.ks != y.ks || x.n != y.n);
-    c.n_changed.push_back(x.n != y.n);
-    c.bounce_changed.push_back(x.kr != y.kr || x.kt != y.kt || x.ior != y.ior || x.fresnel != y.fresnel);
-    c.ior_changed.push_back(x.ior != y.ior);
-  }
-  c.limits_changed = a.max_depth != b.max_depth || a.min_weight != b.min_weight;
-  c.depth_grew = b.max_depth > a.max_depth;
-  c.model_changed = a.specular_model != b.specular_model;
-  c.ambient_changed = a.ambient != b.ambient;
-  c.background_changed = a.background != b.background;
-  return c;
-}
 
 }  // namespace
 
@@ -164,6 +90,14 @@ std::size_t tile_bytes(const Tile& t) {
          t.reach.capacity() * sizeof(std::uint64_t) + t.values.capacity() * sizeof(Color);
 }
 
+// work(tile, counts) for every tile (tile_work.h).
+template <class Work>
+bool for_each_tile(std::vector<Tile>& tiles, int threads, const std::atomic<bool>* cancel, std::atomic<bool>& stop,
+                   std::vector<RayCounts>& counts, Work&& work) {
+  return for_each_index(tiles.size(), threads, cancel, stop, counts,
+                        [&](std::size_t i, RayCounts& rays) { work(tiles[i], rays); });
+}
+
 // The image's tiles, row by row.
 std::vector<Tile> make_tiles(int width, int height) {
   std::vector<Tile> tiles;
@@ -180,27 +114,6 @@ std::vector<Tile> make_tiles(int width, int height) {
   return tiles;
 }
 
-// work(tile) for every tile, spread over threads as render_pass spreads its tiles. Returns false
-// when `cancel` or `stop` ended it early.
-template <class Work>
-bool for_each_tile(std::vector<Tile>& tiles, int threads, const std::atomic<bool>* cancel, std::atomic<bool>& stop,
-                   std::vector<RayCounts>& counts, Work&& work) {
-  const int n = std::max(1, std::min(resolve_thread_count(threads), static_cast<int>(tiles.size())));
-  counts.assign(static_cast<std::size_t>(n), RayCounts{});
-  std::atomic<std::size_t> next{0};
-  run_workers(n, [&](int worker) {
-    for (;;) {
-      if ((cancel && cancel->load(std::memory_order_relaxed)) || stop.load(std::memory_order_relaxed)) {
-        stop.store(true, std::memory_order_relaxed);
-        return;
-      }
-      const std::size_t i = next.fetch_add(1, std::memory_order_relaxed);
-      if (i >= tiles.size()) return;
-      work(tiles[i], counts[static_cast<std::size_t>(worker)]);
-    }
-  });
-  return !stop.load();
-}
 
 // Sample 0's primary ray through pixel (x, y), as render_sample makes it.
 Ray centre_ray(const CameraFrame& frame, int x, int y) {
@@ -440,7 +353,8 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   // With term images every pixel is shaded whole: only its value is kept from pass to pass.
   const bool with_terms = accum.has_terms();
   const TermsWanted wanted = with_terms ? TermsWanted{} : terms_wanted(term);
-  const std::uint64_t dirty = with_terms ? ~std::uint64_t{0} : changes.dirty_reach(term != values_term_);
+  const std::uint64_t dirty =
+      with_terms || !values_valid_ ? ~std::uint64_t{0} : changes.dirty_reach(term != values_term_);
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
@@ -494,11 +408,15 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   stats.completed = done;
   if (done) {
     ++accum.samples;
+    if (scene != scene_) drop_sums();  // they describe the trees' scene
     scene_ = std::move(scene);
     values_term_ = term;
+    values_valid_ = true;
     shading_eye_ = shading_eye;
-  } else {
+  } else if (update) {
     usable_ = false;  // some tiles describe the new scene, some the old
+  } else {
+    values_valid_ = false;  // only values changed, some of them: the next re-shade shades every pixel
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
@@ -507,6 +425,9 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
 std::size_t RayTrees::memory_bytes() const {
   std::size_t bytes = tiles_.capacity() * sizeof(Tile);
   for (const Tile& t : tiles_) bytes += tile_bytes(t);
+  for (const Sums& sums : sums_) {
+    for (const std::vector<Color>& t : sums.tiles) bytes += t.capacity() * sizeof(Color);
+  }
   return bytes;
 }
 

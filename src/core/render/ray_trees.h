@@ -55,6 +55,21 @@ class RayTrees {
   PassStats reshade(std::shared_ptr<const PreparedScene> scene, Term term, const std::optional<Vec3>& shading_eye,
                     int threads, Accumulator& accum, const std::atomic<bool>* cancel = nullptr);
 
+  // The live path of a slider (ray_trees_live.cpp). Whether `scene` differs from the trees'
+  // scene only by an edit the image is linear in (some materials' ka, kd, ks; or Ia; or some
+  // lights' intensity or mute: scene_changes.h), at this size and eye, for the term of the
+  // trees' last image (no term images): then its image is that image plus each edited
+  // coefficient's change times the per-pixel sum it multiplies.
+  bool recombines(const PreparedScene& scene, int width, int height, Term term, const std::optional<Vec3>& shading_eye,
+                  bool term_images) const;
+  // That image of `scene` (recombines()) into `accum`, empty at this size. The trees stay as
+  // they are; the sums are computed on first use (one pass over the stored trees, like a
+  // re-shade without shadow rays) and kept for the next edits of the same coefficients, so a
+  // slider costs a few multiply-adds a pixel. Equal to the exact re-shade to rounding (about
+  // 1e-15 relative), not bit for bit: it is shown while the hand moves, the exact image after.
+  PassStats recombine(const PreparedScene& scene, Term term, int threads, Accumulator& accum,
+                      const std::atomic<bool>* cancel = nullptr);
+
   bool usable() const { return usable_; }
   // Whether the last re-shade had to trace rays for more than an eighth of the pixels (children
   // that became needed or turned): recording again would serve the next edits better.
@@ -110,9 +125,25 @@ class RayTrees {
   std::optional<Vec3> shading_eye_;
   std::vector<Tile> tiles_;
   Term values_term_ = Term::kFull;
+  bool values_valid_ = true;  // false after a cancelled re-shade: Tile::values are partly another scene's
+  bool sums_refused_ = false; // a sum the trees cannot give (a child ray not stored): no live path for scene_
   bool usable_ = true;
   std::size_t traced_pixels_ = 0;  // pixels the last re-shade traced rays for
   double record_seconds_ = 0;
+  // The per-pixel sums of the live path, for scene_ (dropped when it changes): tile by tile,
+  // pixel by pixel as Tile::roots.
+  struct Sums {
+    std::uint8_t coefficient = 0;  // ka, kd, ks of material `index`, Ia, or light `index`'s intensity
+    int index = 0;
+    Term term = Term::kFull;
+    std::vector<std::vector<Color>> tiles;
+  };
+  std::vector<Sums> sums_;
+  const Sums* sums_for(std::uint8_t coefficient, int index, Term term) const;
+  void drop_sums() {
+    sums_.clear();
+    sums_refused_ = false;
+  }
 };
 
 }  // namespace phonglab

@@ -1,0 +1,158 @@
+// The live path of a slider (RayTrees::recombine, src/core/render/ray_trees_live.cpp): for every
+// edit the image is linear in, the trees' last image plus the edited coefficients' changes times
+// their per-pixel sums equals the exact re-shade (render_pass of the edited scene) to 1e-12
+// relative, over seeded random scenes, chains of edits of one family and every term; the trees
+// are left as they were (the exact re-shade after it is bit for bit a fresh render); and edits
+// that are not linear are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <array>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "core/render/ray_trees.h"
+#include "core/render/render.h"
+#include "tests/support/random_scenes.h"
+
+using namespace phonglab;
+
+namespace {
+
+constexpr int kW = 21, kH = 13;
+
+std::shared_ptr<const PreparedScene> prepared(const Scene& s) { return std::make_shared<const PreparedScene>(s); }
+
+Accumulator fresh_image(const PreparedScene& scene, Term term) {
+  Accumulator accum;
+  accum.reset(kW, kH);
+  RenderOptions options;
+  options.term = term;
+  options.threads = 2;
+  render_pass(scene, options, accum);
+  return accum;
+}
+
+Accumulator sized() {
+  Accumulator accum;
+  accum.reset(kW, kH);
+  return accum;
+}
+
+// One edit of a linear family: 0 some material's ka, kd or ks (also from or to 0), 1 Ia, 2 a
+// light's intensity or mute.
+void linear_edit(Scene& s, std::mt19937& rng, int family) {
+  const auto pick = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
+  if (family == 0) {
+    Material& m = s.materials[pick(s.materials.size())];
+    switch (pick(3)) {
+      case 0: m.ka = random_color(rng, 0.2, 0.4); break;
+      case 1: m.kd = random_color(rng, 0.2, 0.9); break;
+      default: m.ks = random_color(rng, 0.2, 0.9); break;
+    }
+  } else if (family == 1) {
+    s.ambient = random_color(rng, 0.1, 1.5);
+  } else if (!s.lights.empty()) {
+    Light& l = s.lights[pick(s.lights.size())];
+    if (pick(4) == 0) l.enabled ^= true;
+    else l.intensity = random_color(rng, 0.1, 2);
+  }
+}
+
+// |live - exact| within 1e-12 of the larger of the pixel's values before and after the edit.
+::testing::AssertionResult close(const Accumulator& live, const Accumulator& exact, const Accumulator& before) {
+  for (std::size_t i = 0; i < exact.sum.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double scale = std::max({std::abs(exact.sum[i][c]), std::abs(before.sum[i][c]), 1e-300});
+      if (!(std::abs(live.sum[i][c] - exact.sum[i][c]) <= 1e-12 * scale)) {
+        return ::testing::AssertionFailure() << "pixel " << i % kW << "," << i / kW << " channel " << c << ": live "
+                                             << live.sum[i][c] << " exact " << exact.sum[i][c];
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+bool same_bits(const Accumulator& a, const Accumulator& b) {
+  return a.sum.size() == b.sum.size() && std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(Color)) == 0;
+}
+
+}  // namespace
+
+TEST(LiveSums, RecombinedImagesEqualTheExactReshade) {
+  int checked = 0;
+  for (std::uint32_t seed = 1; seed <= 90; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Term term = std::array<Term, 6>{Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular,
+                                          Term::kReflection, Term::kRefraction}[seed % 6];
+    Scene s = random_scene_data(seed, seed % 4 == 0);
+    std::shared_ptr<const PreparedScene> base = prepared(s);
+    std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30);
+    ASSERT_NE(trees, nullptr);
+    Accumulator before = sized();
+    ASSERT_TRUE(trees->reshade(base, term, std::nullopt, 2, before).completed);  // the trees' image of `term`
+    std::mt19937 rng(seed);
+    const int family = static_cast<int>(seed % 3);
+    for (int e = 0; e < 6; ++e) {  // a drag: every edit against the same trees
+      linear_edit(s, rng, family);
+      const std::shared_ptr<const PreparedScene> edited = prepared(s);
+      if (edited->scene().lights.empty() && family == 2) break;
+      ASSERT_TRUE(trees->recombines(*edited, kW, kH, term, std::nullopt, false)) << "edit " << e;
+      Accumulator live = sized();
+      const PassStats stats = trees->recombine(*edited, term, 1 + e % 2, live);
+      ASSERT_TRUE(stats.completed);
+      EXPECT_EQ(live.samples, 1u);
+      ASSERT_TRUE(close(live, fresh_image(*edited, term), before)) << "edit " << e << ", term " << term_name(term);
+      ++checked;
+    }
+    // The hand stops: the exact re-shade from the same trees, bit for bit a fresh render.
+    const std::shared_ptr<const PreparedScene> rest = prepared(s);
+    Accumulator exact = sized();
+    ASSERT_TRUE(trees->reshade(rest, term, std::nullopt, 2, exact).completed);
+    EXPECT_TRUE(same_bits(exact, fresh_image(*rest, term)));
+  }
+  EXPECT_GT(checked, 400);
+}
+
+TEST(LiveSums, EditsThatAreNotLinearAreRefused) {
+  Scene s = random_scene_data(7);
+  ASSERT_GE(s.lights.size(), 1u);
+  ASSERT_GE(s.materials.size(), 1u);
+  const std::shared_ptr<const PreparedScene> base = prepared(s);
+  std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30);
+  ASSERT_NE(trees, nullptr);
+  const auto refused = [&](const std::function<void(Scene&)>& edit) {
+    Scene t = s;
+    edit(t);
+    return !trees->recombines(*prepared(t), kW, kH, Term::kFull, std::nullopt, false);
+  };
+  EXPECT_TRUE(refused([](Scene& t) { t.materials[0].n += 1; }));
+  EXPECT_TRUE(refused([](Scene& t) {
+    t.specular_model = t.specular_model == SpecularModel::kBlinn ? SpecularModel::kPhong : SpecularModel::kBlinn;
+  }));
+  EXPECT_TRUE(refused([](Scene& t) { t.materials[0].kr += Color(0.3); }));
+  EXPECT_TRUE(refused([](Scene& t) { t.lights[0].position += Vec3(0.1, 0, 0); }));
+  EXPECT_TRUE(refused([](Scene& t) { t.background += Color(0.2); }));
+  EXPECT_TRUE(refused([](Scene& t) { t.camera.position += Vec3(0.1, 0, 0); }));
+  // Two families at once: a product of two edited coefficients.
+  EXPECT_TRUE(refused([](Scene& t) {
+    t.materials[0].kd += Color(0.1);
+    t.lights[0].intensity *= 2.0;
+  }));
+  EXPECT_TRUE(refused([](Scene& t) {
+    t.materials[0].ka += Color(0.1);
+    t.ambient *= 0.5;
+  }));
+  // Another size, eye, term, or term images.
+  Scene t = s;
+  t.materials[0].kd += Color(0.1);
+  const std::shared_ptr<const PreparedScene> edited = prepared(t);
+  EXPECT_TRUE(trees->recombines(*edited, kW, kH, Term::kFull, std::nullopt, false));
+  EXPECT_FALSE(trees->recombines(*edited, kW + 1, kH, Term::kFull, std::nullopt, false));
+  EXPECT_FALSE(trees->recombines(*edited, kW, kH, Term::kFull, Vec3(1, 2, 3), false));
+  EXPECT_FALSE(trees->recombines(*edited, kW, kH, Term::kDiffuse, std::nullopt, false));
+  EXPECT_FALSE(trees->recombines(*edited, kW, kH, Term::kFull, std::nullopt, true));
+}
