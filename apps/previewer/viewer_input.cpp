@@ -102,7 +102,7 @@ void Viewer::handle_viewport_input() {
         } else if (button == ImGuiMouseButton_Left && wipe_hovered) {
           drag_.mode = DragMode::kWipe;  // the split line follows the pointer
         } else if (button == ImGuiMouseButton_Left && !io.KeyShift && grab_object(mouse, object_under(mouse))) {
-          // The selected object, grabbed by its marker or its surface: moved in the view plane.
+          // The selected object, grabbed by its marker or its surface: moved over the floor.
         } else if (button == ImGuiMouseButton_Left) {
           drag_.mode = io.KeyShift ? DragMode::kPan : DragMode::kOrbit;
         } else {
@@ -293,20 +293,43 @@ void Viewer::pick(ImVec2 mouse) {
 
 void Viewer::drag_object_to(ImVec2 mouse, int view_w, int view_h) {
   const Camera view = view_camera();
+  const Scene& scene = doc_.scene();
   const ui::ViewportPoint at{mouse.x - viewport_.x, mouse.y - viewport_.y};
-  Vec3 target = ui::unproject(view, at, drag_.object_depth, view_w, view_h) + drag_.grab_offset;
-  // X, Y or Z held: along that world axis only.
-  for (int axis = 0; axis < 3; ++axis) {
-    if (!ImGui::IsKeyDown(GLFW_KEY_X + axis)) continue;
-    const double along = target[axis] - drag_.object_start[axis];
-    target = drag_.object_start;
-    target[axis] += along;
-    break;
+  const Vec3 start = drag_.object_start;
+  const Vec3 grab = start - drag_.grab_offset;  // the point under the pointer when it was grabbed
+  // Over the floor by default (its height kept), up and down with V held; X, Y or Z held: along
+  // that world axis only; without a floor, in the view plane. Never under the floor
+  // (ui::drag_over_floor).
+  const std::optional<ui::Floor> floor = ui::find_floor(scene, view, drag_.object);
+  int axis = -1;
+  for (int a = 0; a < 3 && axis < 0; ++a) {
+    if (ImGui::IsKeyDown(GLFW_KEY_X + a)) axis = a;
   }
-  const Vec3 now = ui::object_anchor(doc_.scene(), drag_.object);
-  const Vec3 delta = Vec3(ui::tidy_float(target.x), ui::tidy_float(target.y), ui::tidy_float(target.z)) - now;
+  Vec3 target = start;
+  if (floor && axis < 0) {
+    const Vec3 dir = ui::unproject(view, at, 1, view_w, view_h) - view.position;
+    const std::optional<Vec3> moved =
+        ui::drag_over_floor(scene, drag_.object, *floor, start, grab, view.position, dir, ImGui::IsKeyDown(GLFW_KEY_V));
+    if (!moved) return;  // the pointer above the horizon: the object stays where it was
+    target = *moved;
+  } else {
+    target = ui::unproject(view, at, drag_.object_depth, view_w, view_h) + drag_.grab_offset;
+    if (axis >= 0) {
+      const double along = target[axis] - start[axis];
+      target = start;
+      target[axis] += along;
+    }
+    if (floor) target = ui::keep_above_floor(scene, drag_.object, *floor, start, target);
+  }
+  // Kept to float precision where it moved (a saved file reads 1.8074448, not 1.8074447666598992);
+  // a coordinate it kept (to rounding: 0, not -3.5e-15), as it was.
+  const double noise = 1e-9 * std::max(1.0, glm::length(grab - view.position));
+  for (int a = 0; a < 3; ++a) {
+    target[a] = std::abs(target[a] - start[a]) <= noise ? start[a] : ui::tidy_float(target[a]);
+  }
+  const Vec3 delta = target - ui::object_anchor(scene, drag_.object);
   if (delta == Vec3(0)) return;
-  const bool mesh = ui::object_at(doc_.scene(), drag_.object).kind == ObjectRef::Kind::kMesh;
+  const bool mesh = ui::object_at(scene, drag_.object).kind == ObjectRef::Kind::kMesh;
   edit_scene([&](Scene& s) { return ui::move_object(s, drag_.object, delta); }, mesh);
 }
 

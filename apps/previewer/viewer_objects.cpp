@@ -65,17 +65,15 @@ std::string Viewer::add_object(ObjectRef::Kind kind, const std::string& obj_path
     if (obj_path.empty()) return refuse("a mesh object needs an OBJ file");
     if (!is_obj_path(obj_path)) return refuse("'" + obj_path + "' is not an OBJ file (.obj)");
     const std::string file = std::filesystem::absolute(obj_path).lexically_normal().string();
-    // Loaded where its file puts it, then moved so that its middle is the camera's look-at point.
+    // Loaded where its file puts it, then scaled to the scene and set down beside the others
+    // (ui::place_new_object), and loaded again there.
     error = edit_scene([&](Scene& s) {
       Mesh mesh;
       mesh.file = file;
       added = ui::append_mesh_object(s, std::move(mesh));
       std::string failed = place_meshes(s);
       if (!failed.empty()) return failed;
-      const Mesh& placed = s.meshes[static_cast<std::size_t>(ui::object_at(s, added).index)];
-      const Vec3 middle = 0.5 * (placed.geometry->bounds.lo + placed.geometry->bounds.hi);
-      const Vec3 to = view_camera().look_at - middle;
-      return ui::move_object(s, added, Vec3(ui::tidy_float(to.x), ui::tidy_float(to.y), ui::tidy_float(to.z)));
+      return ui::place_new_object(s, view_camera(), view_aspect(), added);
     }, true);
   } else {
     error = edit_scene([&](Scene& s) {
@@ -86,7 +84,8 @@ std::string Viewer::add_object(ObjectRef::Kind kind, const std::string& obj_path
       }
       material = std::clamp(material, 0, static_cast<int>(s.materials.size()) - 1);
       added = ui::add_primitive(s, kind, ui::placement_in_front_of(view_camera()), material);
-      return added >= 0 ? std::string() : std::string("only a sphere, a plane, a triangle or a mesh can be added");
+      if (added < 0) return std::string("only a sphere, a plane, a triangle or a mesh can be added");
+      return ui::place_new_object(s, view_camera(), view_aspect(), added);
     }, false);
   }
   if (error.empty()) {
@@ -130,15 +129,20 @@ std::string Viewer::apply_material_preset(const std::string& name, const std::st
   const ui::MaterialPreset* preset = ui::find_preset(preset_name);
   if (preset == nullptr) return refuse("no preset named '" + preset_name + "'");
   int index = ui::find_material(doc_.scene(), name);
+  Color scale(1);
   const std::string error = edit_scene([&](Scene& s) {
     if (index < 0) {  // a new material of that name, starting from the preset
       std::string failed = ui::new_material(s, name, index);
       if (!failed.empty()) return failed;
     }
-    ui::apply_preset(s.materials[static_cast<std::size_t>(index)], *preset, s.specular_model);
+    scale = ui::apply_preset(s.materials[static_cast<std::size_t>(index)], *preset, s.specular_model, s.ambient);
     return std::string();
   }, false);
-  if (error.empty()) selected_material_ = index;
+  if (error.empty()) {
+    selected_material_ = index;
+    // What the preset's ambient note means for this scene: in the Materials panel, not on stderr.
+    objects_notice_ = ui::EditNotice{ui::preset_applied_text(*preset, scale, doc_.scene().ambient), false, true};
+  }
   return error;
 }
 

@@ -352,16 +352,16 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "drag_object") {
-    // drag_object I DX DY [x|y|z]: selects object I, grabs it by its marker (where it is drawn)
-    // and drags by DX, DY pixels, the axis key held for a constrained move.
+    // drag_object I DX DY [x|y|z|v]: selects object I, grabs it by its marker (where it is drawn)
+    // and drags by DX, DY pixels, the axis key (or V, up and down) held for a constrained move.
     int index = -1, axis_key = -1;
     double dx = 0, dy = 0;
     if ((w.size() != 4 && w.size() != 5) || !parse_int(w[1], index) || !parse_double(w[2], dx) || !parse_double(w[3], dy)) {
-      return step.fail("usage: drag_object I DX DY [x|y|z]");
+      return step.fail("usage: drag_object I DX DY [x|y|z|v]");
     }
     if (w.size() == 5) {
-      if (w[4] != "x" && w[4] != "y" && w[4] != "z") return step.fail("usage: drag_object I DX DY [x|y|z]");
-      axis_key = GLFW_KEY_X + (w[4][0] - 'x');
+      if (w[4] != "x" && w[4] != "y" && w[4] != "z" && w[4] != "v") return step.fail("usage: drag_object I DX DY [x|y|z|v]");
+      axis_key = w[4] == "v" ? GLFW_KEY_V : GLFW_KEY_X + (w[4][0] - 'x');
     }
     // No such object, or none to grab on screen: the program says so, as for a refused edit.
     if (index < 0 || index >= ui::object_count(doc_.scene())) {

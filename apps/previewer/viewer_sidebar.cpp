@@ -22,6 +22,7 @@
 #include "core/shading/shading.h"
 #include "interaction/camera_control.h"
 #include "interaction/scene_objects.h"
+#include "ui/widgets.h"
 
 
 namespace phonglab {
@@ -130,6 +131,7 @@ void Viewer::sidebar_materials() {
     apply_material_preset(scene.materials[static_cast<std::size_t>(m)].name, actions.preset);
   }
   if (objects_notice_.refused) ImGui::TextColored(ui::kErrorColor, "%s", objects_notice_.text.c_str());
+  else if (objects_notice_.material) ImGui::TextWrapped("%s", ui::with_font_subscripts(objects_notice_.text).c_str());
 }
 
 void Viewer::sidebar_objects() {

@@ -115,7 +115,8 @@ void Viewer::write_layout_state(std::ostream& out) const {
         << "light" << m.index << "_offscreen=" << (m.offscreen ? 1 : 0) << "\n";
   }
   for (const Material& m : scene.materials) {
-    out << "material_" << m.name << "_kd=" << vec(m.kd) << "\n"
+    out << "material_" << m.name << "_ka=" << vec(m.ka) << "\n"
+        << "material_" << m.name << "_kd=" << vec(m.kd) << "\n"
         << "material_" << m.name << "_n=" << m.n << "\n";
   }
   // The objects in file order: kind, anchor, material; the selection and the last edit's notice.
@@ -133,6 +134,8 @@ void Viewer::write_layout_state(std::ostream& out) const {
     out << "object" << i << "_kind=" << ui::kind_name(ui::object_at(scene, i).kind) << "\n"
         << "object" << i << "_anchor=" << vec(ui::object_anchor(scene, i)) << "\n"
         << "object" << i << "_material=" << (m >= 0 ? scene.materials[static_cast<std::size_t>(m)].name : "") << "\n";
+    const ObjectRef r = ui::object_at(scene, i);
+    if (r.kind == ObjectRef::Kind::kSphere) out << "object" << i << "_radius=" << scene.spheres[static_cast<std::size_t>(r.index)].radius << "\n";
     if (const std::optional<ImVec2> at = object_screen_point(i)) out << "object" << i << "_screen=" << at->x << " " << at->y << "\n";
   }
   std::string enabled;

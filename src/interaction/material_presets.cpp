@@ -1,6 +1,8 @@
 #include "interaction/material_presets.h"
 
 #include <array>
+#include <cmath>
+#include <sstream>
 
 namespace phonglab::ui {
 
@@ -44,12 +46,12 @@ constexpr std::array<MaterialPreset, 35> kPresets = {{
     {"yellow_rubber", "rubber", rgb(0.05, 0.05, 0), rgb(0.5, 0.5, 0.4), rgb(0.7, 0.7, 0.04), 10},
     // The lecture's own, as its scenes use them (n as it is, for either model), and the
     // transparent ones with their indices of refraction (water 1.333, diamond 2.417).
-    {"matte", "lecture", rgb(0.02, 0.06, 0.02), rgb(0.25, 0.7, 0.25), grey(0), 1, grey(0), grey(0), 1.5, false, true},
-    {"plastic", "lecture", rgb(0.08, 0.02, 0.02), rgb(0.8, 0.15, 0.1), grey(0.5), 20, grey(0), grey(0), 1.5, false, true},
-    {"mirror", "lecture", grey(0), grey(0.05), grey(0.6), 200, grey(0.85), grey(0), 1.5, false, true},
-    {"glass", "lecture", grey(0), grey(0), grey(0.5), 300, grey(0), grey(0.9), 1.5, true, true},
-    {"water", "lecture", grey(0), grey(0), grey(0.5), 300, grey(0), grey(0.9), 1.333, true, true},
-    {"diamond", "lecture", grey(0), grey(0), grey(0.8), 500, grey(0), grey(0.9), 2.417, true, true},
+    {"matte", "lecture", rgb(0.02, 0.06, 0.02), rgb(0.25, 0.7, 0.25), grey(0), 1, grey(0), grey(0), 1.5, false, true, 1},
+    {"plastic", "lecture", rgb(0.08, 0.02, 0.02), rgb(0.8, 0.15, 0.1), grey(0.5), 20, grey(0), grey(0), 1.5, false, true, 1},
+    {"mirror", "lecture", grey(0), grey(0.05), grey(0.6), 200, grey(0.85), grey(0), 1.5, false, true, 1},
+    {"glass", "lecture", grey(0), grey(0), grey(0.5), 300, grey(0), grey(0.9), 1.5, true, true, 1},
+    {"water", "lecture", grey(0), grey(0), grey(0.5), 300, grey(0), grey(0.9), 1.333, true, true, 1},
+    {"diamond", "lecture", grey(0), grey(0), grey(0.8), 500, grey(0), grey(0.9), 2.417, true, true, 1},
 }};
 
 }  // namespace
@@ -68,8 +70,12 @@ double preset_exponent(const MaterialPreset& p, SpecularModel model) {
   return p.shininess / 4;
 }
 
-void apply_preset(Material& m, const MaterialPreset& p, SpecularModel model) {
-  m.ka = p.ka;
+Color apply_preset(Material& m, const MaterialPreset& p, SpecularModel model, const Color& ambient) {
+  Color scale(1);
+  for (int c = 0; c < 3; ++c) {
+    if (ambient[c] > 0 && std::isfinite(ambient[c])) scale[c] = p.assumed_ambient / ambient[c];
+  }
+  m.ka = p.ka * scale;
   m.kd = p.kd;
   m.ks = p.ks;
   m.n = preset_exponent(p, model);
@@ -77,6 +83,34 @@ void apply_preset(Material& m, const MaterialPreset& p, SpecularModel model) {
   m.kt = p.kt;
   m.ior = p.ior;
   m.fresnel = p.fresnel;
+  return scale;
+}
+
+namespace {
+
+std::string numbers(const Color& c) {
+  std::ostringstream text;
+  text.precision(3);
+  if (c.x == c.y && c.y == c.z) text << c.x;
+  else text << "(" << c.x << ", " << c.y << ", " << c.z << ")";
+  return text.str();
+}
+
+}  // namespace
+
+std::string preset_note(const MaterialPreset& p) {
+  std::ostringstream text;
+  text << "made for " << (p.lecture ? "the lecture's" : "OpenGL's dim global ambient") << " Iₐ = " << p.assumed_ambient
+       << ": ka is scaled to the scene's Iₐ";
+  return text.str();
+}
+
+std::string preset_applied_text(const MaterialPreset& p, const Color& scale, const Color& ambient) {
+  std::ostringstream text;
+  text << p.name << ": ";
+  if (scale == Color(1)) text << "ka as in the table (the preset assumes Iₐ = " << p.assumed_ambient << ", this scene's Iₐ = " << numbers(ambient) << ")";
+  else text << "ka scaled by " << numbers(scale) << " for this scene's Iₐ = " << numbers(ambient) << " (the preset assumes Iₐ = " << p.assumed_ambient << ")";
+  return text.str();
 }
 
 }  // namespace phonglab::ui

@@ -1,8 +1,14 @@
 #include "interaction/scene_objects.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+#include "core/accel/accel.h"
+#include "interaction/camera_control.h"
+#include "interaction/numbers.h"
 
 namespace phonglab::ui {
 
@@ -201,6 +207,345 @@ int append_mesh_object(Scene& s, Mesh mesh) {
   s.meshes.push_back(std::move(mesh));
   s.mesh_object.push_back(object);
   return object;
+}
+
+namespace {
+
+// The finite objects' indices (spheres, triangles, meshes), objects[except] left out.
+std::vector<int> finite_objects(const Scene& s, int except) {
+  std::vector<int> all;
+  for (int object = 0; object < object_count(s); ++object) {
+    const Kind kind = object_at(s, object).kind;
+    if (object != except && kind != Kind::kPlane && kind != Kind::kNone) all.push_back(object);
+  }
+  return all;
+}
+
+// A finite object's axis-aligned bounds (a plane's are empty).
+Aabb object_bounds(const Scene& s, int object) {
+  const ObjectRef r = object_at(s, object);
+  const auto i = static_cast<std::size_t>(r.index);
+  Aabb box;
+  switch (r.kind) {
+    case Kind::kSphere:
+      box.grow(s.spheres[i].center - Vec3(s.spheres[i].radius));
+      box.grow(s.spheres[i].center + Vec3(s.spheres[i].radius));
+      break;
+    case Kind::kTriangle:
+      for (const Vec3& v : {s.triangles[i].v0, s.triangles[i].v1, s.triangles[i].v2}) box.grow(v);
+      break;
+    case Kind::kMesh:
+      if (s.meshes[i].geometry) box = s.meshes[i].geometry->bounds;
+      else box.grow(s.meshes[i].transform.translate);
+      break;
+    default: break;
+  }
+  return box;
+}
+
+// `v` to `digits` significant digits, as the double nearest that decimal (0.6, not
+// 0.60000000000000009).
+double significant(double v, int digits) {
+  if (!(v > 0) || !std::isfinite(v)) return v;
+  const int e = static_cast<int>(std::floor(std::log10(v))) - (digits - 1);
+  const double rounded = e < 0 ? std::round(v * std::pow(10.0, -e)) / std::pow(10.0, -e)
+                               : std::round(v / std::pow(10.0, e)) * std::pow(10.0, e);
+  return tidy_float(rounded);
+}
+
+Vec3 unit_or(const Vec3& v, const Vec3& otherwise) {
+  const double length = glm::length(v);
+  return length > 1e-12 && std::isfinite(length) ? v / length : otherwise;
+}
+
+}  // namespace
+
+std::optional<Floor> find_floor(const Scene& s, const Camera& camera, int except) {
+  const Vec3 up = unit_or(camera.up, Vec3(0, 1, 0));
+  const std::vector<int> objects = finite_objects(s, except);
+  std::vector<Vec3> anchors;
+  for (const int object : objects) anchors.push_back(object_anchor(s, object));
+  if (anchors.empty()) anchors.push_back(camera.look_at);
+  std::optional<Floor> best;
+  double best_depth = std::numeric_limits<double>::infinity();  // how far below the look-at point
+  for (std::size_t i = 0; i < s.planes.size(); ++i) {
+    if (static_cast<int>(i) < static_cast<int>(s.plane_object.size()) && s.plane_object[i] == except) continue;
+    Floor f;
+    f.point = s.planes[i].point;
+    f.normal = unit_or(s.planes[i].normal, Vec3(0));
+    if (glm::dot(f.normal, up) < 0) f.normal = -f.normal;
+    if (!(glm::dot(f.normal, up) >= std::cos(glm::radians(30.0)))) continue;
+    const bool below_all = std::all_of(anchors.begin(), anchors.end(), [&](const Vec3& a) {
+      return height_above(f, a) >= -1e-9 * std::max(1.0, max_abs(a - f.point));
+    });
+    if (!below_all) continue;
+    const double depth = height_above(f, camera.look_at);
+    if (depth < best_depth) {
+      best_depth = depth;
+      f.object = i < s.plane_object.size() ? s.plane_object[i] : -1;
+      best = f;
+    }
+  }
+  return best;
+}
+
+double height_above(const Floor& f, const Vec3& p) { return glm::dot(p - f.point, f.normal); }
+
+double lowest_above(const Scene& s, int object, const Floor& f) {
+  const ObjectRef r = object_at(s, object);
+  const auto i = static_cast<std::size_t>(r.index);
+  switch (r.kind) {
+    case Kind::kSphere: return height_above(f, s.spheres[i].center) - s.spheres[i].radius;
+    case Kind::kTriangle:
+      return std::min({height_above(f, s.triangles[i].v0), height_above(f, s.triangles[i].v1),
+                       height_above(f, s.triangles[i].v2)});
+    case Kind::kMesh: {
+      const Mesh& m = s.meshes[i];
+      if (!m.geometry || m.geometry->triangles.empty()) return height_above(f, m.transform.translate);
+      double low = std::numeric_limits<double>::infinity();
+      for (const Triangle& t : m.geometry->triangles) {
+        low = std::min({low, height_above(f, t.v0), height_above(f, t.v1), height_above(f, t.v2)});
+      }
+      return low;
+    }
+    default: return -std::numeric_limits<double>::infinity();
+  }
+}
+
+double typical_size(const Scene& s, const Camera& camera, int except) {
+  std::vector<double> diameters;
+  Aabb bounds;
+  for (const int object : finite_objects(s, except)) {
+    const ObjectRef r = object_at(s, object);
+    if (r.kind == Kind::kSphere) diameters.push_back(2 * s.spheres[static_cast<std::size_t>(r.index)].radius);
+    bounds.grow(object_bounds(s, object));
+  }
+  double size = 0;
+  if (!diameters.empty()) {
+    std::sort(diameters.begin(), diameters.end());
+    const std::size_t n = diameters.size();
+    size = n % 2 == 1 ? diameters[n / 2] : 0.5 * (diameters[n / 2 - 1] + diameters[n / 2]);
+  } else if (!bounds.empty()) {
+    const Vec3 sides = bounds.hi - bounds.lo;
+    size = std::max({sides.x, sides.y, sides.z}) / 4;
+  }
+  if (!(size > 0) || !std::isfinite(size) || size > 1e100) {
+    const double distance = glm::length(camera.look_at - camera.position);
+    size = distance > 0 && std::isfinite(distance) ? distance / 5 : 1;
+  }
+  return significant(size, 2);
+}
+
+std::string place_new_object(Scene& s, const Camera& camera, double aspect, int object) {
+  complete_indices(s);
+  const ObjectRef r = object_at(s, object);
+  if (r.kind == Kind::kNone) return no_such_object(s, object);
+  if (r.kind == Kind::kPlane) return {};
+  const auto index = static_cast<std::size_t>(r.index);
+  if (r.kind == Kind::kMesh && !s.meshes[index].geometry) return object_name(object) + ": its mesh is not loaded";
+  const std::optional<Floor> floor = find_floor(s, camera, object);
+  const double size = typical_size(s, camera, object);
+  // The search's frame: along the floor, the view's right and the way towards the eye; without a
+  // floor, the view plane's right and up.
+  const Vec3 forward = unit_or(camera.look_at - camera.position, Vec3(0, 0, -1));
+  const Vec3 view_right = unit_or(glm::cross(forward, camera.up), Vec3(1, 0, 0));
+  const Vec3 view_up = glm::cross(view_right, forward);
+  Vec3 base = camera.look_at, across = view_right, along = view_up, n(0);
+  if (floor) {
+    n = floor->normal;
+    base = camera.look_at - height_above(*floor, camera.look_at) * n;
+    // Looking straight down, the top of the image is the way away from the eye.
+    const Vec3 ahead = unit_or(forward - glm::dot(forward, n) * n, unit_or(view_up - glm::dot(view_up, n) * n, Vec3(0, 0, -1)));
+    across = glm::normalize(glm::cross(ahead, n));
+    along = -ahead;
+  }
+  // The new object's middle for a point p of the floor (or the view plane), its half sides and
+  // the step of the search.
+  double radius = size / 2;
+  Vec3 half(radius);
+  double lift = radius;  // how far above the floor its middle is
+  double k = 1;          // a mesh's scale factor
+  Vec3 mesh_middle(0);
+  if (r.kind == Kind::kTriangle) {
+    half = Vec3(0);  // its corners' box, about p
+    lift = 0;
+  } else if (r.kind == Kind::kMesh) {
+    const MeshGeometry& g = *s.meshes[index].geometry;
+    const Vec3 sides = g.bounds.hi - g.bounds.lo;
+    const double largest = std::max({sides.x, sides.y, sides.z});
+    k = largest > 0 && std::isfinite(largest) ? size / largest : 1;
+    k = significant(k, 3);
+    mesh_middle = g.bounds.centroid();
+    half = 0.5 * k * sides;
+    radius = std::max({half.x, half.y, half.z});
+    if (floor) {
+      double low = std::numeric_limits<double>::infinity();
+      for (const Triangle& t : g.triangles) {
+        for (const Vec3& v : {t.v0, t.v1, t.v2}) low = std::min(low, glm::dot(v - mesh_middle, n));
+      }
+      lift = std::isfinite(low) ? -k * low : 0;
+    }
+  }
+  if (!floor) lift = 0;
+  const auto triangle_at = [&](const Vec3& p) {
+    Triangle t = s.triangles[index];
+    if (floor) {  // standing on its base edge, facing the eye (Ng = along)
+      t.v0 = p - radius * across;
+      t.v1 = p + radius * across;
+      t.v2 = p + 1.8 * radius * n;
+    } else {      // facing the eye, counter-clockwise as the camera sees it
+      t.v0 = p + radius * (-across - 0.6 * along);
+      t.v1 = p + radius * (across - 0.6 * along);
+      t.v2 = p + radius * (1.2 * along);
+    }
+    return t;
+  };
+  const auto middle_at = [&](const Vec3& p) { return p + lift * n; };
+  const auto box_at = [&](const Vec3& p) {
+    Aabb box;
+    if (r.kind == Kind::kTriangle) {
+      const Triangle t = triangle_at(p);
+      for (const Vec3& v : {t.v0, t.v1, t.v2}) box.grow(v);
+    } else {
+      box.grow(middle_at(p) - half);
+      box.grow(middle_at(p) + half);
+    }
+    return box;
+  };
+  std::vector<Aabb> others;
+  for (const int other : finite_objects(s, object)) others.push_back(object_bounds(s, other));
+  const double step = (radius > 0 ? radius : size / 2) / 2;
+  const double gap = 0.04 * step;
+  const auto free = [&](const Aabb& box) {
+    return std::none_of(others.begin(), others.end(), [&](const Aabb& o) {
+      return !o.empty() && box.lo.x < o.hi.x + gap && o.lo.x < box.hi.x + gap && box.lo.y < o.hi.y + gap &&
+             o.lo.y < box.hi.y + gap && box.lo.z < o.hi.z + gap && o.lo.z < box.hi.z + gap;
+    });
+  };
+  const double framed = s.width > 0 && s.height > 0 ? static_cast<double>(s.width) / s.height : 1;
+  const int h = 1000, w = std::max(1, static_cast<int>(std::lround(1000 * (aspect > 0 && std::isfinite(aspect) ? aspect : framed))));
+  const auto in_view = [&](const Aabb& box) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 c(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y, corner & 4 ? box.hi.z : box.lo.z);
+      const std::optional<ViewportPoint> at = project(camera, c, w, h);
+      if (!at || at->x < 0.02 * w || at->x > 0.98 * w || at->y < 0.02 * h || at->y > 0.98 * h) return false;
+    }
+    return true;
+  };
+  // Whether a nearer object would hide it: its middle inside the rectangle that object's bounds
+  // cover on screen.
+  struct OnScreen {
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300, depth = 0;
+    std::optional<ViewportPoint> anchor;
+    bool covers(const std::optional<ViewportPoint>& p) const { return p && p->x > x0 && p->x < x1 && p->y > y0 && p->y < y1; }
+  };
+  const auto on_screen = [&](const Aabb& box, const Vec3& anchor) {
+    OnScreen o;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 c(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y, corner & 4 ? box.hi.z : box.lo.z);
+      if (const std::optional<ViewportPoint> at = project(camera, c, w, h)) {
+        o.x0 = std::min(o.x0, at->x), o.x1 = std::max(o.x1, at->x), o.y0 = std::min(o.y0, at->y), o.y1 = std::max(o.y1, at->y);
+      }
+    }
+    o.depth = view_depth(camera, anchor);
+    o.anchor = project(camera, anchor, w, h);
+    return o;
+  };
+  std::vector<OnScreen> seen;
+  for (const int other : finite_objects(s, object)) seen.push_back(on_screen(object_bounds(s, other), object_anchor(s, other)));
+  const auto hidden = [&](const Aabb& box) {
+    const OnScreen me = on_screen(box, box.centroid());
+    return std::any_of(seen.begin(), seen.end(), [&](const OnScreen& o) { return o.depth < me.depth && o.covers(me.anchor); });
+  };
+  // The grid's points, nearest first: the right before the left, the nearer row before the further.
+  constexpr int kReach = 60;
+  std::vector<std::pair<int, int>> grid;
+  for (int j = -kReach; j <= kReach; ++j) {
+    for (int i = -kReach; i <= kReach; ++i) grid.emplace_back(i, j);
+  }
+  std::stable_sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) {
+    const int da = a.first * a.first + a.second * a.second, db = b.first * b.first + b.second * b.second;
+    if (da != db) return da < db;
+    if (std::abs(a.second) != std::abs(b.second)) return std::abs(a.second) < std::abs(b.second);
+    if (a.first != b.first) return a.first > b.first;
+    return a.second > b.second;
+  });
+  const auto point = [&](const std::pair<int, int>& g) {
+    Vec3 p = base + (g.first * step) * across + (g.second * step) * along;
+    p = Vec3(tidy_float(p.x), tidy_float(p.y), tidy_float(p.z));
+    if (floor) p -= height_above(*floor, p) * n;  // on the floor exactly
+    return p;
+  };
+  std::optional<Vec3> found;
+  // In view, not hidden by another object, not behind the look-at point; then also behind it;
+  // then hidden, not behind it; then anywhere in view; then free anywhere.
+  for (int pass = 0; pass < 5 && !found; ++pass) {
+    for (const auto& g : grid) {
+      if ((pass == 0 || pass == 2) && floor && g.second < 0) continue;
+      const Vec3 p = point(g);
+      const Aabb box = box_at(p);
+      if (free(box) && (pass == 4 || in_view(box)) && (pass >= 2 || !hidden(box))) {
+        found = p;
+        break;
+      }
+    }
+  }
+  const Vec3 p = found ? *found : point({0, 0});
+  switch (r.kind) {
+    case Kind::kSphere:
+      s.spheres[index].center = middle_at(p);
+      s.spheres[index].radius = radius;
+      break;
+    case Kind::kTriangle: {
+      const Triangle t = triangle_at(p);
+      s.triangles[index].v0 = t.v0;
+      s.triangles[index].v1 = t.v1;
+      s.triangles[index].v2 = t.v2;
+      break;
+    }
+    default: {  // the mesh's points x go to k (x - its middle) + the new middle
+      MeshTransform& t = s.meshes[index].transform;
+      t.scale *= k;
+      t.translate = k * (t.translate - mesh_middle) + middle_at(p);
+      break;
+    }
+  }
+  return {};
+}
+
+std::optional<Vec3> drag_over_floor(const Scene& s, int object, const Floor& floor, const Vec3& anchor_start,
+                                    const Vec3& grab, const Vec3& origin, const Vec3& dir, bool vertical) {
+  const Vec3 n = floor.normal;
+  const double reach = 50 * glm::length(grab - origin);  // no further than this from the eye
+  Vec3 target = anchor_start;
+  if (!vertical) {
+    const double across = glm::dot(dir, n);
+    if (!(std::abs(across) > 1e-12 * glm::length(dir))) return std::nullopt;
+    const double t = glm::dot(grab - origin, n) / across;
+    if (!(t > 0) || t * glm::length(dir) > reach) return std::nullopt;
+    Vec3 delta = origin + t * dir - grab;
+    delta -= glm::dot(delta, n) * n;  // the height kept exactly
+    target = anchor_start + delta;
+  } else {
+    // The points grab + a n and origin + t dir nearest to each other.
+    const Vec3 w0 = grab - origin;
+    const double b = glm::dot(n, dir), c = glm::dot(dir, dir), d = glm::dot(n, w0), e = glm::dot(dir, w0);
+    const double denominator = c - b * b;
+    if (!(denominator > 1e-12 * c)) return std::nullopt;  // the ray runs along the normal
+    const double a = (b * e - c * d) / denominator, t = (e - b * d) / denominator;
+    if (!(t > 0) || std::abs(a) > reach) return std::nullopt;
+    target = anchor_start + a * n;
+  }
+  return keep_above_floor(s, object, floor, anchor_start, target);
+}
+
+Vec3 keep_above_floor(const Scene& s, int object, const Floor& floor, const Vec3& anchor_start, const Vec3& anchor) {
+  const double low_now = lowest_above(s, object, floor);
+  if (!std::isfinite(low_now)) return anchor;  // a plane
+  const double below_anchor = low_now - height_above(floor, object_anchor(s, object));
+  const double allowed = std::min(0.0, height_above(floor, anchor_start) + below_anchor);
+  const double low = height_above(floor, anchor) + below_anchor;
+  return low < allowed ? anchor + (allowed - low) * floor.normal : anchor;
 }
 
 std::string delete_object(Scene& s, int object) {

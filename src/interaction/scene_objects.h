@@ -9,6 +9,7 @@
 // loaded by the caller (src/io): here a mesh's transform or file is only recorded.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,8 +36,8 @@ Vec3 object_anchor(const Scene& scene, int object);
 std::string object_name_of(const Scene& scene, int object);
 std::string object_label(const Scene& scene, int object);
 
-// Where a new object goes: in front of the camera, at its look-at point, sized to a tenth of
-// the distance to it.
+// A place in front of the camera, at its look-at point, sized to a tenth of the distance to it
+// (the previewer places new objects with place_new_object below).
 struct Placement {
   Vec3 at{0};       // look-at point
   Vec3 right{1, 0, 0}, up{0, 1, 0}, towards_eye{0, 0, 1};  // the camera's frame
@@ -49,6 +50,53 @@ Placement placement_in_front_of(const Camera& camera);
 int add_primitive(Scene& scene, ObjectRef::Kind kind, const Placement& where, int material);
 // Appends a mesh object (its geometry may still be missing: the caller loads it).
 int append_mesh_object(Scene& scene, Mesh mesh);
+
+// The floor the objects stand on: of the scene's planes whose normal (either side) is within 30
+// degrees of the camera's up, the highest one below every finite object's anchor (below the
+// look-at point when there are none), objects[`except`] left out (the one being placed or
+// dragged). `normal` is the plane's unit normal on that side.
+struct Floor {
+  Vec3 point{0};
+  Vec3 normal{0, 1, 0};
+  int object = -1;  // the plane's index in the file
+};
+std::optional<Floor> find_floor(const Scene& scene, const Camera& camera, int except = -1);
+// How far `p` is above the floor (negative: under it).
+double height_above(const Floor& floor, const Vec3& p);
+// The object's lowest point's height above the floor (a sphere's centre's height less its radius,
+// a triangle's lowest corner, a mesh's lowest vertex); -infinity for a plane.
+double lowest_above(const Scene& scene, int object, const Floor& floor);
+// The size of the scene's objects: the median sphere diameter; with no spheres, the largest side
+// of the finite objects' bounds / 4; with none, a fifth of the eye's distance to the look-at
+// point. Two significant digits (0.6, 1.4), objects[`except`] left out.
+double typical_size(const Scene& scene, const Camera& camera, int except = -1);
+
+// Gives the object just appended (objects[`object`], a sphere, a triangle or a loaded mesh) the
+// scene's typical size and its place beside the others (docs/previewer.md, "Building a scene"):
+// resting on the floor when there is one (a sphere's centre a radius above it, a triangle standing
+// on its base edge facing the eye, a mesh's lowest vertex on it), at the free spot nearest to the
+// point of the floor under the camera's look-at point, the right before the left at equal
+// distance, searched on a grid along the floor in the view's right direction and towards the eye,
+// spaced by half the new object's radius. Free: its bounds apart from every other finite
+// object's; in view: its bounds inside a view of `aspect` (width / height; 0: the scene's image)
+// through `camera`; seen: its middle not inside the screen rectangle of a nearer object's bounds.
+// Free, in view, seen and not further from the eye than the look-at point first; then free, in
+// view and seen anywhere; then free and in view; then free. Without a floor, the same in the view plane
+// through the look-at point. A plane is left where it is. A mesh's scale and translation are set
+// (its geometry must then be loaded again); the others' numbers are set directly.
+std::string place_new_object(Scene& scene, const Camera& camera, double aspect, int object);
+
+// Dragging an object over the floor (docs/previewer.md, "Selecting and moving"). `grab` is the
+// point under the pointer when the object was grabbed, with its anchor at `anchor_start`; the
+// pointer's ray now starts at `origin` along `dir`. Along the floor: where the ray meets the plane
+// through `grab` parallel to the floor (the object's height kept); `vertical`: along the floor's
+// normal through `grab`, to the point nearest to the ray. The result is the new anchor, lifted so
+// that the object's lowest point stays at or above the floor (or as low as it started, when it
+// started under it); nothing when the ray does not meet that plane or line in front of the eye.
+std::optional<Vec3> drag_over_floor(const Scene& scene, int object, const Floor& floor, const Vec3& anchor_start,
+                                    const Vec3& grab, const Vec3& origin, const Vec3& dir, bool vertical);
+// The anchor `anchor` lifted as drag_over_floor lifts it (for the X, Y, Z drags).
+Vec3 keep_above_floor(const Scene& scene, int object, const Floor& floor, const Vec3& anchor_start, const Vec3& anchor);
 std::string delete_object(Scene& scene, int object);
 // Appends a copy of the object; `copy` receives its index.
 std::string duplicate_object(Scene& scene, int object, int& copy);

@@ -125,7 +125,7 @@ void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, co
   if (button("+ mesh (OBJ)", "objects.add_mesh")) actions.add = Kind::kMesh;
   if (!notice.text.empty()) ImGui::TextColored(notice.refused ? kErrorColor : kWarningColor, "%s", notice.text.c_str());
   if (selected >= 0) {
-    ImGui::TextDisabled("Drag it in the view (hold X, Y or Z for one axis), or type its numbers:");
+    ImGui::TextDisabled("Drag it in the view: over the floor (hold V: up and down; X, Y or Z: one axis), or type its numbers:");
     selected_fields(scene, selected, actions);
   } else {
     ImGui::TextDisabled("Click an object in the view or the list to select it.");
@@ -160,11 +160,14 @@ void material_library(const Scene& scene, int selected, std::string& name_field,
       }
       const std::string label = std::string(p.name);
       if (ImGui::Selectable(label.c_str())) actions.preset = label;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", with_font_subscripts(preset_note(p)).c_str());
     }
     ImGui::EndCombo();
   }
   locate("materials.preset");
   ImGui::EndDisabled();
+  // The classic table's ka was made for a dim ambient: say how the scene's is taken into account.
+  ImGui::TextDisabled("%s", ("A preset's ka is scaled to this scene's " + i_a() + " (the classic table assumes 0.2).").c_str());
 }
 
 }  // namespace phonglab::ui

@@ -154,7 +154,7 @@ void keys_help() {
       {"right-drag, wheel", "dolly"},
       {"middle-drag, Shift+left-drag", "pan"},
       {"click", "select the clicked object and its material"},
-      {"drag the selected object", "move it (X, Y or Z held: along that axis)"},
+      {"drag the selected object", "slide it on the floor (V: up, down; X, Y, Z: one axis)"},
       {"Ctrl+click", "probe the pixel (its equation, its ray tree)"},
       {"drag a light marker or arrow", "move that light"},
       {"1", "the full image"},

@@ -44,6 +44,7 @@ bool materials_panel(std::vector<Material>& materials, int& selected, SpecularMo
 struct EditNotice {
   std::string text;
   bool refused = false;
+  bool material = false;  // a material's edit's: shown in the Materials panel too
 };
 
 // What the Objects panel asks for; the app carries it out, one undo step each.

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 namespace phonglab::ui {
@@ -136,6 +137,16 @@ bool font_has(ImWchar c) { return ImGui::GetFont()->FindGlyphNoFallback(c) != nu
 std::string i_a() { return font_has(0x2090) ? "I\xE2\x82\x90" : "I_a"; }
 
 std::string i_l() { return font_has(0x2097) ? "I\xE2\x82\x97" : "I_l"; }
+
+std::string with_font_subscripts(std::string text) {
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"I\xE2\x82\x90", i_a()}, {"I\xE2\x82\x97", i_l()}}) {
+    if (from == to) continue;
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+      text.replace(at, from.size(), to);
+    }
+  }
+  return text;
+}
 
 void help_marker(const char* text) {
   // Whole or on the next line, never broken as "(?" and ")".

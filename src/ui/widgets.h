@@ -58,6 +58,8 @@ bool font_has(ImWchar c);
 // "I_l" when the font has no subscripts.
 std::string i_a();
 std::string i_l();
+// `text` with its "Iₐ" and "Iₗ" as i_a() and i_l() give them.
+std::string with_font_subscripts(std::string text);
 
 // A one-line help marker: "(?)" that shows `text` when hovered.
 void help_marker(const char* text);

@@ -1015,8 +1015,9 @@ check_objects() {
   check "the + sphere button adds objects[$n0] last and selects it" \
     test "$(state "$dir/b01.txt" objects)" = $((n0 + 1)) -a "$(state "$dir/b01.txt" selected_object)" = "$n0" \
     -a "$(state "$dir/b01.txt" "object${n0}_kind")" = sphere
-  check "it stands at the camera's look-at point ($(state "$dir/b01.txt" "object${n0}_anchor"))" \
-    test "$(state "$dir/b01.txt" "object${n0}_anchor")" = "$(state "$dir/b01.txt" camera_look_at)"
+  check "it rests on the floor beside the others, not at the look-at point ($(state "$dir/b01.txt" "object${n0}_anchor"))" \
+    awk -v a="$(state "$dir/b01.txt" "object${n0}_anchor")" -v r="$(state "$dir/b01.txt" "object${n0}_radius")" \
+      'BEGIN { split(a, p, " "); exit !(r > 0 && p[2] == r && (p[1] != 0 || p[3] != 0)) }'
   check "material_preset gives the table's gold, n = 51.2 / 4 for Phong ($(state "$dir/b02.txt" material_shiny_gold_kd), n $(state "$dir/b02.txt" material_shiny_gold_n))" \
     test "$(state "$dir/b02.txt" material_shiny_gold_kd)" = "0.75164 0.60648 0.22648" -a "$(state "$dir/b02.txt" material_shiny_gold_n)" = 12.8 \
     -a "$(state "$dir/b02.txt" object6_material)" = shiny_gold

@@ -12,6 +12,10 @@
 # the lesson closes; a step's probe names the same point at two view sizes (the CLI's probe).
 # Session 3 (presenting): presenter mode at 1920x1080 sizes its text to the screen, and the
 # move-your-head answer's difference comes with its text.
+# Session 4 (building a scene, gently): a new sphere is set down on the floor beside the others,
+# in view; a dragged sphere slides over the floor at its height, goes up and down with V held and
+# stops at the floor; a classic preset's ka is scaled to the lecture's Iₐ = 1, and the Materials
+# panel says so.
 # Exit status 0 when every check passes. Needs: xvfb-run, xdotool, ImageMagick.
 set -u
 
@@ -226,10 +230,84 @@ check_presenter() {
   check "... dark but for the highlights (mean grey $mean)" less "$mean" 0.06
 }
 
+session_building() {
+  local dir=$OUT/building
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+dump_state $dir/s0.txt
+add_object sphere
+wait_frames 3
+wait_idle 120
+dump_state $dir/s1.txt
+screenshot $dir/added.png
+drag_object 2 80 -60
+wait_frames 3
+wait_idle 120
+dump_state $dir/s2.txt
+drag_object 2 0 -80 v
+wait_frames 3
+wait_idle 120
+dump_state $dir/s3.txt
+drag_object 2 0 300 v
+wait_frames 3
+wait_idle 120
+dump_state $dir/s4.txt
+material_preset golden gold
+show_item materials.preset
+wait_frames 3
+wait_idle 120
+dump_state $dir/s5.txt
+screenshot $dir/gold_notice.png
+quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+# apart_spheres FILE: no two spheres of the dump intersect (centres at least the radii apart).
+apart_spheres() {
+  awk -F= '/^object[0-9]+_anchor=/ { i = $1; sub(/^object/, "", i); sub(/_anchor$/, "", i); a[i] = $2 }
+    /^object[0-9]+_radius=/ { i = $1; sub(/^object/, "", i); sub(/_radius$/, "", i); r[i] = $2 }
+    END { for (i in r) for (j in r) if (i < j) {
+            split(a[i], p, " "); split(a[j], q, " ")
+            if ((p[1]-q[1])^2 + (p[2]-q[2])^2 + (p[3]-q[3])^2 < (r[i] + r[j])^2) exit 1 }
+          exit 0 }' "$1"
+}
+
+check_building() {
+  local dir=$OUT/building n a b c d at
+  echo "session 4: building a scene, gently"
+  check_exit "$dir" "the building session ran to the end"
+  n=$(state "$dir/s0.txt" objects)
+  a=$(state "$dir/s1.txt" "object${n}_anchor")
+  check "a new sphere rests on the floor: its centre's height is its radius ($a, radius $(state "$dir/s1.txt" "object${n}_radius"))" \
+    awk -v a="$a" -v r="$(state "$dir/s1.txt" "object${n}_radius")" 'BEGIN { split(a, p, " "); exit !(r > 0 && p[2] == r) }'
+  check "... beside the others, not inside them (no two spheres intersect)" apart_spheres "$dir/s1.txt"
+  at=$(state "$dir/s1.txt" "object${n}_screen")
+  check "... and in view ($at in the 880x720 view)" \
+    awk -v a="$at" 'BEGIN { split(a, p, " "); exit !(p[1] > 40 && p[1] < 840 && p[2] > 40 && p[2] < 680) }'
+  a=$(state "$dir/s1.txt" object2_anchor) b=$(state "$dir/s2.txt" object2_anchor)
+  check "drag_object 2 80 -60 slides it over the floor, its height kept ($a -> $b)" \
+    awk -v a="$a" -v b="$b" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[2] == p[2] && (q[1] - p[1])^2 + (q[3] - p[3])^2 > 0.01) }'
+  c=$(state "$dir/s3.txt" object2_anchor)
+  check "with V held it goes up, x and z kept ($b -> $c)" \
+    awk -v a="$b" -v b="$c" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[2] > p[2] + 0.1 && q[1] == p[1] && q[3] == p[3]) }'
+  d=$(state "$dir/s4.txt" object2_anchor)
+  check "... and dragged down past the floor it stops on it: height = radius ($c -> $d, radius $(state "$dir/s4.txt" object2_radius))" \
+    awk -v a="$d" -v r="$(state "$dir/s4.txt" object2_radius)" 'BEGIN { split(a, p, " "); exit !(p[2] == r) }'
+  check "gold under the lecture's Iₐ = 1: ka = 0.2 x the table's 0.24725 0.1995 0.0745 ($(state "$dir/s5.txt" material_golden_ka))" \
+    test "$(state "$dir/s5.txt" material_golden_ka)" = "0.04945 0.0399 0.0149"
+  check "... and the notice says so ($(state "$dir/s5.txt" objects_notice)), not stderr" \
+    test -n "$(state "$dir/s5.txt" objects_notice | grep 'gold: ka scaled by 0.2 for this scene')" -a -z "$(grep -i gold "$dir/stderr.txt")"
+}
+
 if ((INSIDE_X)); then
   session_instruments
   session_lessons
   session_presenter
+  session_building
   exit 0
 fi
 
@@ -244,5 +322,6 @@ timeout "$TIMEOUT" xvfb-run -a -s '-screen 0 1920x1080x24' "$SELF" --inside-x "$
 check_instruments
 check_lessons
 check_presenter
+check_building
 echo "hall tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
 ((failures == 0))

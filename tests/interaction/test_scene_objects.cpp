@@ -10,7 +10,9 @@
 #include <set>
 #include <string>
 
+#include "core/accel/accel.h"
 #include "core/render/render.h"
+#include "interaction/camera_control.h"
 #include "interaction/material_presets.h"
 #include "interaction/scene_objects.h"
 #include "io/scene/scene_io.h"
@@ -204,7 +206,7 @@ TEST(MaterialPresets, TheClassicTableAsPublishedAndTheLecturesOwn) {
   EXPECT_EQ(preset_exponent(*find_preset("glass"), SpecularModel::kPhong), 300);  // the lecture's n as it is
   Material m;
   m.name = "mine";
-  apply_preset(m, *find_preset("diamond"), SpecularModel::kPhong);
+  apply_preset(m, *find_preset("diamond"), SpecularModel::kPhong, Color(1));
   EXPECT_EQ(m.name, "mine");
   EXPECT_EQ(m.ior, 2.417);
   EXPECT_TRUE(m.fresnel);
@@ -237,4 +239,209 @@ TEST(SceneObjects, NamesAreReadKeptAndFollowTheirObjects) {
     {"type": "sphere", "name": 7, "center": [0, 0, 0], "radius": 1, "material": "m"}]})", "bad.json");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error_text().find("objects[0].name"), std::string::npos) << bad.error_text();
+}
+
+// --- Building a scene, gently (issue 25): new objects beside the others, on the floor --------
+
+namespace {
+
+constexpr double kLectureAspect = 960.0 / 540.0;
+
+Aabb bounds_of(const Scene& s, int object) {
+  const ObjectRef r = object_at(s, object);
+  const auto i = static_cast<std::size_t>(r.index);
+  Aabb box;
+  if (r.kind == Kind::kSphere) {
+    box.grow(s.spheres[i].center - Vec3(s.spheres[i].radius));
+    box.grow(s.spheres[i].center + Vec3(s.spheres[i].radius));
+  } else if (r.kind == Kind::kTriangle) {
+    for (const Vec3& v : {s.triangles[i].v0, s.triangles[i].v1, s.triangles[i].v2}) box.grow(v);
+  } else if (r.kind == Kind::kMesh) {
+    box = s.meshes[i].geometry->bounds;
+  }
+  return box;
+}
+
+// objects[object]'s bounds overlap no other finite object's.
+::testing::AssertionResult apart_from_the_others(const Scene& s, int object) {
+  const Aabb a = bounds_of(s, object);
+  for (int other = 0; other < object_count(s); ++other) {
+    if (other == object || object_at(s, other).kind == Kind::kPlane) continue;
+    const Aabb b = bounds_of(s, other);
+    if (a.lo.x < b.hi.x && b.lo.x < a.hi.x && a.lo.y < b.hi.y && b.lo.y < a.hi.y && a.lo.z < b.hi.z && b.lo.z < a.hi.z) {
+      return ::testing::AssertionFailure() << object_label(s, object) << " overlaps " << object_label(s, other);
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// Every corner of objects[object]'s bounds projects inside a 960x540 view.
+::testing::AssertionResult in_view(const Scene& s, int object) {
+  const Aabb b = bounds_of(s, object);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 c(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y, corner & 4 ? b.hi.z : b.lo.z);
+    const auto at = project(s.camera, c, 960, 540);
+    if (!at || at->x < 0 || at->x > 960 || at->y < 0 || at->y > 540) {
+      return ::testing::AssertionFailure() << object_label(s, object) << "'s corner " << corner << " is out of view";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+int add_placed(Scene& s, Kind kind) {
+  const int i = add_primitive(s, kind, placement_in_front_of(s.camera), 1);
+  EXPECT_EQ(place_new_object(s, s.camera, kLectureAspect, i), "");
+  return i;
+}
+
+}  // namespace
+
+TEST(SceneObjects, TheFloorIsTheLevelPlaneUnderTheObjects) {
+  Scene s = load_scene_or_fail("lecture");
+  const std::optional<Floor> floor = find_floor(s, s.camera);
+  ASSERT_TRUE(floor);
+  EXPECT_EQ(floor->object, 0);
+  EXPECT_EQ(floor->normal, Vec3(0, 1, 0));
+  // Given upside down, the same floor, its normal turned up; tilted by 25 degrees still a floor,
+  // by 40 a slope; a wall is none, and neither is a ceiling over the objects.
+  s.planes[0].normal = Vec3(0, -1, 0);
+  ASSERT_TRUE(find_floor(s, s.camera));
+  EXPECT_EQ(find_floor(s, s.camera)->normal, Vec3(0, 1, 0));
+  s.planes[0].point = Vec3(0, -3, 0);
+  s.planes[0].normal = Vec3(std::sin(glm::radians(25.0)), std::cos(glm::radians(25.0)), 0);
+  EXPECT_TRUE(find_floor(s, s.camera));
+  s.planes[0].normal = Vec3(std::sin(glm::radians(40.0)), std::cos(glm::radians(40.0)), 0);
+  EXPECT_FALSE(find_floor(s, s.camera));
+  s.planes[0] = Plane{Vec3(0, 0, -5), Vec3(0, 0, 1), 0};
+  EXPECT_FALSE(find_floor(s, s.camera));
+  s.planes[0] = Plane{Vec3(0, 1, 0), Vec3(0, 1, 0), 0};  // through the spheres
+  EXPECT_FALSE(find_floor(s, s.camera));
+}
+
+TEST(SceneObjects, ANewSphereRestsOnTheFloorBesideTheOthersInView) {
+  Scene s = load_scene_or_fail("lecture");
+  const Floor floor = *find_floor(s, s.camera);
+  EXPECT_EQ(typical_size(s, s.camera), 1.4);  // the median sphere diameter
+  for (int k = 0; k < 4; ++k) {  // each one beside the ones before it too
+    const int i = add_placed(s, Kind::kSphere);
+    const Sphere& ball = s.spheres.back();
+    EXPECT_EQ(ball.radius, 0.7);
+    EXPECT_NEAR(height_above(floor, ball.center), ball.radius, 1e-9 * ball.radius) << k;
+    EXPECT_TRUE(apart_from_the_others(s, i));
+    EXPECT_TRUE(in_view(s, i));
+    EXPECT_GT(glm::length(ball.center - s.camera.look_at), 1.0) << "not inside the spheres at the look-at point";
+  }
+  EXPECT_TRUE(indices_are_a_permutation(s));
+  EXPECT_TRUE(saves_losslessly(s));
+}
+
+TEST(SceneObjects, OnATiltedFloorAndWithoutOneTheNewSphereStillFits) {
+  Scene s = load_scene_or_fail("lecture");
+  // A floor tilted by 20 degrees about z through a point under the spheres.
+  s.planes[0] = Plane{Vec3(0, -1.5, 0), Vec3(-std::sin(glm::radians(20.0)), std::cos(glm::radians(20.0)), 0), 0};
+  const std::optional<Floor> floor = find_floor(s, s.camera);
+  ASSERT_TRUE(floor);
+  const int i = add_placed(s, Kind::kSphere);
+  const Sphere& ball = s.spheres.back();
+  EXPECT_NEAR(height_above(*floor, ball.center), ball.radius, 1e-9 * ball.radius);
+  EXPECT_TRUE(apart_from_the_others(s, i));
+  EXPECT_TRUE(in_view(s, i));
+  // No floor: beside the others at the look-at point's depth.
+  Scene bare = load_scene_or_fail("lecture");
+  ASSERT_EQ(delete_object(bare, 0), "");
+  ASSERT_FALSE(find_floor(bare, bare.camera));
+  const int j = add_placed(bare, Kind::kSphere);
+  // (its coordinates kept to float precision, as typed numbers are)
+  EXPECT_NEAR(view_depth(bare.camera, bare.spheres.back().center), view_depth(bare.camera, bare.camera.look_at), 1e-6);
+  EXPECT_TRUE(apart_from_the_others(bare, j));
+  EXPECT_TRUE(in_view(bare, j));
+}
+
+TEST(SceneObjects, ANewTriangleStandsOnTheFloorFacingTheEye) {
+  Scene s = load_scene_or_fail("lecture");
+  const Floor floor = *find_floor(s, s.camera);
+  const int i = add_placed(s, Kind::kTriangle);
+  const Triangle& t = s.triangles.back();
+  EXPECT_EQ(height_above(floor, t.v0), 0);
+  EXPECT_EQ(height_above(floor, t.v1), 0);
+  EXPECT_GT(height_above(floor, t.v2), 1.0);
+  EXPECT_GT(glm::dot(glm::cross(t.v1 - t.v0, t.v2 - t.v0), s.camera.position - t.v0), 0);
+  EXPECT_TRUE(apart_from_the_others(s, i));
+  EXPECT_TRUE(in_view(s, i));
+}
+
+TEST(SceneObjects, ANewMeshIsScaledToTheSceneAndRestsOnTheFloor) {
+  Scene s = load_scene_or_fail("lecture");
+  const Floor floor = *find_floor(s, s.camera);
+  Mesh mesh;
+  mesh.file = "cornell/CornellBox-Sphere.obj";  // about 2 units across, where its file puts it
+  const int i = append_mesh_object(s, mesh);
+  LoadResult loaded = reload_meshes(s, "", true);
+  ASSERT_TRUE(loaded.ok()) << loaded.error_text();
+  s = *loaded.scene;
+  ASSERT_EQ(place_new_object(s, s.camera, kLectureAspect, i), "");
+  loaded = reload_meshes(s, "", true);  // placed again where its new transform puts it
+  ASSERT_TRUE(loaded.ok()) << loaded.error_text();
+  s = *loaded.scene;
+  const Mesh& placed = s.meshes.back();
+  const Vec3 sides = placed.geometry->bounds.hi - placed.geometry->bounds.lo;
+  EXPECT_NEAR(std::max({sides.x, sides.y, sides.z}), typical_size(s, s.camera, i), 0.01 * 1.4);
+  EXPECT_NEAR(lowest_above(s, i, floor), 0, 1e-9);
+  EXPECT_TRUE(apart_from_the_others(s, i));
+  EXPECT_TRUE(in_view(s, i));
+  EXPECT_EQ(placed.transform.rotate_deg, Vec3(0));
+}
+
+TEST(SceneObjects, DraggingMovesOverTheFloorKeepingTheHeight) {
+  const Scene s = load_scene_or_fail("lecture");
+  const Floor floor = *find_floor(s, s.camera, 2);
+  const Vec3 start = object_anchor(s, 2);  // objects[2]: the plastic sphere at (-0.75, 0.7, 0), radius 0.7
+  const Vec3 grab = start + Vec3(0.1, 0.2, 0);  // grabbed a little above and right of its centre
+  const Vec3 eye = s.camera.position;
+  // The pointer now over the point (0.6, 0.9, -1) of the plane through the grab point.
+  const std::optional<Vec3> moved = drag_over_floor(s, 2, floor, start, grab, eye, Vec3(0.6, 0.9, -1) - eye, false);
+  ASSERT_TRUE(moved);
+  EXPECT_EQ(moved->y, start.y);  // its height kept exactly
+  EXPECT_NEAR(glm::length(*moved - (start + Vec3(0.6, 0.9, -1) - grab)), 0, 1e-12);
+  // Pointing above the horizon: nothing to move to.
+  EXPECT_FALSE(drag_over_floor(s, 2, floor, start, grab, eye, Vec3(0, 0.2, -1), false));
+  // Vertically: up to where the pointer is, x and z kept.
+  const std::optional<Vec3> up = drag_over_floor(s, 2, floor, start, grab, eye, Vec3(-0.65, 2.5, 0) - eye, true);
+  ASSERT_TRUE(up);
+  EXPECT_NEAR(up->y, start.y + 2.5 - grab.y, 1e-12);
+  EXPECT_EQ(up->x, start.x);
+  EXPECT_EQ(up->z, start.z);
+  // Down past the floor: stopped with its lowest point on it.
+  const std::optional<Vec3> down = drag_over_floor(s, 2, floor, start, grab, eye, Vec3(-0.65, -3, 0) - eye, true);
+  ASSERT_TRUE(down);
+  EXPECT_NEAR(down->y, 0.7, 1e-12);
+  // The X, Y and Z drags are kept above it as well.
+  EXPECT_NEAR(keep_above_floor(s, 2, floor, start, start - Vec3(0, 5, 0)).y, 0.7, 1e-12);
+  EXPECT_EQ(keep_above_floor(s, 2, floor, start, start + Vec3(1, 5, 0)), start + Vec3(1, 5, 0));
+  // One that was typed half under the floor may move, but not further down.
+  Scene sunk = s;
+  ASSERT_EQ(set_object_field(sunk, 2, "center", {-0.75, 0.3, 0}), "");
+  EXPECT_NEAR(keep_above_floor(sunk, 2, floor, object_anchor(sunk, 2), Vec3(-0.75, -4, 0)).y, 0.3, 1e-12);
+}
+
+TEST(MaterialPresets, KaIsScaledFromTheAmbientThePresetAssumesToTheScenes) {
+  const MaterialPreset& gold = *find_preset("gold");
+  EXPECT_EQ(gold.assumed_ambient, 0.2);  // OpenGL's default global ambient
+  EXPECT_EQ(find_preset("plastic")->assumed_ambient, 1);  // the lecture's own
+  Material m;
+  Color scale = apply_preset(m, gold, SpecularModel::kPhong, Color(1));
+  EXPECT_EQ(scale, Color(0.2));
+  for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(m.ka[c], 0.2 * gold.ka[c]);
+  EXPECT_EQ(preset_applied_text(gold, scale, Color(1)),
+            "gold: ka scaled by 0.2 for this scene's I\u2090 = 1 (the preset assumes I\u2090 = 0.2)");
+  scale = apply_preset(m, gold, SpecularModel::kPhong, Color(0.2));
+  EXPECT_EQ(m.ka, gold.ka);  // the table's, exactly
+  EXPECT_NE(preset_applied_text(gold, scale, Color(0.2)).find("ka as in the table"), std::string::npos);
+  // Channel by channel; a channel without ambient keeps the table's ka.
+  scale = apply_preset(m, gold, SpecularModel::kPhong, Color(1, 0.5, 0));
+  EXPECT_EQ(scale, Color(0.2, 0.4, 1));
+  EXPECT_NE(preset_applied_text(gold, scale, Color(1, 0.5, 0)).find("(0.2, 0.4, 1)"), std::string::npos);
+  apply_preset(m, *find_preset("plastic"), SpecularModel::kPhong, Color(1));
+  EXPECT_EQ(m.ka, find_preset("plastic")->ka);
+  EXPECT_NE(preset_note(gold).find("0.2"), std::string::npos);
 }
