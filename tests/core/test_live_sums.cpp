@@ -90,12 +90,20 @@ TEST(LiveSums, RecombinedImagesEqualTheExactReshade) {
                                           Term::kReflection, Term::kRefraction}[seed % 6];
     Scene s = random_scene_data(seed, seed % 4 == 0);
     std::shared_ptr<const PreparedScene> base = prepared(s);
-    std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30);
+    // Two copies of the same trees (in packets and ray by ray): one writes a new image each
+    // time, the other each image over the last (as the previewer's renderer).
+    std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, true);
+    std::unique_ptr<RayTrees> over_trees =
+        RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, false);
     ASSERT_NE(trees, nullptr);
+    ASSERT_NE(over_trees, nullptr);
     Accumulator before = sized();
     ASSERT_TRUE(trees->reshade(base, term, std::nullopt, 2, before).completed);  // the trees' image of `term`
+    Accumulator unused = sized();
+    ASSERT_TRUE(over_trees->reshade(base, term, std::nullopt, 2, unused).completed);
     std::mt19937 rng(seed);
     const int family = static_cast<int>(seed % 3);
+    Accumulator over = sized();  // each image written over the last, as the previewer's
     for (int e = 0; e < 6; ++e) {  // a drag: every edit against the same trees
       linear_edit(s, rng, family);
       const std::shared_ptr<const PreparedScene> edited = prepared(s);
@@ -105,7 +113,11 @@ TEST(LiveSums, RecombinedImagesEqualTheExactReshade) {
       const PassStats stats = trees->recombine(*edited, term, 1 + e % 2, live);
       ASSERT_TRUE(stats.completed);
       EXPECT_EQ(live.samples, 1u);
-      ASSERT_TRUE(close(live, fresh_image(*edited, term), before)) << "edit " << e << ", term " << term_name(term);
+      const Accumulator exact = fresh_image(*edited, term);
+      ASSERT_TRUE(close(live, exact, before)) << "edit " << e << ", term " << term_name(term);
+      over.samples = 0;
+      ASSERT_TRUE(over_trees->recombine(*edited, term, 2, over, nullptr, e > 0).completed);
+      ASSERT_TRUE(close(over, exact, before)) << "written over the last, edit " << e << ", term " << term_name(term);
       ++checked;
     }
     // The hand stops: the exact re-shade from the same trees, bit for bit a fresh render.

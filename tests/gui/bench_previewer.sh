@@ -3,6 +3,7 @@
 #
 #   tests/gui/bench_previewer.sh BUILD_DIR [SCENE]
 #   BASELINE=1 tests/gui/bench_previewer.sh BUILD_DIR [SCENE]   # live levels and re-shading off
+#   RENDER_THREADS=1 tests/gui/bench_previewer.sh BUILD_DIR      # the renderer on one thread
 #
 # The window is 1280x720 with the panels hidden, so the render is 1280x720 (for the slider phase
 # the panels are shown and the window widened by the sidebar, so the render stays 1280x720).
@@ -29,6 +30,9 @@ if [ "${BASELINE:-0}" = 1 ]; then
 else
   SETTINGS='log live levels and re-shading on'
 fi
+# RENDER_THREADS=N: the renderer's thread count (Render settings' "threads"); 1 on this 2-core
+# machine is a lecturer's laptop busy with slides and a browser beside the previewer.
+if [ -n "${RENDER_THREADS:-}" ]; then SETTINGS="$SETTINGS"$'\n'"set render threads $RENDER_THREADS"; fi
 cat >"$OUT/script.txt" <<SCRIPT
 $SETTINGS
 key H
@@ -62,7 +66,7 @@ stats_summary slider
 quit
 SCRIPT
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0}
-echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg), render threads ${RENDER_THREADS:-all}"
 timeout 300 xvfb-run -a -s '-screen 0 1920x1080x24' "$BUILD_DIR/bin/phonglab" "$SCENE" --size 1280x720 \
   --script "$OUT/script.txt" --stats-log "$OUT/stats.log"
 grep -E '^(summary|levels) ' "$OUT/stats.log" | grep -v ' session '

@@ -2,6 +2,7 @@
 #include "core/packet/packet.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <type_traits>
@@ -63,11 +64,20 @@ std::size_t at(int i) { return static_cast<std::size_t>(i); }
 struct RayBatch {
   std::vector<double> ox, oy, oz, dx, dy, dz;
   std::vector<double> weight;  // path weight from the camera
+  // While recording trees: each ray's pixel in the tile and the node it is a child of (-1: none).
+  std::vector<int> pixel;
+  std::vector<std::int32_t> parent;
   int n = 0;
 
   void reserve_lanes(int count) {
     const int size = padded(count);
     for (std::vector<double>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &weight}) fit(*v, size);
+  }
+  void tag_last(int pixel_of, std::int32_t parent_node) {
+    fit(pixel, n);
+    fit(parent, n);
+    pixel[at(n - 1)] = pixel_of;
+    parent[at(n - 1)] = parent_node;
   }
   void push(const Vec3& o, const Vec3& d, double w) {
     const std::size_t i = at(n);
@@ -97,6 +107,8 @@ struct Level {
   std::vector<int> material;
   std::vector<std::uint8_t> entering;
   std::vector<std::uint8_t> lit;  // a hit whose material has kd or ks: lights are evaluated there
+  std::vector<std::uint8_t> active;  // the light kernel's lanes: lit, or every hit while recording
+  std::vector<std::int32_t> node;    // while recording: the hit's node
   Vec3 lo{0}, hi{0};              // bounds of the hit points
   double max_offset = 0;          // the largest surface_offset among them
   std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset;
@@ -126,6 +138,8 @@ struct Level {
     fit(material, size);
     fit(entering, size);
     fit(lit, size);
+    fit(active, size);
+    fit(node, size);
     fit(bounces, size);
     fit(tir, size);
     fit(terms, size);
@@ -188,6 +202,7 @@ struct PacketTracer::Impl {
   TermsWanted primary_wanted;
   const Vec3* shading_eye = nullptr;
   Terms* primary_terms = nullptr;  // where the primary hits' five terms go (render_tile's terms_out)
+  PacketTreeSink* sink = nullptr;  // recording the trees (record_tile)
 
   explicit Impl(const PreparedScene& p) : prepared(p), scene(p.scene()), limits{scene.max_depth, scene.min_weight} {
     for (const Sphere& sp : scene.spheres) {
@@ -388,14 +403,14 @@ struct PacketTracer::Impl {
   void shade_lights(Level& lv, int lanes, RayCounts& counts) {
     const packet::ShadedPoints pts{lv.px.data(), lv.py.data(), lv.pz.data(), lv.nx.data(), lv.ny.data(),
                                    lv.nz.data(), lv.gx.data(), lv.gy.data(), lv.gz.data(), lv.vx.data(),
-                                   lv.vy.data(), lv.vz.data(), lv.offset.data(), lv.lit.data()};
+                                   lv.vy.data(), lv.vz.data(), lv.offset.data(), lv.active.data()};
     const packet::LightOut out{lv.n_dot_l.data(), lv.cos_spec.data(), lv.sox.data(), lv.soy.data(), lv.soz.data(),
                                lv.sdx.data(),     lv.sdy.data(),      lv.sdz.data(), lv.st_max.data()};
     const bool blinn = scene.specular_model == SpecularModel::kBlinn;
     const std::size_t materials = scene.materials.size();
     for (std::size_t li = 0; li < scene.lights.size(); ++li) {
       const Light& light = scene.lights[li];
-      if (!light.enabled) continue;
+      if (!light.enabled && sink == nullptr) continue;
       packet::LightIn in{};
       in.point = light.type == LightType::kPoint;
       const Vec3 l = in.point ? light.position : -light.direction;
@@ -411,7 +426,7 @@ struct PacketTracer::Impl {
       std::uint64_t shadow_rays = 0;
       for (int h = 0; h < lanes; ++h) {
         const std::size_t u = at(h);
-        const bool on = lv.lit[u] && lv.n_dot_l[u] > 0;
+        const bool on = lv.active[u] && lv.n_dot_l[u] > 0;
         const bool test = on && lv.st_max[u] > 0;
         shadow_rays += on;
         any_test |= test;
@@ -425,11 +440,13 @@ struct PacketTracer::Impl {
         const double ball = (0.5 * glm::length(lv.hi - lv.lo) + lv.max_offset) * (1 + 1e-9);
         test_shadows(lv, lanes, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l));
       }
+      if (sink != nullptr) record_light(lv, lanes, static_cast<int>(li));
+      if (!light.enabled) continue;
       // The light's terms where it is seen. The specular factor (pow) is computed only there:
       // a blocked light's would be multiplied by vis = 0.
       for (int h = 0; h < lanes; ++h) {
         const std::size_t u = at(h);
-        if (lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
+        if (!lv.lit[u] || lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
         const std::size_t m = at(lv.material[u]);
         const MaterialInfo& mi = info[m];
         const double spec = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
@@ -438,6 +455,41 @@ struct PacketTracer::Impl {
         t.diffuse += light_kd[lm] * lv.n_dot_l[u];
         t.specular += light_ks[lm] * spec;
       }
+    }
+  }
+
+  // One light at every hit of the level, as the scalar tracer tells its recorder.
+  void record_light(const Level& lv, int lanes, int li) {
+    for (int h = 0; h < lanes; ++h) {
+      const std::size_t u = at(h);
+      if (lv.id[u] < 0) continue;
+      const double n_dot_l = lv.n_dot_l[u];
+      if (std::isnan(n_dot_l)) {  // a point light exactly at P: no direction
+        sink->light(lv.node[u], li, LightSeen::kNoLight, 0, 0, 0);
+      } else if (!(n_dot_l > 0)) {
+        sink->light(lv.node[u], li, LightSeen::kNoLight, n_dot_l, 0, 0);
+      } else {
+        const bool blocked = lv.shadow[u] == Shadow::kTest && lv.blocked[u];
+        const double cos_spec = lv.cos_spec[u];
+        sink->light(lv.node[u], li, blocked ? LightSeen::kBlocked : LightSeen::kVisible, n_dot_l, cos_spec,
+                    specular_factor(cos_spec, info[at(lv.material[u])].n));
+      }
+    }
+  }
+
+  // The level's rays that missed and its hits, told to the sink (record_tile).
+  void record_hits(Level& lv, const RayBatch& rays, int depth, TraceRecorder::Child kind) {
+    for (int i = 0; i < rays.n; ++i) {
+      const std::size_t u = at(i);
+      const int pixel = depth == 0 ? i : rays.pixel[u];
+      const std::int32_t parent = depth == 0 ? -1 : rays.parent[u];
+      if (lv.id[u] < 0) {
+        sink->missed(pixel, parent, kind);
+        continue;
+      }
+      lv.node[u] = sink->hit(pixel, parent, kind, depth, lv.material[u], lv.entering[u] != 0,
+                             Vec3(lv.px[u], lv.py[u], lv.pz[u]), Vec3(lv.nx[u], lv.ny[u], lv.nz[u]),
+                             Vec3(lv.gx[u], lv.gy[u], lv.gz[u]), rays.dir(i), lv.offset[u]);
     }
   }
 
@@ -476,7 +528,8 @@ struct PacketTracer::Impl {
 
   // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n); `tested`:
   // the spheres those rays can meet.
-  void trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts) {
+  void trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts,
+                   TraceRecorder::Child kind = TraceRecorder::Child::kReflection) {
     Level& lv = levels[at(depth)];
     find_hits(lv, rays, tested);
     const int lanes = rays.n;
@@ -491,7 +544,7 @@ struct PacketTracer::Impl {
       if (id < 0) {
         out[i] = depth == 0 ? miss_value(scene, primary_term) : scene.background;
         if (depth == 0 && primary_terms) primary_terms[i] = Terms{};
-        lv.lit[u] = lv.bounces[u] = 0;
+        lv.lit[u] = lv.active[u] = lv.bounces[u] = 0;
         continue;
       }
       any_hit = true;
@@ -499,6 +552,7 @@ struct PacketTracer::Impl {
       const MaterialInfo& mi = info[at(material)];
       lv.material[u] = material;
       lv.lit[u] = mi.lit;
+      lv.active[u] = mi.lit || sink != nullptr;
       lv.bounces[u] = mi.bounces;
       lv.ior[u] = mi.ior;
       any_bounce |= mi.bounces;
@@ -512,7 +566,8 @@ struct PacketTracer::Impl {
       hi = glm::max(hi, p);
       max_offset = std::max(max_offset, lv.offset[u]);
     }
-    for (int i = lanes; i < padded(lanes); ++i) lv.lit[at(i)] = lv.bounces[at(i)] = 0;
+    for (int i = lanes; i < padded(lanes); ++i) lv.lit[at(i)] = lv.active[at(i)] = lv.bounces[at(i)] = 0;
+    if (sink != nullptr) record_hits(lv, rays, depth, kind);
     if (!any_hit) return;
     lv.lo = lo;
     lv.hi = hi;
@@ -598,6 +653,7 @@ struct PacketTracer::Impl {
       bn.refracted = Vec3(lv.tx[u], lv.ty[u], lv.tz[u]);
       lv.kr[u] = bn.kr;
       lv.kt[u] = bn.kt;
+      if (sink != nullptr) sink->bounced(lv.node[u], bn.fresnel);
       const double weight = rays.weight[u];
       const double offset = lv.offset[u];
       const auto send = [&](const Color& kw, const Vec3& dir, RayBatch& batch, int& index, std::uint64_t& count) {
@@ -606,6 +662,7 @@ struct PacketTracer::Impl {
         ++count;
         index = batch.n;
         batch.push(offset_origin(p, ng, dir, offset), dir, *w);
+        if (sink != nullptr) batch.tag_last(depth == 0 ? k : rays.pixel[u], lv.node[u]);
       };
       if (wanted.reflection) send(bn.kr, bn.mirror, lv.reflected, lv.reflected_index[u], counts.reflection);
       if (wanted.refraction && !is_zero(bn.kt)) {
@@ -614,8 +671,13 @@ struct PacketTracer::Impl {
     }
     fit(lv.reflected_radiance, lv.reflected.n);
     fit(lv.refracted_radiance, lv.refracted.n);
-    if (lv.reflected.n > 0) trace_level(depth + 1, lv.reflected, spheres, lv.reflected_radiance.data(), counts);
-    if (lv.refracted.n > 0) trace_level(depth + 1, lv.refracted, spheres, lv.refracted_radiance.data(), counts);
+    using Child = TraceRecorder::Child;
+    if (lv.reflected.n > 0) {
+      trace_level(depth + 1, lv.reflected, spheres, lv.reflected_radiance.data(), counts, Child::kReflection);
+    }
+    if (lv.refracted.n > 0) {
+      trace_level(depth + 1, lv.refracted, spheres, lv.refracted_radiance.data(), counts, Child::kRefraction);
+    }
   }
 };
 
@@ -648,6 +710,14 @@ void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1,
   const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
   counts.primary += static_cast<std::uint64_t>(im.primary.n);
   im.trace_level(0, im.primary, tested, out, counts);
+}
+
+void PacketTracer::record_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, const Vec3* shading_eye,
+                               PacketTreeSink& sink, Color* out, RayCounts& counts) {
+  Impl& im = *impl_;
+  im.sink = &sink;
+  render_tile(frame, x0, y0, x1, y1, 0, 0, out, counts, Term::kFull, shading_eye);
+  im.sink = nullptr;
 }
 
 void PacketTracer::occluded(const double* ox, const double* oy, const double* oz, const double* dx, const double* dy,

@@ -31,6 +31,22 @@ bool packet_cpu_supported();
 // Whether the packet tracer can render `scene` (prepared) on this CPU.
 bool packet_tracing_applies(const PreparedScene& prepared);
 
+// What PacketTracer::record_tile tells of a tile's ray trees, level by level: what a
+// TraceRecorder hears of the scalar tracer's, hit by hit (RayTrees keeps both the same way).
+// `pixel` counts the tile's pixels row by row; `parent` is the node whose child the ray is (-1:
+// a primary ray).
+class PacketTreeSink {
+ public:
+  virtual ~PacketTreeSink() = default;
+  virtual void missed(int pixel, std::int32_t parent, TraceRecorder::Child kind) = 0;
+  // A hit: its node (what light() and bounced() name).
+  virtual std::int32_t hit(int pixel, std::int32_t parent, TraceRecorder::Child kind, int depth, int material,
+                           bool entering, const Vec3& p, const Vec3& n, const Vec3& ng, const Vec3& dir,
+                           double offset) = 0;
+  virtual void light(std::int32_t node, int index, LightSeen seen, double n_dot_l, double cos_spec, double spec) = 0;
+  virtual void bounced(std::int32_t node, double fresnel) = 0;
+};
+
 // Traces tiles of one scene. One per thread: it owns its batch buffers, reused tile to tile.
 class PacketTracer {
  public:
@@ -52,6 +68,12 @@ class PacketTracer {
   void render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                    std::uint32_t seed, Color* out, RayCounts& counts, Term term = Term::kFull,
                    const Vec3* shading_eye = nullptr, Terms* terms_out = nullptr);
+
+  // render_tile of the full image at the pixel centres, telling `sink` of every tree as
+  // trace_recorded tells its recorder: every light at every hit (muted or not, whatever the
+  // material), the shadow rays of all of them. The values are render_tile's, bit for bit.
+  void record_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, const Vec3* shading_eye,
+                   PacketTreeSink& sink, Color* out, RayCounts& counts);
 
   // occluded(prepared, ray i, t_max[i]) for n rays given as structure of arrays, each array
   // with room for a multiple of 4 (padding lanes with t_max 0 hold no ray): blocked[i] = 1 where

@@ -174,6 +174,7 @@ struct ProgressiveRenderer::Job {
   bool reshaded = false;        // this generation's first image was re-shaded
   bool live = false;            // the next pass recombines the stored trees' sums (a linear edit, hand on)
   bool live_shown = false;      // the image is the live one: the exact re-shade is owed
+  bool accum_live = false;      // accum holds the image the trees last recombined, nothing since
   LevelTimes level_times;       // the last pass at each level, for live_start_level
   Accumulator accum;
   std::uint64_t nan_count = 0;
@@ -218,8 +219,10 @@ void ProgressiveRenderer::run() {
     }
     PassStats pass;
     if (job.live && job.interacting) {
-      pass = job.trees->recombine(*job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_);
+      pass = job.trees->recombine(*job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_,
+                                  job.accum_live);
       job.live = false;
+      job.accum_live = pass.completed;
       if (!pass.completed && !cancel_.load()) {
         job.accum_stale = true;  // a sum the trees cannot give: the exact re-shade instead
         continue;
@@ -227,6 +230,7 @@ void ProgressiveRenderer::run() {
       job.reshade = false;
       job.live_shown = pass.completed;
     } else if (job.reshade) {
+      job.accum_live = false;
       pass = job.trees->reshade(job.scene, job.settings.term, job.settings.shading_eye, job.settings.threads,
                                 job.accum, &cancel_);
       job.reshade = false;
@@ -237,6 +241,7 @@ void ProgressiveRenderer::run() {
         job.trees_serve = false;
       }
     } else {
+      job.accum_live = false;
       RenderOptions options;
       options.term = job.settings.term;
       options.threads = job.settings.threads;
@@ -251,6 +256,7 @@ void ProgressiveRenderer::run() {
       if (!job.published_any) measured = std::max(measured, divisor_ms);
       // Cancelled midway: a restart is pending and the accumulator is partly updated.
       job.accum.reset(job.levels[job.level].width, job.levels[job.level].height, job.settings.term_images);
+      job.accum_live = false;
       continue;
     }
     if (!job.reshaded) measured = divisor_ms;  // a re-shade says nothing of a traced pass's time
@@ -259,6 +265,7 @@ void ProgressiveRenderer::run() {
     if (job.level + 1 < job.levels.size()) {
       ++job.level;
       job.accum.reset(job.levels[job.level].width, job.levels[job.level].height, job.settings.term_images);
+      job.accum_live = false;
     } else if (!job.interacting) {
       record_trees(job);  // once per scene: at once if it has none that serve
     }
@@ -378,8 +385,10 @@ void ProgressiveRenderer::record_trees(Job& job) {
   if (job.trees_serve) return;
   const Job::Refusal here{full.width, full.height, s.tree_budget_bytes};
   if (job.refused.width == here.width && job.refused.height == here.height && job.refused.budget == here.budget) return;
-  job.trees.reset();  // its memory, before the new trees take theirs
-  job.trees = RayTrees::record(job.scene, full.width, full.height, s.shading_eye, s.threads, s.tree_budget_bytes, &cancel_);
+  job.accum_live = false;
+  // The new trees take over the old ones' memory (no page faults for a few hundred MiB).
+  job.trees = RayTrees::record(job.scene, full.width, full.height, s.shading_eye, s.threads, s.tree_budget_bytes, &cancel_,
+                               true, std::move(job.trees));
   if (!job.trees && !cancel_.load()) job.refused = here;
   job.trees_serve = job.trees != nullptr;
 }

@@ -83,6 +83,57 @@ class TileRecorder final : public TraceRecorder {
   std::uint64_t reach_ = 0;
 };
 
+// Keeps one tile's trees as the packet tracer reports them, level by level: the same nodes,
+// lights and links TileRecorder keeps (in another order, which no re-shade depends on).
+class PacketTileSink final : public PacketTreeSink {
+ public:
+  PacketTileSink(Tile& tile, std::size_t lights) : tile_(tile), lights_(lights) {
+    const auto pixels = static_cast<std::size_t>((tile.x1 - tile.x0) * (tile.y1 - tile.y0));
+    tile.roots.assign(pixels, RayTrees::kMissed);
+    tile.reach.assign(pixels, 0);
+  }
+  void missed(int pixel, std::int32_t parent, TraceRecorder::Child kind) override {
+    tile_.reach[static_cast<std::size_t>(pixel)] |= RayTrees::kBackground;
+    link(pixel, parent, kind, RayTrees::kMissed);
+  }
+  std::int32_t hit(int pixel, std::int32_t parent, TraceRecorder::Child kind, int depth, int material, bool entering,
+                   const Vec3& p, const Vec3& n, const Vec3& ng, const Vec3& dir, double offset) override {
+    const auto index = static_cast<std::int32_t>(tile_.nodes.size());
+    tile_.reach[static_cast<std::size_t>(pixel)] |= RayTrees::reach_bit(material);
+    Node node;
+    node.material = material;
+    node.depth = static_cast<std::int16_t>(depth);
+    node.entering = entering;
+    tile_.nodes.push_back(node);
+    tile_.geometry.push_back(NodeGeometry{p, n, ng, dir, offset});
+    tile_.lights.resize(tile_.lights.size() + lights_);
+    tile_.seen.resize(tile_.seen.size() + lights_, LightSeen::kNoLight);
+    tile_.cos_spec.resize(tile_.cos_spec.size() + lights_);
+    link(pixel, parent, kind, index);
+    return index;
+  }
+  void light(std::int32_t node, int index, LightSeen seen, double n_dot_l, double cos_spec, double spec) override {
+    const std::size_t at = static_cast<std::size_t>(node) * lights_ + static_cast<std::size_t>(index);
+    tile_.lights[at] = NodeLight{n_dot_l, spec};
+    tile_.seen[at] = seen;
+    tile_.cos_spec[at] = cos_spec;
+  }
+  void bounced(std::int32_t node, double fresnel) override { tile_.geometry[static_cast<std::size_t>(node)].fresnel = fresnel; }
+
+ private:
+  void link(int pixel, std::int32_t parent, TraceRecorder::Child kind, std::int32_t to) {
+    if (parent < 0) {
+      tile_.roots[static_cast<std::size_t>(pixel)] = to;
+      return;
+    }
+    Node& p = tile_.nodes[static_cast<std::size_t>(parent)];
+    (kind == TraceRecorder::Child::kReflection ? p.reflection : p.refraction) = to;
+  }
+
+  Tile& tile_;
+  std::size_t lights_;
+};
+
 std::size_t tile_bytes(const Tile& t) {
   return t.nodes.capacity() * sizeof(Node) + t.geometry.capacity() * sizeof(NodeGeometry) +
          t.lights.capacity() * sizeof(NodeLight) + t.seen.capacity() * sizeof(LightSeen) +
@@ -297,7 +348,8 @@ class TileShader {
 
 std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> scene, int width, int height,
                                            const std::optional<Vec3>& shading_eye, int threads,
-                                           std::size_t budget_bytes, const std::atomic<bool>* cancel) {
+                                           std::size_t budget_bytes, const std::atomic<bool>* cancel,
+                                           bool allow_packets, std::unique_ptr<RayTrees> recycled) {
   if (!scene || scene->experiment() || width <= 0 || height <= 0) return nullptr;
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<RayTrees> trees(new RayTrees);
@@ -306,6 +358,19 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
   trees->height_ = height;
   trees->shading_eye_ = shading_eye;
   trees->tiles_ = make_tiles(width, height);
+  if (recycled && recycled->tiles_.size() == trees->tiles_.size()) {
+    // The old tiles' arrays, emptied: their memory is already the process's.
+    for (std::size_t i = 0; i < trees->tiles_.size(); ++i) {
+      Tile& old = recycled->tiles_[i];
+      Tile& t = trees->tiles_[i];
+      old.nodes.clear(), old.geometry.clear(), old.lights.clear(), old.seen.clear(), old.cos_spec.clear();
+      old.roots.clear(), old.reach.clear(), old.values.clear();
+      std::swap(t.nodes, old.nodes), std::swap(t.geometry, old.geometry), std::swap(t.lights, old.lights);
+      std::swap(t.seen, old.seen), std::swap(t.cos_spec, old.cos_spec), std::swap(t.roots, old.roots);
+      std::swap(t.reach, old.reach), std::swap(t.values, old.values);
+    }
+  }
+  recycled.reset();
   const Scene& s = scene->scene();
   const CameraFrame frame = make_camera_frame(s.camera, width, height);
   const TraceLimits limits{s.max_depth, s.min_weight};
@@ -313,8 +378,17 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
   std::atomic<std::size_t> bytes{0};
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
+  // In packets where the packet tracer serves the scene: the same trees, a few times sooner.
+  const bool packets = allow_packets && packet_tracing_applies(*scene);
   const bool done = for_each_tile(trees->tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
     const auto pixels = static_cast<std::size_t>((tile.x1 - tile.x0) * (tile.y1 - tile.y0));
+    if (packets) {
+      PacketTileSink sink(tile, s.lights.size());
+      tile.values.resize(pixels);
+      packet_tracer_for(*scene).record_tile(frame, tile.x0, tile.y0, tile.x1, tile.y1, eye, sink, tile.values.data(), rays);
+      if (bytes.fetch_add(tile_bytes(tile)) + tile_bytes(tile) > budget_bytes) stop.store(true);
+      return;
+    }
     tile.roots.reserve(pixels);
     tile.reach.reserve(pixels);
     tile.values.reserve(pixels);

@@ -37,10 +37,13 @@ class RayTrees {
  public:
   // Traces the centre ray (sample 0) of every pixel of a width x height image of `scene`, with
   // `shading_eye` as RenderOptions has it, keeping every tree. Null when the trees would need
-  // more than `budget_bytes`, when cancelled, or for a scene with an experiment.
+  // more than `budget_bytes`, when cancelled, or for a scene with an experiment. Traced in
+  // packets where the packet tracer serves the scene (`allow_packets`; the same trees either way).
+  // `recycled`: trees no longer wanted, whose memory the new ones take over (no page faults).
   static std::unique_ptr<RayTrees> record(std::shared_ptr<const PreparedScene> scene, int width, int height,
                                           const std::optional<Vec3>& shading_eye, int threads,
-                                          std::size_t budget_bytes, const std::atomic<bool>* cancel = nullptr);
+                                          std::size_t budget_bytes, const std::atomic<bool>* cancel = nullptr,
+                                          bool allow_packets = true, std::unique_ptr<RayTrees> recycled = nullptr);
 
   // What re-shading `scene` at this size and eye would need (kRetrace: it cannot be). Another
   // eye ("move your head") is a shading edit: V changes at the primary hits only.
@@ -67,8 +70,10 @@ class RayTrees {
   // re-shade without shadow rays) and kept for the next edits of the same coefficients, so a
   // slider costs a few multiply-adds a pixel. Equal to the exact re-shade to rounding (about
   // 1e-15 relative), not bit for bit: it is shown while the hand moves, the exact image after.
+  // `over_last`: accum holds the last image this call wrote (nothing else written since), so
+  // only the pixels whose trees meet an edited material, now or then, are written again.
   PassStats recombine(const PreparedScene& scene, Term term, int threads, Accumulator& accum,
-                      const std::atomic<bool>* cancel = nullptr);
+                      const std::atomic<bool>* cancel = nullptr, bool over_last = false);
 
   bool usable() const { return usable_; }
   // Whether the last re-shade had to trace rays for more than an eighth of the pixels (children
@@ -139,6 +144,7 @@ class RayTrees {
     std::vector<std::vector<Color>> tiles;
   };
   std::vector<Sums> sums_;
+  std::uint64_t live_reach_ = ~std::uint64_t{0};  // the reach bits of the pixels the last recombine changed
   const Sums* sums_for(std::uint8_t coefficient, int index, Term term) const;
   void drop_sums() {
     sums_.clear();

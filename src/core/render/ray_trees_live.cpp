@@ -140,7 +140,7 @@ bool RayTrees::recombines(const PreparedScene& scene, int width, int height, Ter
 }
 
 PassStats RayTrees::recombine(const PreparedScene& scene, Term term, int threads, Accumulator& accum,
-                              const std::atomic<bool>* cancel) {
+                              const std::atomic<bool>* cancel, bool over_last) {
   const auto start = std::chrono::steady_clock::now();
   const Scene& base = scene_->scene();
   const std::vector<Delta> deltas = deltas_between(base, scene.scene(), changes_between(base, scene.scene()));
@@ -180,16 +180,26 @@ PassStats RayTrees::recombine(const PreparedScene& scene, Term term, int threads
   }
   std::vector<const Sums*> used;
   for (const Delta& d : deltas) used.push_back(sums_for(d.coefficient, d.index, term));
+  // The pixels whose value differs from the trees' own: those meeting an edited material (the
+  // sums of the others are 0), every pixel for Ia and the lights. Over the last image, those it
+  // changed too (they return to the trees' value); the rest already hold it.
+  std::uint64_t reach = 0;
+  for (const Delta& d : deltas) reach |= d.coefficient <= kKs ? reach_bit(d.index) : ~std::uint64_t{0};
+  const std::uint64_t written = over_last ? reach | live_reach_ : ~std::uint64_t{0};
   std::atomic<std::uint64_t> nan_count{0};
   std::atomic<bool> stop{false};
   const bool done = for_each_index(tiles_.size(), threads, cancel, stop, counts, [&](std::size_t t, RayCounts&) {
     const Tile& tile = tiles_[t];
+    thread_local std::vector<const Color*> tile_sums;
+    tile_sums.clear();
+    for (const Sums* sums : used) tile_sums.push_back(sums->tiles[t].data());
     std::size_t p = 0;
     for (int y = tile.y0; y < tile.y1; ++y) {
       Color* row = accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
       for (int x = tile.x0; x < tile.x1; ++x, ++p) {
+        if ((tile.reach[p] & written) == 0) continue;
         Color c = tile.values[p];
-        for (std::size_t k = 0; k < deltas.size(); ++k) c += deltas[k].change * used[k]->tiles[t][p];
+        for (std::size_t k = 0; k < deltas.size(); ++k) c += deltas[k].change * tile_sums[k][p];
         if (!all_finite(c)) {  // as render_pass replaces them
           c = Color(0);
           nan_count.fetch_add(1, std::memory_order_relaxed);
@@ -199,6 +209,7 @@ PassStats RayTrees::recombine(const PreparedScene& scene, Term term, int threads
     }
   });
   stats.completed = done;
+  live_reach_ = done ? reach : ~std::uint64_t{0};
   stats.nan_count = nan_count.load();
   if (stats.completed) ++accum.samples;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
