@@ -394,7 +394,8 @@ TEST(SceneLoader, TenMegabytesOfOpenBracketsFailFastWithoutRecursion) {
             "scene.json:1:65: nesting deeper than 64 levels of arrays and objects");
   EXPECT_EQ(errors(std::string(5 << 20, '{') + std::string(5 << 20, '}')),
             "scene.json:1:65: nesting deeper than 64 levels of arrays and objects");
-  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
+  // A hang guard, not a benchmark: generous for a sanitizer build on a busy machine.
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
 }
 
 TEST(SceneLoader, TenMegabytesOfValidJsonLoadWithoutHanging) {
@@ -403,7 +404,9 @@ TEST(SceneLoader, TenMegabytesOfValidJsonLoadWithoutHanging) {
   text += R"({"type": "point", "position": [1, 2, 3]}]})";
   const auto t0 = std::chrono::steady_clock::now();
   const LoadResult r = load(text);
-  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(30));
+  // A hang guard, not a benchmark (about 2 s under ASan on an idle machine; 36 s seen beside a
+  // second build on the same 2 cores).
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(180));
   ASSERT_TRUE(r.ok()) << r.error_text();
   EXPECT_GT(r.scene->lights.size(), 200000u);
 }

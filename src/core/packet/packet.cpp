@@ -125,8 +125,9 @@ struct PacketTracer::Impl {
     }
     for (const Light& light : scene.lights) {
       for (const Material& m : scene.materials) {
-        light_kd.push_back(light.intensity * m.kd);
-        light_ks.push_back(light.intensity * m.ks);
+        const LightProducts products = light_products(light, m);
+        light_kd.push_back(products.kd);
+        light_ks.push_back(products.ks);
       }
     }
     levels.resize(at(std::max(0, limits.max_depth)) + 1);

@@ -111,12 +111,21 @@ inline bool shadow_ray(const Light& light, const Vec3& p, const Vec3& ng, const 
   return true;
 }
 
+// A light's intensity times a material's kd and ks: what N.L and the specular factor multiply
+// (the packet tracer forms them once per light and material, the scalar one per hit).
+struct LightProducts {
+  Color kd{0}, ks{0};
+};
+inline LightProducts light_products(const Light& light, const Material& m) {
+  return {light.intensity * m.kd, light.intensity * m.ks};
+}
 // One visible light's share of the diffuse and specular terms (spec: the specular factor).
 struct LightShare {
   Color diffuse{0}, specular{0};
 };
 inline LightShare light_share(const Light& light, const Material& m, double n_dot_l, double spec) {
-  return {light.intensity * m.kd * n_dot_l, light.intensity * m.ks * spec};
+  const LightProducts p = light_products(light, m);
+  return {p.kd * n_dot_l, p.ks * spec};
 }
 inline void add_light(const Light& light, const Material& m, double n_dot_l, double spec, Color& diffuse,
                       Color& specular) {
