@@ -338,8 +338,8 @@ void Viewer::apply_edits(double frame_start) {
 
   // "Move your head": a new shading eye (angle, probe or camera changed) re-shades. While the
   // angle slider is held, the next eye waits for the image of the last one, as a drag's scene
-  // edit does: each restart would cancel the re-shade under way, and a cancelled re-shade leaves
-  // no trees to re-shade from (the view would fall to coarse re-traces until the hand stops).
+  // edit does: each restart would cancel the re-shade under way, and nothing new would show
+  // until the hand stops whenever a re-shade takes longer than a frame.
   const std::optional<Vec3> eye = head_eye();
   const bool holding = interacting_ || edits_.while_active || ImGui::IsAnyItemActive();
   const bool image_pending = renderer_.status().published_generation < sent_generation_;

@@ -121,17 +121,6 @@ void draw_tag(Image& image, int x, int y, const std::string& text, int scale, gl
 double mark_size(const Image& image) { return std::max(5.0, image.height / 77.0); }
 int text_scale(const Image& image) { return image.height >= 500 ? 2 : 1; }
 
-bool is_arrow(TreeSegmentKind kind) { return kind >= TreeSegmentKind::kArrowN; }
-
-const char* arrow_letter(TreeSegmentKind kind, bool blinn) {
-  switch (kind) {
-    case TreeSegmentKind::kArrowN: return "N";
-    case TreeSegmentKind::kArrowL: return "L";
-    case TreeSegmentKind::kArrowR: return blinn ? "H" : "R";
-    case TreeSegmentKind::kArrowV: return "V";
-    default: return "";
-  }
-}
 
 // The ray tree as the previewer's overlay draws it (src/ui/ray_tree_overlay.cpp, draw_ray_tree),
 // in three layers: the arrows' shafts, the rays over them (a shadow ray runs along its L arrow,

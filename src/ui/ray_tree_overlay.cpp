@@ -49,17 +49,6 @@ ImVec2 to_screen(const ImageRect& rect, const ImagePoint& p) {
                 rect.origin.y + static_cast<float>(p.y) * rect.scale.y);
 }
 
-bool is_arrow(TreeSegmentKind kind) { return kind >= TreeSegmentKind::kArrowN; }
-
-const char* arrow_letter(TreeSegmentKind kind, bool blinn) {
-  switch (kind) {
-    case TreeSegmentKind::kArrowN: return "N";
-    case TreeSegmentKind::kArrowL: return "L";
-    case TreeSegmentKind::kArrowR: return blinn ? "H" : "R";
-    case TreeSegmentKind::kArrowV: return "V";
-    default: return "";
-  }
-}
 
 // A colour swatch line in the legend, then its text on the same row.
 void legend_row(ImU32 color, const char* text, bool cross_at_end = false) {

@@ -68,3 +68,25 @@ run_until_killed() {
   # The file as this kill left it (the next session rewrites it).
   cp "$(sed -n 's/^recovery: //p' "$dir/$name.err")" "$dir/$name.json" 2>/dev/null
 }
+
+# The script's two halves (run_gui_script NAME SCREEN "SESSIONS" "CHECKS"): inside Xvfb
+# (--inside-x) each session function runs the previewer; outside, the script starts Xvfb with
+# itself inside, then runs each check function and exits 0 when every check passed.
+run_gui_script() {
+  local step start
+  if ((INSIDE_X)); then
+    for step in $3; do "$step"; done
+    exit 0
+  fi
+  for step in xvfb-run xdotool convert compare; do
+    command -v "$step" >/dev/null || { echo "$1: needs $step"; exit 2; }
+  done
+  [[ -x "$BIN" ]] || { echo "$1: no previewer at $BIN"; exit 2; }
+  rm -rf "$OUT"
+  mkdir -p "$OUT"
+  start=$SECONDS
+  timeout "$TIMEOUT" xvfb-run -a -s "-screen 0 $2" "$SELF" --inside-x "$BUILD_DIR" "$OUT"
+  for step in $4; do "$step"; done
+  echo "$1: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
+  ((failures == 0))
+}

@@ -1297,38 +1297,8 @@ check_browser() {
   check "Esc closes the browser" test -z "$(state "$dir/f5.txt" file_browser)"
 }
 
-if ((INSIDE_X)); then
-  session_view
-  session_files
-  session_instruments
-  session_rays
-  session_lecture
-  session_conflict
-  session_objects
-  session_browser
-  session_lessons
-  session_recovery
-  exit 0
-fi
-
-for tool in xvfb-run xdotool convert compare; do
-  command -v "$tool" >/dev/null || { echo "run_gui_tests.sh: needs $tool"; exit 2; }
-done
-[[ -x "$BIN" ]] || { echo "run_gui_tests.sh: no previewer at $BIN"; exit 2; }
-rm -rf "$OUT"
-mkdir -p "$OUT"
-start=$SECONDS
-timeout "$TIMEOUT" xvfb-run -a -s '-screen 0 1280x720x24' "$SELF" --inside-x "$BUILD_DIR" "$OUT"
-check_view
-check_files
-check_instruments
-check_rays
-check_lecture
-check_conflict
-check_objects
-check_browser
-check_lessons
-check_recovery
-check_no_display
-echo "GUI tests: $failures failure(s) in $((SECONDS - start)) s; screenshots and logs in $OUT"
-((failures == 0))
+run_gui_script "GUI tests" 1280x720x24 \
+  "session_view session_files session_instruments session_rays session_lecture session_conflict session_objects
+   session_browser session_lessons session_recovery" \
+  "check_view check_files check_instruments check_rays check_lecture check_conflict check_objects check_browser
+   check_lessons check_recovery check_no_display"

@@ -354,10 +354,12 @@ struct PacketTracer::Impl {
       } else if (!(n_dot_l > 0)) {
         sink->light(lv.node[u], li, LightSeen::kNoLight, n_dot_l, 0, 0);
       } else {
+        // A blocked light's specular factor is never read (every shading sum skips it, and an
+        // edit that could unblock it moves the light, which takes the factor again): no pow.
         const bool blocked = lv.shadow[u] == Shadow::kTest && lv.blocked[u];
         const double cos_spec = lv.cos_spec[u];
         sink->light(lv.node[u], li, blocked ? LightSeen::kBlocked : LightSeen::kVisible, n_dot_l, cos_spec,
-                    specular_factor(cos_spec, info[at(lv.material[u])].n));
+                    blocked ? 0.0 : specular_factor(cos_spec, info[at(lv.material[u])].n));
       }
     }
   }

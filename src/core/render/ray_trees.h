@@ -98,7 +98,9 @@ class RayTrees {
     double fresnel = 0;              // F at a mirror or glass hit (Bounce::fresnel)
   };
   // One light at a node, for the trees' scene: N.L and the specular factor (hot), whether its
-  // shadow ray got through, and the specular cosine the factor came from.
+  // shadow ray got through, and the specular cosine the factor came from. A blocked light's
+  // factor is never read (trees recorded in packets leave it 0; it is taken again when the light
+  // moves, n or the model changes).
   struct NodeLight {
     double n_dot_l = 0, spec = 0;
   };

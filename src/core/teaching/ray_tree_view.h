@@ -29,6 +29,18 @@ enum class TreeSegmentKind : std::uint8_t {
   kArrowV,         // towards the eye that shades the primary hit (moves with "move your head")
 };
 
+// The N, L, R (H) and V arrows at the primary hit, and the letter each is labelled with.
+inline bool is_arrow(TreeSegmentKind kind) { return kind >= TreeSegmentKind::kArrowN; }
+inline const char* arrow_letter(TreeSegmentKind kind, bool blinn) {
+  switch (kind) {
+    case TreeSegmentKind::kArrowN: return "N";
+    case TreeSegmentKind::kArrowL: return "L";
+    case TreeSegmentKind::kArrowR: return blinn ? "H" : "R";
+    case TreeSegmentKind::kArrowV: return "V";
+    default: return "";
+  }
+}
+
 // One straight piece of the overlay in world space.
 struct TreeSegment {
   TreeSegmentKind kind = TreeSegmentKind::kPrimary;
