@@ -55,7 +55,7 @@ void Viewer::draw_sidebar() {
   if (ImGui::Begin("##sidebar", nullptr, flags)) {
     // Text wraps at the panel's edge at any UI size; labels sit right of the widgets.
     ImGui::PushTextWrapPos(0.0f);
-    // The label column holds the longest label with its "(?)" ("ray-tree memory (?)").
+    // The label column holds the longest label with its "(?)" ("live images/s (?)").
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
     ImGui::TextDisabled("phonglab %s   H hides the panels, F1 lists the keys", PHONGLAB_VERSION);
     // In the order a lecture uses them: what is shown, the coefficients, the lights, the probe

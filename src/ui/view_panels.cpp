@@ -67,7 +67,7 @@ bool render_settings_panel(RenderSettings& settings, int hardware_threads) {
                              settings.live_images_per_s == 0 ? "off (1/8 first)" : "%d", ImGuiSliderFlags_AlwaysClamp);
   help_marker("While a drag or slider is held, each new image starts at the finest resolution whose last pass "
               "fits this rate, instead of at 1/8. A faster machine shows more.");
-  edited |= ImGui::SliderInt("ray-tree memory", &settings.tree_budget_mib, 0, 4096,
+  edited |= ImGui::SliderInt("ray trees", &settings.tree_budget_mib, 0, 4096,
                              settings.tree_budget_mib == 0 ? "none" : "%d MiB", ImGuiSliderFlags_AlwaysClamp);
   help_marker("The first sample's ray trees are kept in this much memory: an edit that moves no ray (ka, kd, ks, n, "
               "light intensity or mute, Phong/Blinn) is then re-shaded at full resolution at once, and a moved "
