@@ -48,17 +48,14 @@ check "the desktop entry claims the scene type (application/x-phonglab-scene)" \
 check "the desktop entry no longer claims every JSON file (application/json)" \
   sh -c "! grep -q 'application/json' '$desktop'"
 mime=$prefix/share/mime/packages/phonglab.xml
-if command -v xmllint >/dev/null; then
-  check "the MIME package is well-formed XML" xmllint --noout "$mime"
-fi
+# xmllint (libxml2-utils) and update-mime-database (shared-mime-info) are in tools/dev.sh's packages.
+check "the MIME package is well-formed XML" xmllint --noout "$mime"
 check "the MIME package defines application/x-phonglab-scene by *.phonglab.json" \
   sh -c "grep -q '<mime-type type=\"application/x-phonglab-scene\">' '$mime' && grep -q 'pattern=\"\\*.phonglab.json\"' '$mime'"
-if command -v update-mime-database >/dev/null; then
-  cp -r "$prefix/share/mime" "$work/mime"
-  update-mime-database "$work/mime" >/dev/null 2>&1
-  check "update-mime-database takes it (globs2: *.phonglab.json)" \
-    grep -qx '[0-9]*:application/x-phonglab-scene:\*\.phonglab\.json' "$work/mime/globs2"
-fi
+cp -r "$prefix/share/mime" "$work/mime"
+update-mime-database "$work/mime" >/dev/null 2>&1
+check "update-mime-database takes it (globs2: *.phonglab.json)" \
+  grep -qx '[0-9]*:application/x-phonglab-scene:\*\.phonglab\.json' "$work/mime/globs2"
 # phonglab --help (no window needed): every option's text starts in one column, continuation
 # lines too.
 columns=$("$prefix/bin/phonglab" --help | awk '
