@@ -3,6 +3,32 @@
 # Sourced, not run.
 
 failures=0
+
+# gui_script_setup OUT_NAME [--inside-x] BUILD_DIR [OUT_DIR]: the script's words (the usage names
+# $SELF, set before lib.sh is sourced) and the environment of its previewer sessions.
+gui_script_setup() {
+  local name=$1
+  shift
+  INSIDE_X=0
+  if [[ "${1:-}" == "--inside-x" ]]; then
+    INSIDE_X=1
+    shift
+  fi
+  if [[ $# -lt 1 || ! -d "$1" ]]; then
+    echo "usage: $(basename "$SELF") BUILD_DIR [OUT_DIR]" >&2
+    exit 2
+  fi
+  BUILD_DIR=$(cd "$1" && pwd)
+  OUT=${2:-$BUILD_DIR/$name}
+  BIN=$BUILD_DIR/bin/phonglab
+  CLI=$BUILD_DIR/bin/phonglab-cli
+  # Sanitizer builds: GL drivers and X libraries keep allocations alive until exit on purpose.
+  export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+  export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+  TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-420}  # all sessions, seconds (sanitizer builds are slow)
+  # The recent-files list and recovery files of these sessions stay with their output.
+  export XDG_STATE_HOME=$OUT/state
+}
 pass() { echo "  ok    $*"; }
 fail() { echo "  FAIL  $*"; failures=$((failures + 1)); }
 check() {  # check "description" command...

@@ -12,27 +12,11 @@
 # Needs: xvfb-run, xdotool, ImageMagick (convert, compare).
 set -u
 
-if [[ "${1:-}" == "--inside-x" ]]; then
-  INSIDE_X=1
-  shift
-else
-  INSIDE_X=0
-fi
-BUILD_DIR=$(cd "${1:?usage: run_gui_tests.sh BUILD_DIR [OUT_DIR]}" && pwd)
-OUT=${2:-$BUILD_DIR/gui-tests}
-BIN=$BUILD_DIR/bin/phonglab
-CLI=$BUILD_DIR/bin/phonglab-cli
 SELF_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 SELF=$SELF_DIR/$(basename "${BASH_SOURCE[0]}")
-# Sanitizer builds: GL drivers and X libraries keep allocations alive until exit on purpose.
-export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
-export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
-TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-420}  # all sessions, seconds (sanitizer builds are slow)
-# The recent-files list of these sessions stays with their output, not in the user's state.
-export XDG_STATE_HOME=$OUT/state
-
 # shellcheck source=tests/gui/lib.sh
 source "$SELF_DIR/lib.sh"
+gui_script_setup gui-tests "$@"
 
 # The viewport of a 1280x720 window is the 880x720 on the left (the panels take 400); below
 # the stats overlay, this region shows only the scene.

@@ -19,24 +19,11 @@
 # Exit status 0 when every check passes. Needs: xvfb-run, xdotool, ImageMagick.
 set -u
 
-if [[ "${1:-}" == "--inside-x" ]]; then
-  INSIDE_X=1
-  shift
-else
-  INSIDE_X=0
-fi
-BUILD_DIR=$(cd "${1:?usage: run_hall_tests.sh BUILD_DIR [OUT_DIR]}" && pwd)
-OUT=${2:-$BUILD_DIR/hall-tests}
-BIN=$BUILD_DIR/bin/phonglab
-CLI=$BUILD_DIR/bin/phonglab-cli
 SELF_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 SELF=$SELF_DIR/$(basename "${BASH_SOURCE[0]}")
-export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"  # Mesa keeps allocations
-export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
-TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-420}
-export XDG_STATE_HOME=$OUT/state
 # shellcheck source=tests/gui/lib.sh
 source "$SELF_DIR/lib.sh"
+gui_script_setup hall-tests "$@"
 
 # The 880x720 view of a 1280x720 window in 3 x 2 cells of 293x360: the specular term's is the
 # top right, the full image's the bottom right.
