@@ -70,15 +70,17 @@ double relative_difference(const Accumulator& a, const Accumulator& b) {
   return worst;
 }
 
-// The live path of a slider, against render_pass, alternating, from trees recorded once: the
-// first material's kd (shading) or the first light's intensity (light), every frame against
-// the same trees as while a hand drags. The first frame takes the per-pixel sums as well.
-// Prints `live re-shade X ms (R× render_pass)`; false when the live image strays past 1e-12.
+// The live path of a slider or a drag, against render_pass, alternating, from trees recorded
+// once: the first material's kd (shading), the first light's intensity (light) or its position
+// (moved), every frame against the same trees as while a hand drags. The first frame takes the
+// per-pixel sums (or the light's hits) as well. Prints `live re-shade X ms (R× render_pass)`;
+// false when the live image strays past 1e-12.
 bool time_live(const Scene& loaded, const std::string& kind, int frames, int width, int height, int threads) {
   if (kind == "head") {
     std::printf("live re-shade: none for the head (V is not linear; the exact re-shade is the live image)\n");
     return true;
   }
+  if (kind == "light" && !time_live(loaded, "moved", frames, width, height, threads)) return false;
   Scene scene = loaded;
   auto base = std::make_shared<const PreparedScene>(scene);
   std::unique_ptr<RayTrees> trees = RayTrees::record(base, width, height, std::nullopt, threads, std::size_t{4} << 30);
@@ -91,6 +93,7 @@ bool time_live(const Scene& loaded, const std::string& kind, int frames, int wid
   live.reset(width, height);
   for (int f = 0; f < frames; ++f) {
     if (kind == "light") scene.lights[0].intensity = loaded.lights[0].intensity * (f % 2 == 0 ? 0.5 : 1.3);
+    else if (kind == "moved") scene.lights[0].position.x = loaded.lights[0].position.x + (f % 2 == 0 ? 0.25 : -0.2);
     else scene.materials[0].kd.x = f % 2 == 0 ? 0.2 : 0.6;
     const PreparedScene prepared(scene);
     Accumulator rendered;
@@ -106,7 +109,7 @@ bool time_live(const Scene& loaded, const std::string& kind, int frames, int wid
   if (live_ms.empty()) live_ms.push_back(first_ms);
   std::printf("%s: live re-shade %.2f ms (%.1f\u00d7 render_pass), the first with its sums %.2f ms; "
               "largest relative difference from render_pass %.1e\n",
-              kind == "light" ? "light intensity" : "kd", median(live_ms), median(render_ms) / median(live_ms), first_ms,
+              kind == "light" ? "light intensity" : kind == "moved" ? "light moved" : "kd", median(live_ms), median(render_ms) / median(live_ms), first_ms,
               worst);
   return worst <= 1e-12;
 }

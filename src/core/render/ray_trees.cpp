@@ -369,6 +369,7 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
       std::swap(t.seen, old.seen), std::swap(t.cos_spec, old.cos_spec), std::swap(t.roots, old.roots);
       std::swap(t.reach, old.reach), std::swap(t.values, old.values);
     }
+    trees->moved_.tiles = std::move(recycled->moved_.tiles);  // a moved light's arrays, likewise
   }
   recycled.reset();
   const Scene& s = scene->scene();
@@ -501,6 +502,10 @@ std::size_t RayTrees::memory_bytes() const {
   for (const Tile& t : tiles_) bytes += tile_bytes(t);
   for (const Sums& sums : sums_) {
     for (const std::vector<Color>& t : sums.tiles) bytes += t.capacity() * sizeof(Color);
+  }
+  for (const LightHits& h : moved_.tiles) {
+    bytes += (h.px.capacity() * 10 + h.gx.capacity() * 3 + h.w.capacity() * 3 + h.rest.capacity() * 3) * sizeof(double) +
+             h.active.capacity() + h.tag.capacity() * sizeof(std::uint32_t);
   }
   return bytes;
 }

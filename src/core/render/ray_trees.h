@@ -58,11 +58,13 @@ class RayTrees {
   PassStats reshade(std::shared_ptr<const PreparedScene> scene, Term term, const std::optional<Vec3>& shading_eye,
                     int threads, Accumulator& accum, const std::atomic<bool>* cancel = nullptr);
 
-  // The live path of a slider (ray_trees_live.cpp). Whether `scene` differs from the trees'
-  // scene only by an edit the image is linear in (some materials' ka, kd, ks; or Ia; or some
-  // lights' intensity or mute: scene_changes.h), at this size and eye, for the term of the
-  // trees' last image (no term images): then its image is that image plus each edited
-  // coefficient's change times the per-pixel sum it multiplies.
+  // The live path of a slider or a light's drag (ray_trees_live.cpp). Whether `scene` differs
+  // from the trees' scene only by an edit the image is linear in (some materials' ka, kd, ks; or
+  // Ia; or some lights' intensity or mute: scene_changes.h), or by one moved light, at this size
+  // and eye, for the term of the trees' last image (no term images): then its image is that
+  // image plus each edited coefficient's change times the per-pixel sum it multiplies; for a
+  // moved light, each pixel's value without that light plus its share at the stored hits, whose
+  // shadow rays towards it are cast again.
   bool recombines(const PreparedScene& scene, int width, int height, Term term, const std::optional<Vec3>& shading_eye,
                   bool term_images) const;
   // That image of `scene` (recombines()) into `accum`, empty at this size. The trees stay as
@@ -120,6 +122,20 @@ class RayTrees {
     std::vector<std::uint64_t> reach;  // per pixel: reach_bit of every material in its tree, kBackground
     std::vector<Color> values;         // per pixel: its value as last computed (for values_term_)
   };
+  // The stored hits a moved light reaches in the walk of the trees' term, for the live path of
+  // its drag: one tile's, as structure of arrays that the four-wide light and shadow kernels
+  // read in place, and each pixel's value without the light's share.
+  struct LightHits {
+    // P, N, the geometric normal (none where it is N at every hit, as on spheres and planes), V
+    // and the offset, padded to whole lanes.
+    std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset;
+    std::vector<std::uint8_t> active;  // 1 for a hit, 0 for padding
+    std::vector<Color> w;              // the kr'/kt' chain above the hit
+    std::vector<std::uint32_t> tag;    // the pixel within the tile (bits 0-7, as Tile::roots), whether the
+                                       // term takes the hit's diffuse (bit 8) and specular (bit 9) part, the material (16-31)
+    std::vector<Color> rest;           // per pixel: its value less the light's share
+    std::size_t size() const { return tag.size(); }
+  };
   // A pixel whose tree meets none of the materials an edit changed (and no background, when
   // that changed) keeps its value: material i is bit i mod 63; bit 63 is a ray that met nothing.
   static constexpr std::uint64_t kBackground = std::uint64_t{1} << 63;
@@ -146,10 +162,21 @@ class RayTrees {
     std::vector<std::vector<Color>> tiles;
   };
   std::vector<Sums> sums_;
+  // The live path of a moved light, for scene_ (dropped with the sums): the light's hits.
+  struct MovedLight {
+    int light = -1;  // none: `tiles` are only memory to reuse
+    Term term = Term::kFull;
+    std::vector<LightHits> tiles;
+  };
+  MovedLight moved_;
+  bool gather_light_hits(int light, Term term, int threads, const std::atomic<bool>* cancel, std::vector<RayCounts>& counts);
+  PassStats recombine_moved(const PreparedScene& scene, int light, Term term, int threads, Accumulator& accum,
+                            const std::atomic<bool>* cancel);
   std::uint64_t live_reach_ = ~std::uint64_t{0};  // the reach bits of the pixels the last recombine changed
   const Sums* sums_for(std::uint8_t coefficient, int index, Term term) const;
   void drop_sums() {
     sums_.clear();
+    moved_.light = -1;  // its arrays' memory stays for the next one
     sums_refused_ = false;
   }
 };

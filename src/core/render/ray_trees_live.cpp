@@ -5,8 +5,20 @@
 // w·Σ_l vis_l·I_l·(N·L), ks multiplies w·Σ_l vis_l·I_l·spec_l. For Iₐ it is Σ w·ka; for a light's
 // intensity Σ w·vis·(kd·(N·L) + ks·spec). The walk is TileShader::terms' with the coefficient
 // taken out: the same stored cosines, visibilities, Fresnel factors and pruning.
+//
+// A moved light (scene_changes.h's kMovedLight) is not linear in its position, but only its
+// share changes: each pixel's value less the light's old share (its intensity times the sum
+// above) is kept, and the light's new share is summed over the stored hits the walk reaches,
+// their N.L, specular cosine and shadow ray taken again four wide from the hits as structure of
+// arrays, in place; only the hits facing the light cast a shadow ray, only visible ones with ks
+// take a power.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
+#include "core/packet/packet.h"
+#include "core/packet/packet_kernels.h"
 #include "core/render/ray_trees.h"
 #include "core/render/scene_changes.h"
 #include "core/render/tile_work.h"
@@ -19,6 +31,8 @@ using Node = RayTrees::Node;
 using Tile = RayTrees::Tile;
 
 enum Coefficient : std::uint8_t { kKa, kKd, kKs, kAmbient, kIntensity };
+
+constexpr std::uint32_t kDiffuseBit = 1u << 8, kSpecularBit = 1u << 9;  // LightHits::tag
 
 // One coefficient whose change the live image adds, with the change.
 struct Delta {
@@ -56,6 +70,14 @@ class SumWalker {
   SumWalker(const Scene& scene, const Tile& tile, Coefficient coefficient, int index)
       : scene_(scene), tile_(tile), coefficient_(coefficient), index_(index), lights_(scene.lights.size()) {}
 
+  // For kIntensity: also keep every hit whose light loop the walk reaches (whatever its stored
+  // visibility), with its weights, in `hits`, for the live path of light `index` moved.
+  void keep_hits(RayTrees::LightHits* hits, const Vec3* eye) {
+    hits_ = hits;
+    eye_ = eye;
+  }
+  void at_pixel(std::size_t pixel) { pixel_ = pixel; }
+
   // The pixel whose tree starts at `root`, for `term` (the root's own part of the equation, or
   // its child's whole subtree); false when a needed child ray is not stored (the exact re-shade
   // traced it: the sum cannot be taken from the tree).
@@ -88,6 +110,7 @@ class SumWalker {
   void lights(std::int32_t i, const Material& m, bool mine, const Color& w, Term part, Color& out) {
     const bool diffuse = part != Term::kSpecular, specular = part != Term::kDiffuse;
     const std::size_t first = static_cast<std::size_t>(i) * lights_;
+    if (hits_ != nullptr && is_lit(m)) keep(i, m, w, diffuse, specular);
     for (std::size_t l = 0; l < lights_; ++l) {
       if (tile_.seen[first + l] != LightSeen::kVisible) continue;
       const Light& light = scene_.lights[l];
@@ -113,15 +136,270 @@ class SumWalker {
     node(stored, w * kw, *cw, Term::kFull, out);
   }
 
+  // Hit i, seen through the chain w, as the moved light's kernels read it.
+  void keep(std::int32_t i, const Material& m, const Color& w, bool diffuse, bool specular) {
+    diffuse = diffuse && !is_zero(m.kd);
+    specular = specular && !is_zero(m.ks);
+    if (!diffuse && !specular) return;
+    const auto material = static_cast<std::uint32_t>(tile_.nodes[static_cast<std::size_t>(i)].material);
+    if (material > 0xffffu) complete_ = false;  // no room in the tag: no live path
+    const RayTrees::NodeGeometry& g = tile_.geometry[static_cast<std::size_t>(i)];
+    const bool primary = tile_.nodes[static_cast<std::size_t>(i)].depth == 0;
+    const Vec3 v = view_direction(g.p, g.dir, primary ? eye_ : nullptr);
+    RayTrees::LightHits& h = *hits_;
+    h.px.push_back(g.p.x), h.py.push_back(g.p.y), h.pz.push_back(g.p.z);
+    h.nx.push_back(g.n.x), h.ny.push_back(g.n.y), h.nz.push_back(g.n.z);
+    h.gx.push_back(g.ng.x), h.gy.push_back(g.ng.y), h.gz.push_back(g.ng.z);
+    h.vx.push_back(v.x), h.vy.push_back(v.y), h.vz.push_back(v.z);
+    h.offset.push_back(g.offset);
+    h.active.push_back(1);
+    h.w.push_back(w);
+    h.tag.push_back(static_cast<std::uint32_t>(pixel_) | (diffuse ? kDiffuseBit : 0u) | (specular ? kSpecularBit : 0u) |
+                    material << 16);
+  }
+
   const Scene& scene_;
   const Tile& tile_;
   Coefficient coefficient_;
   int index_;
   std::size_t lights_;
   bool complete_ = true;
+  RayTrees::LightHits* hits_ = nullptr;
+  const Vec3* eye_ = nullptr;
+  std::size_t pixel_ = 0;
 };
 
+using LightHits = RayTrees::LightHits;
+
+// Pads a tile's hits to whole lanes of four (finite, inactive), and drops the geometric normals
+// where every one is the shading normal.
+void finish_lanes(LightHits& h) {
+  if (h.gx == h.nx && h.gy == h.ny && h.gz == h.nz) {
+    for (std::vector<double>* v : {&h.gx, &h.gy, &h.gz}) v->clear();  // their memory kept for the next gather
+  }
+  const std::size_t n = (h.size() + 3) / 4 * 4;
+  for (std::vector<double>* v : {&h.px, &h.py, &h.pz, &h.nx, &h.ny, &h.nz, &h.vx, &h.vy, &h.vz, &h.offset}) {
+    v->resize(n, 0.0);
+  }
+  if (!h.gx.empty()) {
+    for (std::vector<double>* v : {&h.gx, &h.gy, &h.gz}) v->resize(n, 0.0);
+  }
+  h.active.resize(n, 0);
+}
+
+// The geometric normals' arrays of a tile's hits (the shading normals' where they are the same).
+struct Normals {
+  const double *x, *y, *z;
+};
+Normals geometric_normals(const LightHits& h) {
+  return h.gx.empty() ? Normals{h.nx.data(), h.ny.data(), h.nz.data()} : Normals{h.gx.data(), h.gy.data(), h.gz.data()};
+}
+
+// A material's coefficients as the moved light's share reads them.
+struct LiveMaterial {
+  Color kd{0}, ks{0};
+  double n = 0;
+};
+
+// The specular factor for the live image, within a few ulps of specular_factor: an integer
+// exponent (the usual n) by repeated squaring, at most 2·log2(n) roundings, instead of pow.
+double live_specular_factor(double cos_spec, double n) {
+  if (!(n >= 1 && n <= 65536 && n == std::floor(n))) return specular_factor(cos_spec, n);
+  double base = clamp_positive(clamp_unit(cos_spec)), result = 1;
+  for (auto k = static_cast<std::uint32_t>(n); k != 0; k >>= 1, base *= base) {
+    if (k & 1u) result *= base;
+  }
+  return result;
+}
+
+// One thread's scratch for a tile: the light loop's geometry at each hit, the shadow rays that
+// need a test, their answers, and the light's share per pixel.
+struct LightScratch {
+  std::vector<double> n_dot_l, cos_spec, ox, oy, oz, dx, dy, dz, t_max;
+  std::vector<double> sox, soy, soz, sdx, sdy, sdz, st_max;
+  std::vector<std::size_t> tested;  // the hit of each shadow ray
+  std::vector<std::uint8_t> blocked;
+  std::vector<Color> share;
+};
+
+// N.L, the specular cosine and the shadow ray at every hit: the packet tracer's light kernel
+// over the hits in place, or hit by hit through the same rules (shading.h) without AVX2.
+void light_geometry(const Scene& scene, const Light& light, const LightHits& h, bool packets, LightScratch& s) {
+  const std::size_t lanes = h.px.size();
+  for (std::vector<double>* v : {&s.n_dot_l, &s.cos_spec, &s.ox, &s.oy, &s.oz, &s.dx, &s.dy, &s.dz, &s.t_max}) {
+    v->resize(lanes);
+  }
+  if (packets) {
+    packet::LightIn in{};
+    in.point = light.type == LightType::kPoint;
+    const Vec3 l = in.point ? light.position : -light.direction;
+    in.x = l.x, in.y = l.y, in.z = l.z;
+    in.shrink = in.point ? surface_offset(light.position, 0) : 0.0;
+    in.blinn = scene.specular_model == SpecularModel::kBlinn;
+    const Normals g = geometric_normals(h);
+    const packet::ShadedPoints pts{h.px.data(), h.py.data(), h.pz.data(), h.nx.data(),     h.ny.data(),
+                                   h.nz.data(), g.x,         g.y,         g.z,             h.vx.data(),
+                                   h.vy.data(), h.vz.data(), h.offset.data(), h.active.data()};
+    const packet::LightOut out{s.n_dot_l.data(), s.cos_spec.data(), s.ox.data(), s.oy.data(), s.oz.data(),
+                               s.dx.data(),      s.dy.data(),       s.dz.data(), s.t_max.data()};
+    packet::light(in, pts, static_cast<int>(lanes), out);
+    return;
+  }
+  const Normals g = geometric_normals(h);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const Vec3 p(h.px[i], h.py[i], h.pz[i]), n(h.nx[i], h.ny[i], h.nz[i]);
+    Vec3 l;
+    double dist = 0;
+    s.n_dot_l[i] = light_direction(light, p, l, dist) ? glm::dot(n, l) : std::numeric_limits<double>::quiet_NaN();
+    if (!(s.n_dot_l[i] > 0)) continue;
+    Vec3 r;
+    s.cos_spec[i] = specular_cosine(scene.specular_model, n, l, Vec3(h.vx[i], h.vy[i], h.vz[i]), s.n_dot_l[i], r);
+    Ray ray{};
+    double t_max = 0;
+    if (!shadow_ray(light, p, Vec3(g.x[i], g.y[i], g.z[i]), l, h.offset[i], ray, t_max)) t_max = 0;
+    s.ox[i] = ray.origin.x, s.oy[i] = ray.origin.y, s.oz[i] = ray.origin.z;
+    s.dx[i] = ray.dir.x, s.dy[i] = ray.dir.y, s.dz[i] = ray.dir.z;
+    s.t_max[i] = t_max;
+  }
+}
+
+// The shadow rays of the hits facing the light, as one batch: four wide through the packet
+// tracer (only the spheres the tile's bundle towards the light can meet), or one by one.
+void answer_shadow_rays(const PreparedScene& prepared, const Light& light, bool packets, LightScratch& s) {
+  const std::size_t n = s.tested.size();
+  s.blocked.assign((n + 3) / 4 * 4, 0);
+  if (n == 0) return;
+  if (!packets) {
+    for (std::size_t k = 0; k < n; ++k) {
+      s.blocked[k] = occluded(prepared, make_ray(Vec3(s.sox[k], s.soy[k], s.soz[k]), Vec3(s.sdx[k], s.sdy[k], s.sdz[k])),
+                              s.st_max[k]);
+    }
+    return;
+  }
+  for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(s.blocked.size(), 0.0);
+  packet_tracer_for(prepared).occluded_towards(light, s.sox.data(), s.soy.data(), s.soz.data(), s.sdx.data(),
+                                               s.sdy.data(), s.sdz.data(), s.st_max.data(), static_cast<int>(n),
+                                               s.blocked.data());
+}
+
+// The moved light's share in each pixel of one tile (s.share): I·(w·kd·N.L + w·ks·spec) over
+// the hits that see it.
+void light_share_tile(const PreparedScene& prepared, const Light& light, const std::vector<LiveMaterial>& materials,
+                      const LightHits& h, bool packets, LightScratch& s, RayCounts& rays) {
+  light_geometry(prepared.scene(), light, h, packets, s);
+  const std::size_t lanes = h.px.size();
+  for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(lanes);
+  s.tested.resize(lanes);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    if (!(s.n_dot_l[i] > 0)) continue;
+    ++rays.shadow;
+    if (!(s.t_max[i] > 0)) continue;  // the light within rounding distance: seen, no ray
+    s.sox[k] = s.ox[i], s.soy[k] = s.oy[i], s.soz[k] = s.oz[i];
+    s.sdx[k] = s.dx[i], s.sdy[k] = s.dy[i], s.sdz[k] = s.dz[i];
+    s.st_max[k] = s.t_max[i];
+    s.tested[k++] = i;
+  }
+  for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(k);
+  s.tested.resize(k);
+  answer_shadow_rays(prepared, light, packets, s);
+  std::size_t next = 0;  // the next tested hit
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    if (!(s.n_dot_l[i] > 0)) continue;
+    const bool tested = next < s.tested.size() && s.tested[next] == i;
+    if (tested && s.blocked[next++]) continue;
+    const std::uint32_t tag = h.tag[i];
+    const LiveMaterial& m = materials[tag >> 16];
+    Color c = tag & kDiffuseBit ? m.kd * s.n_dot_l[i] : Color(0);
+    if (tag & kSpecularBit) c += m.ks * live_specular_factor(s.cos_spec[i], m.n);
+    s.share[tag & 0xffu] += light.intensity * (h.w[i] * c);
+  }
+}
+
 }  // namespace
+
+bool RayTrees::gather_light_hits(int light, Term term, int threads, const std::atomic<bool>* cancel,
+                                 std::vector<RayCounts>& counts) {
+  moved_.light = light;
+  moved_.term = term;
+  moved_.tiles.resize(tiles_.size());  // the arrays of the last one are emptied, their memory kept
+  const Scene& base = scene_->scene();
+  const Color before = effective_intensity(base.lights[static_cast<std::size_t>(light)]);
+  const Vec3* eye = shading_eye_ ? &*shading_eye_ : nullptr;
+  std::atomic<bool> stop{false}, incomplete{false};
+  const bool done = for_each_index(tiles_.size(), threads, cancel, stop, counts, [&](std::size_t t, RayCounts&) {
+    const Tile& tile = tiles_[t];
+    LightHits& hits = moved_.tiles[t];
+    for (std::vector<double>* v : {&hits.px, &hits.py, &hits.pz, &hits.nx, &hits.ny, &hits.nz, &hits.gx, &hits.gy,
+                                   &hits.gz, &hits.vx, &hits.vy, &hits.vz, &hits.offset}) {
+      v->clear();
+    }
+    hits.active.clear(), hits.w.clear(), hits.tag.clear(), hits.rest.clear();
+    const std::size_t most = (tile.nodes.size() + 3) / 4 * 4;
+    for (std::vector<double>* v : {&hits.px, &hits.py, &hits.pz, &hits.nx, &hits.ny, &hits.nz, &hits.gx, &hits.gy,
+                                   &hits.gz, &hits.vx, &hits.vy, &hits.vz, &hits.offset}) {
+      v->reserve(most);
+    }
+    hits.active.reserve(most), hits.w.reserve(most), hits.tag.reserve(most);
+    SumWalker walker(base, tile, kIntensity, light);
+    walker.keep_hits(&hits, eye);
+    hits.rest.resize(tile.roots.size());
+    for (std::size_t p = 0; p < tile.roots.size(); ++p) {
+      walker.at_pixel(p);
+      Color sum;
+      if (!walker.pixel(tile.roots[p], term, sum)) incomplete.store(true, std::memory_order_relaxed);
+      hits.rest[p] = tile.values[p] - before * sum;
+    }
+    finish_lanes(hits);
+  });
+  if (done && !incomplete.load()) return true;
+  moved_.light = -1;
+  if (done) sums_refused_ = true;  // a child ray not stored: the exact re-shade traces it
+  return false;
+}
+
+PassStats RayTrees::recombine_moved(const PreparedScene& scene, int light, Term term, int threads, Accumulator& accum,
+                                    const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  PassStats stats;
+  std::vector<RayCounts> counts;
+  if ((moved_.light != light || moved_.term != term) && !gather_light_hits(light, term, threads, cancel, counts)) {
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+  }
+  const Light& moved = scene.scene().lights[static_cast<std::size_t>(light)];
+  const bool packets = packet_tracing_applies(scene);
+  std::vector<LiveMaterial> materials;
+  for (const Material& m : scene.scene().materials) materials.push_back({m.kd, m.ks, m.n});
+  std::atomic<std::uint64_t> nan_count{0};
+  std::atomic<bool> stop{false};
+  const bool done = for_each_index(tiles_.size(), threads, cancel, stop, counts, [&](std::size_t t, RayCounts& rays) {
+    const Tile& tile = tiles_[t];
+    const LightHits& hits = moved_.tiles[t];
+    thread_local LightScratch scratch;
+    scratch.share.assign(tile.roots.size(), Color(0));
+    if (moved.enabled && hits.size() > 0) light_share_tile(scene, moved, materials, hits, packets, scratch, rays);  // muted: no share
+    std::size_t p = 0;
+    for (int y = tile.y0; y < tile.y1; ++y) {
+      Color* row = accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
+      for (int x = tile.x0; x < tile.x1; ++x, ++p) {
+        Color c = hits.rest[p] + scratch.share[p];
+        if (!all_finite(c)) {  // as render_pass replaces them
+          c = Color(0);
+          nan_count.fetch_add(1, std::memory_order_relaxed);
+        }
+        row[x] = c;
+      }
+    }
+  });
+  for (const RayCounts& c : counts) stats.rays += c;
+  stats.completed = done;
+  live_reach_ = ~std::uint64_t{0};  // every pixel may have changed
+  stats.nan_count = nan_count.load();
+  if (done) ++accum.samples;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
 
 const RayTrees::Sums* RayTrees::sums_for(std::uint8_t coefficient, int index, Term term) const {
   for (const Sums& s : sums_) {
@@ -143,7 +421,12 @@ PassStats RayTrees::recombine(const PreparedScene& scene, Term term, int threads
                               const std::atomic<bool>* cancel, bool over_last) {
   const auto start = std::chrono::steady_clock::now();
   const Scene& base = scene_->scene();
-  const std::vector<Delta> deltas = deltas_between(base, scene.scene(), changes_between(base, scene.scene()));
+  const Changes changes = changes_between(base, scene.scene());
+  if (changes.linear() == Changes::Linear::kMovedLight) {
+    const auto moved = std::find(changes.light_moved.begin(), changes.light_moved.end(), true);
+    return recombine_moved(scene, static_cast<int>(moved - changes.light_moved.begin()), term, threads, accum, cancel);
+  }
+  const std::vector<Delta> deltas = deltas_between(base, scene.scene(), changes);
   PassStats stats;
   std::vector<RayCounts> counts;
   // The sums not kept yet, in one pass over the trees; kept only when every one is whole.

@@ -1,5 +1,6 @@
 #include "core/render/scene_changes.h"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace phonglab {
@@ -26,8 +27,17 @@ static_assert(field_count<Scene>() == 19, "a field added to Scene: classify it i
 
 Changes::Linear Changes::linear() const {
   if (retrace || limits_changed || depth_grew || eye_moved || model_changed || background_changed ||
-      any(light_moved) || any(n_changed) || any(bounce_changed)) {
+      any(n_changed) || any(bounce_changed)) {
     return Linear::kNone;
+  }
+  if (any(light_moved)) {
+    if (std::count(light_moved.begin(), light_moved.end(), true) > 1 || any(coefficients) || ambient_changed) {
+      return Linear::kNone;
+    }
+    for (std::size_t l = 0; l < light_shading.size(); ++l) {
+      if (light_shading[l] && !light_moved[l]) return Linear::kNone;  // another light's intensity with it
+    }
+    return Linear::kMovedLight;
   }
   const bool materials = any(coefficients), lights = any(light_shading);
   const int families = (materials ? 1 : 0) + (lights ? 1 : 0) + (ambient_changed ? 1 : 0);

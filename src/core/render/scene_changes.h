@@ -58,11 +58,13 @@ struct Changes {
     }
     return dirty;
   }
-  // The edits in which the image is linear, one family at a time (a product of two edited
-  // coefficients is not): some materials' ka, kd, ks; or Ia; or some lights' intensities (a
-  // muted light's is 0). Nothing else may differ. The family (kMaterials when nothing at all
-  // changed), or kNone.
-  enum class Linear : std::uint8_t { kNone, kMaterials, kAmbient, kLights };
+  // The edits the live path of a slider or a drag shows, one family at a time. The image is
+  // linear in some materials' ka, kd, ks; or in Ia; or in some lights' intensities (a muted
+  // light's is 0); a product of two edited coefficients is not. kMovedLight: one light moved
+  // (its intensity or mute may change with it): the image is the rest of each pixel's value plus
+  // that light's share over the stored hits, cast again. Nothing else may differ. The family
+  // (kMaterials when nothing at all changed), or kNone.
+  enum class Linear : std::uint8_t { kNone, kMaterials, kAmbient, kLights, kMovedLight };
   Linear linear() const;
 };
 
