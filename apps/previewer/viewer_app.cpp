@@ -29,6 +29,8 @@ namespace {
 
 constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
 constexpr double kEarlyFrameGap = 0.004;    // a new edit's first image may go up this soon after a frame
+// A live image whose last one took at most this long is waited for in its edit's own frame, up to:
+constexpr std::chrono::milliseconds kQuickLiveImage{8}, kLiveImageWait{12};
 constexpr double kActivityWindow = 1.0;     // keep drawing this long after an input event, seconds
 constexpr double kIdleWait = 0.5;           // idle wake-up period, seconds: also the file poll rate
 constexpr double kFilePollPeriod = 0.5;     // "poll mtime about twice a second"
@@ -417,6 +419,12 @@ void Viewer::apply_edits(double frame_start) {
     if (probed_.tree) refresh_probe();
   }
   renderer_.set_interacting(interacting_ || edits_.while_active);
+  // A live edit (a slider held, a light dragged) shows in the UI frame that made it: its image
+  // takes a few milliseconds, far less than the wait for the next frame.
+  if (scene_changed && !defer && dragging &&
+      renderer_.wait_for_live_image(sent_generation_, kQuickLiveImage, kLiveImageWait)) {
+    poll_render_frame();
+  }
   edits_.scene = edits_.camera = edits_.replaced = edits_.settings = edits_.view = false;
   take_a_when_final();
   update_title();

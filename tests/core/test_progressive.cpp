@@ -261,6 +261,44 @@ TEST(ProgressiveRenderer, EditsThatChangeNoRayAreReshadedAtFullResolution) {
   }
 }
 
+// A UI frame may wait for its own edit's live image: wait_for_live_image returns with it when the
+// render thread makes it on the live path and the last live image was quick, and at once (not
+// after the timeout) when it is not live (a camera edit) or not known to be quick (the first).
+TEST(ProgressiveRenderer, ALiveImageIsWaitedForOnlyWhenItIsQuick) {
+  ProgressiveSettings settings;
+  settings.target_spp = 1;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(40, 30);
+  Scene scene = load_scene_or_fail("lecture");
+  renderer.set_scene(std::make_shared<const PreparedScene>(scene));
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));  // the image, then its trees
+  renderer.set_interacting(true);
+  const auto edit = [&](bool camera) {
+    if (camera) scene.camera.position.x += 0.1;
+    else scene.materials[0].kd.x = scene.materials[0].kd.x > 0.5 ? 0.3 : 0.7;
+    return renderer.set_scene(std::make_shared<const PreparedScene>(scene));
+  };
+  const auto returns_promptly = [&](std::uint64_t generation) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool shown = renderer.wait_for_live_image(generation, 50ms, kLongWait);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, kLongWait / 2);
+    return shown;
+  };
+  EXPECT_FALSE(returns_promptly(edit(false)));  // the first live image: its time not known yet
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ProgressiveFrame frame;
+  ASSERT_TRUE(renderer.take_frame(frame));
+  EXPECT_TRUE(frame.stats.live);
+  const std::uint64_t second = edit(false);
+  EXPECT_TRUE(returns_promptly(second));  // quick now: waited for, and there
+  ASSERT_TRUE(renderer.take_frame(frame));
+  EXPECT_EQ(frame.generation, second);
+  EXPECT_TRUE(frame.stats.live);
+  EXPECT_FALSE(returns_promptly(edit(true)));  // a camera edit traces: not waited for
+  renderer.set_interacting(false);
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+}
+
 // The small multiples: with term_images, every image brings the five term images of the same
 // samples, traced or re-shaded from the trees; each is what render_pass gives that term.
 TEST(ProgressiveRenderer, TermImagesComeWithEveryImage) {

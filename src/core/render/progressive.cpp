@@ -157,6 +157,18 @@ ProgressiveStatus ProgressiveRenderer::status() const {
                            published_generation_};
 }
 
+bool ProgressiveRenderer::wait_for_live_image(std::uint64_t generation, std::chrono::milliseconds quick,
+                                              std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  const auto settled = [&] {
+    const bool quick_live = decided_live_ms_ >= 0 && decided_live_ms_ <= static_cast<double>(quick.count());
+    return stop_ || generation_ != generation || published_generation_ >= generation ||
+           (decided_generation_ == generation && !quick_live);
+  };
+  idle_cv_.wait_for(lock, timeout, settled);
+  return published_generation_ >= generation && generation_ == generation;
+}
+
 bool ProgressiveRenderer::wait_idle(std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
   return idle_cv_.wait_for(lock, timeout,
@@ -176,6 +188,7 @@ struct ProgressiveRenderer::Job {
   bool live_shown = false;      // the image is the live one: the exact re-shade is owed
   bool accum_live = false;      // accum holds the image the trees last recombined, nothing since
   LevelTimes level_times;       // the last pass at each level, for live_start_level
+  double live_ms = 1e9;         // the last live pass (wait_for_live_image); none yet: not quick
   Accumulator accum;
   std::uint64_t nan_count = 0;
   bool published_any = false;
@@ -221,6 +234,7 @@ void ProgressiveRenderer::run() {
     if (job.live && job.interacting) {
       pass = job.trees->recombine(*job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_,
                                   job.accum_live);
+      if (pass.completed) job.live_ms = pass.seconds * 1e3;
       job.live = false;
       job.accum_live = pass.completed;
       if (!pass.completed && !cancel_.load()) {
@@ -320,6 +334,9 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   job.live = job.reshade && interacting_ &&
              job.trees->recombines(*job.scene, width_, height_, settings_.term, settings_.shading_eye, settings_.term_images);
   job.live_shown = false;
+  decided_generation_ = job.generation;  // wait_for_live_image
+  decided_live_ms_ = job.live ? job.live_ms : -1.0;
+  idle_cv_.notify_all();
   if (job.reshade) {
     job.level = job.levels.size() - 1;
   } else {
@@ -371,6 +388,7 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
       published = true;
     }
   }
+  if (published) idle_cv_.notify_all();  // wait_for_live_image
   if (published && on_frame_) on_frame_();
   job.published_any = true;
 }

@@ -143,6 +143,11 @@ class ProgressiveRenderer {
   // Blocks until the render thread idles on the current generation, or the timeout passes.
   // For tests and scripts; a UI never calls it.
   bool wait_idle(std::chrono::milliseconds timeout);
+  // While a hand is on: blocks until `generation`'s image is published, when the render thread
+  // makes it on the live path and its last live image took at most `quick` (so the edit shows in
+  // the UI frame that made it, not the next); returns at once otherwise, or after `timeout`.
+  // True when that image is published.
+  bool wait_for_live_image(std::uint64_t generation, std::chrono::milliseconds quick, std::chrono::milliseconds timeout);
 
  private:
   struct Job;
@@ -170,6 +175,8 @@ class ProgressiveRenderer {
   std::uint64_t passes_ = 0;
   std::uint64_t serial_ = 0;
   std::uint64_t published_generation_ = 0;
+  std::uint64_t decided_generation_ = 0;  // the newest generation the render thread has picked up
+  double decided_live_ms_ = -1;           // its live pass's expected time (the last one's), -1: not live
   std::chrono::steady_clock::time_point restart_time_;
   ProgressiveFrame published_;
   bool published_fresh_ = false;       // published_ holds an image nobody has taken yet
