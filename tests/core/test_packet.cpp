@@ -5,7 +5,9 @@
 // depth and weight limits, loose triangles, the camera inside a sphere).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <random>
@@ -331,6 +333,72 @@ TEST(PacketTracer, CullingNeverDropsASphereARayMeets) {
     shadow_rays += packets.rays.shadow;
   }
   EXPECT_GT(shadow_rays, 100000u);
+}
+
+// Shadow rays skip a loose triangle whose plane has all their origins and the light strictly on
+// one side (PacketTracer's shadow_triangles). Batches of origins at one height above or below a
+// floor of two triangles (from 0 to well beyond the offset a hit on the floor gets, in ulps of
+// its size) and tilted triangles, towards point and directional lights on either side, at
+// several scales and far from the origin: every answer is the scalar query's.
+TEST(PacketTracer, ShadowCullingNeverDropsATriangleARayMeets) {
+  REQUIRE_PACKETS();
+  int culled_batches_checked = 0;
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1), c(-1, 1);
+    const double size = std::pow(10.0, std::uniform_int_distribution<int>(-2, 4)(rng));
+    const Vec3 shift = u(rng) < 0.3 ? Vec3(3e4, -2e4, 1e4) * size : Vec3(0);
+    Scene s;
+    s.materials = {Material{}};
+    const Vec3 a = Vec3(-1, 0, -1) * size + shift, b = Vec3(1, 0, -1) * size + shift;
+    const Vec3 cc = Vec3(1, 0, 1) * size + shift, d = Vec3(-1, 0, 1) * size + shift;
+    s.triangles.push_back(Triangle{a, d, cc, 0});
+    s.triangles.push_back(Triangle{a, cc, b, 0});
+    const Vec3 tilt = Vec3(c(rng), 0.3 * c(rng), c(rng)) * size * 0.3;
+    s.triangles.push_back(Triangle{shift + tilt, shift + Vec3(0.2, 0.5, 0) * size, shift + Vec3(0, 0.1, 0.4) * size, 0});
+    Light light;
+    if (seed % 2 == 0) {
+      light.type = LightType::kDirectional;
+      light.direction = glm::normalize(Vec3(c(rng), seed % 4 == 0 ? -1.0 : 1.0, c(rng)));
+    } else {
+      light.position = Vec3(c(rng), seed % 3 == 0 ? -2.0 : 2.0, c(rng)) * size + shift;
+    }
+    s.lights = {light};
+    const PreparedScene p(std::move(s));
+    const Light& l = p.scene().lights[0];
+    PacketTracer& tracer = packet_tracer_for(p);
+    const double ulp = std::ldexp(1.0, -52) * (std::abs(shift.x) + size);
+    for (const double h : {0.0, ulp, 16 * ulp, 1024 * ulp, 0x1p-42 * size, 0x1p-41 * size, 0x1p-40 * size, 1e-9 * size,
+                           1e-6 * size, 0.3 * size}) {
+      for (const double sign : {1.0, -1.0}) {
+        std::vector<double> ox, oy, oz, dx, dy, dz, t_max;
+        for (int i = 0; i < 8; ++i) {
+          const Vec3 o = shift + Vec3(c(rng) * 0.9 * size, sign * h, c(rng) * 0.9 * size);
+          Vec3 dir;
+          double t = std::numeric_limits<double>::infinity();
+          if (l.type == LightType::kPoint) {
+            dir = glm::normalize(l.position - o);
+            t = glm::length(l.position - o) * (1 - 1e-9);
+          } else {
+            dir = -l.direction;
+          }
+          ox.push_back(o.x), oy.push_back(o.y), oz.push_back(o.z);
+          dx.push_back(dir.x), dy.push_back(dir.y), dz.push_back(dir.z);
+          t_max.push_back(t);
+        }
+        std::vector<std::uint8_t> blocked(8);
+        tracer.occluded_towards(l, ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data(), t_max.data(), 8,
+                                blocked.data());
+        for (int i = 0; i < 8; ++i) {
+          const Ray ray = make_ray(Vec3(ox[i], oy[i], oz[i]), Vec3(dx[i], dy[i], dz[i]));
+          ASSERT_EQ(blocked[i] != 0, occluded(p, ray, t_max[i])) << "height " << sign * h << ", ray " << i;
+        }
+        ++culled_batches_checked;
+      }
+    }
+  }
+  EXPECT_EQ(culled_batches_checked, 40 * 20);
 }
 
 TEST(PacketTracer, TheImageDoesNotDependOnTheThreadCount) {

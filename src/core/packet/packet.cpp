@@ -61,6 +61,7 @@ struct PacketTracer::Impl {
   std::vector<double> plx, ply, plz, pnx, pny, pnz, plane_size;
   std::vector<int> prim_material;  // by kernel id (spheres, then planes, then triangles)
   std::vector<std::int32_t> every_sphere, primary_tested, shadow_tested;
+  std::vector<std::int32_t> every_triangle, triangles_tested;  // loose triangles, as the spheres'
   packet::Spheres spheres{};
   packet::Planes planes{};
   // With a SceneBvh: the spheres, loose triangles and meshes are found through it (planes are
@@ -133,12 +134,14 @@ struct PacketTracer::Impl {
     levels.resize(at(std::max(0, limits.max_depth)) + 1);
     mesh_id = static_cast<int>(prim_material.size());
     if (const auto* bvh = dynamic_cast<const SceneBvh*>(prepared.accel())) set_up_hierarchy(*bvh);
-    loose = {kernel_vertices(scene.triangles), static_cast<long>(sizeof(Triangle) / sizeof(double)),
-             static_cast<int>(scene.triangles.size()), spheres.count + planes.count};
     for (const Triangle& tri : scene.triangles) {
+      every_triangle.push_back(static_cast<std::int32_t>(loose_normal.size()));
       loose_normal.push_back(triangle_normal(tri));
       loose_magnitude.push_back(triangle_magnitude(tri));
     }
+    loose = {kernel_vertices(scene.triangles), static_cast<long>(sizeof(Triangle) / sizeof(double)),
+             static_cast<int>(scene.triangles.size()), spheres.count + planes.count, every_triangle.data(),
+             static_cast<int>(every_triangle.size())};
   }
 
   void set_up_hierarchy(const SceneBvh& bvh) {
@@ -246,6 +249,49 @@ struct PacketTracer::Impl {
     return view;
   }
 
+  // The loose triangles a batch of rays can meet: a triangle whose plane has every ray's origin
+  // and far end strictly on one side meets none of them. The far end is `light` for shadow rays
+  // towards it; without a light, each ray's whole half-line (its direction leaves the plane).
+  // The origins of rays leaving the triangle itself lie surface_offset off its plane, at least
+  // 2^-40 of its largest coordinate; the margin, 2^-42 of the coordinates involved, is half that
+  // and still hundreds of ulps above the rounding of the side test and of the triangle test, and a
+  // direction leaves the plane only with a cosine above 1e-12 (its rounding is 1e-15), so culling
+  // never changes an answer.
+  packet::LooseTriangles triangles_met(const packet::Rays& rays, const double* t_max, int lanes, const Light* light) {
+    packet::LooseTriangles view = loose;
+    if (loose.count == 0) return view;
+    triangles_tested.clear();
+    const bool point = light && light->type == LightType::kPoint;
+    for (int k = 0; k < loose.count; ++k) {
+      const Triangle& tri = scene.triangles[at(k)];
+      const Vec3& n = loose_normal[at(k)];
+      double lo = kInf, hi = -kInf, away = kInf, towards = -kInf, size = loose_magnitude[at(k)];
+      for (int i = 0; i < lanes; ++i) {
+        if (t_max && !(t_max[i] > 0)) continue;
+        const Vec3 o(rays.ox[i], rays.oy[i], rays.oz[i]);
+        const double d = glm::dot(n, o - tri.v0);
+        lo = std::min(lo, d), hi = std::max(hi, d);
+        size = std::max(size, max_abs(o));
+        if (light) continue;
+        const double cosine = glm::dot(n, Vec3(rays.dx[i], rays.dy[i], rays.dz[i]));
+        away = std::min(away, cosine), towards = std::max(towards, cosine);
+      }
+      const double margin = 0x1p-42 * size;
+      // The far ends' side: a point light's, the direction L from the plane, or each ray's.
+      double end_lo = away, end_hi = towards, end_margin = 1e-12;
+      if (light) {
+        end_lo = end_hi = point ? glm::dot(n, light->position - tri.v0) : glm::dot(n, -light->direction);
+        if (point) end_margin = 0x1p-42 * std::max(size, max_abs(light->position));
+      }
+      const bool above = lo > margin && end_lo > end_margin;
+      const bool below = hi < -margin && end_hi < -end_margin;
+      if (!above && !below) triangles_tested.push_back(k);
+    }
+    view.tested = triangles_tested.data();
+    view.tested_count = static_cast<int>(triangles_tested.size());
+    return view;
+  }
+
   // The nearest hit of every ray: spheres and planes in the kernel, then the scene's few loose
   // triangles, in intersect_all's order.
   void find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested) {
@@ -261,27 +307,28 @@ struct PacketTracer::Impl {
       return;
     }
     if (scene.triangles.empty()) return;
-    packet::triangles_nearest(loose, rays.view(), rays.n,
+    packet::triangles_nearest(triangles_met(rays.view(), nullptr, rays.n, nullptr), rays.view(), rays.n,
                               {lv.t.data(), lv.id.data(), lv.prim.data(), lv.b1.data(), lv.b2.data()});
   }
 
   // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
-  void test_shadows(Level& lv, int lanes, const packet::Spheres& tested) {
+  void test_shadows(Level& lv, int lanes, const packet::Spheres& tested, const Light& light) {
     std::fill_n(lv.blocked.begin(), padded(lanes), std::uint8_t{0});
     const packet::Rays rays{lv.sox.data(), lv.soy.data(), lv.soz.data(), lv.sdx.data(), lv.sdy.data(), lv.sdz.data()};
-    any_hits(rays, lv.st_max.data(), padded(lanes), tested, lv.blocked.data());
+    any_hits(rays, lv.st_max.data(), padded(lanes), tested, lv.blocked.data(), &light);
   }
 
-  // Sets blocked[i] = 1 for the lanes that something blocks within (0, t_max[i]).
+  // Sets blocked[i] = 1 for the lanes that something blocks within (0, t_max[i]); for shadow
+  // rays towards `light`, only the loose triangles they can meet are tested.
   void any_hits(const packet::Rays& rays, const double* t_max, int lanes, const packet::Spheres& tested,
-                std::uint8_t* blocked) {
+                std::uint8_t* blocked, const Light* light = nullptr) {
     packet::occluded(tested, planes, rays, t_max, lanes, blocked);
     if (walk_hierarchy) {
       packet::hierarchy_occluded(hierarchy, rays, t_max, lanes, blocked);
       return;
     }
     if (scene.triangles.empty()) return;
-    packet::triangles_occluded(loose, rays, t_max, lanes, blocked);
+    packet::triangles_occluded(light ? triangles_met(rays, t_max, lanes, light) : loose, rays, t_max, lanes, blocked);
   }
 
   // The light loop of shade() for every hit of the level, one light at a time.
@@ -323,7 +370,7 @@ struct PacketTracer::Impl {
       if (any_test) {
         // The rays start within max_offset of the hit points' bounding box.
         const double ball = (0.5 * glm::length(lv.hi - lv.lo) + lv.max_offset) * (1 + 1e-9);
-        test_shadows(lv, lanes, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l));
+        test_shadows(lv, lanes, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l), light);
       }
       if (sink != nullptr) record_light(lv, lanes, static_cast<int>(li));
       if (!light.enabled) continue;
@@ -630,7 +677,7 @@ void PacketTracer::occluded_towards(const Light& light, const double* ox, const 
   const double ball = 0.5 * glm::length(hi - lo) * (1 + 1e-9);  // every origin lies within it
   const Vec3 l = light.type == LightType::kPoint ? light.position : -light.direction;
   const packet::Rays rays{ox, oy, oz, dx, dy, dz};
-  im.any_hits(rays, t_max, padded(n), im.shadow_spheres(0.5 * (lo + hi), ball, light, l), blocked);
+  im.any_hits(rays, t_max, padded(n), im.shadow_spheres(0.5 * (lo + hi), ball, light, l), blocked, &light);
 }
 
 PacketTracer& packet_tracer_for(const PreparedScene& prepared) {

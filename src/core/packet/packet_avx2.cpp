@@ -651,7 +651,8 @@ void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, c
     V id = _mm256_set_pd(out.id[i + 3], out.id[i + 2], out.id[i + 1], out.id[i]);
     V b1 = _mm256_setzero_pd(), b2 = _mm256_setzero_pd();
     int changed = 0;
-    for (int k = 0; k < tris.count; ++k) {
+    for (int j = 0; j < tris.tested_count; ++j) {
+      const int k = tris.tested[j];
       const double* v0 = tris.vertices + k * tris.stride;
       const TriangleHit hit = triangle_hit(p, v0);
       const V take = both(both(m, hit.valid), lt(hit.t, best));
@@ -681,13 +682,15 @@ void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, c
 
 void triangles_occluded(const LooseTriangles& tris, const Rays& rays, const double* t_max, int lanes,
                         std::uint8_t* occluded_out) {
+  if (tris.tested_count == 0) return;
   for (int i = 0; i < lanes; i += 4) {
     const int live = shadow_lanes(t_max, occluded_out, i);
     if (live == 0) continue;
     const Packet p = shear_packet(rays, i, live);
     const V limit = load(t_max + i);
     V open = lane_mask(live);
-    for (int k = 0; k < tris.count && lanes_set(open) != 0; ++k) {
+    for (int j = 0; j < tris.tested_count && lanes_set(open) != 0; ++j) {
+      const int k = tris.tested[j];
       const double* v0 = tris.vertices + k * tris.stride;
       const TriangleHit hit = triangle_hit(p, v0);
       const V blocks = both(both(open, hit.valid), lt(hit.t, limit));

@@ -168,6 +168,9 @@ struct LooseTriangles {
   long stride;
   int count;
   int first_id;            // id of triangle 0 (spheres + planes)
+  // The triangles a query tests, in increasing order: all, or those a batch's rays can meet.
+  const std::int32_t* tested;
+  int tested_count;
 };
 
 // nearest_triangle for lanes [0, live): where a triangle is strictly nearer than t (ties go to
