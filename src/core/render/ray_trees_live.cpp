@@ -195,9 +195,10 @@ Normals geometric_normals(const LightHits& h) {
   return h.gx.empty() ? Normals{h.nx.data(), h.ny.data(), h.nz.data()} : Normals{h.gx.data(), h.gy.data(), h.gz.data()};
 }
 
-// A material's coefficients as the moved light's share reads them.
+// A material as the moved light's share reads it: the light's products with its kd and ks
+// (light_products, as both tracers form them) and its exponent.
 struct LiveMaterial {
-  Color kd{0}, ks{0};
+  LightProducts products;
   double n = 0;
 };
 
@@ -310,9 +311,9 @@ void light_share_tile(const PreparedScene& prepared, const Light& light, const s
     if (tested && s.blocked[next++]) continue;
     const std::uint32_t tag = h.tag[i];
     const LiveMaterial& m = materials[tag >> 16];
-    Color c = tag & kDiffuseBit ? m.kd * s.n_dot_l[i] : Color(0);
-    if (tag & kSpecularBit) c += m.ks * live_specular_factor(s.cos_spec[i], m.n);
-    s.share[tag & 0xffu] += light.intensity * (h.w[i] * c);
+    Color c = tag & kDiffuseBit ? m.products.kd * s.n_dot_l[i] : Color(0);
+    if (tag & kSpecularBit) c += m.products.ks * live_specular_factor(s.cos_spec[i], m.n);
+    s.share[tag & 0xffu] += h.w[i] * c;
   }
 }
 
@@ -370,7 +371,7 @@ PassStats RayTrees::recombine_moved(const PreparedScene& scene, int light, Term 
   const Light& moved = scene.scene().lights[static_cast<std::size_t>(light)];
   const bool packets = packet_tracing_applies(scene);
   std::vector<LiveMaterial> materials;
-  for (const Material& m : scene.scene().materials) materials.push_back({m.kd, m.ks, m.n});
+  for (const Material& m : scene.scene().materials) materials.push_back({light_products(moved, m), m.n});
   std::atomic<std::uint64_t> nan_count{0};
   std::atomic<bool> stop{false};
   const bool done = for_each_index(tiles_.size(), threads, cancel, stop, counts, [&](std::size_t t, RayCounts& rays) {
