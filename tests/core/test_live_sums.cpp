@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <random>
@@ -163,6 +164,70 @@ TEST(LiveSums, AMovedLightsShareIsCastAgainAtTheStoredHits) {
       ASSERT_TRUE(close(live, fresh_image(*edited, term), before)) << "edit " << e << ", term " << term_name(term);
     }
   }
+}
+
+// A moved light's arrays count against the trees' budget: over it, no live path for the light
+// (the exact re-shade serves), and the coefficients' live path goes on.
+TEST(LiveSums, AMovedLightsArraysStayWithinTheTreesBudget) {
+  Scene s = random_scene_data(7);
+  ASSERT_GE(s.lights.size(), 1u);
+  s.lights[0].type = LightType::kPoint;
+  const std::shared_ptr<const PreparedScene> base = prepared(s);
+  const std::size_t trees_alone = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30)->memory_bytes();
+  for (const bool roomy : {true, false}) {
+    SCOPED_TRACE(roomy ? "room for the arrays" : "no room for them");
+    const std::size_t budget = roomy ? std::size_t{1} << 30 : trees_alone + trees_alone / 20;
+    std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, budget);
+    ASSERT_NE(trees, nullptr);
+    Accumulator image = sized();
+    ASSERT_TRUE(trees->reshade(base, Term::kFull, std::nullopt, 2, image).completed);
+    Scene moved = s;
+    moved.lights[0].position += Vec3(0.5, 0.1, -0.2);
+    const std::shared_ptr<const PreparedScene> edited = prepared(moved);
+    ASSERT_TRUE(trees->recombines(*edited, kW, kH, Term::kFull, std::nullopt, false));
+    Accumulator live = sized();
+    EXPECT_EQ(trees->recombine(*edited, Term::kFull, 2, live).completed, roomy);
+    EXPECT_EQ(trees->recombines(*edited, kW, kH, Term::kFull, std::nullopt, false), roomy);
+    if (!roomy) {
+      EXPECT_LE(trees->memory_bytes(), budget);
+    }
+    Scene shaded = s;
+    shaded.materials[0].kd *= 0.5;
+    Accumulator kd = sized();
+    EXPECT_TRUE(trees->recombine(*prepared(shaded), Term::kFull, 2, kd).completed);
+  }
+}
+
+// After a re-shade that traced children the trees do not store (another ior turns refracted
+// rays), a sum that needs them cannot be taken: recombine says so (not completed, nothing
+// shown) and recombines() refuses from then on, so the exact re-shade serves.
+TEST(LiveSums, ASumTheTreesCannotGiveIsNotShown) {
+  int refused = 0;
+  for (std::uint32_t seed = 1; seed <= 60 && refused < 3; ++seed) {
+    Scene s = random_scene_data(seed);
+    const auto glass = std::find_if(s.materials.begin(), s.materials.end(), [](const Material& m) { return !is_zero(m.kt); });
+    if (glass == s.materials.end()) continue;
+    const std::shared_ptr<const PreparedScene> base = prepared(s);
+    std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30);
+    ASSERT_NE(trees, nullptr);
+    glass->ior += 0.3;
+    const std::shared_ptr<const PreparedScene> turned = prepared(s);
+    Accumulator image = sized();
+    ASSERT_TRUE(trees->reshade(turned, Term::kFull, std::nullopt, 2, image).completed);
+    s.ambient *= 0.5;
+    const std::shared_ptr<const PreparedScene> edited = prepared(s);
+    if (!trees->recombines(*edited, kW, kH, Term::kFull, std::nullopt, false)) continue;
+    Accumulator live = sized();
+    const PassStats stats = trees->recombine(*edited, Term::kFull, 2, live);
+    if (stats.completed) {
+      ASSERT_TRUE(close(live, fresh_image(*edited, Term::kFull), image));
+      continue;
+    }
+    EXPECT_EQ(live.samples, 0u);
+    EXPECT_FALSE(trees->recombines(*edited, kW, kH, Term::kFull, std::nullopt, false));
+    ++refused;
+  }
+  EXPECT_GE(refused, 1);
 }
 
 TEST(LiveSums, EditsThatAreNotLinearAreRefused) {

@@ -357,6 +357,7 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
   trees->width_ = width;
   trees->height_ = height;
   trees->shading_eye_ = shading_eye;
+  trees->budget_bytes_ = budget_bytes;
   trees->tiles_ = make_tiles(width, height);
   if (recycled && recycled->tiles_.size() == trees->tiles_.size()) {
     // The old tiles' arrays, emptied: their memory is already the process's.
@@ -503,10 +504,7 @@ std::size_t RayTrees::memory_bytes() const {
   for (const Sums& sums : sums_) {
     for (const std::vector<Color>& t : sums.tiles) bytes += t.capacity() * sizeof(Color);
   }
-  for (const LightHits& h : moved_.tiles) {
-    bytes += (h.px.capacity() * 10 + h.gx.capacity() * 3 + h.w.capacity() * 3 + h.rest.capacity() * 3) * sizeof(double) +
-             h.active.capacity() + h.tag.capacity() * sizeof(std::uint32_t);
-  }
+  for (const LightHits& h : moved_.tiles) bytes += h.bytes();
   return bytes;
 }
 

@@ -135,6 +135,10 @@ class RayTrees {
                                        // term takes the hit's diffuse (bit 8) and specular (bit 9) part, the material (16-31)
     std::vector<Color> rest;           // per pixel: its value less the light's share
     std::size_t size() const { return tag.size(); }
+    std::size_t bytes() const {
+      return (px.capacity() * 10 + gx.capacity() * 3 + w.capacity() * 3 + rest.capacity() * 3) * sizeof(double) +
+             active.capacity() + tag.capacity() * sizeof(std::uint32_t);
+    }
   };
   // A pixel whose tree meets none of the materials an edit changed (and no background, when
   // that changed) keeps its value: material i is bit i mod 63; bit 63 is a ray that met nothing.
@@ -151,6 +155,8 @@ class RayTrees {
   bool values_valid_ = true;  // false after a cancelled re-shade: Tile::values are partly another scene's
   bool sums_refused_ = false; // a sum the trees cannot give (a child ray not stored): no live path for scene_
   bool usable_ = true;
+  std::size_t budget_bytes_ = 0;  // what record() was given: the live path's arrays stay within it too
+  bool moved_over_budget_ = false; // a moved light's arrays would not fit it: no live path for scene_
   std::size_t traced_pixels_ = 0;  // pixels the last re-shade traced rays for
   double record_seconds_ = 0;
   // The per-pixel sums of the live path, for scene_ (dropped when it changes): tile by tile,
@@ -177,6 +183,7 @@ class RayTrees {
   void drop_sums() {
     sums_.clear();
     moved_.light = -1;  // its arrays' memory stays for the next one
+    moved_over_budget_ = false;
     sums_refused_ = false;
   }
 };

@@ -321,6 +321,19 @@ void light_share_tile(const PreparedScene& prepared, const Light& light, const s
 
 bool RayTrees::gather_light_hits(int light, Term term, int threads, const std::atomic<bool>* cancel,
                                  std::vector<RayCounts>& counts) {
+  // At most every node a hit (10 doubles, its chain, tag and lane flag) and a rest per pixel,
+  // within the trees' budget beside them; over it, the exact re-shade.
+  std::size_t arrays = 0;
+  for (const Tile& tile : tiles_) {
+    arrays += (tile.nodes.size() + 3) / 4 * 4 * (13 * sizeof(double) + sizeof(Color) + sizeof(std::uint32_t) + 1) +
+              tile.roots.size() * sizeof(Color);
+  }
+  std::size_t kept = 0;
+  for (const LightHits& h : moved_.tiles) kept += h.bytes();
+  if (memory_bytes() - kept + arrays > budget_bytes_) {
+    moved_over_budget_ = true;
+    return false;
+  }
   moved_.light = light;
   moved_.term = term;
   moved_.tiles.resize(tiles_.size());  // the arrays of the last one are emptied, their memory kept
@@ -365,6 +378,7 @@ PassStats RayTrees::recombine_moved(const PreparedScene& scene, int light, Term 
   PassStats stats;
   std::vector<RayCounts> counts;
   if ((moved_.light != light || moved_.term != term) && !gather_light_hits(light, term, threads, cancel, counts)) {
+    stats.completed = false;  // cancelled, or over the budget: nothing written
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;
   }
@@ -415,7 +429,8 @@ bool RayTrees::recombines(const PreparedScene& scene, int width, int height, Ter
       scene.experiment() || shading_eye != shading_eye_) {
     return false;
   }
-  return changes_between(scene_->scene(), scene.scene()).linear() != Changes::Linear::kNone;
+  const Changes::Linear family = changes_between(scene_->scene(), scene.scene()).linear();
+  return family != Changes::Linear::kNone && !(family == Changes::Linear::kMovedLight && moved_over_budget_);
 }
 
 PassStats RayTrees::recombine(const PreparedScene& scene, Term term, int threads, Accumulator& accum,
@@ -450,11 +465,13 @@ PassStats RayTrees::recombine(const PreparedScene& scene, Term term, int threads
       }
     });
     if (!done) {
+      stats.completed = false;
       stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return stats;  // cancelled: nothing kept, nothing written
     }
     if (incomplete.load()) {
       sums_refused_ = true;  // the exact re-shade traces what the trees lack
+      stats.completed = false;
       stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return stats;
     }
