@@ -261,30 +261,36 @@ struct PacketTracer::Impl {
     packet::LooseTriangles view = loose;
     if (loose.count == 0) return view;
     triangles_tested.clear();
+    // The batch's origins and directions as boxes, once for every triangle: over a box a plane's
+    // signed distance (or a direction's cosine) lies within the centre's plus or minus |n|·half.
+    double box[12];
+    packet::ray_bounds(rays, t_max, lanes, box);
+    const Vec3 olo(box[0], box[1], box[2]), ohi(box[3], box[4], box[5]);
+    const Vec3 dlo(box[6], box[7], box[8]), dhi(box[9], box[10], box[11]);
+    view.tested = triangles_tested.data();
+    view.tested_count = 0;
+    if (!(olo.x <= ohi.x)) return view;  // no ray
+    const Vec3 centre = 0.5 * (olo + ohi), half = 0.5 * (ohi - olo);
+    const Vec3 dcentre = 0.5 * (dlo + dhi), dhalf = 0.5 * (dhi - dlo);
+    const double origins_size = std::max(max_abs(olo), max_abs(ohi));
     const bool point = light && light->type == LightType::kPoint;
     for (int k = 0; k < loose.count; ++k) {
-      const Triangle& tri = scene.triangles[at(k)];
       const Vec3& n = loose_normal[at(k)];
-      double lo = kInf, hi = -kInf, away = kInf, towards = -kInf, size = loose_magnitude[at(k)];
-      for (int i = 0; i < lanes; ++i) {
-        if (t_max && !(t_max[i] > 0)) continue;
-        const Vec3 o(rays.ox[i], rays.oy[i], rays.oz[i]);
-        const double d = glm::dot(n, o - tri.v0);
-        lo = std::min(lo, d), hi = std::max(hi, d);
-        size = std::max(size, max_abs(o));
-        if (light) continue;
-        const double cosine = glm::dot(n, Vec3(rays.dx[i], rays.dy[i], rays.dz[i]));
-        away = std::min(away, cosine), towards = std::max(towards, cosine);
-      }
+      const Vec3 an = glm::abs(n);
+      const double d = glm::dot(n, centre - scene.triangles[at(k)].v0), spread = glm::dot(an, half);
+      const double size = std::max(loose_magnitude[at(k)], origins_size);
       const double margin = 0x1p-42 * size;
-      // The far ends' side: a point light's, the direction L from the plane, or each ray's.
-      double end_lo = away, end_hi = towards, end_margin = 1e-12;
+      // The far ends' side: a point light's, the direction L from the plane, or the rays'.
+      double end_lo = 0, end_hi = 0, end_margin = 1e-12;
       if (light) {
-        end_lo = end_hi = point ? glm::dot(n, light->position - tri.v0) : glm::dot(n, -light->direction);
+        end_lo = end_hi = point ? glm::dot(n, light->position - scene.triangles[at(k)].v0) : glm::dot(n, -light->direction);
         if (point) end_margin = 0x1p-42 * std::max(size, max_abs(light->position));
+      } else {
+        const double cosine = glm::dot(n, dcentre), cosine_spread = glm::dot(an, dhalf);
+        end_lo = cosine - cosine_spread, end_hi = cosine + cosine_spread;
       }
-      const bool above = lo > margin && end_lo > end_margin;
-      const bool below = hi < -margin && end_hi < -end_margin;
+      const bool above = d - spread > margin && end_lo > end_margin;
+      const bool below = d + spread < -margin && end_hi < -end_margin;
       if (!above && !below) triangles_tested.push_back(k);
     }
     view.tested = triangles_tested.data();

@@ -642,6 +642,31 @@ void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_ma
   }
 }
 
+void ray_bounds(const Rays& rays, const double* t_max, int live, double* out) {
+  const double* in[6] = {rays.ox, rays.oy, rays.oz, rays.dx, rays.dy, rays.dz};
+  const V inf = splat(__builtin_inf());
+  V lo[6], hi[6];
+  for (int c = 0; c < 6; ++c) lo[c] = inf, hi[c] = negate(inf);
+  for (int i = 0; i < live; i += 4) {
+    V m = lane_mask(live - i >= 4 ? 0xF : (1 << (live - i)) - 1);
+    if (t_max) m = both(m, gt(load(t_max + i), _mm256_setzero_pd()));
+    if (lanes_set(m) == 0) continue;
+    for (int c = 0; c < 6; ++c) {
+      const V v = load(in[c] + i);
+      lo[c] = _mm256_min_pd(lo[c], pick(m, v, inf));
+      hi[c] = _mm256_max_pd(hi[c], pick(m, v, negate(inf)));
+    }
+  }
+  for (int c = 0; c < 6; ++c) {
+    alignas(32) double l[4], h[4];
+    _mm256_store_pd(l, lo[c]);
+    _mm256_store_pd(h, hi[c]);
+    const int at = c < 3 ? c : c + 3;  // origins' lo, hi, then directions' lo, hi
+    out[at] = __builtin_fmin(__builtin_fmin(l[0], l[1]), __builtin_fmin(l[2], l[3]));
+    out[at + 3] = __builtin_fmax(__builtin_fmax(h[0], h[1]), __builtin_fmax(h[2], h[3]));
+  }
+}
+
 void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, const NearestHits& out) {
   for (int i = 0; i < live; i += 4) {
     const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;

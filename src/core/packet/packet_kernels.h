@@ -99,6 +99,11 @@ struct LightOut {
 };
 void light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
 
+// The box of the origins, and of the directions, of the rays in lanes [0, live) whose t_max is
+// > 0 (every one when t_max is null): out = lo x, y, z, hi x, y, z of the origins, then of the
+// directions. With no such ray, lo is +inf and hi -inf.
+void ray_bounds(const Rays& rays, const double* t_max, int live, double* out);
+
 // bounce() at a batch of mirror and glass hits: the geometry of the children and the exact
 // Fresnel reflectance (the weights kr', kt' are left to the caller).
 struct BounceIn {
