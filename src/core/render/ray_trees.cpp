@@ -19,6 +19,30 @@ EditScope edit_scope(const Scene& a, const Scene& b) { return changes_between(a,
 
 bool reshades(Term term) { return is_equation_term(term); }
 
+void RayTrees::Geometry::push_back(const NodeGeometry& g) {
+  if (count == px.size()) {
+    for (std::vector<double>* v : {&px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz, &vx, &vy, &vz, &offset, &fresnel}) {
+      v->resize(std::max<std::size_t>(64, 2 * count));
+    }
+  }
+  const std::size_t i = count++;
+  px[i] = g.p.x, py[i] = g.p.y, pz[i] = g.p.z;
+  nx[i] = g.n.x, ny[i] = g.n.y, nz[i] = g.n.z;
+  gx[i] = g.ng.x, gy[i] = g.ng.y, gz[i] = g.ng.z;
+  vx[i] = -g.dir.x, vy[i] = -g.dir.y, vz[i] = -g.dir.z;
+  offset[i] = g.offset, fresnel[i] = g.fresnel;
+}
+
+void RayTrees::Geometry::pad() {
+  for (std::vector<double>* v : {&px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz, &vx, &vy, &vz, &offset, &fresnel}) {
+    if (v->size() < lanes()) v->resize(lanes());
+    std::fill(v->begin() + static_cast<std::ptrdiff_t>(count), v->begin() + static_cast<std::ptrdiff_t>(lanes()), 0.0);
+  }
+  same_normals = std::equal(nx.begin(), nx.begin() + static_cast<std::ptrdiff_t>(count), gx.begin()) &&
+                 std::equal(ny.begin(), ny.begin() + static_cast<std::ptrdiff_t>(count), gy.begin()) &&
+                 std::equal(nz.begin(), nz.begin() + static_cast<std::ptrdiff_t>(count), gz.begin());
+}
+
 namespace {
 
 constexpr int kTile = 16;
@@ -61,7 +85,7 @@ class TileRecorder final : public TraceRecorder {
     tile_.seen[at] = seen;
     tile_.cos_spec[at] = cos_spec;
   }
-  void bounced(const Bounce& b) override { tile_.geometry[static_cast<std::size_t>(open_.back())].fresnel = b.fresnel; }
+  void bounced(const Bounce& b) override { tile_.geometry.fresnel[static_cast<std::size_t>(open_.back())] = b.fresnel; }
   void begin_child(Child kind) override { child_ = kind; }
   void end_hit() override { open_.pop_back(); }
 
@@ -118,7 +142,7 @@ class PacketTileSink final : public PacketTreeSink {
     tile_.seen[at] = seen;
     tile_.cos_spec[at] = cos_spec;
   }
-  void bounced(std::int32_t node, double fresnel) override { tile_.geometry[static_cast<std::size_t>(node)].fresnel = fresnel; }
+  void bounced(std::int32_t node, double fresnel) override { tile_.geometry.fresnel[static_cast<std::size_t>(node)] = fresnel; }
 
  private:
   void link(int pixel, std::int32_t parent, TraceRecorder::Child kind, std::int32_t to) {
@@ -135,7 +159,7 @@ class PacketTileSink final : public PacketTreeSink {
 };
 
 std::size_t tile_bytes(const Tile& t) {
-  return t.nodes.capacity() * sizeof(Node) + t.geometry.capacity() * sizeof(NodeGeometry) +
+  return t.nodes.capacity() * sizeof(Node) + t.geometry.bytes() +
          t.lights.capacity() * sizeof(NodeLight) + t.seen.capacity() * sizeof(LightSeen) +
          t.cos_spec.capacity() * sizeof(double) + t.roots.capacity() * sizeof(std::int32_t) +
          t.reach.capacity() * sizeof(std::uint64_t) + t.values.capacity() * sizeof(Color);
@@ -226,7 +250,7 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
   const Scene& scene = prepared.scene();
   const std::size_t lights = scene.lights.size();
   const Node& node = tile.nodes[i];
-  const NodeGeometry& g = tile.geometry[i];
+  const NodeGeometry g = tile.geometry[i];
   const Material& m = scene.materials[static_cast<std::size_t>(node.material)];
   for (std::size_t li = 0; li < lights; ++li) {
     const std::size_t at = i * lights + li;
@@ -269,8 +293,8 @@ void update_bounce(const Scene& scene, const Changes& changes, Tile& tile, std::
   const auto material = static_cast<std::size_t>(node.material);
   // F is recorded only where the tracer bounced: a hit below the old depth limit had none.
   if (!changes.bounce_changed[material] && !changes.depth_grew) return;
-  NodeGeometry& g = tile.geometry[i];
-  g.fresnel = bounce(scene.materials[material], g.dir, g.n, node.entering).fresnel;
+  const NodeGeometry g = tile.geometry[i];
+  tile.geometry.fresnel[i] = bounce(scene.materials[material], g.dir, g.n, node.entering).fresnel;
   if (changes.ior_changed[material]) node.refraction = RayTrees::kNone;
 }
 
@@ -301,13 +325,12 @@ class TileShader {
     }
     if (!(node.depth < scene_.max_depth && has_children(m))) return t;
     // kr' and kt' from the stored F (the directions are needed only for a ray not stored).
-    const NodeGeometry& g = tile_.geometry[static_cast<std::size_t>(i)];
     Bounce bn;
-    bn.fresnel = g.fresnel;
+    bn.fresnel = tile_.geometry.fresnel[static_cast<std::size_t>(i)];
     set_bounce_weights(m, bn);
-    if (wanted.reflection) t.reflection = child(node, g, bn.kr, weight, Child::kReflection, node.reflection);
+    if (wanted.reflection) t.reflection = child(node, i, bn.kr, weight, Child::kReflection, node.reflection);
     if (wanted.refraction && !is_zero(bn.kt)) {
-      t.refraction = child(node, g, bn.kt, weight, Child::kRefraction, node.refraction);
+      t.refraction = child(node, i, bn.kt, weight, Child::kRefraction, node.refraction);
     }
     return t;
   }
@@ -321,8 +344,7 @@ class TileShader {
   [[gnu::noinline]] Terms child_terms(std::int32_t i, double weight) { return terms(i, TermsWanted{}, weight); }
 
   using Child = TraceRecorder::Child;
-  Color child(const Node& node, const NodeGeometry& g, const Color& kw, double weight, Child kind,
-              std::int32_t stored) {
+  Color child(const Node& node, std::int32_t i, const Color& kw, double weight, Child kind, std::int32_t stored) {
     const std::optional<double> w = child_weight(kw, weight, scene_.min_weight);
     if (!w) return Color(0);
     if (stored == RayTrees::kMissed) return kw * scene_.background;
@@ -330,6 +352,7 @@ class TileShader {
     traced_fresh_ = true;
     // Not stored (it cannot happen below kRetrace): traced as the tracer would.
     const Material& m = scene_.materials[static_cast<std::size_t>(node.material)];
+    const NodeGeometry g = tile_.geometry[static_cast<std::size_t>(i)];
     const Bounce bn = bounce(m, g.dir, g.n, node.entering);
     const Vec3& dir = kind == Child::kReflection ? bn.mirror : bn.refracted;
     const Ray ray = make_ray(offset_origin(g.p, g.ng, dir, g.offset), dir);
@@ -388,6 +411,7 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
       PacketTileSink sink(tile, s.lights.size());
       tile.values.resize(pixels);
       packet_tracer_for(*scene).record_tile(frame, tile.x0, tile.y0, tile.x1, tile.y1, eye, sink, tile.values.data(), rays);
+      tile.geometry.pad();
       if (bytes.fetch_add(tile_bytes(tile)) + tile_bytes(tile) > budget_bytes) stop.store(true);
       return;
     }
@@ -402,6 +426,7 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
         tile.reach.push_back(recorder.reach());
       }
     }
+    tile.geometry.pad();
     if (bytes.fetch_add(tile_bytes(tile)) + tile_bytes(tile) > budget_bytes) stop.store(true);
   });
   if (!done) return nullptr;

@@ -99,6 +99,25 @@ class RayTrees {
     double offset = 0;               // surface_offset of the hit
     double fresnel = 0;              // F at a mirror or glass hit (Bounce::fresnel)
   };
+  // A tile's NodeGeometry, node by node, as structure of arrays that the packet tracer's
+  // four-wide kernels read in place: P, N, the geometric normal, V = -D (the ray reversed,
+  // exactly), the offset and F. The arrays are at least lanes() long (pad() zeroes the lanes
+  // past the last node) and keep their length when cleared, so a tile recorded again over them
+  // writes in place.
+  struct Geometry {
+    std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset, fresnel;
+    std::size_t count = 0;      // nodes
+    bool same_normals = false;  // after pad(): every node's geometric normal is its shading normal
+    std::size_t lanes() const { return (count + 3) / 4 * 4; }
+    void push_back(const NodeGeometry& g);
+    NodeGeometry operator[](std::size_t i) const {
+      return {{px[i], py[i], pz[i]}, {nx[i], ny[i], nz[i]}, {gx[i], gy[i], gz[i]}, {-vx[i], -vy[i], -vz[i]}, offset[i],
+              fresnel[i]};
+    }
+    void pad();
+    void clear() { count = 0; }
+    std::size_t bytes() const { return px.capacity() * 14 * sizeof(double); }
+  };
   // One light at a node, for the trees' scene: N.L and the specular factor (hot), whether its
   // shadow ray got through, and the specular cosine the factor came from. A blocked light's
   // factor is never read (trees recorded in packets leave it 0; it is taken again when the light
@@ -114,7 +133,7 @@ class RayTrees {
   struct Tile {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     std::vector<Node> nodes;
-    std::vector<NodeGeometry> geometry;
+    Geometry geometry;
     std::vector<NodeLight> lights;
     std::vector<LightSeen> seen;
     std::vector<double> cos_spec;
@@ -123,21 +142,17 @@ class RayTrees {
     std::vector<Color> values;         // per pixel: its value as last computed (for values_term_)
   };
   // The stored hits a moved light reaches in the walk of the trees' term, for the live path of
-  // its drag: one tile's, as structure of arrays that the four-wide light and shadow kernels
-  // read in place, and each pixel's value without the light's share.
+  // its drag: one tile's, node by node beside Tile::geometry (which the four-wide light and
+  // shadow kernels read in place), and each pixel's value without the light's share.
   struct LightHits {
-    // P, N, the geometric normal (none where it is N at every hit, as on spheres and planes), V
-    // and the offset, padded to whole lanes.
-    std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset;
-    std::vector<std::uint8_t> active;  // 1 for a hit, 0 for padding
-    std::vector<Color> w;              // the kr'/kt' chain above the hit
+    std::vector<std::uint8_t> active;  // 1 for a node the walk reaches with a part the light lights, padded
+    std::vector<Color> w;              // the kr'/kt' chain above the node
     std::vector<std::uint32_t> tag;    // the pixel within the tile (bits 0-7, as Tile::roots), whether the
                                        // term takes the hit's diffuse (bit 8) and specular (bit 9) part, the material (16-31)
     std::vector<Color> rest;           // per pixel: its value less the light's share
-    std::size_t size() const { return tag.size(); }
+    std::size_t reached = 0;           // nodes with active set
     std::size_t bytes() const {
-      return (px.capacity() * 10 + gx.capacity() * 3 + w.capacity() * 3 + rest.capacity() * 3) * sizeof(double) +
-             active.capacity() + tag.capacity() * sizeof(std::uint32_t);
+      return active.capacity() + (w.capacity() + rest.capacity()) * sizeof(Color) + tag.capacity() * sizeof(std::uint32_t);
     }
   };
   // A pixel whose tree meets none of the materials an edit changed (and no background, when

@@ -70,12 +70,9 @@ class SumWalker {
   SumWalker(const Scene& scene, const Tile& tile, Coefficient coefficient, int index)
       : scene_(scene), tile_(tile), coefficient_(coefficient), index_(index), lights_(scene.lights.size()) {}
 
-  // For kIntensity: also keep every hit whose light loop the walk reaches (whatever its stored
-  // visibility), with its weights, in `hits`, for the live path of light `index` moved.
-  void keep_hits(RayTrees::LightHits* hits, const Vec3* eye) {
-    hits_ = hits;
-    eye_ = eye;
-  }
+  // For kIntensity: also mark in `hits` every hit whose light loop the walk reaches (whatever
+  // its stored visibility), with its weights, for the live path of light `index` moved.
+  void keep_hits(RayTrees::LightHits* hits) { hits_ = hits; }
   void at_pixel(std::size_t pixel) { pixel_ = pixel; }
 
   // The pixel whose tree starts at `root`, for `term` (the root's own part of the equation, or
@@ -101,7 +98,7 @@ class SumWalker {
     if (part != Term::kFull && part != Term::kReflection && part != Term::kRefraction) return;
     if (!(n.depth < scene_.max_depth && has_children(m))) return;
     Bounce bn;
-    bn.fresnel = tile_.geometry[static_cast<std::size_t>(i)].fresnel;
+    bn.fresnel = tile_.geometry.fresnel[static_cast<std::size_t>(i)];
     set_bounce_weights(m, bn);
     if (part != Term::kRefraction) child(bn.kr, w, weight, n.reflection, out);
     if (part != Term::kReflection && !is_zero(bn.kt)) child(bn.kt, w, weight, n.refraction, out);
@@ -141,21 +138,15 @@ class SumWalker {
     diffuse = diffuse && !is_zero(m.kd);
     specular = specular && !is_zero(m.ks);
     if (!diffuse && !specular) return;
-    const auto material = static_cast<std::uint32_t>(tile_.nodes[static_cast<std::size_t>(i)].material);
+    const auto at = static_cast<std::size_t>(i);
+    const auto material = static_cast<std::uint32_t>(tile_.nodes[at].material);
     if (material > 0xffffu) complete_ = false;  // no room in the tag: no live path
-    const RayTrees::NodeGeometry& g = tile_.geometry[static_cast<std::size_t>(i)];
-    const bool primary = tile_.nodes[static_cast<std::size_t>(i)].depth == 0;
-    const Vec3 v = view_direction(g.p, g.dir, primary ? eye_ : nullptr);
     RayTrees::LightHits& h = *hits_;
-    h.px.push_back(g.p.x), h.py.push_back(g.p.y), h.pz.push_back(g.p.z);
-    h.nx.push_back(g.n.x), h.ny.push_back(g.n.y), h.nz.push_back(g.n.z);
-    h.gx.push_back(g.ng.x), h.gy.push_back(g.ng.y), h.gz.push_back(g.ng.z);
-    h.vx.push_back(v.x), h.vy.push_back(v.y), h.vz.push_back(v.z);
-    h.offset.push_back(g.offset);
-    h.active.push_back(1);
-    h.w.push_back(w);
-    h.tag.push_back(static_cast<std::uint32_t>(pixel_) | (diffuse ? kDiffuseBit : 0u) | (specular ? kSpecularBit : 0u) |
-                    material << 16);
+    h.active[at] = 1;
+    h.w[at] = w;
+    h.tag[at] = static_cast<std::uint32_t>(pixel_) | (diffuse ? kDiffuseBit : 0u) | (specular ? kSpecularBit : 0u) |
+                material << 16;
+    ++h.reached;
   }
 
   const Scene& scene_;
@@ -165,35 +156,11 @@ class SumWalker {
   std::size_t lights_;
   bool complete_ = true;
   RayTrees::LightHits* hits_ = nullptr;
-  const Vec3* eye_ = nullptr;
   std::size_t pixel_ = 0;
 };
 
 using LightHits = RayTrees::LightHits;
-
-// Pads a tile's hits to whole lanes of four (finite, inactive), and drops the geometric normals
-// where every one is the shading normal.
-void finish_lanes(LightHits& h) {
-  if (h.gx == h.nx && h.gy == h.ny && h.gz == h.nz) {
-    for (std::vector<double>* v : {&h.gx, &h.gy, &h.gz}) v->clear();  // their memory kept for the next gather
-  }
-  const std::size_t n = (h.size() + 3) / 4 * 4;
-  for (std::vector<double>* v : {&h.px, &h.py, &h.pz, &h.nx, &h.ny, &h.nz, &h.vx, &h.vy, &h.vz, &h.offset}) {
-    v->resize(n, 0.0);
-  }
-  if (!h.gx.empty()) {
-    for (std::vector<double>* v : {&h.gx, &h.gy, &h.gz}) v->resize(n, 0.0);
-  }
-  h.active.resize(n, 0);
-}
-
-// The geometric normals' arrays of a tile's hits (the shading normals' where they are the same).
-struct Normals {
-  const double *x, *y, *z;
-};
-Normals geometric_normals(const LightHits& h) {
-  return h.gx.empty() ? Normals{h.nx.data(), h.ny.data(), h.nz.data()} : Normals{h.gx.data(), h.gy.data(), h.gz.data()};
-}
+using Geometry = RayTrees::Geometry;
 
 // A material as the moved light's share reads it: the light's products with its kd and ks
 // (light_products, as both tracers form them) and its exponent.
@@ -213,22 +180,50 @@ double live_specular_factor(double cos_spec, double n) {
   return result;
 }
 
-// One thread's scratch for a tile: the light loop's geometry at each hit, the shadow rays that
-// need a test, their answers, and the light's share per pixel.
+// One thread's scratch for a tile: V where the trees' eye moved the primary hits', the light
+// loop's geometry at each node, the shadow rays that need a test, their answers, and the light's
+// share per pixel.
 struct LightScratch {
+  std::vector<double> vx, vy, vz;
   std::vector<double> n_dot_l, cos_spec, ox, oy, oz, dx, dy, dz, t_max;
   std::vector<double> sox, soy, soz, sdx, sdy, sdz, st_max;
-  std::vector<std::size_t> tested;  // the hit of each shadow ray
+  std::vector<std::size_t> tested;  // the node of each shadow ray
   std::vector<std::uint8_t> blocked;
   std::vector<Color> share;
 };
 
-// N.L, the specular cosine and the shadow ray at every hit: the packet tracer's light kernel
-// over the hits in place, or hit by hit through the same rules (shading.h) without AVX2.
-void light_geometry(const Scene& scene, const Light& light, const LightHits& h, bool packets, LightScratch& s) {
-  const std::size_t lanes = h.px.size();
-  for (std::vector<double>* v : {&s.n_dot_l, &s.cos_spec, &s.ox, &s.oy, &s.oz, &s.dx, &s.dy, &s.dz, &s.t_max}) {
-    v->resize(lanes);
+// V at every node: the stored -D, but towards `eye` at the primary hits when the trees have one
+// (view_direction, as the tracer takes it).
+struct Views {
+  const double *x, *y, *z;
+};
+Views views(const Tile& tile, const Vec3* eye, LightScratch& s) {
+  const Geometry& g = tile.geometry;
+  if (eye == nullptr) return {g.vx.data(), g.vy.data(), g.vz.data()};
+  s.vx.assign(g.vx.begin(), g.vx.begin() + static_cast<std::ptrdiff_t>(g.lanes()));
+  s.vy.assign(g.vy.begin(), g.vy.begin() + static_cast<std::ptrdiff_t>(g.lanes()));
+  s.vz.assign(g.vz.begin(), g.vz.begin() + static_cast<std::ptrdiff_t>(g.lanes()));
+  for (std::size_t i = 0; i < g.count; ++i) {
+    if (tile.nodes[i].depth != 0) continue;
+    const Vec3 v = view_direction(Vec3(g.px[i], g.py[i], g.pz[i]), Vec3(-g.vx[i], -g.vy[i], -g.vz[i]), eye);
+    s.vx[i] = v.x, s.vy[i] = v.y, s.vz[i] = v.z;
+  }
+  return {s.vx.data(), s.vy.data(), s.vz.data()};
+}
+
+// N.L, the specular cosine and the shadow ray at every node the walk reached: the packet
+// tracer's light kernel over the tile's geometry in place, or node by node through the same
+// rules (shading.h) without AVX2.
+void light_geometry(const Scene& scene, const Light& light, const Tile& tile, const LightHits& h, const Views& v,
+                    bool packets, LightScratch& s) {
+  const Geometry& g = tile.geometry;
+  const std::size_t lanes = g.lanes();
+  // The geometric normals are the shading ones on spheres and planes: read those instead.
+  const double* gx = g.same_normals ? g.nx.data() : g.gx.data();
+  const double* gy = g.same_normals ? g.ny.data() : g.gy.data();
+  const double* gz = g.same_normals ? g.nz.data() : g.gz.data();
+  for (std::vector<double>* a : {&s.n_dot_l, &s.cos_spec, &s.ox, &s.oy, &s.oz, &s.dx, &s.dy, &s.dz, &s.t_max}) {
+    a->resize(lanes);
   }
   if (packets) {
     packet::LightIn in{};
@@ -237,27 +232,26 @@ void light_geometry(const Scene& scene, const Light& light, const LightHits& h, 
     in.x = l.x, in.y = l.y, in.z = l.z;
     in.shrink = in.point ? surface_offset(light.position, 0) : 0.0;
     in.blinn = scene.specular_model == SpecularModel::kBlinn;
-    const Normals g = geometric_normals(h);
-    const packet::ShadedPoints pts{h.px.data(), h.py.data(), h.pz.data(), h.nx.data(),     h.ny.data(),
-                                   h.nz.data(), g.x,         g.y,         g.z,             h.vx.data(),
-                                   h.vy.data(), h.vz.data(), h.offset.data(), h.active.data()};
+    const packet::ShadedPoints pts{g.px.data(), g.py.data(), g.pz.data(), g.nx.data(),     g.ny.data(),
+                                   g.nz.data(), gx,          gy,          gz,              v.x,
+                                   v.y,         v.z,         g.offset.data(), h.active.data()};
     const packet::LightOut out{s.n_dot_l.data(), s.cos_spec.data(), s.ox.data(), s.oy.data(), s.oz.data(),
                                s.dx.data(),      s.dy.data(),       s.dz.data(), s.t_max.data()};
     packet::light(in, pts, static_cast<int>(lanes), out);
     return;
   }
-  const Normals g = geometric_normals(h);
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    const Vec3 p(h.px[i], h.py[i], h.pz[i]), n(h.nx[i], h.ny[i], h.nz[i]);
+  for (std::size_t i = 0; i < g.count; ++i) {
+    if (!h.active[i]) continue;
+    const Vec3 p(g.px[i], g.py[i], g.pz[i]), n(g.nx[i], g.ny[i], g.nz[i]);
     Vec3 l;
     double dist = 0;
     s.n_dot_l[i] = light_direction(light, p, l, dist) ? glm::dot(n, l) : std::numeric_limits<double>::quiet_NaN();
     if (!(s.n_dot_l[i] > 0)) continue;
     Vec3 r;
-    s.cos_spec[i] = specular_cosine(scene.specular_model, n, l, Vec3(h.vx[i], h.vy[i], h.vz[i]), s.n_dot_l[i], r);
+    s.cos_spec[i] = specular_cosine(scene.specular_model, n, l, Vec3(v.x[i], v.y[i], v.z[i]), s.n_dot_l[i], r);
     Ray ray{};
     double t_max = 0;
-    if (!shadow_ray(light, p, Vec3(g.x[i], g.y[i], g.z[i]), l, h.offset[i], ray, t_max)) t_max = 0;
+    if (!shadow_ray(light, p, Vec3(gx[i], gy[i], gz[i]), l, g.offset[i], ray, t_max)) t_max = 0;
     s.ox[i] = ray.origin.x, s.oy[i] = ray.origin.y, s.oz[i] = ray.origin.z;
     s.dx[i] = ray.dir.x, s.dy[i] = ray.dir.y, s.dz[i] = ray.dir.z;
     s.t_max[i] = t_max;
@@ -265,7 +259,8 @@ void light_geometry(const Scene& scene, const Light& light, const LightHits& h, 
 }
 
 // The shadow rays of the hits facing the light, as one batch: four wide through the packet
-// tracer (only the spheres the tile's bundle towards the light can meet), or one by one.
+// tracer (only the spheres and triangles the tile's bundle towards the light can meet), or one
+// by one.
 void answer_shadow_rays(const PreparedScene& prepared, const Light& light, bool packets, LightScratch& s) {
   const std::size_t n = s.tested.size();
   s.blocked.assign((n + 3) / 4 * 4, 0);
@@ -284,16 +279,17 @@ void answer_shadow_rays(const PreparedScene& prepared, const Light& light, bool 
 }
 
 // The moved light's share in each pixel of one tile (s.share): I·(w·kd·N.L + w·ks·spec) over
-// the hits that see it.
+// the nodes the walk reached that see it.
 void light_share_tile(const PreparedScene& prepared, const Light& light, const std::vector<LiveMaterial>& materials,
-                      const LightHits& h, bool packets, LightScratch& s, RayCounts& rays) {
-  light_geometry(prepared.scene(), light, h, packets, s);
-  const std::size_t lanes = h.px.size();
+                      const Tile& tile, const LightHits& h, const Vec3* eye, bool packets, LightScratch& s,
+                      RayCounts& rays) {
+  light_geometry(prepared.scene(), light, tile, h, views(tile, eye, s), packets, s);
+  const std::size_t lanes = tile.geometry.lanes(), count = tile.geometry.count;
   for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(lanes);
   s.tested.resize(lanes);
   std::size_t k = 0;
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    if (!(s.n_dot_l[i] > 0)) continue;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!h.active[i] || !(s.n_dot_l[i] > 0)) continue;
     ++rays.shadow;
     if (!(s.t_max[i] > 0)) continue;  // the light within rounding distance: seen, no ray
     s.sox[k] = s.ox[i], s.soy[k] = s.oy[i], s.soz[k] = s.oz[i];
@@ -304,9 +300,9 @@ void light_share_tile(const PreparedScene& prepared, const Light& light, const s
   for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(k);
   s.tested.resize(k);
   answer_shadow_rays(prepared, light, packets, s);
-  std::size_t next = 0;  // the next tested hit
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    if (!(s.n_dot_l[i] > 0)) continue;
+  std::size_t next = 0;  // the next tested node
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!h.active[i] || !(s.n_dot_l[i] > 0)) continue;
     const bool tested = next < s.tested.size() && s.tested[next] == i;
     if (tested && s.blocked[next++]) continue;
     const std::uint32_t tag = h.tag[i];
@@ -321,14 +317,12 @@ void light_share_tile(const PreparedScene& prepared, const Light& light, const s
 
 bool RayTrees::gather_light_hits(int light, Term term, int threads, const std::atomic<bool>* cancel,
                                  std::vector<RayCounts>& counts) {
-  // At most every node a hit (10 doubles, its chain, tag and lane flag) and a rest per pixel,
-  // within the trees' budget beside them; over it, the exact re-shade.
-  std::size_t arrays = 0;
+  // Per node a lane flag, its chain and tag, and a rest per pixel, within the trees' budget
+  // beside them; over it, the exact re-shade.
+  std::size_t arrays = 0, kept = 0;
   for (const Tile& tile : tiles_) {
-    arrays += (tile.nodes.size() + 3) / 4 * 4 * (13 * sizeof(double) + sizeof(Color) + sizeof(std::uint32_t) + 1) +
-              tile.roots.size() * sizeof(Color);
+    arrays += tile.geometry.lanes() * (1 + sizeof(Color) + sizeof(std::uint32_t)) + tile.roots.size() * sizeof(Color);
   }
-  std::size_t kept = 0;
   for (const LightHits& h : moved_.tiles) kept += h.bytes();
   if (memory_bytes() - kept + arrays > budget_bytes_) {
     moved_over_budget_ = true;
@@ -336,35 +330,27 @@ bool RayTrees::gather_light_hits(int light, Term term, int threads, const std::a
   }
   moved_.light = light;
   moved_.term = term;
-  moved_.tiles.resize(tiles_.size());  // the arrays of the last one are emptied, their memory kept
+  moved_.tiles.resize(tiles_.size());  // the arrays of the last one are overwritten, their memory kept
   const Scene& base = scene_->scene();
   const Color before = effective_intensity(base.lights[static_cast<std::size_t>(light)]);
-  const Vec3* eye = shading_eye_ ? &*shading_eye_ : nullptr;
   std::atomic<bool> stop{false}, incomplete{false};
   const bool done = for_each_index(tiles_.size(), threads, cancel, stop, counts, [&](std::size_t t, RayCounts&) {
     const Tile& tile = tiles_[t];
     LightHits& hits = moved_.tiles[t];
-    for (std::vector<double>* v : {&hits.px, &hits.py, &hits.pz, &hits.nx, &hits.ny, &hits.nz, &hits.gx, &hits.gy,
-                                   &hits.gz, &hits.vx, &hits.vy, &hits.vz, &hits.offset}) {
-      v->clear();
-    }
-    hits.active.clear(), hits.w.clear(), hits.tag.clear(), hits.rest.clear();
-    const std::size_t most = (tile.nodes.size() + 3) / 4 * 4;
-    for (std::vector<double>* v : {&hits.px, &hits.py, &hits.pz, &hits.nx, &hits.ny, &hits.nz, &hits.gx, &hits.gy,
-                                   &hits.gz, &hits.vx, &hits.vy, &hits.vz, &hits.offset}) {
-      v->reserve(most);
-    }
-    hits.active.reserve(most), hits.w.reserve(most), hits.tag.reserve(most);
-    SumWalker walker(base, tile, kIntensity, light);
-    walker.keep_hits(&hits, eye);
+    const std::size_t lanes = tile.geometry.lanes();
+    hits.active.assign(lanes, 0);
+    hits.w.resize(lanes);
+    hits.tag.resize(lanes);
+    hits.reached = 0;
     hits.rest.resize(tile.roots.size());
+    SumWalker walker(base, tile, kIntensity, light);
+    walker.keep_hits(&hits);
     for (std::size_t p = 0; p < tile.roots.size(); ++p) {
       walker.at_pixel(p);
       Color sum;
       if (!walker.pixel(tile.roots[p], term, sum)) incomplete.store(true, std::memory_order_relaxed);
       hits.rest[p] = tile.values[p] - before * sum;
     }
-    finish_lanes(hits);
   });
   if (done && !incomplete.load()) return true;
   moved_.light = -1;
@@ -386,6 +372,7 @@ PassStats RayTrees::recombine_moved(const PreparedScene& scene, int light, Term 
   const bool packets = packet_tracing_applies(scene);
   std::vector<LiveMaterial> materials;
   for (const Material& m : scene.scene().materials) materials.push_back({light_products(moved, m), m.n});
+  const Vec3* eye = shading_eye_ ? &*shading_eye_ : nullptr;
   std::atomic<std::uint64_t> nan_count{0};
   std::atomic<bool> stop{false};
   const bool done = for_each_index(tiles_.size(), threads, cancel, stop, counts, [&](std::size_t t, RayCounts& rays) {
@@ -393,7 +380,9 @@ PassStats RayTrees::recombine_moved(const PreparedScene& scene, int light, Term 
     const LightHits& hits = moved_.tiles[t];
     thread_local LightScratch scratch;
     scratch.share.assign(tile.roots.size(), Color(0));
-    if (moved.enabled && hits.size() > 0) light_share_tile(scene, moved, materials, hits, packets, scratch, rays);  // muted: no share
+    if (moved.enabled && hits.reached > 0) {  // muted: no share
+      light_share_tile(scene, moved, materials, tile, hits, eye, packets, scratch, rays);
+    }
     std::size_t p = 0;
     for (int y = tile.y0; y < tile.y1; ++y) {
       Color* row = accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
