@@ -29,8 +29,8 @@ namespace {
 
 constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
 constexpr double kEarlyFrameGap = 0.004;    // a new edit's first image may go up this soon after a frame
-// A live image whose last one took at most this long is waited for in its edit's own frame, up to:
-constexpr std::chrono::milliseconds kQuickLiveImage{8}, kLiveImageWait{12};
+// A live image is waited for in its edit's own frame up to this long (when the last one was as quick):
+constexpr std::chrono::milliseconds kLiveImageWait{12};
 constexpr double kDrawTime = 0.005;         // what a frame keeps for drawing after that wait, seconds
 constexpr double kActivityWindow = 1.0;     // keep drawing this long after an input event, seconds
 constexpr double kIdleWait = 0.5;           // idle wake-up period, seconds: also the file poll rate
@@ -422,11 +422,11 @@ void Viewer::apply_edits(double frame_start) {
   renderer_.set_interacting(interacting_ || edits_.while_active);
   // A live edit (a slider held, a light dragged) shows in the UI frame that made it: its image
   // takes a few milliseconds, far less than the wait for the next frame. The frame waits only
-  // as long as its period leaves after drawing.
+  // as long as its period leaves after drawing, and only when the last live image took no longer.
   const auto left = std::chrono::duration<double>(frame_start + kFramePeriod - kDrawTime - glfwGetTime());
   const auto wait = std::min(std::chrono::duration_cast<std::chrono::milliseconds>(left), kLiveImageWait);
   if (scene_changed && !defer && dragging && wait.count() > 0 &&
-      renderer_.wait_for_live_image(sent_generation_, kQuickLiveImage, wait)) {
+      renderer_.wait_for_live_image(sent_generation_, wait, wait)) {
     poll_render_frame();
   }
   edits_.scene = edits_.camera = edits_.replaced = edits_.settings = edits_.view = false;
