@@ -175,7 +175,7 @@ double live_specular_factor(double cos_spec, double n) {
   if (!(n >= 1 && n <= 65536 && n == std::floor(n))) return specular_factor(cos_spec, n);
   double base = clamp_positive(clamp_unit(cos_spec)), result = 1;
   for (auto k = static_cast<std::uint32_t>(n); k != 0; k >>= 1, base *= base) {
-    if (k & 1u) result *= base;
+    result *= (k & 1u) != 0 ? base : 1.0;  // a select, not a branch the bits would mispredict
   }
   return result;
 }
