@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <utility>
 
 #include "core/packet/packet.h"
@@ -250,8 +251,8 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
   const Scene& scene = prepared.scene();
   const std::size_t lights = scene.lights.size();
   const Node& node = tile.nodes[i];
-  const NodeGeometry g = tile.geometry[i];
   const Material& m = scene.materials[static_cast<std::size_t>(node.material)];
+  std::optional<NodeGeometry> geometry;  // read from the arrays only for a light that needs it
   for (std::size_t li = 0; li < lights; ++li) {
     const std::size_t at = i * lights + li;
     NodeLight& nl = tile.lights[at];
@@ -263,6 +264,8 @@ void update_lights(const PreparedScene& prepared, const Changes& changes, Tile& 
       }
       continue;
     }
+    if (!geometry) geometry = tile.geometry[i];
+    const NodeGeometry& g = *geometry;
     const Light& light = scene.lights[li];
     Vec3 l;
     double dist = 0;
