@@ -262,8 +262,9 @@ TEST(ProgressiveRenderer, EditsThatChangeNoRayAreReshadedAtFullResolution) {
 }
 
 // A UI frame may wait for its own edit's live image: wait_for_live_image returns with it when the
-// render thread makes it on the live path and the last live image was quick, and at once (not
-// after the timeout) when it is not live (a camera edit) or not known to be quick (the first).
+// render thread makes it on the live path and the last live image was quick, and without waiting
+// for the timeout when it is not live (a camera edit) or not known to be quick (the first). (Those
+// two may still find their image published already: a pass of 40x30 pixels is that quick.)
 TEST(ProgressiveRenderer, ALiveImageIsWaitedForOnlyWhenItIsQuick) {
   ProgressiveSettings settings;
   settings.target_spp = 1;
@@ -284,7 +285,7 @@ TEST(ProgressiveRenderer, ALiveImageIsWaitedForOnlyWhenItIsQuick) {
     EXPECT_LT(std::chrono::steady_clock::now() - start, kLongWait / 2);
     return shown;
   };
-  EXPECT_FALSE(returns_promptly(edit(false)));  // the first live image: its time not known yet
+  returns_promptly(edit(false));  // the first live image: its time not known yet
   ASSERT_TRUE(renderer.wait_idle(kLongWait));
   ProgressiveFrame frame;
   ASSERT_TRUE(renderer.take_frame(frame));
@@ -294,7 +295,7 @@ TEST(ProgressiveRenderer, ALiveImageIsWaitedForOnlyWhenItIsQuick) {
   ASSERT_TRUE(renderer.take_frame(frame));
   EXPECT_EQ(frame.generation, second);
   EXPECT_TRUE(frame.stats.live);
-  EXPECT_FALSE(returns_promptly(edit(true)));  // a camera edit traces: not waited for
+  returns_promptly(edit(true));  // a camera edit traces: not waited for
   renderer.set_interacting(false);
   ASSERT_TRUE(renderer.wait_idle(kLongWait));
 }
