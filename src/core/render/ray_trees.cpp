@@ -7,6 +7,7 @@
 
 #include "core/packet/packet.h"
 #include "core/render/scene_changes.h"
+#include "core/render/shadow_rays.h"
 #include "core/render/threads.h"
 #include "core/render/tile_work.h"
 
@@ -198,12 +199,11 @@ Ray centre_ray(const CameraFrame& frame, int x, int y) {
   return camera_ray(frame, x, y, u, v);
 }
 
-// Shadow rays waiting for their answers, as structure of arrays: a tile's at once, four wide
-// through the packet tracer where it applies (the same answers as occluded()).
+// Shadow rays waiting for their answers: a tile's at once, light by light, so the packet tracer
+// tests only the spheres each bundle can meet.
 struct ShadowBatch {
-  // The rays towards one light, as structure of arrays.
   struct Rays {
-    std::vector<double> ox, oy, oz, dx, dy, dz, t_max;
+    ShadowRays rays;
     std::vector<std::size_t> at;  // where each answer goes (Tile::seen)
   };
   std::vector<Rays> lights;  // by light
@@ -212,13 +212,10 @@ struct ShadowBatch {
   void push(std::size_t light, const Ray& ray, double t, std::size_t to) {
     if (lights.size() <= light) lights.resize(light + 1);
     Rays& r = lights[light];
-    r.ox.push_back(ray.origin.x), r.oy.push_back(ray.origin.y), r.oz.push_back(ray.origin.z);
-    r.dx.push_back(ray.dir.x), r.dy.push_back(ray.dir.y), r.dz.push_back(ray.dir.z);
-    r.t_max.push_back(t);
+    r.rays.push(ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z, t);
     r.at.push_back(to);
   }
-  // Answers every ray into `tile.seen` and empties the batch: light by light, so the packet
-  // tracer tests only the spheres each bundle can meet.
+  // Answers every ray into `tile.seen` and empties the batch.
   void resolve(const PreparedScene& prepared, Tile& tile, RayCounts& counts) {
     const bool packets = packet_tracing_applies(prepared);
     for (std::size_t li = 0; li < lights.size(); ++li) {
@@ -226,19 +223,9 @@ struct ShadowBatch {
       const std::size_t n = r.at.size();
       if (n == 0) continue;
       counts.shadow += n;
-      blocked.assign((n + 3) / 4 * 4, 0);
-      if (packets) {
-        for (std::vector<double>* v : {&r.ox, &r.oy, &r.oz, &r.dx, &r.dy, &r.dz, &r.t_max}) v->resize(blocked.size(), 0.0);  // idle lanes
-        packet_tracer_for(prepared).occluded_towards(prepared.scene().lights[li], r.ox.data(), r.oy.data(), r.oz.data(),
-                                                     r.dx.data(), r.dy.data(), r.dz.data(), r.t_max.data(),
-                                                     static_cast<int>(n), blocked.data());
-      } else {
-        for (std::size_t i = 0; i < n; ++i) {
-          blocked[i] = occluded(prepared, make_ray(Vec3(r.ox[i], r.oy[i], r.oz[i]), Vec3(r.dx[i], r.dy[i], r.dz[i])), r.t_max[i]);
-        }
-      }
+      answer_shadow_rays(prepared, prepared.scene().lights[li], packets, r.rays, blocked);
       for (std::size_t i = 0; i < n; ++i) tile.seen[r.at[i]] = blocked[i] ? LightSeen::kBlocked : LightSeen::kVisible;
-      for (std::vector<double>* v : {&r.ox, &r.oy, &r.oz, &r.dx, &r.dy, &r.dz, &r.t_max}) v->clear();
+      r.rays.clear();
       r.at.clear();
     }
   }

@@ -21,6 +21,7 @@
 #include "core/packet/packet_kernels.h"
 #include "core/render/ray_trees.h"
 #include "core/render/scene_changes.h"
+#include "core/render/shadow_rays.h"
 #include "core/render/tile_work.h"
 
 namespace phonglab {
@@ -186,7 +187,7 @@ double live_specular_factor(double cos_spec, double n) {
 struct LightScratch {
   std::vector<double> vx, vy, vz;
   std::vector<double> n_dot_l, cos_spec, ox, oy, oz, dx, dy, dz, t_max;
-  std::vector<double> sox, soy, soz, sdx, sdy, sdz, st_max;
+  ShadowRays shadow;                // those that need a test
   std::vector<std::size_t> tested;  // the node of each shadow ray
   std::vector<std::uint8_t> blocked;
   std::vector<Color> share;
@@ -258,48 +259,23 @@ void light_geometry(const Scene& scene, const Light& light, const Tile& tile, co
   }
 }
 
-// The shadow rays of the hits facing the light, as one batch: four wide through the packet
-// tracer (only the spheres and triangles the tile's bundle towards the light can meet), or one
-// by one.
-void answer_shadow_rays(const PreparedScene& prepared, const Light& light, bool packets, LightScratch& s) {
-  const std::size_t n = s.tested.size();
-  s.blocked.assign((n + 3) / 4 * 4, 0);
-  if (n == 0) return;
-  if (!packets) {
-    for (std::size_t k = 0; k < n; ++k) {
-      s.blocked[k] = occluded(prepared, make_ray(Vec3(s.sox[k], s.soy[k], s.soz[k]), Vec3(s.sdx[k], s.sdy[k], s.sdz[k])),
-                              s.st_max[k]);
-    }
-    return;
-  }
-  for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(s.blocked.size(), 0.0);
-  packet_tracer_for(prepared).occluded_towards(light, s.sox.data(), s.soy.data(), s.soz.data(), s.sdx.data(),
-                                               s.sdy.data(), s.sdz.data(), s.st_max.data(), static_cast<int>(n),
-                                               s.blocked.data());
-}
-
 // The moved light's share in each pixel of one tile (s.share): I·(w·kd·N.L + w·ks·spec) over
 // the nodes the walk reached that see it.
 void light_share_tile(const PreparedScene& prepared, const Light& light, const std::vector<LiveMaterial>& materials,
                       const Tile& tile, const LightHits& h, const Vec3* eye, bool packets, LightScratch& s,
                       RayCounts& rays) {
   light_geometry(prepared.scene(), light, tile, h, views(tile, eye, s), packets, s);
-  const std::size_t lanes = tile.geometry.lanes(), count = tile.geometry.count;
-  for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(lanes);
-  s.tested.resize(lanes);
-  std::size_t k = 0;
+  const std::size_t count = tile.geometry.count;
+  s.shadow.clear();
+  s.tested.clear();
   for (std::size_t i = 0; i < count; ++i) {
     if (!h.active[i] || !(s.n_dot_l[i] > 0)) continue;
     ++rays.shadow;
     if (!(s.t_max[i] > 0)) continue;  // the light within rounding distance: seen, no ray
-    s.sox[k] = s.ox[i], s.soy[k] = s.oy[i], s.soz[k] = s.oz[i];
-    s.sdx[k] = s.dx[i], s.sdy[k] = s.dy[i], s.sdz[k] = s.dz[i];
-    s.st_max[k] = s.t_max[i];
-    s.tested[k++] = i;
+    s.shadow.push(s.ox[i], s.oy[i], s.oz[i], s.dx[i], s.dy[i], s.dz[i], s.t_max[i]);
+    s.tested.push_back(i);
   }
-  for (std::vector<double>* v : {&s.sox, &s.soy, &s.soz, &s.sdx, &s.sdy, &s.sdz, &s.st_max}) v->resize(k);
-  s.tested.resize(k);
-  answer_shadow_rays(prepared, light, packets, s);
+  answer_shadow_rays(prepared, light, packets, s.shadow, s.blocked);
   std::size_t next = 0;  // the next tested node
   for (std::size_t i = 0; i < count; ++i) {
     if (!h.active[i] || !(s.n_dot_l[i] > 0)) continue;
