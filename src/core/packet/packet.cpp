@@ -72,6 +72,8 @@ struct PacketTracer::Impl {
   packet::LooseTriangles loose{};
   std::vector<Vec3> loose_normal;        // triangle_normal of each loose triangle, computed once
   std::vector<double> loose_magnitude;   // and its triangle_magnitude
+  std::vector<std::uint8_t> loose_flat;  // 1: no vertex normals (its hit record is the kernel's)
+  packet::TriangleRecords loose_records{};
   std::vector<std::uint8_t> top_kind;
   std::vector<std::int32_t> top_index;
   std::vector<packet::MeshTree> mesh_trees;
@@ -138,7 +140,12 @@ struct PacketTracer::Impl {
       every_triangle.push_back(static_cast<std::int32_t>(loose_normal.size()));
       loose_normal.push_back(triangle_normal(tri));
       loose_magnitude.push_back(triangle_magnitude(tri));
+      loose_flat.push_back(!tri.has_vertex_normals);
     }
+    static_assert(sizeof(Vec3) == 3 * sizeof(double));
+    loose_records = {kernel_vertices(scene.triangles), static_cast<long>(sizeof(Triangle) / sizeof(double)),
+                     loose_normal.empty() ? nullptr : &loose_normal[0].x, loose_magnitude.data(), loose_flat.data(),
+                     static_cast<int>(loose_normal.size()), spheres.count + planes.count};
     loose = {kernel_vertices(scene.triangles), static_cast<long>(sizeof(Triangle) / sizeof(double)),
              static_cast<int>(scene.triangles.size()), spheres.count + planes.count, every_triangle.data(),
              static_cast<int>(every_triangle.size())};
@@ -256,15 +263,21 @@ struct PacketTracer::Impl {
   // 2^-40 of its largest coordinate; the margin, 2^-42 of the coordinates involved, is half that
   // and still hundreds of ulps above the rounding of the side test and of the triangle test, and a
   // direction leaves the plane only with a cosine above 1e-12 (its rounding is 1e-15), so culling
-  // never changes an answer.
-  packet::LooseTriangles triangles_met(const packet::Rays& rays, const double* t_max, int lanes, const Light* light) {
+  // never changes an answer. Shadow rays may bring a box of their origins known beforehand
+  // (`origins`, holding every origin; the rays' own bounds are taken otherwise).
+  packet::LooseTriangles triangles_met(const packet::Rays& rays, const double* t_max, int lanes, const Light* light,
+                                       const Aabb* origins = nullptr) {
     packet::LooseTriangles view = loose;
     if (loose.count == 0) return view;
     triangles_tested.clear();
     // The batch's origins and directions as boxes, once for every triangle: over a box a plane's
     // signed distance (or a direction's cosine) lies within the centre's plus or minus |n|·half.
     double box[12];
-    packet::ray_bounds(rays, t_max, lanes, box);
+    if (light && origins) {  // only the origins' box is read
+      for (int c = 0; c < 3; ++c) box[c] = origins->lo[c], box[3 + c] = origins->hi[c];
+    } else {
+      packet::ray_bounds(rays, t_max, lanes, box);
+    }
     const Vec3 olo(box[0], box[1], box[2]), ohi(box[3], box[4], box[5]);
     const Vec3 dlo(box[6], box[7], box[8]), dhi(box[9], box[10], box[11]);
     view.tested = triangles_tested.data();
@@ -325,16 +338,18 @@ struct PacketTracer::Impl {
   }
 
   // Sets blocked[i] = 1 for the lanes that something blocks within (0, t_max[i]); for shadow
-  // rays towards `light`, only the loose triangles they can meet are tested.
+  // rays towards `light`, only the loose triangles they can meet are tested (`origins`: a box
+  // known to hold their origins, or null).
   void any_hits(const packet::Rays& rays, const double* t_max, int lanes, const packet::Spheres& tested,
-                std::uint8_t* blocked, const Light* light = nullptr) {
+                std::uint8_t* blocked, const Light* light = nullptr, const Aabb* origins = nullptr) {
     packet::occluded(tested, planes, rays, t_max, lanes, blocked);
     if (walk_hierarchy) {
       packet::hierarchy_occluded(hierarchy, rays, t_max, lanes, blocked);
       return;
     }
     if (scene.triangles.empty()) return;
-    packet::triangles_occluded(light ? triangles_met(rays, t_max, lanes, light) : loose, rays, t_max, lanes, blocked);
+    packet::triangles_occluded(light ? triangles_met(rays, t_max, lanes, light, origins) : loose, rays, t_max, lanes,
+                               blocked);
   }
 
   // The light loop of shade() for every hit of the level, one light at a time.
@@ -343,7 +358,8 @@ struct PacketTracer::Impl {
                                    lv.nz.data(), lv.gx.data(), lv.gy.data(), lv.gz.data(), lv.vx.data(),
                                    lv.vy.data(), lv.vz.data(), lv.offset.data(), lv.active.data()};
     const packet::LightOut out{lv.n_dot_l.data(), lv.cos_spec.data(), lv.sox.data(), lv.soy.data(), lv.soz.data(),
-                               lv.sdx.data(),     lv.sdy.data(),      lv.sdz.data(), lv.st_max.data()};
+                               lv.sdx.data(),     lv.sdy.data(),      lv.sdz.data(), lv.st_max.data(),
+                               reinterpret_cast<std::uint8_t*>(lv.shadow.data())};  // Shadow is one byte
     const bool blinn = scene.specular_model == SpecularModel::kBlinn;
     const std::size_t materials = scene.materials.size();
     for (std::size_t li = 0; li < scene.lights.size(); ++li) {
@@ -355,24 +371,13 @@ struct PacketTracer::Impl {
       in.x = l.x, in.y = l.y, in.z = l.z;
       in.shrink = in.point ? surface_offset(light.position, 0) : 0.0;
       in.blinn = blinn;
-      packet::light(in, pts, padded(lanes), out);
-
+      const int lit = packet::light(in, pts, padded(lanes), out);
+      counts.shadow += static_cast<std::uint64_t>(lit);
       // Lit points (N.L > 0, a material with kd or ks) cast a shadow ray, except where the
       // light is within rounding distance (visible without one). N.L is NaN for a point light
       // exactly at P.
-      bool any_test = false;
-      std::uint64_t shadow_rays = 0;
-      for (int h = 0; h < lanes; ++h) {
-        const std::size_t u = at(h);
-        const bool on = lv.active[u] && lv.n_dot_l[u] > 0;
-        const bool test = on && lv.st_max[u] > 0;
-        shadow_rays += on;
-        any_test |= test;
-        lv.shadow[u] = static_cast<Shadow>(on + test);
-        if (!test) lv.st_max[u] = 0;
-      }
-      counts.shadow += shadow_rays;
-      for (int h = lanes; h < padded(lanes); ++h) lv.st_max[at(h)] = 0;
+      const bool any_test = lit > 0 && std::any_of(lv.shadow.begin(), lv.shadow.begin() + lanes,
+                                                   [](Shadow s) { return s == Shadow::kTest; });
       if (any_test) {
         // The rays start within max_offset of the hit points' bounding box.
         const double ball = (0.5 * glm::length(lv.hi - lv.lo) + lv.max_offset) * (1 + 1e-9);
@@ -475,6 +480,10 @@ struct PacketTracer::Impl {
     const int lanes = rays.n;
     packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
                         padded(lanes), lv.records());
+    if (loose_records.count > 0) {
+      packet::triangle_records(loose_records, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
+                               lv.b1.data(), lv.b2.data(), padded(lanes), lv.records());
+    }
     bool any_hit = false, any_bounce = false;
     Vec3 lo(kInf), hi(-kInf);
     double max_offset = 0;
@@ -499,7 +508,7 @@ struct PacketTracer::Impl {
       Terms& t = lv.terms[u];
       t = Terms{};
       t.ambient = mi.ambient;
-      if (id >= spheres.count + planes.count) record_triangle_hit(lv, rays, i);
+      if (id >= spheres.count + planes.count && !kernel_recorded(id)) record_triangle_hit(lv, rays, i);
       if (depth == 0 && shading_eye) look_from_eye(lv, i);
       const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
       lo = glm::min(lo, p);
@@ -538,8 +547,15 @@ struct PacketTracer::Impl {
     if (v) lv.vx[u] = v->x, lv.vy[u] = v->y, lv.vz[u] = v->z;
   }
 
-  // A triangle's hit record (loose or a mesh's), by the scalar functions (the kernel does spheres
-  // and planes); a loose triangle's normal and magnitude come from those computed once.
+  // Whether the kernels wrote the hit record of a hit on triangle-or-mesh `id`: a loose
+  // triangle without vertex normals.
+  bool kernel_recorded(std::int32_t id) const {
+    const int k = id - loose_records.first_id;
+    return k < loose_records.count && loose_flat[at(k)];
+  }
+
+  // A triangle's hit record (a mesh's, or loose with vertex normals), by the scalar functions;
+  // a loose triangle's normal and magnitude come from those computed once.
   void record_triangle_hit(Level& lv, const RayBatch& rays, int i) {
     const std::size_t u = at(i);
     const Vec3 d = rays.dir(i);
@@ -683,7 +699,8 @@ void PacketTracer::occluded_towards(const Light& light, const double* ox, const 
   const double ball = 0.5 * glm::length(hi - lo) * (1 + 1e-9);  // every origin lies within it
   const Vec3 l = light.type == LightType::kPoint ? light.position : -light.direction;
   const packet::Rays rays{ox, oy, oz, dx, dy, dz};
-  im.any_hits(rays, t_max, padded(n), im.shadow_spheres(0.5 * (lo + hi), ball, light, l), blocked, &light);
+  const Aabb origins{lo, hi};
+  im.any_hits(rays, t_max, padded(n), im.shadow_spheres(0.5 * (lo + hi), ball, light, l), blocked, &light, &origins);
 }
 
 PacketTracer& packet_tracer_for(const PreparedScene& prepared) {

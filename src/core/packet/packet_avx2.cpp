@@ -29,6 +29,23 @@ inline int lanes_set(V mask) { return _mm256_movemask_pd(mask); }
 
 constexpr double kInf = __builtin_huge_val();
 
+// Four byte flags from p on: bit j set where p[j] is not 0.
+inline int byte_lanes(const std::uint8_t* p) {
+  int word;
+  __builtin_memcpy(&word, p, 4);
+  const __m128i bytes = _mm_cvtsi32_si128(word);
+  return ~_mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_setzero_si128())) & 0xF;
+}
+// Bit j of `bits` as byte j (0 or 1) of a word, and four such bytes stored from p on.
+inline std::uint32_t spread_bits(int bits) {
+  return (bits & 1) | (bits & 2) << 7 | (bits & 4) << 14 | static_cast<std::uint32_t>(bits & 8) << 21;
+}
+inline void put_byte_lanes(std::uint8_t* p, std::uint32_t word) { __builtin_memcpy(p, &word, 4); }
+
+inline V lane_mask(int bits) {  // lane j all ones where bit j is set
+  return _mm256_castsi256_pd(_mm256_set_epi64x(bits & 8 ? -1 : 0, bits & 4 ? -1 : 0, bits & 2 ? -1 : 0, bits & 1 ? -1 : 0));
+}
+
 // sphere_root(s, o, d, 0, t_max) for four rays: the root, or 0 where there is none.
 inline V sphere_root(V ox, V oy, V oz, V dx, V dy, V dz, double cx, double cy, double cz, double radius,
                      V t_max) {
@@ -199,6 +216,59 @@ void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargi
   }
 }
 
+void triangle_records(const TriangleRecords& tris, const OffsetMargins& margins, const Rays& rays, const double* t_in,
+                      const std::int32_t* id, const double* b1_in, const double* b2_in, int lanes, const HitRecords& out) {
+  const V zero = _mm256_setzero_pd(), one = splat(1);
+  for (int i = 0; i < lanes; i += 4) {
+    // Each lane's triangle; lanes of other kinds borrow the first one's (and are not written).
+    std::int64_t k[4];
+    int mine = 0;
+    for (int j = 0; j < 4; ++j) {
+      k[j] = id[i + j] - tris.first_id;
+      if (k[j] >= 0 && k[j] < tris.count && tris.flat[k[j]]) mine |= 1 << j;
+    }
+    if (mine == 0) continue;
+    const std::int64_t first = k[__builtin_ctz(static_cast<unsigned>(mine))];
+    for (int j = 0; j < 4; ++j) {
+      if (!((mine >> j) & 1)) k[j] = first;
+    }
+    const bool shared = k[0] == k[1] && k[1] == k[2] && k[2] == k[3];  // usually: one floor, one triangle
+    const __m256i tri_at = _mm256_set_epi64x(k[3] * tris.stride, k[2] * tris.stride, k[1] * tris.stride, k[0] * tris.stride);
+    const __m256i normal_at = _mm256_set_epi64x(3 * k[3], 3 * k[2], 3 * k[1], 3 * k[0]);
+    const __m256i size_at = _mm256_set_epi64x(k[3], k[2], k[1], k[0]);
+    const auto fetch = [&](const double* base, __m256i at, std::int64_t shared_at) {
+      return shared ? splat(base[shared_at]) : _mm256_i64gather_pd(base, at, 8);
+    };
+    V v[9];
+    for (int c = 0; c < 9; ++c) v[c] = fetch(tris.vertices + c, tri_at, first * tris.stride);
+    V n[3];
+    for (int c = 0; c < 3; ++c) n[c] = fetch(tris.normal + c, normal_at, 3 * first);
+    const V size = fetch(tris.magnitude, size_at, first);
+    const V m = lane_mask(mine);
+    const V b1 = load(b1_in + i), b2 = load(b2_in + i);
+    const V b0 = (one - b1) - b2;
+    const auto keep = [&](double* p, V x) { store(p + i, pick(m, x, load(p + i))); };
+    double* const p_out[3] = {out.px, out.py, out.pz};
+    for (int c = 0; c < 3; ++c) {  // glm's b0 v0 + b1 v1 + b2 v2, left to right
+      keep(p_out[c], (b0 * v[c] + b1 * v[3 + c]) + b2 * v[6 + c]);
+    }
+    const V dx = load(rays.dx + i), dy = load(rays.dy + i), dz = load(rays.dz + i);
+    V gx = n[0], gy = n[1], gz = n[2];
+    const V entering = lt(dot(gx, gy, gz, dx, dy, dz), zero);
+    gx = pick(entering, gx, negate(gx));
+    gy = pick(entering, gy, negate(gy));
+    gz = pick(entering, gz, negate(gz));
+    keep(out.nx, gx), keep(out.ny, gy), keep(out.nz, gz);
+    keep(out.gx, gx), keep(out.gy, gy), keep(out.gz, gz);
+    keep(out.vx, negate(dx)), keep(out.vy, negate(dy)), keep(out.vz, negate(dz));
+    keep(out.offset, splat(margins.coordinate) * size + splat(margins.size) * load(t_in + i));
+    const int enter_bits = lanes_set(entering);
+    for (int j = 0; j < 4; ++j) {
+      if ((mine >> j) & 1) out.entering[i + j] = (enter_bits >> j) & 1;
+    }
+  }
+}
+
 void camera_dirs(const CameraIn& cam, const double* x_plus_u, const double* y_plus_v, int lanes, double* dx,
                  double* dy, double* dz) {
   const V two = splat(2), one = splat(1);
@@ -216,11 +286,18 @@ void camera_dirs(const CameraIn& cam, const double* x_plus_u, const double* y_pl
   }
 }
 
-void light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const LightOut& out) {
+int light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const LightOut& out) {
   const V zero = _mm256_setzero_pd();
   const V lpx = splat(lt_in.x), lpy = splat(lt_in.y), lpz = splat(lt_in.z);
+  int lit = 0;
   for (int i = 0; i < lanes; i += 4) {
-    if ((pts.active[i] | pts.active[i + 1] | pts.active[i + 2] | pts.active[i + 3]) == 0) continue;
+    if (byte_lanes(pts.active + i) == 0) {
+      if (out.shadow) {
+        store(out.t_max + i, zero);
+        put_byte_lanes(out.shadow + i, 0);
+      }
+      continue;
+    }
     const V px = load(pts.px + i), py = load(pts.py + i), pz = load(pts.pz + i);
     const V nx = load(pts.nx + i), ny = load(pts.ny + i), nz = load(pts.nz + i);
     // L: towards a point light (NaN when it sits on P), or minus a directional light's direction.
@@ -257,20 +334,29 @@ void light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const Light
     store(out.ox + i, ox);
     store(out.oy + i, oy);
     store(out.oz + i, oz);
+    V t_max = splat(kInf);
     if (lt_in.point) {  // the open segment to the light, pulled in at the light's end
       const V tx = lpx - ox, ty = lpy - oy, tz = lpz - oz;
       const V dist = sqrt(dot(tx, ty, tz, tx, ty, tz));
-      store(out.t_max + i, dist - splat(lt_in.shrink));
+      t_max = dist - splat(lt_in.shrink);
       store(out.dx + i, tx / dist);
       store(out.dy + i, ty / dist);
       store(out.dz + i, tz / dist);
     } else {
-      store(out.t_max + i, splat(kInf));
       store(out.dx + i, lx);
       store(out.dy + i, ly);
       store(out.dz + i, lz);
     }
+    if (out.shadow) {  // a term where active and N.L > 0; a ray to test where t_max > 0 too
+      const int on = byte_lanes(pts.active + i) & lanes_set(gt(n_dot_l, zero));
+      const int test = on & lanes_set(gt(t_max, zero));
+      lit += __builtin_popcount(static_cast<unsigned>(on));
+      put_byte_lanes(out.shadow + i, spread_bits(on) + spread_bits(test));
+      t_max = both(lane_mask(test), t_max);
+    }
+    store(out.t_max + i, t_max);
   }
+  return lit;
 }
 
 void bounce(const BounceIn& in, int lanes, const BounceOut& out) {
@@ -336,10 +422,6 @@ struct Packet {
   bool uniform;         // all four lanes share one permutation, namely kx, ky, kz
   int kx, ky, kz;
 };
-
-inline V lane_mask(int bits) {  // lane j all ones where bit j is set
-  return _mm256_castsi256_pd(_mm256_set_epi64x(bits & 8 ? -1 : 0, bits & 4 ? -1 : 0, bits & 2 ? -1 : 0, bits & 1 ? -1 : 0));
-}
 
 // Four rays of `rays` from lane i with their triangle shear only (inv and sign unset: the loose
 // triangles test no boxes); `live`: the lanes that matter (the shear's `uniform` looks at those

@@ -66,6 +66,22 @@ struct OffsetMargins {
 void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargins& margins, const Rays& rays,
                  const double* t, const std::int32_t* id, int lanes, const HitRecords& out);
 
+// triangle_hit_record, hit_side and surface_offset of the lanes whose nearest hit is one of a
+// brute-force scene's loose triangles without vertex normals (id in [first_id, first_id + count)
+// and `flat` set): P interpolated from the vertices, Ng = N = its unit normal facing the ray,
+// V = -D, offset kCoordinateMargin * magnitude + kSizeMargin * t. Other lanes are left as they are.
+struct TriangleRecords {
+  const double* vertices;    // the first triangle's v0.x (Triangle's layout)
+  long stride;
+  const double* normal;      // triangle_normal of triangle k at normal[3 k .. 3 k + 2]
+  const double* magnitude;   // triangle_magnitude of each
+  const std::uint8_t* flat;  // 1: no vertex normals (these lanes are the kernel's)
+  int count;
+  int first_id;
+};
+void triangle_records(const TriangleRecords& tris, const OffsetMargins& margins, const Rays& rays, const double* t,
+                      const std::int32_t* id, const double* b1, const double* b2, int lanes, const HitRecords& out);
+
 // camera_ray for pixels (x + u, y + v): directions only (the origin is the eye).
 struct CameraIn {
   double fx, fy, fz;  // forward
@@ -96,8 +112,13 @@ struct LightOut {
   double* cos_spec;  // R.V (Phong) or N.H (Blinn), before clamping
   double *ox, *oy, *oz, *dx, *dy, *dz;  // the shadow ray
   double* t_max;     // its far end; not > 0: the light is within rounding distance (visible)
+  // Optional (null: not written): each lane's shadow ray, 0 where the light gives no term (an
+  // inactive lane, N.L not > 0), 1 where it is seen without a ray, 2 where the ray is to be
+  // tested. With it, t_max is set to 0 wherever no ray is to be tested, inactive lanes included.
+  std::uint8_t* shadow = nullptr;
 };
-void light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
+// Returns the number of lanes whose shadow is 1 or 2 when `out.shadow` is given (else 0).
+int light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
 
 // The box of the origins, and of the directions, of the rays in lanes [0, live) whose t_max is
 // > 0 (every one when t_max is null): out = lo x, y, z, hi x, y, z of the origins, then of the
