@@ -4,6 +4,7 @@
 #   tests/gui/bench_previewer.sh BUILD_DIR [SCENE]
 #   BASELINE=1 tests/gui/bench_previewer.sh BUILD_DIR [SCENE]   # live levels and re-shading off
 #   RENDER_THREADS=1 tests/gui/bench_previewer.sh BUILD_DIR      # the renderer on one thread
+#   LIVE_IMAGES_PER_S=24 tests/gui/bench_previewer.sh BUILD_DIR  # another budget for live levels
 #
 # The window is 1280x720 with the panels hidden, so the render is 1280x720 (for the slider phase
 # the panels are shown and the window widened by the sidebar, so the render stays 1280x720).
@@ -33,6 +34,8 @@ fi
 # RENDER_THREADS=N: the renderer's thread count (Render settings' "threads"); 1 on this 2-core
 # machine is a lecturer's laptop busy with slides and a browser beside the previewer.
 if [ -n "${RENDER_THREADS:-}" ]; then SETTINGS="$SETTINGS"$'\n'"set render threads $RENDER_THREADS"; fi
+# LIVE_IMAGES_PER_S=N: the live levels' budget (Render settings' "live images/s").
+if [ -n "${LIVE_IMAGES_PER_S:-}" ]; then SETTINGS="$SETTINGS"$'\n'"set render live_images_per_s $LIVE_IMAGES_PER_S"; fi
 cat >"$OUT/script.txt" <<SCRIPT
 $SETTINGS
 key H

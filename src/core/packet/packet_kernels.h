@@ -1,10 +1,12 @@
 // The hot loops of the packet tracer (src/core/packet/packet.cpp), four rays at a time with AVX2.
 //
-// They live in their own translation unit, compiled with -mavx2 and called only after a
-// runtime check of the CPU, so the default build still runs on any x86-64 machine. That unit
-// must not define any inline or template function it shares with the rest of the program (the
-// linker could otherwise keep its AVX2 copy for everyone): it sees only this header, which
-// declares plain data and functions, and <immintrin.h>. A test checks its object file.
+// They live in their own translation units (packet_avx2.cpp: intersections; packet_avx2_shading.cpp:
+// hit records, camera rays, lights, bounces), compiled with -mavx2 and called only after a
+// runtime check of the CPU, so the default build still runs on any x86-64 machine. Those units
+// must not define any inline or template function they share with the rest of the program (the
+// linker could otherwise keep its AVX2 copy for everyone): they see only this header, which
+// declares plain data and functions, <immintrin.h> and packet_avx2_ops.h (operations with
+// internal linkage, for them alone). A test checks their object files.
 //
 // Every kernel repeats, operation for operation, the scalar code it stands for (sphere_root,
 // intersect_plane, camera_ray, the light loop of shade), with no fused multiply-add, so the
