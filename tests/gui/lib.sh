@@ -25,7 +25,11 @@ gui_script_setup() {
   # Sanitizer builds: GL drivers and X libraries keep allocations alive until exit on purpose.
   export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
-  TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-420}  # all sessions, seconds (sanitizer builds are slow)
+  # All sessions, seconds: a hang guard, not a benchmark. Each script step has its own bound
+  # (wait_idle 120 ...); this one only ends a run that hangs between them. Generous: the ASan
+  # build's sessions took 250-300 s on this 2-core machine when quiet and 430 s beside two busy
+  # loops (stopped here at 420 s, the last sessions were never run).
+  TIMEOUT=${PHONGLAB_GUI_TIMEOUT:-1500}
   # The recent-files list and recovery files of these sessions stay with their output.
   export XDG_STATE_HOME=$OUT/state
 }
