@@ -340,19 +340,15 @@ void Viewer::apply_edits(double frame_start) {
   }
 
   // "Move your head": a new shading eye (angle, probe or camera changed) re-shades. While the
-  // angle slider is held, the next eye waits for the image of the last one, as a drag's scene
-  // edit does: each restart would cancel the re-shade under way, and nothing new would show
-  // until the hand stops whenever a re-shade takes longer than a frame.
+  // angle slider is held, the next eye waits for the image of the last one, however long it
+  // takes: each restart would cancel the re-shade under way, and a cancelled re-shade of a new
+  // eye leaves the trees half updated, so they are dropped and every later eye of the drag is
+  // traced, coarse. (A scene edit's wait is bounded by kMaxDeferral; an eye's image is a
+  // re-shade, or a coarse trace when no trees serve: both come.)
   const std::optional<Vec3> eye = head_eye();
   const bool holding = interacting_ || edits_.while_active || ImGui::IsAnyItemActive();
   const bool image_pending = renderer_.status().published_generation < sent_generation_;
-  if (eye != shading_eye_ && holding && image_pending && !edits_.eye_deferred) {
-    edits_.eye_deferred = true;
-    edits_.eye_deferred_since = frame_start;
-  }
-  const bool eye_waits = holding && image_pending && frame_start - edits_.eye_deferred_since < kMaxDeferral;
-  if (eye != shading_eye_ && !(edits_.eye_deferred && eye_waits)) {
-    edits_.eye_deferred = false;
+  if (eye != shading_eye_ && !(holding && image_pending)) {
     shading_eye_ = eye;
     edits_.settings = true;
     if (probed_.tree) refresh_probe();

@@ -389,8 +389,6 @@ class Viewer {
     bool while_active = false;     // a slider drag is editing: render coarse while it lasts
     bool deferred = false;         // a drag's edit waits for the renderer's current first image
     double deferred_since = 0;     // glfwGetTime() of the oldest deferred edit
-    bool eye_deferred = false;     // a held head-angle drag's new eye waits, the same way
-    double eye_deferred_since = 0;
   };
   EditFlags edits_;
   // The unsaved-changes and changed-on-disk dialogs and what waits for them.
