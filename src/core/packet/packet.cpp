@@ -534,7 +534,7 @@ struct PacketTracer::Impl {
         if (lv.reflected_index[u] >= 0) t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
         if (lv.refracted_index[u] >= 0) t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
       }
-      out[i] = depth == 0 ? term_value(t, primary_term) : t.sum();
+      out[i] = depth == 0 && primary_term != Term::kFull ? term_value(t, primary_term) : t.sum();
       if (depth == 0 && primary_terms) primary_terms[i] = t;
     }
   }

@@ -44,11 +44,7 @@ double fract(double x) { return x - std::floor(x); }
 
 }  // namespace
 
-void sample_offset(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed) {
-  if (index == 0) {
-    u = v = 0.5;
-    return;
-  }
+void sample_offset_r2(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed) {
   // R2 sequence (Roberts 2018): alpha = (1/g, 1/g^2) with g the plastic number.
   constexpr double kA1 = 0.7548776662466927;
   constexpr double kA2 = 0.5698402909980532;

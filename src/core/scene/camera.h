@@ -42,6 +42,13 @@ Ray camera_ray(const CameraFrame& frame, int x, int y, double u, double v);
 // (0.5, 0.5); later samples follow the R2 low-discrepancy sequence, rotated per pixel by a
 // hash of (x, y, seed) so neighbouring pixels do not share a pattern. Depends on nothing
 // else. Other seeds give independent sample sets (for error statistics); 0 is the default.
-void sample_offset(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed = 0);
+void sample_offset_r2(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed);  // index > 0
+inline void sample_offset(int x, int y, std::uint32_t index, double& u, double& v, std::uint32_t seed = 0) {
+  if (index == 0) {
+    u = v = 0.5;
+    return;
+  }
+  sample_offset_r2(x, y, index, u, v, seed);
+}
 
 }  // namespace phonglab
