@@ -352,14 +352,17 @@ struct PacketTracer::Impl {
                                blocked);
   }
 
-  // The light loop of shade() for every hit of the level, one light at a time.
+  // The light loop of shade() for every hit of the level, one light at a time. The light kernel
+  // writes each lane's Shadow as the byte it is (0, 1, 2).
+  static_assert(sizeof(Shadow) == 1 && static_cast<int>(Shadow::kNone) == 0 && static_cast<int>(Shadow::kVisible) == 1 &&
+                static_cast<int>(Shadow::kTest) == 2);
   void shade_lights(Level& lv, int lanes, RayCounts& counts) {
     const packet::ShadedPoints pts{lv.px.data(), lv.py.data(), lv.pz.data(), lv.nx.data(), lv.ny.data(),
                                    lv.nz.data(), lv.gx.data(), lv.gy.data(), lv.gz.data(), lv.vx.data(),
                                    lv.vy.data(), lv.vz.data(), lv.offset.data(), lv.active.data()};
     const packet::LightOut out{lv.n_dot_l.data(), lv.cos_spec.data(), lv.sox.data(), lv.soy.data(), lv.soz.data(),
                                lv.sdx.data(),     lv.sdy.data(),      lv.sdz.data(), lv.st_max.data(),
-                               reinterpret_cast<std::uint8_t*>(lv.shadow.data())};  // Shadow is one byte
+                               reinterpret_cast<std::uint8_t*>(lv.shadow.data())};
     const bool blinn = scene.specular_model == SpecularModel::kBlinn;
     const std::size_t materials = scene.materials.size();
     for (std::size_t li = 0; li < scene.lights.size(); ++li) {
@@ -371,14 +374,12 @@ struct PacketTracer::Impl {
       in.x = l.x, in.y = l.y, in.z = l.z;
       in.shrink = in.point ? surface_offset(light.position, 0) : 0.0;
       in.blinn = blinn;
-      const int lit = packet::light(in, pts, padded(lanes), out);
-      counts.shadow += static_cast<std::uint64_t>(lit);
       // Lit points (N.L > 0, a material with kd or ks) cast a shadow ray, except where the
       // light is within rounding distance (visible without one). N.L is NaN for a point light
       // exactly at P.
-      const bool any_test = lit > 0 && std::any_of(lv.shadow.begin(), lv.shadow.begin() + lanes,
-                                                   [](Shadow s) { return s == Shadow::kTest; });
-      if (any_test) {
+      const packet::ShadowCounts shadows = packet::light(in, pts, padded(lanes), out);
+      counts.shadow += static_cast<std::uint64_t>(shadows.lit);
+      if (shadows.tested > 0) {
         // The rays start within max_offset of the hit points' bounding box.
         const double ball = (0.5 * glm::length(lv.hi - lv.lo) + lv.max_offset) * (1 + 1e-9);
         test_shadows(lv, lanes, shadow_spheres(0.5 * (lv.lo + lv.hi), ball, light, l), light);

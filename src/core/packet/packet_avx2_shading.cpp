@@ -151,10 +151,10 @@ void camera_dirs(const CameraIn& cam, const double* x_plus_u, const double* y_pl
   }
 }
 
-int light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const LightOut& out) {
+ShadowCounts light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const LightOut& out) {
   const V zero = _mm256_setzero_pd();
   const V lpx = splat(lt_in.x), lpy = splat(lt_in.y), lpz = splat(lt_in.z);
-  int lit = 0;
+  ShadowCounts counts;
   for (int i = 0; i < lanes; i += 4) {
     if (byte_lanes(pts.active + i) == 0) {
       if (out.shadow) {
@@ -215,13 +215,14 @@ int light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, const LightO
     if (out.shadow) {  // a term where active and N.L > 0; a ray to test where t_max > 0 too
       const int on = byte_lanes(pts.active + i) & lanes_set(gt(n_dot_l, zero));
       const int test = on & lanes_set(gt(t_max, zero));
-      lit += __builtin_popcount(static_cast<unsigned>(on));
+      counts.lit += __builtin_popcount(static_cast<unsigned>(on));
+      counts.tested += __builtin_popcount(static_cast<unsigned>(test));
       put_byte_lanes(out.shadow + i, spread_bits(on) + spread_bits(test));
       t_max = both(lane_mask(test), t_max);
     }
     store(out.t_max + i, t_max);
   }
-  return lit;
+  return counts;
 }
 
 void bounce(const BounceIn& in, int lanes, const BounceOut& out) {

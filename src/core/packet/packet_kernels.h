@@ -119,8 +119,12 @@ struct LightOut {
   // tested. With it, t_max is set to 0 wherever no ray is to be tested, inactive lanes included.
   std::uint8_t* shadow = nullptr;
 };
-// Returns the number of lanes whose shadow is 1 or 2 when `out.shadow` is given (else 0).
-int light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
+// With `out.shadow`: how many lanes the light gives a term (shadow 1 or 2), and how many of them
+// have a ray to test (2); zeros without it.
+struct ShadowCounts {
+  int lit = 0, tested = 0;
+};
+ShadowCounts light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
 
 // The box of the origins, and of the directions, of the rays in lanes [0, live) whose t_max is
 // > 0 (every one when t_max is null): out = lo x, y, z, hi x, y, z of the origins, then of the
