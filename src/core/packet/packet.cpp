@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -79,7 +80,8 @@ struct PacketTracer::Impl {
   std::vector<packet::MeshTree> mesh_trees;
   int mesh_id = 0;  // id of mesh 0
   std::vector<MaterialInfo> info;
-  std::vector<Color> light_kd, light_ks;  // I_l * kd and I_l * ks, per light and material
+  MaterialColors light_kd, light_ks;  // I_l * kd and I_l * ks, per light and material
+  MaterialColors ambient;             // ka * Ia per material
   std::vector<Level> levels;
   RayBatch primary;
   std::vector<double> x_plus_u, y_plus_v;
@@ -125,12 +127,13 @@ struct PacketTracer::Impl {
       mi.ior = m.ior;
       mi.ambient = m.ka * scene.ambient;
       info.push_back(mi);
+      ambient.push(mi.ambient);
     }
     for (const Light& light : scene.lights) {
       for (const Material& m : scene.materials) {
         const LightProducts products = light_products(light, m);
-        light_kd.push_back(products.kd);
-        light_ks.push_back(products.ks);
+        light_kd.push(products.kd);
+        light_ks.push(products.ks);
       }
     }
     levels.resize(at(std::max(0, limits.max_depth)) + 1);
@@ -388,18 +391,38 @@ struct PacketTracer::Impl {
       if (!light.enabled) continue;
       // The light's terms where it is seen. The specular factor (pow) is computed only there:
       // a blocked light's would be multiplied by vis = 0.
-      for (int h = 0; h < lanes; ++h) {
-        const std::size_t u = at(h);
-        if (!lv.lit[u] || lv.shadow[u] == Shadow::kNone || (lv.shadow[u] == Shadow::kTest && lv.blocked[u])) continue;
-        const std::size_t m = at(lv.material[u]);
-        const MaterialInfo& mi = info[m];
-        const double spec = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
-        const std::size_t lm = li * materials + m;
-        Terms& t = lv.terms[u];
-        t.diffuse += light_kd[lm] * lv.n_dot_l[u];
-        t.specular += light_ks[lm] * spec;
+      if (mark_seen(lv, lanes) == 0) continue;
+      packet::add_light(light_kd.from(li * materials), light_ks.from(li * materials), lv.material.data(),
+                        lv.seen.data(), lv.n_dot_l.data(), lv.spec.data(), padded(lanes), lv.diffuse.lanes(),
+                        lv.specular.lanes());
+    }
+  }
+
+  // Where the light just tested is seen (lit, and its shadow ray seen or not needed), with the
+  // specular factor there (zero for a material without ks); returns how many lanes see it.
+  // Four lanes at a time as the bytes of a word: seen = lit & (shadow 1, or shadow 2 and not
+  // blocked), every byte 0 or 1 (lit is 0 past the live lanes; blocked is read only where a ray
+  // was tested).
+  int mark_seen(Level& lv, int lanes) const {
+    int count = 0;
+    constexpr std::uint32_t kOnes = 0x01010101u;
+    for (int h = 0; h < padded(lanes); h += 4) {
+      std::uint32_t lit, shadow, blocked;
+      std::memcpy(&lit, &lv.lit[at(h)], 4);
+      std::memcpy(&shadow, &lv.shadow[at(h)], 4);
+      std::memcpy(&blocked, &lv.blocked[at(h)], 4);
+      const std::uint32_t seen = lit & ((shadow & kOnes) | ((shadow >> 1) & ~blocked & kOnes));
+      std::memcpy(&lv.seen[at(h)], &seen, 4);
+      if (seen == 0) continue;
+      for (int j = 0; j < 4; ++j) {
+        if (!(seen >> (8 * j) & 1)) continue;
+        ++count;
+        const std::size_t u = at(h + j);
+        const MaterialInfo& mi = info[at(lv.material[u])];
+        lv.spec[u] = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
       }
     }
+    return count;
   }
 
   // One light at every hit of the level, as the scalar tracer tells its recorder.
@@ -486,13 +509,14 @@ struct PacketTracer::Impl {
                                lv.b1.data(), lv.b2.data(), padded(lanes), lv.records());
     }
     bool any_hit = false, any_bounce = false;
-    Vec3 lo(kInf), hi(-kInf);
-    double max_offset = 0;
+    const Color miss = depth == 0 ? miss_value(scene, primary_term) : scene.background;
+    const bool recording = sink != nullptr, eye_moved = depth == 0 && shading_eye;
+    const int first_triangle = spheres.count + planes.count;
     for (int i = 0; i < lanes; ++i) {
       const std::size_t u = at(i);
       const std::int32_t id = lv.id[u];
       if (id < 0) {
-        out[i] = depth == 0 ? miss_value(scene, primary_term) : scene.background;
+        out[i] = miss;
         if (depth == 0 && primary_terms) primary_terms[i] = Terms{};
         lv.lit[u] = lv.active[u] = lv.bounces[u] = 0;
         continue;
@@ -502,41 +526,68 @@ struct PacketTracer::Impl {
       const MaterialInfo& mi = info[at(material)];
       lv.material[u] = material;
       lv.lit[u] = mi.lit;
-      lv.active[u] = mi.lit || sink != nullptr;
+      lv.active[u] = mi.lit || recording;
       lv.bounces[u] = mi.bounces;
       lv.ior[u] = mi.ior;
       any_bounce |= mi.bounces;
-      Terms& t = lv.terms[u];
-      t = Terms{};
-      t.ambient = mi.ambient;
-      if (id >= spheres.count + planes.count && !kernel_recorded(id)) record_triangle_hit(lv, rays, i);
-      if (depth == 0 && shading_eye) look_from_eye(lv, i);
-      const Vec3 p(lv.px[u], lv.py[u], lv.pz[u]);
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-      max_offset = std::max(max_offset, lv.offset[u]);
+      if (id >= first_triangle && !kernel_recorded(id)) record_triangle_hit(lv, rays, i);
+      if (eye_moved) look_from_eye(lv, i);
     }
     for (int i = lanes; i < padded(lanes); ++i) lv.lit[at(i)] = lv.active[at(i)] = lv.bounces[at(i)] = 0;
-    if (sink != nullptr) record_hits(lv, rays, depth, kind);
+    if (recording) record_hits(lv, rays, depth, kind);
     if (!any_hit) return;
-    lv.lo = lo;
-    lv.hi = hi;
-    lv.max_offset = max_offset;
+    double bounds[7];
+    packet::hit_bounds(lv.px.data(), lv.py.data(), lv.pz.data(), lv.offset.data(), lv.id.data(), lanes, bounds);
+    lv.lo = Vec3(bounds[0], bounds[1], bounds[2]);
+    lv.hi = Vec3(bounds[3], bounds[4], bounds[5]);
+    lv.max_offset = bounds[6];
     const TermsWanted wanted = depth == 0 ? primary_wanted : TermsWanted{};
+    lv.diffuse.zero(padded(lanes));
+    lv.specular.zero(padded(lanes));
     if (wanted.lights) shade_lights(lv, lanes, counts);
 
     const bool children = any_bounce && depth < limits.max_depth;
-    if (children) send_children(lv, rays, lanes, depth, wanted, counts);
+    if (children) {
+      send_children(lv, rays, lanes, depth, wanted, counts);
+      children_terms(lv, lanes);
+    }
+    if (depth == 0 && (primary_term != Term::kFull || primary_terms)) {
+      primary_terms_out(lv, lanes, children, out);
+      return;
+    }
+    const packet::ColorLanes reflection = lv.reflection.lanes(), refraction = lv.refraction.lanes();
+    packet::sum_terms(ambient.from(0), lv.material.data(), lv.id.data(),
+                      {lv.diffuse.lanes(), lv.specular.lanes(), children ? &reflection : nullptr,
+                       children ? &refraction : nullptr},
+                      lanes, &out[0].x);
+  }
+
+  // The reflection and refraction terms of the level's hits: kr' and kt' times what their
+  // children brought back, zero where none was traced.
+  void children_terms(Level& lv, int lanes) {
+    lv.reflection.zero(padded(lanes));
+    lv.refraction.zero(padded(lanes));
+    for (int i = 0; i < lanes; ++i) {
+      const std::size_t u = at(i);
+      if (lv.id[u] < 0 || !lv.bounces[u]) continue;
+      if (lv.reflected_index[u] >= 0) lv.reflection.set(i, lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])]);
+      if (lv.refracted_index[u] >= 0) lv.refraction.set(i, lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])]);
+    }
+  }
+
+  // The primary hits' values when a term other than the full image is drawn, or the five terms
+  // are kept (render_tile's terms_out): lane by lane, through Terms.
+  void primary_terms_out(const Level& lv, int lanes, bool children, Color* out) const {
     for (int i = 0; i < lanes; ++i) {
       const std::size_t u = at(i);
       if (lv.id[u] < 0) continue;
-      Terms& t = lv.terms[u];
-      if (children && lv.bounces[u]) {
-        if (lv.reflected_index[u] >= 0) t.reflection = lv.kr[u] * lv.reflected_radiance[at(lv.reflected_index[u])];
-        if (lv.refracted_index[u] >= 0) t.refraction = lv.kt[u] * lv.refracted_radiance[at(lv.refracted_index[u])];
-      }
-      out[i] = depth == 0 && primary_term != Term::kFull ? term_value(t, primary_term) : t.sum();
-      if (depth == 0 && primary_terms) primary_terms[i] = t;
+      Terms t;
+      t.ambient = info[at(lv.material[u])].ambient;
+      t.diffuse = lv.diffuse.at_lane(i);
+      t.specular = lv.specular.at_lane(i);
+      if (children) t.reflection = lv.reflection.at_lane(i), t.refraction = lv.refraction.at_lane(i);
+      out[i] = primary_term != Term::kFull ? term_value(t, primary_term) : t.sum();
+      if (primary_terms) primary_terms[i] = t;
     }
   }
 

@@ -40,13 +40,15 @@ inline int byte_lanes(const std::uint8_t* p) {
   return ~_mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_setzero_si128())) & 0xF;
 }
 // Bit j of `bits` as byte j (0 or 1) of a word, and four such bytes stored from p on.
-inline std::uint32_t spread_bits(int bits) {
-  return (bits & 1) | (bits & 2) << 7 | (bits & 4) << 14 | static_cast<std::uint32_t>(bits & 8) << 21;
+inline std::uint32_t spread_bits(int bits) {  // bit j moves to 8 j: no two products overlap
+  return (static_cast<std::uint32_t>(bits) * 0x204081u) & 0x01010101u;
 }
 inline void put_byte_lanes(std::uint8_t* p, std::uint32_t word) { __builtin_memcpy(p, &word, 4); }
 
 inline V lane_mask(int bits) {  // lane j all ones where bit j is set
-  return _mm256_castsi256_pd(_mm256_set_epi64x(bits & 8 ? -1 : 0, bits & 4 ? -1 : 0, bits & 2 ? -1 : 0, bits & 1 ? -1 : 0));
+  const __m256i select = _mm256_set_epi64x(8, 4, 2, 1);
+  const __m256i set = _mm256_and_si256(_mm256_set1_epi64x(bits), select);
+  return _mm256_castsi256_pd(_mm256_cmpeq_epi64(set, select));
 }
 
 }  // namespace

@@ -225,6 +225,99 @@ ShadowCounts light(const LightIn& lt_in, const ShadedPoints& pts, int lanes, con
   return counts;
 }
 
+namespace {
+// The four lanes' materials from `material` on, as gather indices.
+inline __m128i material_lanes(const std::int32_t* material) {
+  return _mm_loadu_si128(reinterpret_cast<const __m128i*>(material));
+}
+// base[index] where mask is set (only those entries are read), zero elsewhere.
+inline V gather(const double* base, __m128i index, V mask) {
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index, mask, 8);
+}
+// Bit j set where lane j of the four from id on is a hit (id >= 0) and j < live.
+inline int hit_lanes(const std::int32_t* id, int live) {
+  const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(id));
+  const int bits = ~_mm_movemask_ps(_mm_castsi128_ps(ids)) & 0xF;  // the sign bit clear
+  return live < 4 ? bits & ((1 << live) - 1) : bits;
+}
+// *p += x where mask is set.
+inline void add_where(double* p, V mask, V x) {
+  const V old = load(p);
+  store(p, pick(mask, old + x, old));
+}
+}  // namespace
+
+void add_light(const ByMaterial& kd, const ByMaterial& ks, const std::int32_t* material, const std::uint8_t* seen,
+               const double* n_dot_l, const double* spec, int lanes, const ColorLanes& diffuse,
+               const ColorLanes& specular) {
+  for (int i = 0; i < lanes; i += 4) {
+    const int bits = byte_lanes(seen + i);
+    if (bits == 0) continue;
+    const V mask = lane_mask(bits);
+    const __m128i m = material_lanes(material + i);
+    const V ndl = load(n_dot_l + i), sp = load(spec + i);
+    add_where(diffuse.r + i, mask, gather(kd.r, m, mask) * ndl);
+    add_where(diffuse.g + i, mask, gather(kd.g, m, mask) * ndl);
+    add_where(diffuse.b + i, mask, gather(kd.b, m, mask) * ndl);
+    add_where(specular.r + i, mask, gather(ks.r, m, mask) * sp);
+    add_where(specular.g + i, mask, gather(ks.g, m, mask) * sp);
+    add_where(specular.b + i, mask, gather(ks.b, m, mask) * sp);
+  }
+}
+
+void hit_bounds(const double* px, const double* py, const double* pz, const double* offset, const std::int32_t* id,
+                int live, double* out) {
+  V lx = splat(kInf), ly = lx, lz = lx, hx = splat(-kInf), hy = hx, hz = hx, off = _mm256_setzero_pd();
+  for (int i = 0; i < live; i += 4) {
+    const int bits = hit_lanes(id + i, live - i);
+    if (bits == 0) continue;
+    const V mask = lane_mask(bits);
+    // minpd and maxpd give their second operand where the first is NaN.
+    const V x = load(px + i), y = load(py + i), z = load(pz + i);
+    lx = pick(mask, _mm256_min_pd(x, lx), lx), ly = pick(mask, _mm256_min_pd(y, ly), ly);
+    lz = pick(mask, _mm256_min_pd(z, lz), lz);
+    hx = pick(mask, _mm256_max_pd(x, hx), hx), hy = pick(mask, _mm256_max_pd(y, hy), hy);
+    hz = pick(mask, _mm256_max_pd(z, hz), hz);
+    off = pick(mask, _mm256_max_pd(load(offset + i), off), off);
+  }
+  alignas(32) double v[7][4];
+  const V all[7] = {lx, ly, lz, hx, hy, hz, off};
+  for (int k = 0; k < 7; ++k) {
+    _mm256_store_pd(v[k], all[k]);
+    double r = v[k][0];
+    for (int j = 1; j < 4; ++j) r = k < 3 ? (v[k][j] < r ? v[k][j] : r) : (r < v[k][j] ? v[k][j] : r);
+    out[k] = r;
+  }
+}
+
+void sum_terms(const ByMaterial& ambient, const std::int32_t* material, const std::int32_t* id,
+               const TermLanes& terms, int live, double* out) {
+  const V zero = _mm256_setzero_pd();
+  const auto lanes_of = [](const ColorLanes* c, int i, V& r, V& g, V& b) {
+    if (c) r = load(c->r + i), g = load(c->g + i), b = load(c->b + i);
+  };
+  for (int i = 0; i < live; i += 4) {
+    const int bits = hit_lanes(id + i, live - i);
+    if (bits == 0) continue;
+    const V mask = lane_mask(bits);
+    const __m128i m = material_lanes(material + i);
+    V rr = zero, rg = zero, rb = zero, tr = zero, tg = zero, tb = zero;
+    lanes_of(terms.reflection, i, rr, rg, rb);
+    lanes_of(terms.refraction, i, tr, tg, tb);
+    const ColorLanes& d = terms.diffuse;
+    const ColorLanes& s = terms.specular;
+    alignas(32) double r[4], g[4], b[4];
+    _mm256_store_pd(r, (((gather(ambient.r, m, mask) + load(d.r + i)) + load(s.r + i)) + rr) + tr);
+    _mm256_store_pd(g, (((gather(ambient.g, m, mask) + load(d.g + i)) + load(s.g + i)) + rg) + tg);
+    _mm256_store_pd(b, (((gather(ambient.b, m, mask) + load(d.b + i)) + load(s.b + i)) + rb) + tb);
+    for (int j = 0; j < 4; ++j) {
+      if (!(bits >> j & 1)) continue;
+      double* o = out + 3 * (i + j);
+      o[0] = r[j], o[1] = g[j], o[2] = b[j];
+    }
+  }
+}
+
 void bounce(const BounceIn& in, int lanes, const BounceOut& out) {
   const V zero = _mm256_setzero_pd(), one = splat(1);
   const auto clamp_unit = [&](V x) {  // x > 1 ? 1 : (x < -1 ? -1 : x)

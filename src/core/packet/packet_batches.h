@@ -3,6 +3,7 @@
 // multiple of 4 lanes; what the light loop needs of a material.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -58,6 +59,23 @@ struct RayBatch {
   packet::Rays view() const { return {ox.data(), oy.data(), oz.data(), dx.data(), dy.data(), dz.data()}; }
 };
 
+// A colour per lane as structure of arrays (the kernels' ColorLanes).
+struct ColorArrays {
+  std::vector<double> r, g, b;
+
+  void fit_lanes(int size) {
+    fit(r, size);
+    fit(g, size);
+    fit(b, size);
+  }
+  void zero(int lanes) {  // lanes: a multiple of 4 within the room
+    for (std::vector<double>* v : {&r, &g, &b}) std::fill_n(v->begin(), lanes, 0.0);
+  }
+  packet::ColorLanes lanes() { return {r.data(), g.data(), b.data()}; }
+  Color at_lane(int i) const { return {r[at(i)], g[at(i)], b[at(i)]}; }
+  void set(int i, const Color& c) { r[at(i)] = c.r, g[at(i)] = c.g, b[at(i)] = c.b; }
+};
+
 // A shadow ray's fate for one light at one hit.
 enum class Shadow : std::uint8_t { kNone = 0, kVisible = 1, kTest = 2 };
 
@@ -71,7 +89,7 @@ struct Level {
                                  // spheres + planes + triangles + mesh k; -1: miss
   std::vector<std::int32_t> prim;  // a mesh's triangle
   // Shading frame at the hit.
-  std::vector<int> material;
+  std::vector<std::int32_t> material;
   std::vector<std::uint8_t> entering;
   std::vector<std::uint8_t> lit;  // a hit whose material has kd or ks: lights are evaluated there
   std::vector<std::uint8_t> active;  // the light kernel's lanes: lit, or every hit while recording
@@ -79,11 +97,14 @@ struct Level {
   Vec3 lo{0}, hi{0};              // bounds of the hit points
   double max_offset = 0;          // the largest surface_offset among them
   std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset;
-  std::vector<Terms> terms;
-  // One light at those points, with its shadow rays (kernel output, tested in place).
-  std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max;
+  // The terms of shade() but the ambient (the material's), summed light by light, and what the
+  // children bring back (zero at lanes without them).
+  ColorArrays diffuse, specular, reflection, refraction;
+  // One light at those points, with its shadow rays (kernel output, tested in place), and where
+  // it is seen with its specular factor.
+  std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max, spec;
   std::vector<Shadow> shadow;
-  std::vector<std::uint8_t> blocked;
+  std::vector<std::uint8_t> blocked, seen;
   // Children: the bounce at mirror and glass hits (kernel output), the level's reflected and
   // refracted rays, and what they bring back.
   std::vector<std::uint8_t> bounces, tir;
@@ -97,7 +118,7 @@ struct Level {
     const int size = padded(count);
     for (std::vector<double>* v : {&t, &b1, &b2, &px, &py, &pz, &nx, &ny, &nz, &gx, &gy, &gz, &vx, &vy, &vz, &offset,
                                    &n_dot_l, &cos_spec, &sox, &soy, &soz, &sdx, &sdy, &sdz, &st_max, &ior, &eta,
-                                   &fresnel, &mx, &my, &mz, &tx, &ty, &tz}) {
+                                   &fresnel, &mx, &my, &mz, &tx, &ty, &tz, &spec}) {
       fit(*v, size);
     }
     fit(id, size);
@@ -109,9 +130,10 @@ struct Level {
     fit(node, size);
     fit(bounces, size);
     fit(tir, size);
-    fit(terms, size);
+    for (ColorArrays* c : {&diffuse, &specular, &reflection, &refraction}) c->fit_lanes(size);
     fit(shadow, size);
     fit(blocked, size);
+    fit(seen, size);
     fit(kr, size);
     fit(kt, size);
     fit(reflected_index, size);
@@ -121,6 +143,19 @@ struct Level {
     return {px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), gx.data(),
             gy.data(), gz.data(), vx.data(), vy.data(), vz.data(), offset.data(), entering.data()};
   }
+};
+
+// A colour per material (or per light and material) as structure of arrays, for the kernels.
+struct MaterialColors {
+  std::vector<double> r, g, b;
+
+  void push(const Color& c) {
+    r.push_back(c.r);
+    g.push_back(c.g);
+    b.push_back(c.b);
+  }
+  // The colours from entry `first` on (a light's, when stored light by light).
+  packet::ByMaterial from(std::size_t first) const { return {r.data() + first, g.data() + first, b.data() + first}; }
 };
 
 // What the light loop needs of a material, gathered once per scene.

@@ -1,7 +1,7 @@
 // The hot loops of the packet tracer (src/core/packet/packet.cpp), four rays at a time with AVX2.
 //
 // They live in their own translation units (packet_avx2.cpp: intersections; packet_avx2_shading.cpp:
-// hit records, camera rays, lights, bounces), compiled with -mavx2 and called only after a
+// hit records, camera rays, lights and their sums, bounces), compiled with -mavx2 and called only after a
 // runtime check of the CPU, so the default build still runs on any x86-64 machine. Those units
 // must not define any inline or template function they share with the rest of the program (the
 // linker could otherwise keep its AVX2 copy for everyone): they see only this header, which
@@ -125,6 +125,38 @@ struct ShadowCounts {
   int lit = 0, tested = 0;
 };
 ShadowCounts light(const LightIn& light, const ShadedPoints& pts, int lanes, const LightOut& out);
+
+// Colours as structure of arrays: one per material (read) or one per lane (written).
+struct ByMaterial {
+  const double *r, *g, *b;
+};
+struct ColorLanes {
+  double *r, *g, *b;
+};
+
+// One light's terms added where it is seen (shade()'s light loop after the shadow query): for
+// the lanes with seen[i] set, diffuse += (I_l kd) N.L and specular += (I_l ks) spec, with I_l kd
+// and I_l ks of the lane's material. Other lanes, and their material entries, are not read.
+void add_light(const ByMaterial& kd, const ByMaterial& ks, const std::int32_t* material, const std::uint8_t* seen,
+               const double* n_dot_l, const double* spec, int lanes, const ColorLanes& diffuse,
+               const ColorLanes& specular);
+
+// The box of the hit points (lanes [0, live) whose id is >= 0; a NaN coordinate is passed
+// over) and their largest offset: out = lo x, y, z, hi x, y, z, the offset (+inf, -inf and 0
+// with no hit).
+void hit_bounds(const double* px, const double* py, const double* pz, const double* offset, const std::int32_t* id,
+                int live, double* out);
+
+// Terms::sum of every hit (id >= 0) among lanes [0, live): (((ambient + diffuse) + specular) +
+// reflection) + refraction, the ambient of the lane's material, a null reflection or refraction
+// standing for zeros. Written as colours (r, g, b of lane i at out[3 i ..]); misses are left.
+struct TermLanes {
+  ColorLanes diffuse, specular;
+  const ColorLanes* reflection;
+  const ColorLanes* refraction;
+};
+void sum_terms(const ByMaterial& ambient, const std::int32_t* material, const std::int32_t* id,
+               const TermLanes& terms, int live, double* out);
 
 // The box of the origins, and of the directions, of the rays in lanes [0, live) whose t_max is
 // > 0 (every one when t_max is null): out = lo x, y, z, hi x, y, z of the origins, then of the
