@@ -320,24 +320,17 @@ void Viewer::apply_edits(double frame_start) {
     lesson_.exploring = true;
   }
   lesson_.applied = false;
-  if (edits_.scene) {
-    doc_.update_dirty();
-    recovery_.last_edit = frame_start;
-  }
+  if (edits_.scene) recovery_.last_edit = frame_start;
   if (edits_.replaced) {
     dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());
-    history_.reset(scene);
-    commit_pending_ = false;
+    session_.reset_history();
     solo_ = ui::LightSolo{};
-  } else if (edits_.scene && !restored_) {
-    commit_pending_ = true;
+  } else if (edits_.scene && !edits_.through_session) {
+    session_.edited_in_place();
   }
-  restored_ = false;
+  edits_.through_session = false;
   // One undo step per gesture: a slider drag, a light drag or an object drag commits when it ends.
-  if (commit_pending_ && !ImGui::IsAnyItemActive() && drag_.mode == DragMode::kNone) {
-    history_.commit(scene);
-    commit_pending_ = false;
-  }
+  session_.settle(ImGui::IsAnyItemActive() || drag_.mode != DragMode::kNone);
 
   // "Move your head": a new shading eye (angle, probe or camera changed) re-shades. While the
   // angle slider is held, the next eye waits for the image of the last one, however long it

@@ -1,4 +1,4 @@
-// The previewer's main loop: owns the editable scene (through SceneDocument), hands the
+// The previewer's main loop: holds the session (src/session: the scene, its file, edits and undo), hands the
 // progressive renderer a snapshot at most once per UI frame, shows its latest image, draws the
 // panels, turns mouse drags into camera and light moves, and runs test scripts.
 #pragma once
@@ -17,7 +17,8 @@
 
 #include <imgui.h>
 
-#include "apps/previewer/viewer_document.h"
+#include "session/document.h"
+#include "session/session.h"
 #include "apps/previewer/viewer_gl.h"
 #include "apps/previewer/viewer_platform.h"
 #include "io/image_io.h"
@@ -205,7 +206,7 @@ class Viewer {
   void refresh_probe();                          // probes the same pixel again in the newest snapshot
   void undo();                                   // Ctrl+Z: the scene before the last edit
   void redo();                                   // Ctrl+Shift+Z
-  void restore(std::optional<Scene> step);       // makes an undo/redo step the scene, if any
+  void restored();                               // after an undo or redo step: selection and restart
   void snapshot_a(bool first_full = false);      // asks for A: the image shown, once it is done (or at full resolution)
   int target_spp() const;                        // the renderer's target: a lesson's difference stays at A's samples
   void take_a_when_final();                      // takes the asked-for A when the image is done
@@ -304,7 +305,8 @@ class Viewer {
 
   Platform& platform_;
   ViewerOptions options_;
-  SceneDocument doc_;
+  Session session_;                             // the document, its edits and undo (src/session)
+  SceneDocument& doc_ = session_.document();    // its file side, as the shell's files still name it
   ProgressiveRenderer renderer_;
   ImageView image_view_;
 
@@ -351,9 +353,6 @@ class Viewer {
   std::string title_;
 
   // Instruments.
-  ui::SceneHistory history_;           // undo and redo of committed edits
-  bool commit_pending_ = false;        // an edit waits for its gesture to end before it is committed
-  bool restored_ = false;              // this frame's scene change came from undo or redo: no commit
   std::string camera_notice_;          // why the last typed camera value was refused
   std::uint64_t a_generation_ = 0;     // the renderer generation A was asked of
   std::string figure_path_ = "phonglab-figure.png";
@@ -380,6 +379,7 @@ class Viewer {
   // What this frame's panels and input changed (apply_edits turns them into one restart).
   struct EditFlags {
     bool scene = false;            // materials, lights, shading: restart and mark unsaved
+    bool through_session = false;  // the session already knows of it (an Edit applied, undo, redo)
     bool camera = false;           // navigation: restart, not an unsaved change
     bool replaced = false;         // opened or reloaded
     bool settings = false;         // render settings panel

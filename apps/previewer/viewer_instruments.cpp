@@ -62,24 +62,20 @@ void Viewer::refresh_probe() {
 }
 
 void Viewer::undo() {
-  if (commit_pending_) {
-    history_.commit(doc_.scene());  // a gesture still in progress becomes the step undone
-    commit_pending_ = false;
-  }
-  restore(history_.undo(doc_.scene()));
+  if (session_.undo()) restored();
 }
 
-void Viewer::redo() { restore(history_.redo(doc_.scene())); }
+void Viewer::redo() {
+  if (session_.redo()) restored();
+}
 
-void Viewer::restore(std::optional<Scene> step) {
-  if (!step) return;
-  Scene& scene = doc_.scene();
-  scene = std::move(*step);
+void Viewer::restored() {
+  const Scene& scene = session_.scene();
   selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
   if (selected_object_ >= ui::object_count(scene)) selected_object_ = -1;
   objects_notice_ = ui::EditNotice{};
   edits_.scene = true;
-  restored_ = true;
+  edits_.through_session = true;
 }
 
 void Viewer::snapshot_a(bool first_full) {

@@ -110,7 +110,17 @@ void Viewer::sidebar_materials() {
   Scene& scene = doc_.scene();
   if (picked_text_.empty()) ImGui::TextDisabled("Click an object in the view to select its material.");
   else ImGui::TextDisabled("Clicked: %s", picked_text_.c_str());
-  if (ui::materials_panel(scene.materials, selected_material_, scene.specular_model)) edits_.scene = true;
+  // A coefficient edited in the panel reaches the renderer as a value: the panel edits a copy,
+  // the session applies it as an edit (one undo step when the slider is let go), and
+  // apply_edits hands the session's scene to the renderer.
+  std::vector<Material> materials = scene.materials;
+  if (ui::materials_panel(materials, selected_material_, scene.specular_model)) {
+    for (std::size_t k = 0; k < materials.size(); ++k) {
+      if (materials[k] == scene.materials[k]) continue;
+      session_.apply({edit::SetMaterial{static_cast<int>(k), materials[k]}, ImGui::IsAnyItemActive()});
+      edits_.scene = edits_.through_session = true;
+    }
+  }
   ui::MaterialActions actions;
   ui::material_library(scene, selected_material_, material_name_field_, actions);
   const int m = selected_material_;
@@ -189,8 +199,8 @@ void Viewer::sidebar_probe() {
 void Viewer::sidebar_instruments() {
   ui::InstrumentActions actions;
   const ui::InstrumentSettings before = instruments_;
-  if (ui::instruments_panel(instruments_, actions, !compare_.image.pixels.empty(), history_.undo_count(),
-                            history_.redo_count(), figure_path_, figure_status_)) {
+  if (ui::instruments_panel(instruments_, actions, !compare_.image.pixels.empty(), session_.undo_count(),
+                            session_.redo_count(), figure_path_, figure_status_)) {
     if (before.small_multiples != instruments_.small_multiples) edits_.settings = true;
     upload_pending_ = upload_pending_ || !shown_.pixels.empty();  // a compare view changed
   }

@@ -141,8 +141,8 @@ void Viewer::write_layout_state(std::ostream& out) const {
   std::string enabled;
   for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';
   out << "lights_enabled=" << enabled << "\n"
-      << "undo=" << history_.undo_count() << "\n"
-      << "redo=" << history_.redo_count() << "\n"
+      << "undo=" << session_.undo_count() << "\n"
+      << "redo=" << session_.redo_count() << "\n"
       << "multiples=" << (instruments_.small_multiples ? 1 : 0) << "\n"
       << "wipe=" << instruments_.wipe << "\n"
       << "compare=" << instruments_.compare << "\n"

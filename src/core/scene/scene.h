@@ -30,6 +30,7 @@ struct Light {
   Vec3 direction{0, -1, 0};  // directional lights: unit direction the light travels in
   Color intensity{1, 1, 1};  // I_l, linear RGB
   bool enabled = true;       // previewer "mute"; a disabled light adds nothing and casts no rays
+  bool operator==(const Light&) const = default;
 };
 
 // The lecture's coefficients. All colours are linear RGB, per channel.
@@ -45,6 +46,7 @@ struct Material {
   bool fresnel = false;    // weight kr/kt by the exact unpolarised Fresnel reflectance
   std::string source{};    // empty: the scene file's; else the mesh file whose MTL made it
                            // (not written back by scene_to_json: the MTL holds it)
+  bool operator==(const Material&) const = default;
 };
 
 enum class SpecularModel : std::uint8_t { kPhong, kBlinn };

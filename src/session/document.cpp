@@ -1,4 +1,4 @@
-#include "apps/previewer/viewer_document.h"
+#include "session/document.h"
 
 #include <filesystem>
 #include <system_error>
@@ -24,18 +24,18 @@ std::optional<std::filesystem::file_time_type> SceneDocument::current_mtime() co
   return t;
 }
 
-std::string SceneDocument::content(const Scene& scene) const {
+std::string scene_content(const Scene& scene) {
   Scene copy = scene;
   copy.camera = Camera{};  // navigation is not an edit
   return scene_to_json(copy, ".");
 }
 
 void SceneDocument::mark_saved() {
-  saved_content_ = content(scene_);
+  saved_content_ = scene_content(scene_);
   dirty_ = false;
 }
 
-void SceneDocument::update_dirty() { dirty_ = content(scene_) != saved_content_; }
+void SceneDocument::update_dirty() { dirty_ = scene_content(scene_) != saved_content_; }
 
 void SceneDocument::adopt(const Scene& scene, const std::string& source) {
   scene_ = scene;

@@ -12,6 +12,10 @@
 
 namespace phonglab {
 
+// What the unsaved state compares: the scene as its file's text, the camera aside (navigation
+// is not an edit, though Save writes it).
+std::string scene_content(const Scene& scene);
+
 class SceneDocument {
  public:
   // Opens SCENE: an embedded scene's name or a file path. On failure the current scene stays
@@ -60,7 +64,6 @@ class SceneDocument {
 
  private:
   bool write(const std::string& path);
-  std::string content(const Scene& scene) const;  // what dirty() compares: the file's text, camera aside
   void mark_saved();                              // the scene as it is now is what the file holds
   std::optional<std::filesystem::file_time_type> current_mtime() const;
 

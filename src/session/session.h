@@ -1,0 +1,92 @@
+// The previewer's document and the rules of editing it, without a window: the scene and its
+// file (SceneDocument), edits taken as values, undo and redo one gesture at a time, the unsaved
+// state, and what each edit invalidates in the last image. The shell (apps/previewer) turns
+// input into edits and shows what the session holds; tests/session drives it directly.
+// No GLFW, ImGui or GL (the layering test says so).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <variant>
+
+#include "core/render/ray_trees.h"
+#include "core/scene/scene.h"
+#include "interaction/history.h"
+#include "session/document.h"
+
+namespace phonglab {
+
+// An edit as a value: what the panels, the mouse, a lesson step or a script change.
+namespace edit {
+struct SetMaterial {  // material `index` becomes `value` (a coefficient slider, a preset)
+  int index = 0;
+  Material value;
+};
+struct SetLight {  // light `index` becomes `value` (its panel, a drag of its marker, mute)
+  int index = 0;
+  Light value;
+};
+struct SetCamera {  // navigation: restarts the image, not an unsaved change
+  Camera value;
+};
+struct SetScene {  // anything else: objects built, materials added or removed, the shading panel
+  Scene value;
+};
+}  // namespace edit
+
+struct Edit {
+  std::variant<edit::SetMaterial, edit::SetLight, edit::SetCamera, edit::SetScene> change;
+  // Part of a gesture still under way (a slider held, a drag): the gesture's edits become one
+  // undo step when it ends (Session::settle).
+  bool held = false;
+};
+
+// What apply() did.
+struct Applied {
+  bool changed = false;                   // the scene differs from before
+  EditScope scope = EditScope::kNothing;  // what the change invalidates in the last image
+  bool unsaved = false;                   // it counts as an unsaved change (navigation does not)
+};
+
+class Session {
+ public:
+  // The document: open (an embedded scene's name or a file), read again, or a scene adopted
+  // (a lesson's step). Each success starts the undo history anew; a failure keeps everything.
+  bool open(const std::string& scene_arg);
+  bool reload(bool keep_view);
+  void adopt(const Scene& scene, const std::string& source);
+
+  // An edit. An index out of range changes nothing (changed = false).
+  Applied apply(const Edit& edit);
+  // The shell changed scene_for_edit() in place (panels not yet turned into edits): the same
+  // bookkeeping as apply() of a scene edit.
+  void edited_in_place();
+  // Once a UI frame: while no gesture holds them, the pending edits become one undo step.
+  void settle(bool gesture_held);
+  // The undo history starts anew from the scene as it is (a document replaced from outside).
+  void reset_history();
+
+  // The scene before the last undo step (or after the last undone one), keeping the camera:
+  // navigation is not an edit. A gesture still under way becomes the step undone. False when
+  // there is none.
+  bool undo();
+  bool redo();
+  std::size_t undo_count() const { return history_.undo_count(); }
+  std::size_t redo_count() const { return history_.redo_count(); }
+  bool edit_pending() const { return pending_; }  // edits wait for their gesture to end
+
+  const Scene& scene() const { return document_.scene(); }
+  Scene& scene_for_edit() { return document_.scene(); }
+  SceneDocument& document() { return document_; }
+  const SceneDocument& document() const { return document_; }
+  bool dirty() const { return document_.dirty(); }
+
+ private:
+  void edited();  // dirty again, and an undo step pending
+
+  SceneDocument document_;
+  ui::SceneHistory history_;
+  bool pending_ = false;
+};
+
+}  // namespace phonglab
