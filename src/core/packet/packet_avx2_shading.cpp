@@ -234,6 +234,20 @@ inline __m128i material_lanes(const std::int32_t* material) {
 inline V gather(const double* base, __m128i index, V mask) {
   return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index, mask, 8);
 }
+// The entries of a colour per material for the lanes in `bits`: one entry broadcast when those
+// lanes share a material (the usual case: a packet sees one object), else gathered.
+struct MaterialLanes {
+  __m128i index;
+  V mask;
+  int shared;  // the material all the lanes share, or -1
+
+  MaterialLanes(const std::int32_t* material, int bits) : index(material_lanes(material)), mask(lane_mask(bits)) {
+    const int first = __builtin_ctz(static_cast<unsigned>(bits));
+    const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(index, _mm_set1_epi32(material[first]))));
+    shared = (same & bits) == bits ? material[first] : -1;
+  }
+  V of(const double* base) const { return shared >= 0 ? splat(base[shared]) : gather(base, index, mask); }
+};
 // Bit j set where lane j of the four from id on is a hit (id >= 0) and j < live.
 inline int hit_lanes(const std::int32_t* id, int live) {
   const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(id));
@@ -253,15 +267,15 @@ void add_light(const ByMaterial& kd, const ByMaterial& ks, const std::int32_t* m
   for (int i = 0; i < lanes; i += 4) {
     const int bits = byte_lanes(seen + i);
     if (bits == 0) continue;
-    const V mask = lane_mask(bits);
-    const __m128i m = material_lanes(material + i);
+    const MaterialLanes m(material + i, bits);
+    const V mask = m.mask;
     const V ndl = load(n_dot_l + i), sp = load(spec + i);
-    add_where(diffuse.r + i, mask, gather(kd.r, m, mask) * ndl);
-    add_where(diffuse.g + i, mask, gather(kd.g, m, mask) * ndl);
-    add_where(diffuse.b + i, mask, gather(kd.b, m, mask) * ndl);
-    add_where(specular.r + i, mask, gather(ks.r, m, mask) * sp);
-    add_where(specular.g + i, mask, gather(ks.g, m, mask) * sp);
-    add_where(specular.b + i, mask, gather(ks.b, m, mask) * sp);
+    add_where(diffuse.r + i, mask, m.of(kd.r) * ndl);
+    add_where(diffuse.g + i, mask, m.of(kd.g) * ndl);
+    add_where(diffuse.b + i, mask, m.of(kd.b) * ndl);
+    add_where(specular.r + i, mask, m.of(ks.r) * sp);
+    add_where(specular.g + i, mask, m.of(ks.g) * sp);
+    add_where(specular.b + i, mask, m.of(ks.b) * sp);
   }
 }
 
@@ -299,17 +313,16 @@ void sum_terms(const ByMaterial& ambient, const std::int32_t* material, const st
   for (int i = 0; i < live; i += 4) {
     const int bits = hit_lanes(id + i, live - i);
     if (bits == 0) continue;
-    const V mask = lane_mask(bits);
-    const __m128i m = material_lanes(material + i);
+    const MaterialLanes m(material + i, bits);
     V rr = zero, rg = zero, rb = zero, tr = zero, tg = zero, tb = zero;
     lanes_of(terms.reflection, i, rr, rg, rb);
     lanes_of(terms.refraction, i, tr, tg, tb);
     const ColorLanes& d = terms.diffuse;
     const ColorLanes& s = terms.specular;
     alignas(32) double r[4], g[4], b[4];
-    _mm256_store_pd(r, (((gather(ambient.r, m, mask) + load(d.r + i)) + load(s.r + i)) + rr) + tr);
-    _mm256_store_pd(g, (((gather(ambient.g, m, mask) + load(d.g + i)) + load(s.g + i)) + rg) + tg);
-    _mm256_store_pd(b, (((gather(ambient.b, m, mask) + load(d.b + i)) + load(s.b + i)) + rb) + tb);
+    _mm256_store_pd(r, (((m.of(ambient.r) + load(d.r + i)) + load(s.r + i)) + rr) + tr);
+    _mm256_store_pd(g, (((m.of(ambient.g) + load(d.g + i)) + load(s.g + i)) + rg) + tg);
+    _mm256_store_pd(b, (((m.of(ambient.b) + load(d.b + i)) + load(s.b + i)) + rb) + tb);
     for (int j = 0; j < 4; ++j) {
       if (!(bits >> j & 1)) continue;
       double* o = out + 3 * (i + j);
