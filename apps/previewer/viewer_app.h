@@ -207,6 +207,8 @@ class Viewer {
   void undo();                                   // Ctrl+Z: the scene before the last edit
   void redo();                                   // Ctrl+Shift+Z
   void restored();                               // after an undo or redo step: selection and restart
+  void apply_edit(const Edit& edit);             // a panel's or a script's edit, to the session; restarts
+  void move_camera(const Camera& camera);        // navigation (a drag, the wheel), to the session; restarts
   void snapshot_a(bool first_full = false);      // asks for A: the image shown, once it is done (or at full resolution)
   int target_spp() const;                        // the renderer's target: a lesson's difference stays at A's samples
   void take_a_when_final();                      // takes the asked-for A when the image is done

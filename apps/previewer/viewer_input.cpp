@@ -138,26 +138,26 @@ void Viewer::handle_viewport_input() {
 }
 
 void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int view_w, int view_h) {
-  Scene& scene = doc_.scene();
-  Camera& camera = scene.camera;
+  const Scene& scene = session_.scene();
+  Camera camera = scene.camera;
   const double per_px = kOrbitRadPerPixel / platform_.ui_scale();
   switch (drag_.mode) {
     case DragMode::kOrbit:
       // The scene follows the hand: drag right, it turns right; drag down, it is seen from higher up.
       ui::orbit(camera, -delta.x * per_px, delta.y * per_px);
-      edits_.camera = true;
+      move_camera(camera);
       break;
     case DragMode::kPan: {
       Camera moved = view;  // the fitted field of view sets how far a pixel goes
       ui::pan(moved, delta.x, delta.y, viewport_.height);
       camera.position = moved.position;
       camera.look_at = moved.look_at;
-      edits_.camera = true;
+      move_camera(camera);
       break;
     }
     case DragMode::kDolly:
       ui::dolly(camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
-      edits_.camera = true;
+      move_camera(camera);
       break;
     case DragMode::kLight:
       if (drag_.light >= 0 && drag_.light < static_cast<int>(scene.lights.size()) && drag_.light_depth > 0) {
@@ -165,9 +165,9 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
         // Kept to float precision, as every value the panels edit: a saved file reads 1.8074448,
         // not 1.8074447666598992.
         const Vec3 p = ui::unproject(view, at, drag_.light_depth, view_w, view_h);
-        scene.lights[static_cast<std::size_t>(drag_.light)].position =
-            Vec3(ui::tidy_float(p.x), ui::tidy_float(p.y), ui::tidy_float(p.z));
-        edits_.scene = true;
+        Light light = scene.lights[static_cast<std::size_t>(drag_.light)];
+        light.position = Vec3(ui::tidy_float(p.x), ui::tidy_float(p.y), ui::tidy_float(p.z));
+        apply_edit({edit::SetLight{drag_.light, light}, true});  // one undo step when the drag ends
       }
       break;
     case DragMode::kObject:
@@ -180,6 +180,11 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
     case DragMode::kNone:
       break;
   }
+}
+
+void Viewer::move_camera(const Camera& camera) {
+  session_.apply({edit::SetCamera{camera}});
+  edits_.camera = true;
 }
 
 void Viewer::handle_keys() {

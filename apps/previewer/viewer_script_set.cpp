@@ -26,15 +26,15 @@ bool Viewer::script_set(const std::vector<std::string>& w) {
 
 // `set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V..`.
 bool Viewer::set_material_field(const std::vector<std::string>& w) {
-  Scene& scene = doc_.scene();
-  Material* m = nullptr;
+  const Scene& scene = session_.scene();
+  int index = -1;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    if (scene.materials[i].name == w[2]) {
-      m = &scene.materials[i];
-      selected_material_ = static_cast<int>(i);
-    }
+    if (scene.materials[i].name == w[2]) index = static_cast<int>(i);
   }
-  if (m == nullptr) return false;
+  if (index < 0) return false;
+  selected_material_ = index;
+  Material changed = scene.materials[static_cast<std::size_t>(index)];
+  Material* m = &changed;
   const std::string& field = w[3];
   double v = 0;
   if (field == "ka" || field == "kd" || field == "ks" || field == "kr" || field == "kt") {
@@ -50,16 +50,16 @@ bool Viewer::set_material_field(const std::vector<std::string>& w) {
   } else {
     return false;
   }
-  edits_.scene = true;
+  apply_edit({edit::SetMaterial{index, changed}});
   return true;
 }
 
 // `set light I position|direction|intensity|enabled V..`.
 bool Viewer::set_light_field(const std::vector<std::string>& w) {
-  Scene& scene = doc_.scene();
+  const Scene& scene = session_.scene();
   int index = 0;
   if (!parse_int(w[2], index) || index < 0 || index >= static_cast<int>(scene.lights.size())) return false;
-  Light& light = scene.lights[static_cast<std::size_t>(index)];
+  Light light = scene.lights[static_cast<std::size_t>(index)];
   const std::string& field = w[3];
   Vec3 v;
   if (field == "position" && parse_vec3(w, 4, false, v)) light.position = v;
@@ -68,7 +68,7 @@ bool Viewer::set_light_field(const std::vector<std::string>& w) {
   else if (field == "enabled" && w.size() == 5) light.enabled = w[4] == "1" || w[4] == "true";
   else return false;
   selected_light_ = index;
-  edits_.scene = true;
+  apply_edit({edit::SetLight{index, light}});
   return true;
 }
 

@@ -29,6 +29,24 @@ namespace phonglab {
 
 namespace {
 
+// The index of the one element that differs between two lists of the same length; -1 when
+// none or more than one does, or the lengths differ.
+template <class T>
+int only_change(const std::vector<T>& before, const std::vector<T>& after) {
+  if (before.size() != after.size()) return -1;
+  int changed = -1;
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    if (before[k] == after[k]) continue;
+    if (changed >= 0) return -1;
+    changed = static_cast<int>(k);
+  }
+  return changed;
+}
+
+}  // namespace
+
+namespace {
+
 // A panel header that tests can find by name ("panel.Lights") and click.
 bool header(const char* title, bool open_by_default) {
   const bool open = ImGui::CollapsingHeader(title, open_by_default ? ImGuiTreeNodeFlags_DefaultOpen : 0);
@@ -115,11 +133,12 @@ void Viewer::sidebar_materials() {
   // apply_edits hands the session's scene to the renderer.
   std::vector<Material> materials = scene.materials;
   if (ui::materials_panel(materials, selected_material_, scene.specular_model)) {
-    for (std::size_t k = 0; k < materials.size(); ++k) {
-      if (materials[k] == scene.materials[k]) continue;
-      session_.apply({edit::SetMaterial{static_cast<int>(k), materials[k]}, ImGui::IsAnyItemActive()});
-      edits_.scene = edits_.through_session = true;
-    }
+    const int k = only_change(scene.materials, materials);
+    Scene whole = scene;
+    whole.materials = materials;
+    const bool held = ImGui::IsAnyItemActive();
+    apply_edit(k >= 0 ? Edit{edit::SetMaterial{k, materials[static_cast<std::size_t>(k)]}, held}
+                      : Edit{edit::SetScene{whole}, held});
   }
   ui::MaterialActions actions;
   ui::material_library(scene, selected_material_, material_name_field_, actions);
@@ -158,18 +177,29 @@ void Viewer::sidebar_objects() {
 }
 
 void Viewer::sidebar_lights() {
-  Scene& scene = doc_.scene();
-  const std::size_t count = scene.lights.size();
-  if (ui::lights_panel(scene.lights, selected_light_, solo_)) edits_.scene = true;
+  const Scene& scene = session_.scene();
+  std::vector<Light> lights = scene.lights;
+  if (!ui::lights_panel(lights, selected_light_, solo_)) return;
   // A new point light goes where the lecturer can see it and grab it: above and left of the
   // look-at point, in the view, at the look-at point's depth.
-  if (scene.lights.size() == count + 1 && scene.lights.back().type == LightType::kPoint) {
+  if (lights.size() == scene.lights.size() + 1 && lights.back().type == LightType::kPoint) {
     const Camera view = view_camera();
     const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
     const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
     const double depth = ui::view_depth(view, view.look_at);
-    scene.lights.back().position = ui::unproject(view, ui::ViewportPoint{0.3 * w, 0.2 * h}, depth, w, h);
+    lights.back().position = ui::unproject(view, ui::ViewportPoint{0.3 * w, 0.2 * h}, depth, w, h);
   }
+  // One light changed is that light's edit; a light added or removed, or a solo, the scene's.
+  const int k = only_change(scene.lights, lights);
+  Scene whole = scene;
+  whole.lights = lights;
+  const bool held = ImGui::IsAnyItemActive();
+  apply_edit(k >= 0 ? Edit{edit::SetLight{k, lights[static_cast<std::size_t>(k)]}, held} : Edit{edit::SetScene{whole}, held});
+}
+
+void Viewer::apply_edit(const Edit& edit) {
+  session_.apply(edit);
+  edits_.scene = edits_.through_session = true;  // a restart, as for any edit a panel reports
 }
 
 void Viewer::sidebar_probe() {
