@@ -84,7 +84,7 @@ struct RenderSettings {
   float resolution_scale = 1;   // rendered pixels per framebuffer pixel along each axis
   int threads = 0;              // 0 = all hardware threads
   Term term = Term::kFull;      // full image, one term of the equation, or a debug view
-  int live_images_per_s = 30;   // while dragging: images a second the start level must allow (0: 1/8 always)
+  int live_images_per_s = 24;   // while dragging: images a second the start level must allow (0: 1/8 always)
   int tree_budget_mib = 512;    // memory for the first sample's ray trees (re-shading); 0: none
 };
 bool render_settings_panel(RenderSettings& settings, int hardware_threads);

@@ -167,16 +167,40 @@ TEST(ProgressiveLevels, LiveStartIsTheFinestLevelThatFitsTheBudget) {
   ASSERT_EQ(levels.size(), 4u);
   LevelTimes times;
   EXPECT_EQ(live_start_level(levels, times, 33), 0u);  // nothing measured: the coarsest
-  times.at(8) = 0.5;  // 160x90; 1/4 and 1/2 then expected at 2 and 8 ms, full at 32
+  times.note(8, 0.5);  // 160x90; 1/4 and 1/2 then expected at 2 and 8 ms, full at 32
   EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 1);
   EXPECT_EQ(levels[live_start_level(levels, times, 31.9)].divisor, 2);
   EXPECT_EQ(levels[live_start_level(levels, times, 7.9)].divisor, 4);
   EXPECT_EQ(levels[live_start_level(levels, times, 0.4)].divisor, 8);  // none fits: the coarsest
-  times.at(2) = 20;  // measured slower than expected: the full level is now expected at 80 ms
+  times.note(2, 20);  // measured slower than expected: the full level is now expected at 80 ms
   EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 2);
   EXPECT_EQ(levels[live_start_level(levels, times, 19)].divisor, 4);
-  times.at(1) = 30;  // measured: that wins over the estimate
+  times.note(1, 30);  // measured: that wins over the estimate
   EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 1);
+}
+
+// A level's expected time is the median of its last three passes: one slow pass does not move a
+// drag to a coarser level; a probe tries one level finer when it is expected within 1.5 budgets.
+TEST(ProgressiveLevels, OneSlowPassDoesNotDemoteAndAProbeTriesOneFiner) {
+  const std::vector<ProgressiveLevel> levels = make_levels(1280, 720);
+  LevelTimes times;
+  times.note(8, 0.5);
+  times.note(4, 2);
+  times.note(2, 9);
+  times.note(1, 35);
+  times.note(1, 36);
+  EXPECT_DOUBLE_EQ(times.at(1), 35.5);  // the mean of two
+  times.note(1, 60);                    // one pass on a busy moment
+  EXPECT_DOUBLE_EQ(times.at(1), 36);    // the median of three
+  EXPECT_EQ(levels[live_start_level(levels, times, 41.7)].divisor, 1);
+  times.note(1, 61);
+  EXPECT_DOUBLE_EQ(times.at(1), 60);  // two slow ones: it is slow now
+  EXPECT_EQ(levels[live_start_level(levels, times, 41.7)].divisor, 2);
+  EXPECT_EQ(levels[live_start_level(levels, times, 41.7, true)].divisor, 1) << "60 ms is within 1.5 budgets";
+  EXPECT_EQ(levels[live_start_level(levels, times, 33, true)].divisor, 2) << "60 ms is beyond 1.5 budgets";
+  times.note(1, 34);
+  times.note(1, 33);
+  EXPECT_EQ(levels[live_start_level(levels, times, 41.7)].divisor, 1) << "the probe measured it fast again";
 }
 
 // Once its levels have been timed, a restart while interacting starts at the finest level that

@@ -53,22 +53,42 @@ std::vector<ProgressiveLevel> make_levels(int width, int height) {
   return levels;
 }
 
-std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms) {
+double LevelTimes::at(int divisor) const {
+  static_assert(kKept == 3);
+  const std::array<double, kKept>& t = recent[slot(divisor)];  // newest first: zeros only at the end
+  if (!(t[1] > 0)) return t[0];
+  if (!(t[2] > 0)) return 0.5 * (t[0] + t[1]);
+  return std::max(std::min(t[0], t[1]), std::min(std::max(t[0], t[1]), t[2]));  // the median
+}
+
+void LevelTimes::note(int divisor, double ms) {
+  std::array<double, kKept>& t = recent[slot(divisor)];
+  std::rotate(t.begin(), t.end() - 1, t.end());  // newest first: the oldest drops off
+  t[0] = ms;
+}
+
+std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms,
+                             bool probe) {
   std::size_t start = 0;
   double known_ms = 0;   // the last measured level's time on the way up
   double known_px = 0;   // and its pixel count
+  std::vector<double> expected(levels.size(), 0.0);  // 0: nothing known at or below the level
   for (std::size_t i = 0; i < levels.size(); ++i) {
     const double px = static_cast<double>(levels[i].width) * levels[i].height;
-    double expected = times.at(levels[i].divisor);
-    if (expected > 0) {
-      known_ms = expected;
+    double ms = times.at(levels[i].divisor);
+    if (ms > 0) {
+      known_ms = ms;
       known_px = px;
     } else if (known_ms > 0) {
-      expected = known_ms * px / known_px;
+      ms = known_ms * px / known_px;
     } else {
-      continue;  // nothing known yet at or below this level
+      continue;
     }
-    if (expected <= budget_ms) start = i;
+    expected[i] = ms;
+    if (ms <= budget_ms) start = i;
+  }
+  if (probe && start + 1 < levels.size() && expected[start + 1] > 0 && expected[start + 1] <= 1.5 * budget_ms) {
+    ++start;
   }
   return start;
 }
@@ -187,7 +207,8 @@ struct ProgressiveRenderer::Job {
   bool live = false;            // the next pass recombines the stored trees' sums (a linear edit, hand on)
   bool live_shown = false;      // the image is the live one: the exact re-shade is owed
   bool accum_live = false;      // accum holds the image the trees last recombined, nothing since
-  LevelTimes level_times;       // the last pass at each level, for live_start_level
+  LevelTimes level_times;       // the last passes at each level, for live_start_level
+  std::chrono::steady_clock::time_point last_probe;  // the last restart started finer than fits (live_level)
   double live_ms = 1e9;         // the last live pass (wait_for_live_image); none yet: not quick
   Accumulator accum;
   std::uint64_t nan_count = 0;
@@ -263,17 +284,17 @@ void ProgressiveRenderer::run() {
       pass = render_pass(*job.scene, options, job.accum, &cancel_);
     }
     const double divisor_ms = pass.seconds * 1e3;
-    double& measured = job.level_times.at(job.levels[job.level].divisor);
+    const int divisor = job.levels[job.level].divisor;
     if (!pass.completed) {
       // A first pass overtaken by the next restart took at least this long: while interacting
       // the next restart starts below it, or nothing would ever show.
-      if (!job.published_any) measured = std::max(measured, divisor_ms);
+      if (!job.published_any && divisor_ms > job.level_times.at(divisor)) job.level_times.note(divisor, divisor_ms);
       // Cancelled midway: a restart is pending and the accumulator is partly updated.
       job.accum.reset(job.levels[job.level].width, job.levels[job.level].height, job.settings.term_images);
       job.accum_live = false;
       continue;
     }
-    if (!job.reshaded) measured = divisor_ms;  // a re-shade says nothing of a traced pass's time
+    if (!job.reshaded) job.level_times.note(divisor, divisor_ms);  // a re-shade says nothing of a traced pass's time
     job.nan_count += pass.nan_count;
     publish(job, pass);
     if (job.level + 1 < job.levels.size()) {
@@ -340,7 +361,7 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   if (job.reshade) {
     job.level = job.levels.size() - 1;
   } else {
-    job.level = interacting_ ? live_start_level(job.levels, job.level_times, live_budget_ms(settings_)) : 0;
+    job.level = interacting_ ? live_level(job) : 0;
   }
   job.start_level = job.level;
   job.nan_count = 0;
@@ -350,6 +371,19 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   // "the job you hold is stale".
   cancel_.store(false);
   job.accum_stale = true;  // made ready outside the lock (22 MB to clear at 1280x720)
+}
+
+// Where a restart while interacting starts: the finest level that fits the live budget, or,
+// twice a second, one finer (a probe: the finer level's time may be stale, measured before the
+// machine got quieter or on a view that cost more).
+std::size_t ProgressiveRenderer::live_level(Job& job) const {
+  const double budget = live_budget_ms(settings_);
+  const std::size_t fits = live_start_level(job.levels, job.level_times, budget);
+  const auto now = std::chrono::steady_clock::now();
+  if (now - job.last_probe < kProbePeriod) return fits;
+  const std::size_t probed = live_start_level(job.levels, job.level_times, budget, true);
+  if (probed != fits) job.last_probe = now;
+  return probed;
 }
 
 // Builds the image outside the lock; publishing is then a swap.

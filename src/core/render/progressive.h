@@ -40,7 +40,7 @@ struct ProgressiveSettings {
   // While interacting, each restart starts at the finest level whose last measured pass fits
   // 1/this of a second (the previewer holds a drag's next edit until the image is out, so a
   // pass that long gives this many images a second); 0: always at the coarsest level.
-  double live_images_per_s = 30;
+  double live_images_per_s = 24;
   // Memory for the ray trees of the first sample (core/render/ray_trees.h), with which an edit
   // that changes no ray is re-shaded instead of traced; 0: none kept. The default holds a
   // 1920x1080 image of a scene like `lecture`.
@@ -97,20 +97,28 @@ struct ProgressiveLevel {
 // the next one (a tiny window renders at full resolution at once).
 std::vector<ProgressiveLevel> make_levels(int width, int height);
 
-// Pass times last measured at each level, by divisor (0: not measured yet).
+// The last pass times measured at each level, by divisor. A level's expected time is the median
+// of its last three (the mean of two, or the one): one pass slowed by the machine does not move
+// a drag to a coarser level.
 struct LevelTimes {
-  std::array<double, 4> ms{};  // at 1/8, 1/4, 1/2 and full resolution
+  static constexpr std::size_t kKept = 3;
+  std::array<std::array<double, kKept>, 4> recent{};  // at 1/8, 1/4, 1/2 and full; newest first, 0: none
   static std::size_t slot(int divisor) { return divisor >= 8 ? 0 : divisor >= 4 ? 1 : divisor >= 2 ? 2 : 3; }
-  double& at(int divisor) { return ms[slot(divisor)]; }
-  double at(int divisor) const { return ms[slot(divisor)]; }
+  // The expected time of a pass at `divisor`; 0 when none was measured.
+  double at(int divisor) const;
+  // A pass at `divisor` took `ms`.
+  void note(int divisor, double ms);
 };
 // The index into `levels` of the finest level whose pass is expected to take at most
-// `budget_ms`: its measured time, or, not measured yet, the next coarser measured level's
+// `budget_ms`: its expected time, or, not measured yet, the next coarser measured level's
 // time scaled by the ratio of their pixel counts. 0 (the coarsest) when none fits or nothing is
-// known.
+// known. With `probe`, one level finer than that when it is expected within 1.5 budgets: its
+// time was measured a while ago, perhaps on a busier machine (ProgressiveRenderer probes so
+// twice a second while the hand is on).
 // The time a pass may take while interacting: 1 / live_images_per_s (0: none).
 double live_budget_ms(const ProgressiveSettings& settings);
-std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms);
+std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms,
+                             bool probe = false);
 
 class ProgressiveRenderer {
  public:
@@ -154,6 +162,8 @@ class ProgressiveRenderer {
   void run();
   bool wait_for_work(Job& job);  // false: stop
   void start_generation_locked(Job& job);
+  std::size_t live_level(Job& job) const;  // under the lock: the level a restart while interacting starts at
+  static constexpr std::chrono::milliseconds kProbePeriod{500};
   void publish(Job& job, const PassStats& pass);
   void record_trees(Job& job);
   std::uint64_t restart_locked();
