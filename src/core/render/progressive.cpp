@@ -239,15 +239,10 @@ void ProgressiveRenderer::run() {
     }
     if (job.accum_stale) {
       const ProgressiveLevel& lv = job.levels[job.level];
-      if (job.reshade) {
-        job.accum.width = lv.width;  // a re-shade writes every pixel: no need to clear them first
-        job.accum.height = lv.height;
-        job.accum.samples = 0;
-        const std::size_t n = static_cast<std::size_t>(lv.width) * static_cast<std::size_t>(lv.height);
-        job.accum.sum.resize(n);
-        job.accum.terms.resize(job.settings.term_images ? n : 0);
-      } else {
+      if (job.live && job.interacting) {
         job.accum.reset(lv.width, lv.height, job.settings.term_images);
+      } else {  // a re-shade or a traced first pass writes every pixel: no need to clear them first
+        job.accum.reset_for_first_pass(lv.width, lv.height, job.settings.term_images);
       }
       job.accum_stale = false;
     }
@@ -299,7 +294,8 @@ void ProgressiveRenderer::run() {
     publish(job, pass);
     if (job.level + 1 < job.levels.size()) {
       ++job.level;
-      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height, job.settings.term_images);
+      job.accum.reset_for_first_pass(job.levels[job.level].width, job.levels[job.level].height,
+                                     job.settings.term_images);
       job.accum_live = false;
     } else if (!job.interacting) {
       record_trees(job);  // once per scene: at once if it has none that serve

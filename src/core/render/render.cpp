@@ -35,6 +35,15 @@ void Accumulator::reset(int w, int h, bool with_terms) {
   }
 }
 
+void Accumulator::reset_for_first_pass(int w, int h, bool with_terms) {
+  width = w;
+  height = h;
+  samples = 0;
+  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  sum.resize(n);
+  terms.resize(with_terms ? n : 0);
+}
+
 void add_terms(Terms& sum, const Terms& sample) {
   // A term that is NaN or Inf adds 0, as render_pass does with such a sample of a term image.
   const auto add = [](Color& to, const Color& c) { to += all_finite(c) ? c : Color(0); };
@@ -154,12 +163,19 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
     std::vector<Terms> tile_terms;
     if (packets) tile_radiance.resize(static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile));
     if (packets && with_terms) tile_terms.resize(tile_radiance.size());
+    // The first sample is written (0 + c, exactly what adding it to a cleared sum gives, -0
+    // included), so the accumulator needs no clearing before it (reset_for_first_pass).
+    const bool first = sample_index == 0;
     const auto add = [&](Color* row, int x, Color c) {
       if (!all_finite(c)) {
         ++stats.nan_count;
         c = Color(0);
       }
-      row[x] += c;
+      row[x] = (first ? Color(0) : row[x]) + c;
+    };
+    const auto add_pixel_terms = [&](Terms& sum, const Terms& sample) {
+      if (first) sum = Terms{};
+      add_terms(sum, sample);
     };
     for (;;) {
       if (cancel && cancel->load(std::memory_order_relaxed)) {
@@ -180,7 +196,7 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
           const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
           for (int x = x0; x < x1; ++x, ++i) {
             add(accum.sum.data() + row, x, tile_radiance[i]);
-            if (with_terms) add_terms(accum.terms[row + static_cast<std::size_t>(x)], tile_terms[i]);
+            if (with_terms) add_pixel_terms(accum.terms[row + static_cast<std::size_t>(x)], tile_terms[i]);
           }
         }
         continue;
@@ -197,7 +213,7 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
           add(accum.sum.data() + row, x,
               render_sample_terms(prepared, frame, options.term, x, y, sample_index, stats.rays, terms, options.seed,
                                   shading_eye));
-          add_terms(accum.terms[row + static_cast<std::size_t>(x)], terms);
+          add_pixel_terms(accum.terms[row + static_cast<std::size_t>(x)], terms);
         }
       }
     }

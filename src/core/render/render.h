@@ -76,6 +76,10 @@ struct Accumulator {
   // from the same samples as `sum` (the small multiples: one trace, five sums). Empty: none.
   std::vector<Terms> terms;
   void reset(int w, int h, bool with_terms = false);
+  // The same size and no samples, the old sums left in place: a first pass (render_pass at
+  // samples 0, a re-shade) writes every pixel, so clearing them first is work for nothing (22 MB
+  // at 1280x720). A pass cancelled midway leaves such an accumulator to be reset.
+  void reset_for_first_pass(int w, int h, bool with_terms = false);
   bool has_terms() const { return !terms.empty(); }
   Color mean(int x, int y) const;  // sum / samples (0 before the first pass)
 };
