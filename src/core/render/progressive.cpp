@@ -61,6 +61,8 @@ double LevelTimes::at(int divisor) const {
   return std::max(std::min(t[0], t[1]), std::min(std::max(t[0], t[1]), t[2]));  // the median
 }
 
+void LevelTimes::forget(int divisor) { recent[slot(divisor)] = {}; }
+
 void LevelTimes::note(int divisor, double ms) {
   std::array<double, kKept>& t = recent[slot(divisor)];
   std::rotate(t.begin(), t.end() - 1, t.end());  // newest first: the oldest drops off
@@ -209,6 +211,7 @@ struct ProgressiveRenderer::Job {
   bool accum_live = false;      // accum holds the image the trees last recombined, nothing since
   LevelTimes level_times;       // the last passes at each level, for live_start_level
   std::chrono::steady_clock::time_point last_probe;  // the last restart started finer than fits (live_level)
+  bool probing = false;         // this generation started finer than fits: its first pass's time stands alone
   double live_ms = 1e9;         // the last live pass (wait_for_live_image); none yet: not quick
   Accumulator accum;
   std::uint64_t nan_count = 0;
@@ -289,7 +292,11 @@ void ProgressiveRenderer::run() {
       job.accum_live = false;
       continue;
     }
-    if (!job.reshaded) job.level_times.note(divisor, divisor_ms);  // a re-shade says nothing of a traced pass's time
+    // A re-shade says nothing of a traced pass's time. A probe's pass is the level's time now:
+    // the older ones were why it was not run.
+    if (!job.reshaded && job.probing) job.level_times.forget(divisor);
+    if (!job.reshaded) job.level_times.note(divisor, divisor_ms);
+    job.probing = false;
     job.nan_count += pass.nan_count;
     publish(job, pass);
     if (job.level + 1 < job.levels.size()) {
@@ -354,6 +361,7 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   decided_generation_ = job.generation;  // wait_for_live_image
   decided_live_ms_ = job.live ? job.live_ms : -1.0;
   idle_cv_.notify_all();
+  job.probing = false;
   if (job.reshade) {
     job.level = job.levels.size() - 1;
   } else {
@@ -378,7 +386,8 @@ std::size_t ProgressiveRenderer::live_level(Job& job) const {
   const auto now = std::chrono::steady_clock::now();
   if (now - job.last_probe < kProbePeriod) return fits;
   const std::size_t probed = live_start_level(job.levels, job.level_times, budget, true);
-  if (probed != fits) job.last_probe = now;
+  job.probing = probed != fits;
+  if (job.probing) job.last_probe = now;
   return probed;
 }
 

@@ -108,6 +108,7 @@ struct LevelTimes {
   double at(int divisor) const;
   // A pass at `divisor` took `ms`.
   void note(int divisor, double ms);
+  void forget(int divisor);  // no pass at `divisor` measured yet
 };
 // The index into `levels` of the finest level whose pass is expected to take at most
 // `budget_ms`: its expected time, or, not measured yet, the next coarser measured level's
