@@ -231,9 +231,10 @@ void Viewer::shortcut(int key, bool shift) {
     if (shift) {
       // Shift+1..9: solo light L0..L8 (again: end the solo).
       if (digit < static_cast<int>(scene.lights.size())) {
-        ui::toggle_solo(scene.lights, solo_, digit);
+        Scene soloed = scene;
+        ui::toggle_solo(soloed.lights, solo_, digit);
         selected_light_ = digit;
-        edits_.scene = true;
+        apply_edit({edit::SetScene{std::move(soloed)}});
       }
     } else if (digit < static_cast<int>(kShortcutTerms.size())) {
       // 1 the full image, 2..6 its terms in the order of the equation.

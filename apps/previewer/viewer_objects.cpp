@@ -46,8 +46,8 @@ std::string Viewer::edit_scene(const std::function<std::string(Scene&)>& edit, b
   if (error.empty() && meshes_move) error = place_meshes(scene);
   if (!error.empty()) return refuse(error);  // the scene stays as it was
   objects_notice_ = ui::EditNotice{};
-  doc_.scene() = std::move(scene);
-  edits_.scene = true;
+  // An object dragged is one undo step when the drag ends.
+  apply_edit({edit::SetScene{std::move(scene)}, drag_.mode != DragMode::kNone || ImGui::IsAnyItemActive()});
   return {};
 }
 

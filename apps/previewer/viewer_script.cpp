@@ -237,14 +237,16 @@ bool Viewer::script_wait_done(double now) {
       } else if (script_.bench_left > 0) {
         --script_.bench_left;
         script_.bench_sign = -script_.bench_sign;
-        Scene& scene = doc_.scene();
+        const Scene& scene = session_.scene();
         if (script_.bench_kind == "camera") {
-          ui::orbit(scene.camera, 0.02 * script_.bench_sign, 0);
-          edits_.camera = true;
+          Camera camera = scene.camera;
+          ui::orbit(camera, 0.02 * script_.bench_sign, 0);
+          move_camera(camera);
         } else if (!scene.materials.empty()) {
-          Material& m = scene.materials[static_cast<std::size_t>(std::clamp(selected_material_, 0, static_cast<int>(scene.materials.size()) - 1))];
+          const int k = std::clamp(selected_material_, 0, static_cast<int>(scene.materials.size()) - 1);
+          Material m = scene.materials[static_cast<std::size_t>(k)];
           m.kd *= script_.bench_sign > 0 ? 1.25 : 0.8;  // exact inverses in turn: the scene stays put
-          edits_.scene = true;
+          apply_edit({edit::SetMaterial{k, m}});
         }
         script_.bench_waiting_image = true;
         script_.bench_expect_restart = true;
@@ -460,8 +462,9 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
         index >= static_cast<int>(doc_.scene().lights.size())) {
       return step.fail("usage: solo I");
     }
-    ui::toggle_solo(doc_.scene().lights, solo_, index);
-    edits_.scene = true;
+    Scene soloed = session_.scene();
+    ui::toggle_solo(soloed.lights, solo_, index);
+    apply_edit({edit::SetScene{std::move(soloed)}});
     return true;
   }
   if (name == "set") {

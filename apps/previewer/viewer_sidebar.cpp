@@ -262,7 +262,8 @@ void Viewer::sidebar_rays() {
 
 void Viewer::sidebar_camera() {
   ui::CameraActions actions;
-  if (ui::camera_panel(doc_.scene().camera, actions, camera_notice_)) edits_.camera = true;
+  Camera camera = session_.scene().camera;
+  if (ui::camera_panel(camera, actions, camera_notice_)) move_camera(camera);
   edits_.frame_requested |= actions.frame_scene;
   edits_.reset_requested |= actions.reset;
   if (view_camera().fov_y_deg != doc_.scene().camera.fov_y_deg) {
