@@ -198,14 +198,14 @@ int Viewer::run() {
     handle_recovery_modal();
     apply_edits(frame_start);
     update_lesson();
-    autosave(frame_start);
+    session_.recovery().autosave(doc_, frame_start);
     ImGui::Render();
     draw_gl(fb_width, fb_height);
     glfwSwapBuffers(window);
     after_swap();
   }
   write_stats_summary("session");
-  if (!recovery_.keep) remove_recovery();  // a clean quit (saved, or the edits discarded)
+  if (!recovery_.keep) session_.recovery().remove();  // a clean quit (saved, or the edits discarded)
   if (exit_code_ != 0) return exit_code_;
   return script_.failed ? 3 : 0;
 }
@@ -320,7 +320,7 @@ void Viewer::apply_edits(double frame_start) {
     lesson_.exploring = true;
   }
   lesson_.applied = false;
-  if (edits_.scene) recovery_.last_edit = frame_start;
+  if (edits_.scene) session_.recovery().edited(frame_start);
   if (edits_.replaced) {
     dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());
     session_.reset_history();

@@ -252,10 +252,6 @@ class Viewer {
   bool image_is_final() const;                   // the renderer idles and its last image is on screen
 
   // Recovery of unsaved edits (viewer_recovery.cpp).
-  std::optional<std::pair<std::string, bool>> recovery_source() const;  // (source, embedded) of the document; nullopt: none to recover
-  void autosave(double now);                     // a few seconds after the last edit: the recovery file
-  std::string write_recovery();                  // the document's recovery file, written now; its path or ""
-  void remove_recovery();                        // the recovery file this session wrote or restored, gone
   void find_recovery();                          // at start: a recovery to offer
   void handle_recovery_modal();                  // the offer and its answer
   void restore_recovery(const ui::RecoveryEntry& entry);
@@ -480,19 +476,15 @@ class Viewer {
     std::string path_field;         // the panel's lesson file path
   };
   LessonState lesson_;
-  // Unsaved edits kept in the state folder until they are saved (viewer_recovery.cpp).
+  // The offer of kept edits and the exit on a signal (viewer_recovery.cpp; the files are the
+  // session's RecoveryKeeper).
   struct Recovery {
-    std::string written;       // this document's recovery file, once written or restored ("" none)
-    std::string written_text;  // what it holds (unchanged edits are not written again)
-    double last_edit = 0;      // glfwGetTime() of the last scene edit
-    double written_for = -1;   // the last_edit the file holds (autosave writes once per burst of edits)
     std::optional<ui::RecoveryEntry> offer;  // found at start, waiting for an answer
     bool open_modal = false;   // open the offer's dialog this frame
     bool modal_visible = false;
     int scripted = 0;          // `modal restore|discard|later`: 1, 2, 3
     bool keep = false;         // exiting on a signal: the file stays for the next start
     bool after_lesson = false; // started with a lesson: the offer waits until it closes (never over a slide)
-    std::string error;         // why the last write failed
   };
   Recovery recovery_;
   int exit_code_ = 0;          // set by handle_signal

@@ -114,7 +114,7 @@ void Viewer::open_scene(const std::string& scene_arg) {
 }
 
 void Viewer::document_replaced() {
-  remove_recovery();  // the guard was passed: the last document's edits were saved or discarded
+  session_.recovery().remove();  // the guard was passed: the last document's edits were saved or discarded
   file_state_.error_text.clear();
   file_state_.status = doc_.status();
   file_state_.changed_on_disk = false;
@@ -131,7 +131,7 @@ void Viewer::reload_scene(bool keep_view) {
     file_state_.error_text = doc_.error_text();
     return;
   }
-  remove_recovery();  // reloading discarded the edits (the guard asked first)
+  session_.recovery().remove();  // reloading discarded the edits (the guard asked first)
   file_state_.error_text.clear();
   file_state_.status = doc_.status();
   file_state_.changed_on_disk = false;

@@ -21,13 +21,7 @@ namespace phonglab {
 
 namespace {
 
-constexpr double kAutosaveDelay = 2.0;  // seconds after the last edit: a drag's many edits are one write
 std::atomic<int> g_signal{0};
-
-std::string recovery_folder() {
-  const std::string base = ui::state_dir();
-  return base.empty() ? std::string() : base + "/recovery";
-}
 
 std::string read_all(const std::string& path) {
   std::ifstream in(path);
@@ -57,69 +51,12 @@ void start_signal_watcher() {
 
 int pending_signal() { return g_signal.load(); }
 
-std::optional<std::pair<std::string, bool>> Viewer::recovery_source() const {
-  if (!doc_.embedded_name().empty()) return std::pair{doc_.embedded_name(), true};
-  if (doc_.file_path().empty()) return std::nullopt;  // a lesson's step: nobody's file
-  std::error_code ec;
-  const auto path = std::filesystem::absolute(doc_.file_path(), ec).lexically_normal();
-  return std::pair{ec ? doc_.file_path() : path.string(), false};
-}
-
-std::string Viewer::write_recovery() {
-  const auto source = recovery_source();
-  const std::string dir = recovery_folder();
-  if (!source || dir.empty()) return "";
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  const std::string key = ui::recovery_key(source->first, source->second);
-  const std::string json = dir + "/" + key + ".json";
-  // Embedded meshes keep their embedded names; meshes on disk are named from the recovery folder.
-  const std::string text = scene_to_json(doc_.scene(), source->second ? "" : dir);
-  if (json == recovery_.written && text == recovery_.written_text) return json;
-  ui::RecoveryEntry entry;
-  entry.scene_path = json;
-  entry.source = source->first;
-  entry.embedded = source->second;
-  entry.saved = static_cast<std::int64_t>(std::time(nullptr));
-  std::string error = write_file_atomically(json, text);
-  if (error.empty()) error = write_file_atomically(dir + "/" + key + ".source", ui::recovery_source_text(entry));
-  if (!error.empty()) {
-    if (error != recovery_.error) std::cerr << "phonglab: cannot keep the unsaved edits in " << json << ": " << error << "\n";
-    recovery_.error = error;
-    return "";
-  }
-  recovery_.error.clear();
-  if (!recovery_.written.empty() && recovery_.written != json) remove_recovery();
-  recovery_.written = json;
-  recovery_.written_text = text;
-  return json;
-}
-
-void Viewer::remove_recovery() {
-  if (recovery_.written.empty()) return;
-  std::error_code ec;
-  std::filesystem::remove(recovery_.written, ec);
-  std::filesystem::remove(std::filesystem::path(recovery_.written).replace_extension(".source"), ec);
-  recovery_.written.clear();
-  recovery_.written_text.clear();
-}
-
-void Viewer::autosave(double now) {
-  if (!doc_.dirty()) {
-    remove_recovery();  // saved, or every edit undone: nothing to keep
-    return;
-  }
-  // Once per burst of edits: the file is written when the last edit is kAutosaveDelay old, not again each frame.
-  if (recovery_.written_for == recovery_.last_edit || now - recovery_.last_edit < kAutosaveDelay) return;
-  if (!write_recovery().empty()) recovery_.written_for = recovery_.last_edit;
-}
-
 bool Viewer::handle_signal() {
   const int sig = pending_signal();
   if (sig == 0) return false;
   doc_.update_dirty();
   if (doc_.dirty()) {
-    const std::string path = write_recovery();
+    const std::string path = session_.recovery().write(doc_);
     if (!path.empty()) std::cerr << "recovery: " << path << "\n";
   }
   recovery_.keep = true;
@@ -129,16 +66,9 @@ bool Viewer::handle_signal() {
 }
 
 void Viewer::find_recovery() {
-  const std::vector<ui::RecoveryEntry> all = ui::list_recoveries(recovery_folder());
-  const auto source = recovery_source();
-  for (const ui::RecoveryEntry& e : all) {
-    // On that scene, or with no SCENE at all the newest of any scene.
-    if (!options_.scene_given || (source && e.source == source->first && e.embedded == source->second)) {
-      recovery_.offer = e;
-      recovery_.open_modal = true;
-      return;
-    }
-  }
+  // On the document's scene, or with no SCENE given the newest of any scene.
+  recovery_.offer = session_.recovery().find(doc_, !options_.scene_given);
+  recovery_.open_modal = recovery_.offer.has_value();
 }
 
 void Viewer::handle_recovery_modal() {
@@ -167,10 +97,10 @@ void Viewer::handle_recovery_modal() {
 }
 
 void Viewer::restore_recovery(const ui::RecoveryEntry& entry) {
-  const auto source = recovery_source();
+  const auto source = RecoveryKeeper::source_of(doc_);
   if (!source || source->first != entry.source || source->second != entry.embedded) {
     open_scene(entry.source);
-    const auto now_source = recovery_source();
+    const auto now_source = RecoveryKeeper::source_of(doc_);
     if (!now_source || now_source->first != entry.source) {
       file_state_.error_text = "cannot restore: " + entry.source + " does not open (" + file_state_.error_text +
                                "); the kept edits stay in " + entry.scene_path;
@@ -186,9 +116,7 @@ void Viewer::restore_recovery(const ui::RecoveryEntry& entry) {
   }
   doc_.scene() = std::move(*r.scene);
   doc_.update_dirty();
-  recovery_.written = entry.scene_path;  // this document's now: removed once saved, rewritten on edits
-  recovery_.written_text.clear();
-  recovery_.written_for = recovery_.last_edit;  // the file holds what is restored
+  session_.recovery().adopt(entry);  // this document's now: removed once saved, rewritten on edits
   file_state_.status = "restored the unsaved edits kept in " + entry.scene_path;
   edits_.replaced = true;
 }

@@ -39,7 +39,7 @@ void Viewer::write_state(const std::string& path) const {
   write_lesson_state(out);
   out << "script_skipped=" << script_.ignored << "\n";
   out << "recovery_offer=" << (recovery_.offer ? recovery_.offer->source : "") << "\n"
-      << "recovery_file=" << recovery_.written << "\n";
+      << "recovery_file=" << session_.recovery().written() << "\n";
 }
 
 // The document, the view and the renderer's progress.

@@ -7,12 +7,14 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <variant>
 
 #include "core/render/ray_trees.h"
 #include "core/scene/scene.h"
 #include "interaction/history.h"
 #include "session/document.h"
+#include "session/recovery_keeper.h"
 
 namespace phonglab {
 
@@ -50,6 +52,10 @@ struct Applied {
 
 class Session {
  public:
+  // `recovery_folder`: where unsaved edits are kept (RecoveryKeeper; empty: nowhere).
+  explicit Session(std::string recovery_folder = RecoveryKeeper::default_folder())
+      : recovery_(std::move(recovery_folder)) {}
+
   // The document: open (an embedded scene's name or a file), read again, or a scene adopted
   // (a lesson's step). Each success starts the undo history anew; a failure keeps everything.
   bool open(const std::string& scene_arg);
@@ -80,6 +86,8 @@ class Session {
   SceneDocument& document() { return document_; }
   const SceneDocument& document() const { return document_; }
   bool dirty() const { return document_.dirty(); }
+  RecoveryKeeper& recovery() { return recovery_; }
+  const RecoveryKeeper& recovery() const { return recovery_; }
 
  private:
   void edited();  // dirty again, and an undo step pending
@@ -87,6 +95,7 @@ class Session {
   SceneDocument document_;
   ui::SceneHistory history_;
   bool pending_ = false;
+  RecoveryKeeper recovery_;
 };
 
 }  // namespace phonglab

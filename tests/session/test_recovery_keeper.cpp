@@ -1,0 +1,141 @@
+// Unsaved edits kept in a recovery file (src/session/recovery_keeper.h): written once a burst of
+// edits is two seconds old, not again while nothing changes, removed once the document is
+// clean, found again for its source, and what is written loads back to the edited scene.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "io/scene/scene_io.h"
+#include "session/recovery_keeper.h"
+
+namespace phonglab {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RecoveryFiles : ::testing::Test {
+  fs::path dir;
+  SceneDocument doc;
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = fs::temp_directory_path() / ("phonglab-recovery-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir);
+    ASSERT_TRUE(doc.open("lecture"));
+  }
+  void TearDown() override { fs::remove_all(dir); }
+  void edit(double kd) {
+    doc.scene().materials.at(0).kd = Color(kd);
+    doc.update_dirty();
+  }
+  static std::string read(const std::string& path) {
+    std::stringstream text;
+    text << std::ifstream(path).rdbuf();
+    return text.str();
+  }
+};
+
+TEST_F(RecoveryFiles, ACleanDocumentKeepsNoFile) {
+  RecoveryKeeper keeper(dir.string());
+  keeper.autosave(doc, 100);
+  EXPECT_TRUE(keeper.written().empty());
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST_F(RecoveryFiles, EditsAreWrittenOnceTheBurstIsTwoSecondsOld) {
+  RecoveryKeeper keeper(dir.string());
+  edit(0.25);
+  keeper.edited(10);
+  keeper.autosave(doc, 11.9);
+  EXPECT_TRUE(keeper.written().empty()) << "the burst may go on";
+  keeper.autosave(doc, 12.0);
+  ASSERT_FALSE(keeper.written().empty());
+  EXPECT_EQ(fs::path(keeper.written()).filename().string(), "embedded-lecture.json");
+  EXPECT_TRUE(fs::exists(fs::path(keeper.written()).replace_extension(".source")));
+  const auto first = fs::last_write_time(keeper.written());
+  fs::last_write_time(keeper.written(), first - std::chrono::seconds(5));
+  keeper.autosave(doc, 20);
+  EXPECT_EQ(fs::last_write_time(keeper.written()), first - std::chrono::seconds(5)) << "written once per burst";
+}
+
+TEST_F(RecoveryFiles, WhatIsKeptLoadsBackToTheEditedScene) {
+  RecoveryKeeper keeper(dir.string());
+  edit(0.125);
+  const std::string path = keeper.write(doc);
+  ASSERT_FALSE(path.empty());
+  LoadResult back = load_scene_text(read(path), path, dir.string(), true);
+  ASSERT_TRUE(back.ok()) << back.error_text();
+  EXPECT_EQ(scene_content(*back.scene), scene_content(doc.scene()));
+}
+
+TEST_F(RecoveryFiles, TheFileGoesOnceTheDocumentIsCleanAgain) {
+  RecoveryKeeper keeper(dir.string());
+  edit(0.5);
+  const std::string path = keeper.write(doc);
+  ASSERT_TRUE(fs::exists(path));
+  ASSERT_TRUE(doc.open("lecture"));  // the edits discarded
+  keeper.autosave(doc, 50);
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(fs::path(path).replace_extension(".source")));
+  EXPECT_TRUE(keeper.written().empty());
+}
+
+TEST_F(RecoveryFiles, AKeptFileIsFoundForItsSourceOnly) {
+  RecoveryKeeper keeper(dir.string());
+  edit(0.5);
+  ASSERT_FALSE(keeper.write(doc).empty());
+  const RecoveryKeeper next_start(dir.string());
+  const auto found = next_start.find(doc, false);
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->source, "lecture");
+  EXPECT_TRUE(found->embedded);
+  SceneDocument other;
+  ASSERT_TRUE(other.open("cornell"));
+  EXPECT_FALSE(next_start.find(other, false)) << "another scene's edits are not offered over it";
+  EXPECT_TRUE(next_start.find(other, true)) << "with no scene given, the newest of any";
+}
+
+TEST_F(RecoveryFiles, ALessonsStepIsNobodysFile) {
+  RecoveryKeeper keeper(dir.string());
+  doc.adopt(doc.scene(), "a lesson's step");
+  doc.scene().materials.at(0).kd = Color(0.5);
+  doc.update_dirty();
+  EXPECT_FALSE(RecoveryKeeper::source_of(doc));
+  EXPECT_TRUE(keeper.write(doc).empty());
+}
+
+TEST_F(RecoveryFiles, AFailedWriteSaysWhyAndLosesNothing) {
+  fs::create_directories(dir.parent_path());
+  std::ofstream(dir.string()) << "a file where the folder should be";
+  RecoveryKeeper keeper(dir.string());
+  edit(0.5);
+  EXPECT_TRUE(keeper.write(doc).empty());
+  EXPECT_FALSE(keeper.error().empty());
+  EXPECT_TRUE(doc.dirty()) << "the edits are still the document's";
+  fs::remove(dir);
+  EXPECT_FALSE(keeper.write(doc).empty()) << "the next write can succeed";
+  EXPECT_TRUE(keeper.error().empty());
+}
+
+TEST_F(RecoveryFiles, AFileOnDiskIsKeptUnderItsAbsolutePath) {
+  fs::create_directories(dir / "scenes");
+  const std::string path = (dir / "scenes" / "mine.json").string();
+  ASSERT_TRUE(doc.save_as(path));
+  ASSERT_TRUE(doc.open(path));
+  const auto source = RecoveryKeeper::source_of(doc);
+  ASSERT_TRUE(source);
+  EXPECT_FALSE(source->second);
+  EXPECT_EQ(source->first, fs::absolute(path).lexically_normal().string());
+  RecoveryKeeper keeper((dir / "recovery").string());
+  edit(0.75);
+  const std::string kept = keeper.write(doc);
+  ASSERT_FALSE(kept.empty());
+  EXPECT_EQ(fs::path(kept).filename().string(), ui::recovery_key(source->first, false) + ".json");
+}
+
+}  // namespace
+}  // namespace phonglab
