@@ -16,34 +16,55 @@ void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargi
   };
   const int s_count = spheres.count, p_count = planes.count;
   for (int i = 0; i < lanes; i += 4) {
-    // Gather each lane's primitive (index 0 stands in where the lane has another kind).
-    alignas(32) double cx[4] = {}, cy[4] = {}, cz[4] = {}, r[4] = {}, base[4] = {}, sph[4] = {};
-    alignas(32) double nx[4] = {}, ny[4] = {}, nz[4] = {}, size[4] = {};
+    // Each lane's primitive (zeros stand in where the lane has another kind): four lanes on one
+    // sphere or one plane (the usual case) take it once, broadcast.
+    V scx = zero, scy = zero, scz = zero, sr = zero, sbase = zero, is_sphere = zero;
+    V pnx = zero, pny = zero, pnz = zero, psize = zero;
     int kinds = 0;
-    for (int j = 0; j < 4; ++j) {
-      const std::int32_t k = id[i + j];
+    const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(id + i));
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(ids, _mm_set1_epi32(id[i]))) == 0xFFFF) {
+      const std::int32_t k = id[i];
       if (k >= 0 && k < s_count) {
-        cx[j] = spheres.cx[k], cy[j] = spheres.cy[k], cz[j] = spheres.cz[k], r[j] = spheres.r[k];
-        base[j] = spheres.offset_base[k];
-        sph[j] = -1.0;  // all bits set: a mask
-        kinds |= 1;
+        scx = splat(spheres.cx[k]), scy = splat(spheres.cy[k]), scz = splat(spheres.cz[k]), sr = splat(spheres.r[k]);
+        sbase = splat(spheres.offset_base[k]);
+        is_sphere = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+        kinds = 1;
       } else if (k >= s_count && k < s_count + p_count) {
         const int q = k - s_count;
-        nx[j] = planes.nx[q], ny[j] = planes.ny[q], nz[j] = planes.nz[q], size[j] = planes.point_size[q];
-        kinds |= 2;
+        pnx = splat(planes.nx[q]), pny = splat(planes.ny[q]), pnz = splat(planes.nz[q]);
+        psize = splat(planes.point_size[q]);
+        kinds = 2;
       }
+    } else {
+      alignas(32) double cx[4] = {}, cy[4] = {}, cz[4] = {}, r[4] = {}, base[4] = {}, sph[4] = {};
+      alignas(32) double nx[4] = {}, ny[4] = {}, nz[4] = {}, size[4] = {};
+      for (int j = 0; j < 4; ++j) {
+        const std::int32_t k = id[i + j];
+        if (k >= 0 && k < s_count) {
+          cx[j] = spheres.cx[k], cy[j] = spheres.cy[k], cz[j] = spheres.cz[k], r[j] = spheres.r[k];
+          base[j] = spheres.offset_base[k];
+          sph[j] = -1.0;  // all bits set: a mask
+          kinds |= 1;
+        } else if (k >= s_count && k < s_count + p_count) {
+          const int q = k - s_count;
+          nx[j] = planes.nx[q], ny[j] = planes.ny[q], nz[j] = planes.nz[q], size[j] = planes.point_size[q];
+          kinds |= 2;
+        }
+      }
+      scx = _mm256_load_pd(cx), scy = _mm256_load_pd(cy), scz = _mm256_load_pd(cz), sr = _mm256_load_pd(r);
+      sbase = _mm256_load_pd(base);
+      is_sphere = _mm256_cmp_pd(_mm256_load_pd(sph), zero, _CMP_NEQ_UQ);
+      pnx = _mm256_load_pd(nx), pny = _mm256_load_pd(ny), pnz = _mm256_load_pd(nz), psize = _mm256_load_pd(size);
     }
     if (kinds == 0) continue;
-    const V is_sphere = _mm256_cmp_pd(_mm256_load_pd(sph), zero, _CMP_NEQ_UQ);
     const V t = load(t_in + i);
     const V dx = load(rays.dx + i), dy = load(rays.dy + i), dz = load(rays.dz + i);
     // P = O + t D; a sphere's is re-projected onto it along the radial direction.
     V px = load(rays.ox + i) + t * dx, py = load(rays.oy + i) + t * dy, pz = load(rays.oz + i) + t * dz;
-    V gx = _mm256_load_pd(nx), gy = _mm256_load_pd(ny), gz = _mm256_load_pd(nz);
-    V offset = splat(margins.coordinate) * _mm256_max_pd(max_abs(px, py, pz), _mm256_load_pd(size)) +
+    V gx = pnx, gy = pny, gz = pnz;
+    V offset = splat(margins.coordinate) * _mm256_max_pd(max_abs(px, py, pz), psize) +
                splat(margins.size) * t;
     if (kinds & 1) {
-      const V scx = _mm256_load_pd(cx), scy = _mm256_load_pd(cy), scz = _mm256_load_pd(cz), sr = _mm256_load_pd(r);
       const V rx = px - scx, ry = py - scy, rz = pz - scz;
       const V len = sqrt(dot(rx, ry, rz, rx, ry, rz));
       const V has = gt(len, zero);
@@ -54,7 +75,7 @@ void hit_records(const Spheres& spheres, const Planes& planes, const OffsetMargi
       px = pick(is_sphere, scx + sr * ux, px);
       py = pick(is_sphere, scy + sr * uy, py);
       pz = pick(is_sphere, scz + sr * uz, pz);
-      offset = pick(is_sphere, _mm256_load_pd(base) + splat(margins.size) * (sr + t), offset);
+      offset = pick(is_sphere, sbase + splat(margins.size) * (sr + t), offset);
     }
     // The ray's side: a sphere's or plane's shading normal is its geometric one.
     const V entering = lt(dot(gx, gy, gz, dx, dy, dz), zero);
