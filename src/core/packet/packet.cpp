@@ -515,6 +515,23 @@ struct PacketTracer::Impl {
     for (int i = 0; i < lanes; ++i) {
       const std::size_t u = at(i);
       const std::int32_t id = lv.id[u];
+      if (i % 4 == 0 && i + 4 <= lanes && id >= 0 && id < first_triangle && !eye_moved && lv.id[u + 1] == id &&
+          lv.id[u + 2] == id && lv.id[u + 3] == id) {
+        // Four lanes on one sphere or plane (the usual case): its material's flags once.
+        const int material = prim_material[at(id)];
+        const MaterialInfo& mi = info[at(material)];
+        for (std::size_t v = u; v < u + 4; ++v) {
+          lv.material[v] = material;
+          lv.lit[v] = mi.lit;
+          lv.active[v] = mi.lit || recording;
+          lv.bounces[v] = mi.bounces;
+          lv.ior[v] = mi.ior;
+        }
+        any_hit = true;
+        any_bounce |= mi.bounces;
+        i += 3;
+        continue;
+      }
       if (id < 0) {
         out[i] = miss;
         if (depth == 0 && primary_terms) primary_terms[i] = Terms{};
