@@ -225,7 +225,7 @@ void Viewer::wait_for_next_frame() {
   const double now = glfwGetTime();
   const bool script_running = script_.index < script_.commands.size() || !script_.input.empty();
   const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
-                    script_running || dialogs_.guard_visible || browser_.visible || drag_.mode != DragMode::kNone;
+                    script_running || dialogs_.guard_visible || browser_.visible() || drag_.mode != DragMode::kNone;
   stats_.slept_idle = !busy;
   if (!busy) {
     // Nothing moves: sleep until an event, a new image (the render thread posts an empty

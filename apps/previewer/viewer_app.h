@@ -19,6 +19,7 @@
 
 #include "session/document.h"
 #include "session/session.h"
+#include "apps/previewer/file_browser.h"
 #include "apps/previewer/viewer_gl.h"
 #include "apps/previewer/viewer_platform.h"
 #include "io/image_io.h"
@@ -194,12 +195,7 @@ class Viewer {
   bool grab_object(ImVec2 mouse, const std::optional<int>& hit_object);  // starts kObject on the selected one
   void drag_object_to(ImVec2 mouse, int view_w, int view_h);
   void sidebar_objects();
-  // The file browser (viewer_files.cpp).
-  void open_browser(bool save);                  // Ctrl+O (Open), Ctrl+Shift+S (Save as)
-  void handle_file_browser();                    // draws it and carries out its choice
-  void remember_recent(const std::string& path); // a file opened or saved: first in the recent list
-  void load_recent();                            // the list the last session left, once
-  static std::string recent_path();              // $XDG_STATE_HOME/phonglab/recent (or ~/.local/state/...)
+  void handle_file_browser();                    // draws the file browser and carries out its choice
   std::optional<std::string> script_scene_command(const std::vector<std::string>& words);  // viewer_objects.cpp
   std::optional<std::string> script_scene_edit(const std::vector<std::string>& words);
   void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
@@ -400,18 +396,7 @@ class Viewer {
     ui::GuardChoice scripted_choice = ui::GuardChoice::kNone;
   };
   Dialogs dialogs_;
-  // The Open / Save-as file browser and the recent files (kept in recent_path()).
-  struct Browser {
-    bool visible = false;
-    bool open_now = false;  // open the popup this frame
-    bool save = false;      // Save as, else Open
-    ui::FolderListing listing;
-    std::string name;       // the name field
-    std::string error;
-    std::vector<std::string> recent;
-    bool recent_loaded = false;
-  };
-  Browser browser_;
+  FileBrowser browser_;  // the Open / Save-as file browser and the recent files
   // The probed pixel and what the Probe panel shows of it.
   struct ProbeState {
     std::optional<PixelProbe> tree;  // the probed pixel's ray tree, in snapshot_

@@ -104,7 +104,7 @@ void Viewer::open_scene(const std::string& scene_arg) {
     return;
   }
   document_replaced();
-  if (!doc_.file_path().empty()) remember_recent(doc_.file_path());
+  if (!doc_.file_path().empty()) browser_.remember(doc_.file_path());
   file_state_.path_field = doc_.file_path().empty() ? scene_arg : doc_.file_path();
   probed_.tree.reset();
   // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
@@ -146,7 +146,7 @@ void Viewer::reload_scene(bool keep_view) {
 void Viewer::save_scene(bool as) {
   if (as) {
     const bool ok = doc_.save_as(file_state_.path_field);
-    if (ok) remember_recent(doc_.file_path());
+    if (ok) browser_.remember(doc_.file_path());
     if (finish_save(ok ? SceneDocument::SaveResult::kSaved : SceneDocument::SaveResult::kFailed)) {
       perform(dialogs_.after_save);
     }
@@ -240,84 +240,15 @@ void Viewer::save_window_screenshot(const std::string& path, int fb_width, int f
   }
 }
 
-namespace {
-
-// What the browser lists: scenes to save to, or scenes and meshes to open.
-std::vector<std::string> browser_filter(bool save) {
-  return save ? std::vector<std::string>{".json"} : std::vector<std::string>{".json", ".obj"};
-}
-
-}  // namespace
-
-std::string Viewer::recent_path() {
-  const std::string base = ui::state_dir();
-  return base.empty() ? std::string() : base + "/recent";
-}
-
-// The recent files as the last session left them, read once, on first use.
-void Viewer::load_recent() {
-  if (browser_.recent_loaded) return;
-  browser_.recent_loaded = true;
-  std::ifstream in(recent_path());
-  std::ostringstream text;
-  text << in.rdbuf();
-  browser_.recent = ui::parse_recent(text.str());
-}
-
-void Viewer::remember_recent(const std::string& path) {
-  load_recent();
-  std::error_code ec;
-  ui::remember_recent(browser_.recent, std::filesystem::absolute(path, ec).lexically_normal().string());
-  const std::string file = recent_path();
-  if (file.empty()) return;
-  std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ec);
-  write_file_atomically(file, ui::recent_text(browser_.recent));  // a list of conveniences: a failure costs nothing
-}
-
-void Viewer::open_browser(bool save) {
-  load_recent();
-  browser_.save = save;
-  const std::string folder = browser_.listing.folder.empty() ? ui::start_folder(doc_.file_path()) : browser_.listing.folder;
-  browser_.listing = ui::list_folder(folder, browser_filter(save));
-  browser_.name = save ? (doc_.file_path().empty() ? std::string("scene.json")
-                                                   : std::filesystem::path(doc_.file_path()).filename().string())
-                       : std::string();
-  browser_.error.clear();
-  browser_.visible = browser_.open_now = true;
-}
-
 void Viewer::handle_file_browser() {
-  if (!browser_.visible) return;
-  ui::FileBrowserView view;
-  view.save = browser_.save;
-  view.listing = &browser_.listing;
-  view.recent = &browser_.recent;
-  view.name_field = &browser_.name;
-  view.error = browser_.error;
-  ui::FileBrowserActions actions;
-  const bool showing = ui::file_browser_dialog(browser_.open_now, view, actions);
-  browser_.open_now = false;
-  if (!actions.go_to.empty()) {
-    browser_.listing = ui::list_folder(actions.go_to, browser_filter(browser_.save));
+  const FileBrowser::Choice choice = browser_.draw();
+  using Kind = FileBrowser::Choice::Kind;
+  if (choice.kind == Kind::kOpen) {
+    request(PendingAction{PendingAction::Kind::kOpen, choice.path});  // through the unsaved-changes guard
+  } else if (choice.kind == Kind::kSaveAs) {
+    file_state_.path_field = choice.path;
+    save_scene(true);
   }
-  if (!actions.embedded.empty()) request(PendingAction{PendingAction::Kind::kOpen, actions.embedded});
-  std::error_code ec;
-  if (!actions.chosen.empty() && std::filesystem::is_directory(actions.chosen, ec)) {
-    // A folder typed into the name field: the browser goes there and stays open.
-    browser_.listing = ui::list_folder(actions.chosen, browser_filter(browser_.save));
-    browser_.name.clear();
-    browser_.open_now = true;
-    return;
-  }
-  if (!actions.chosen.empty()) {
-    if (browser_.save) {
-      file_state_.path_field = actions.chosen;
-      save_scene(true);
-    } else {  // a scene, or an OBJ opened alone (a dropped OBJ joins the scene instead)
-      request(PendingAction{PendingAction::Kind::kOpen, actions.chosen});  // through the unsaved-changes guard
-    }
-  }
-  if (!showing || actions.cancel || !actions.chosen.empty() || !actions.embedded.empty()) browser_.visible = false;
 }
 
 }  // namespace phonglab

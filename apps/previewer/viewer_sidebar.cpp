@@ -284,8 +284,8 @@ void Viewer::sidebar_file() {
   if (actions.save) save_scene(false);
   if (actions.save_as) save_scene(true);
   if (actions.reload) request(PendingAction{PendingAction::Kind::kReload, {}});
-  if (actions.browse_open) open_browser(false);
-  if (actions.browse_save) open_browser(true);
+  if (actions.browse_open) browser_.open(false, doc_.file_path());
+  if (actions.browse_save) browser_.open(true, doc_.file_path());
 }
 
 void Viewer::sidebar_render() {

@@ -120,11 +120,11 @@ void Viewer::write_layout_state(std::ostream& out) const {
         << "material_" << m.name << "_n=" << m.n << "\n";
   }
   // The objects in file order: kind, anchor, material; the selection and the last edit's notice.
-  out << "file_browser=" << (browser_.visible ? (browser_.save ? "save" : "open") : "") << "\n"
-      << "file_browser_folder=" << browser_.listing.folder << "\n"
-      << "file_browser_name=" << browser_.name << "\n"
-      << "recent=" << browser_.recent.size() << "\n";
-  for (std::size_t i = 0; i < browser_.recent.size(); ++i) out << "recent" << i << "=" << browser_.recent[i] << "\n";
+  out << "file_browser=" << (browser_.visible() ? (browser_.saving() ? "save" : "open") : "") << "\n"
+      << "file_browser_folder=" << browser_.folder() << "\n"
+      << "file_browser_name=" << browser_.name() << "\n"
+      << "recent=" << browser_.recent().size() << "\n";
+  for (std::size_t i = 0; i < browser_.recent().size(); ++i) out << "recent" << i << "=" << browser_.recent()[i] << "\n";
   out << "objects=" << ui::object_count(scene) << "\n"
       << "selected_object=" << selected_object_ << "\n"
       << "objects_notice=" << objects_notice_.text << "\n"
