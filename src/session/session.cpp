@@ -58,7 +58,8 @@ Applied Session::apply(const Edit& e) {
   // A rename changes no pixel but the file; navigation changes pixels but not the file.
   applied.unsaved = !navigation && scene_content(before) != scene_content(scene);
   applied.changed = applied.scope != EditScope::kNothing || applied.unsaved;
-  if (applied.unsaved) edited();
+  if (!applied.unsaved) return applied;  // navigation, or nothing: no undo step, none settled
+  edited();
   if (!e.held) settle(false);
   return applied;
 }

@@ -137,6 +137,15 @@ TEST_F(SessionOnLecture, AHeldGestureIsOneUndoStepWhenItEnds) {
   EXPECT_FALSE(session.edit_pending());
 }
 
+TEST_F(SessionOnLecture, NavigationDuringAGestureLeavesItPending) {
+  set_kd(0.1, true);
+  Camera camera = session.scene().camera;
+  camera.position += Vec3(0, 0.5, 0);
+  session.apply({edit::SetCamera{camera}});
+  EXPECT_TRUE(session.edit_pending()) << "the wheel turned while a slider is held: still one gesture";
+  EXPECT_EQ(session.undo_count(), 0U);
+}
+
 TEST_F(SessionOnLecture, SettlingWhileTheGestureHoldsKeepsItPending) {
   set_kd(0.1, true);
   session.settle(true);
