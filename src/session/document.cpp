@@ -35,7 +35,7 @@ void SceneDocument::mark_saved() {
   dirty_ = false;
 }
 
-void SceneDocument::update_dirty() { dirty_ = scene_content(scene_) != saved_content_; }
+void SceneDocument::update_dirty() { update_dirty(scene_content(scene_)); }
 
 void SceneDocument::adopt(const Scene& scene, const std::string& source) {
   scene_ = scene;

@@ -55,6 +55,8 @@ class SceneDocument {
   bool dirty() const { return dirty_; }
   // Compares the scene with the saved state again; call after edits.
   void update_dirty();
+  // The same, given scene_content(scene()) already taken.
+  void update_dirty(const std::string& content) { dirty_ = content != saved_content_; }
   // Diagnostics of the last failed operation; empty after a success.
   const std::string& error_text() const { return error_text_; }
   // What the last successful operation did.

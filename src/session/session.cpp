@@ -56,10 +56,12 @@ Applied Session::apply(const Edit& e) {
   Applied applied;
   applied.scope = edit_scope(before, scene);
   // A rename changes no pixel but the file; navigation changes pixels but not the file.
-  applied.unsaved = !navigation && scene_content(before) != scene_content(scene);
+  const std::string content = navigation ? std::string() : scene_content(scene);
+  applied.unsaved = !navigation && scene_content(before) != content;
   applied.changed = applied.scope != EditScope::kNothing || applied.unsaved;
   if (!applied.unsaved) return applied;  // navigation, or nothing: no undo step, none settled
-  edited();
+  document_.update_dirty(content);
+  pending_ = true;
   if (!e.held) settle(false);
   return applied;
 }
