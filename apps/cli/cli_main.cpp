@@ -39,12 +39,15 @@ using Clock = std::chrono::steady_clock;
 // Samples per pixel of `render` and `figure` without --spp: enough for smooth edges (--spp 1
 // renders the pixel centres only).
 constexpr int kDefaultSpp = 16;
+// Gathers the probe averages for the indirect term without --spp.
+constexpr int kProbeIndirectSamples = 1024;
 
 constexpr const char* kUsage = R"(usage: phonglab-cli <command> [options]
 
 commands:
   render [SCENE] -o OUT [--width W] [--height H] [--spp N] [--term T]
          [--max-depth D] [--fov-y DEG] [--threads N] [--stats FILE.json]
+         [--ambient constant|indirect] [--bounces B]
       Render to OUT (.pfm: linear float32, unclamped; .png: 8-bit sRGB).
       W x H: the image's size (default: the scene's image size, 960 x 540 in a
          file without one). N: samples per pixel (default 16, anti-aliased;
@@ -53,13 +56,21 @@ commands:
       --fov-y: the camera's vertical field of view (default: the scene's; the
          previewer's dump_state camera_fov, to match a narrow view).
       T: full (default), ambient, diffuse, specular, reflection, refraction,
-         or the debug views normal, depth, rays. A .png of rays is a heat map
-         (0 black .. the image's maximum pale yellow; the maximum is printed).
+         indirect, or the debug views normal, depth, rays. A .png of rays is a
+         heat map (0 black .. the image's maximum pale yellow; the maximum is
+         printed).
+      --ambient indirect: every hit's ka*Ia replaced by the indirect light it
+         stands in for, a Monte Carlo estimate (default: constant, ka*Ia);
+         --term indirect: that term alone at the primary hit. B: its bounces,
+         1..64 (default: the scene's "indirect": {"bounces"}, else 4).
       --stats: the times, rays by kind and Mrays/s as JSON (default: none).
   probe [SCENE] --pixel X,Y [--json] [--width W] [--height H]
+        [--ambient indirect [--bounces B] [--spp N]]
       The illumination equation of that pixel's centre ray, term by term, as
       text (--json: as JSON). W x H: the image the pixel is in (default: the
-      scene's image size).
+      scene's image size). --ambient indirect adds ka*Ia beside the indirect
+      term's estimate at the hit, its standard error over N samples (default
+      1024) and the ka that would match it.
   figure [SCENE] -o OUT.png [--width W] [--height H] [--spp N] [--threads N]
       The five term images and their sum in a labelled 3x2 grid, each W x H
       (default 320 x 180) at N samples per pixel (default 16).
@@ -96,6 +107,24 @@ Options: --help, --version.
 Exit codes: 0 success, 1 bad input, 2 bad usage.
 )";
 
+// --ambient and --bounces, shared by render and probe.
+struct AmbientArgs {
+  Ambient ambient = Ambient::kConstant;
+  std::optional<int> bounces;  // overrides the scene's
+};
+AmbientArgs take_ambient(Args& args) {
+  AmbientArgs out;
+  const auto ambient = args.take_value("--ambient");
+  out.bounces = args.take_int("--bounces", 1, kMaxIndirectBounces);
+  if (!ambient || *ambient == "constant") return out;
+  if (*ambient != "indirect") {
+    const std::vector<std::string_view> names = {"constant", "indirect"};
+    throw UsageError{"unknown --ambient '" + *ambient + "'" + suggestion_for(*ambient, names, "expected one of")};
+  }
+  out.ambient = Ambient::kIndirect;
+  return out;
+}
+
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
@@ -110,6 +139,7 @@ int cmd_render(Args& args) {
   const auto threads = args.take_int("--threads", 0, 1024);
   const auto term_arg = args.take_value("--term");
   const auto stats_path = args.take_value("--stats");
+  const AmbientArgs ambient = take_ambient(args);
   const std::string scene_arg = args.take_positional().value_or(default_scene_name());
   if (!out) throw UsageError{"render needs -o OUT (.pfm or .png)"};
   const std::string ext = out->size() >= 4 ? out->substr(out->size() - 4) : "";
@@ -118,13 +148,17 @@ int cmd_render(Args& args) {
   if (term_arg) {
     const auto term = term_from_name(*term_arg);
     if (!term) {
-      std::vector<std::string_view> names;
-      for (int t = 0; t <= static_cast<int>(Term::kRays); ++t) names.push_back(term_name(static_cast<Term>(t)));
+      std::vector<std::string_view> names;  // the equation's terms, the indirect term, then the debug views
+      for (const Term t : {Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
+                           Term::kRefraction, Term::kIndirect, Term::kNormal, Term::kDepth, Term::kRays}) {
+        names.push_back(term_name(t));
+      }
       throw UsageError{"unknown --term '" + *term_arg + "'" + suggestion_for(*term_arg, names, "expected one of")};
     }
     options.term = *term;
   }
   options.threads = threads.value_or(0);
+  options.ambient = ambient.ambient;
 
   const auto t_load = Clock::now();
   std::optional<Scene> scene = load_or_report(scene_arg);
@@ -135,6 +169,7 @@ int cmd_render(Args& args) {
   if (height) scene->height = *height;
   if (max_depth) scene->max_depth = *max_depth;
   if (fov_y) scene->camera.fov_y_deg = *fov_y;
+  if (ambient.bounces) scene->indirect_bounces = *ambient.bounces;
   const PreparedScene prepared(*scene);
   const double build_ms = ms_since(t_build);
 
@@ -169,7 +204,8 @@ int cmd_render(Args& args) {
                          {{"primary", total.rays.primary},
                           {"shadow", total.rays.shadow},
                           {"reflection", total.rays.reflection},
-                          {"refraction", total.rays.refraction}}},
+                          {"refraction", total.rays.refraction},
+                          {"indirect", total.rays.indirect}}},
                         {"mrays_per_s", seconds > 0 ? static_cast<double>(total.rays.total()) / seconds / 1e6 : 0.0},
                         {"nan_count", total.nan_count},
                         {"tracer", total.packets ? "packet" : "scalar"}};
@@ -186,8 +222,11 @@ int cmd_probe(Args& args) {
   const bool as_json = args.take_flag("--json");
   const auto width = args.take_int("--width", 1, 16384);
   const auto height = args.take_int("--height", 1, 16384);
+  const AmbientArgs ambient = take_ambient(args);
+  const auto samples = args.take_int("--spp", 1, 1 << 24);
   const std::string scene_arg = args.take_positional().value_or(default_scene_name());
   if (!pixel) throw UsageError{"probe needs --pixel X,Y"};
+  if (samples && ambient.ambient != Ambient::kIndirect) throw UsageError{"probe takes --spp only with --ambient indirect"};
   int x = 0, y = 0;
   char extra = 0;
   if (std::sscanf(pixel->c_str(), "%d,%d%c", &x, &y, &extra) != 2) {
@@ -201,9 +240,18 @@ int cmd_probe(Args& args) {
     throw UsageError{"--pixel " + *pixel + " is outside the " + std::to_string(scene->width) + "x" +
                      std::to_string(scene->height) + " image"};
   }
+  if (ambient.bounces) scene->indirect_bounces = *ambient.bounces;
   const PreparedScene prepared(*scene);
   const PixelProbe probe = probe_pixel(prepared, scene->width, scene->height, x, y);
-  std::cout << (as_json ? probe_to_json(prepared.scene(), probe) : probe_to_text(prepared.scene(), probe));
+  std::optional<IndirectProbe> indirect;
+  if (ambient.ambient == Ambient::kIndirect) {
+    indirect = probe_indirect(prepared, scene->width, scene->height, x, y, samples.value_or(kProbeIndirectSamples));
+  }
+  if (as_json) {
+    std::cout << probe_to_json(prepared.scene(), probe, indirect ? &*indirect : nullptr);
+  } else {
+    std::cout << probe_to_text(prepared.scene(), probe) << (indirect ? indirect_probe_text(*indirect) : "");
+  }
   return kExitOk;
 }
 

@@ -170,7 +170,7 @@ void node_text(const Scene& scene, const ProbeNode& node, const std::string& lab
 
 }  // namespace
 
-std::string probe_to_json(const Scene& scene, const PixelProbe& probe) {
+std::string probe_to_json(const Scene& scene, const PixelProbe& probe, const IndirectProbe* indirect) {
   json j = node_json(scene, probe.root);
   json out;
   out["pixel"] = json::array({probe.x, probe.y});
@@ -186,7 +186,27 @@ std::string probe_to_json(const Scene& scene, const PixelProbe& probe) {
                  {"refraction", probe.rays.refraction}};
   out["specular_model"] = scene.specular_model == SpecularModel::kBlinn ? "blinn" : "phong";
   out["ray"] = std::move(j);
+  if (indirect) {
+    out["indirect"] = {{"hit", indirect->hit},
+                       {"bounces", indirect->bounces},
+                       {"samples", indirect->samples},
+                       {"ambient", vec_json(indirect->ambient)},
+                       {"estimate", vec_json(indirect->mean)},
+                       {"standard_error", vec_json(indirect->standard_error)},
+                       {"fitted_ka", vec_json(indirect->fitted_ka)}};
+  }
   return out.dump(2) + "\n";
+}
+
+std::string indirect_probe_text(const IndirectProbe& indirect, int digits) {
+  const Digits d = digits > 0 ? Digits{digits, digits} : Digits{};
+  if (!indirect.hit) return "what ambient stands in for: the centre ray meets nothing (indirect term 0)\n";
+  std::string out = fmt("what ambient stands in for (%d bounces, %d samples):\n", indirect.bounces, indirect.samples);
+  out += "  ka*Ia                  = " + rgb(indirect.ambient, d) + "\n";
+  out += "  indirect kd*E          = " + rgb(indirect.mean, d) + "\n";
+  out += "  its standard error     = " + rgb(indirect.standard_error, d) + "\n";
+  out += "  ka for ka*Ia = indirect = " + rgb(indirect.fitted_ka, d) + "\n";
+  return out;
 }
 
 std::string probe_to_text(const Scene& scene, const PixelProbe& probe, int digits) {

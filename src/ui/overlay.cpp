@@ -144,6 +144,7 @@ std::string term_caption(Term term, bool blinn) {
     case Term::kNormal: return "debug view: the shading normal N as a colour";
     case Term::kDepth: return "debug view: distance to the primary hit";
     case Term::kRays: return "debug view: rays cast per pixel";
+    case Term::kIndirect: return "indirect only: kd" + dot + "E, the light from other surfaces that ka" + dot + ia + " stands in for";
   }
   return "";
 }

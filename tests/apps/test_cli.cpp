@@ -131,7 +131,7 @@ TEST_F(CliTest, MisspeltTermGetsASuggestion) {
   EXPECT_NE(typo.out.find("unknown --term 'specualr' (did you mean \"specular\"?)"), std::string::npos) << typo.out;
   const RunResult far = run_cli("render lecture -o " + path("x.pfm") + " --term glossy");
   EXPECT_EQ(far.exit_code, 2);
-  EXPECT_NE(far.out.find("(expected one of: full, ambient, diffuse, specular, reflection, refraction, normal, depth, rays)"),
+  EXPECT_NE(far.out.find("(expected one of: full, ambient, diffuse, specular, reflection, refraction, indirect, normal, depth, rays)"),
             std::string::npos)
       << far.out;
   EXPECT_FALSE(fs::exists(path("x.pfm")));

@@ -8,9 +8,18 @@
 namespace phonglab {
 
 namespace {
-constexpr std::array<std::string_view, 9> kTermNames = {"full",       "ambient",    "diffuse",
-                                                        "specular",   "reflection", "refraction",
-                                                        "normal",     "depth",      "rays"};
+constexpr std::array<std::string_view, 10> kTermNames = {"full",       "ambient",    "diffuse",
+                                                         "specular",   "reflection", "refraction",
+                                                         "normal",     "depth",      "rays",
+                                                         "indirect"};
+
+// The sampler of one (pixel, sample) under indirect light, else nothing.
+std::optional<IndirectSampler> sampler_for(const Scene& scene, Ambient ambient, int x, int y,
+                                           std::uint32_t sample_index, std::uint32_t seed) {
+  if (ambient != Ambient::kIndirect) return std::nullopt;
+  return IndirectSampler(scene.indirect_bounces, indirect_pixel_key(x, y, seed), sample_index);
+}
+IndirectSampler* pointer(std::optional<IndirectSampler>& sampler) { return sampler ? &*sampler : nullptr; }
 }  // namespace
 
 std::optional<Term> term_from_name(std::string_view name) {
@@ -61,17 +70,18 @@ Color Accumulator::mean(int x, int y) const {
 
 Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
                     std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed,
-                    const Vec3* shading_eye) {
+                    const Vec3* shading_eye, Ambient ambient) {
   double u, v;
   sample_offset(x, y, sample_index, u, v, seed);
   const Ray ray = camera_ray(frame, x, y, u, v);
   ++counts.primary;
   const Scene& scene = prepared.scene();
   const TraceLimits limits{scene.max_depth, scene.min_weight};
-  if (term == Term::kFull) return trace(prepared, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
+  std::optional<IndirectSampler> sampler = sampler_for(scene, ambient_for(term, ambient), x, y, sample_index, seed);
+  if (term == Term::kFull) return trace(prepared, limits, ray, 0, 1.0, counts, nullptr, shading_eye, pointer(sampler));
   if (term == Term::kRays) {
     const std::uint64_t before = counts.total() - 1;
-    trace(prepared, limits, ray, 0, 1.0, counts, nullptr, shading_eye);
+    trace(prepared, limits, ray, 0, 1.0, counts, nullptr, shading_eye, pointer(sampler));
     return Color(static_cast<double>(counts.total() - before));
   }
   const std::optional<Hit> hit = intersect(prepared, ray);
@@ -86,18 +96,20 @@ Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Ter
     default:
       break;
   }
-  return term_value(shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, terms_wanted(term)), term);
+  return term_value(
+      shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, terms_wanted(term), pointer(sampler)),
+      term);
 }
 
 Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
                           std::uint32_t sample_index, RayCounts& counts, Terms& terms, std::uint32_t seed,
-                          const Vec3* shading_eye) {
+                          const Vec3* shading_eye, Ambient ambient) {
   const Scene& scene = prepared.scene();
   // A debug view is not read off the terms: its own value, then the terms' trace (uncounted twice).
   std::optional<Color> debug;
   if (!is_equation_term(term)) {
     RayCounts uncounted;
-    debug = render_sample(prepared, frame, term, x, y, sample_index, uncounted, seed, shading_eye);
+    debug = render_sample(prepared, frame, term, x, y, sample_index, uncounted, seed, shading_eye, ambient);
   }
   double u, v;
   sample_offset(x, y, sample_index, u, v, seed);
@@ -108,14 +120,16 @@ Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& fram
     terms = Terms{};
     return debug ? *debug : miss_value(scene, term);
   }
+  std::optional<IndirectSampler> sampler = sampler_for(scene, ambient_for(term, ambient), x, y, sample_index, seed);
   terms = shade(prepared, TraceLimits{scene.max_depth, scene.min_weight}, ray, *hit, 0, 1.0, counts, nullptr,
-                shading_eye, TermsWanted{});
+                shading_eye, TermsWanted{}, pointer(sampler));
   return debug ? *debug : term_value(terms, term);
 }
 
 TermsWanted terms_wanted(Term term) {
   switch (term) {
-    case Term::kAmbient: return {false, false, false};
+    case Term::kAmbient:
+    case Term::kIndirect: return {false, false, false};
     case Term::kDiffuse:
     case Term::kSpecular: return {true, false, false};
     case Term::kReflection: return {false, true, false};
@@ -126,7 +140,8 @@ TermsWanted terms_wanted(Term term) {
 
 Color term_value(const Terms& t, Term term) {
   switch (term) {
-    case Term::kAmbient: return t.ambient;
+    case Term::kAmbient:
+    case Term::kIndirect: return t.ambient;
     case Term::kDiffuse: return t.diffuse;
     case Term::kSpecular: return t.specular;
     case Term::kReflection: return t.reflection;
@@ -155,7 +170,9 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
 
   // Each tile is written by exactly one thread and each pixel's value depends only on
   // (x, y, sample_index), so the image is the same for any thread count or tile order.
-  const bool packets = options.packets && PacketTracer::draws(options.term) && packet_tracing_applies(prepared);
+  const Ambient ambient = ambient_for(options.term, options.ambient);
+  const bool packets = options.packets && ambient == Ambient::kConstant && PacketTracer::draws(options.term) &&
+                       packet_tracing_applies(prepared);
   const bool with_terms = accum.has_terms();
   auto worker = [&](PassStats& stats) {
     PacketTracer* tracer = packets ? &packet_tracer_for(prepared) : nullptr;
@@ -206,13 +223,14 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
         for (int x = x0; x < x1; ++x) {
           if (!with_terms) {
             add(accum.sum.data() + row, x,
-                render_sample(prepared, frame, options.term, x, y, sample_index, stats.rays, options.seed, shading_eye));
+                render_sample(prepared, frame, options.term, x, y, sample_index, stats.rays, options.seed, shading_eye,
+                              ambient));
             continue;
           }
           Terms terms;
           add(accum.sum.data() + row, x,
               render_sample_terms(prepared, frame, options.term, x, y, sample_index, stats.rays, terms, options.seed,
-                                  shading_eye));
+                                  shading_eye, ambient));
           add_pixel_terms(accum.terms[row + static_cast<std::size_t>(x)], terms);
         }
       }

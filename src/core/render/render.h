@@ -29,7 +29,12 @@ enum class Term : std::uint8_t {
   kNormal,  // facing shading normal N mapped to 0.5 + 0.5 N
   kDepth,   // primary hit distance t (world units; 0 on a miss)
   kRays,    // rays cast for the sample, all kinds (a heat map input)
+  kIndirect,  // the indirect term at the primary hit (the ambient term's place, ambient indirect)
 };
+
+// Where the ambient term of every hit comes from: the lecture's constant ka·Ia, or the indirect
+// light it stands in for (docs/model.md: the indirect term's estimate, the scene's bounces).
+enum class Ambient : std::uint8_t { kConstant, kIndirect };
 
 // The five terms in the equation's order, as Term values and as the members of Terms that hold them.
 inline constexpr std::array<Term, 5> kFiveTerms = {Term::kAmbient, Term::kDiffuse, Term::kSpecular, Term::kReflection,
@@ -38,7 +43,10 @@ inline constexpr std::array<Color Terms::*, 5> kFiveTermMembers = {&Terms::ambie
                                                                    &Terms::reflection, &Terms::refraction};
 
 // Whether `term` is the equation's image or one of its five terms (not a debug view).
-inline bool is_equation_term(Term term) { return term <= Term::kRefraction; }
+inline bool is_equation_term(Term term) { return term <= Term::kRefraction || term == Term::kIndirect; }
+// The ambient term's source a render of `term` uses: the indirect term's image is the ambient
+// term under indirect light.
+inline Ambient ambient_for(Term term, Ambient ambient) { return term == Term::kIndirect ? Ambient::kIndirect : ambient; }
 
 // What a primary ray that meets nothing gives for `term`: the background in the full image, 0
 // in a term or debug image.
@@ -64,6 +72,9 @@ struct RenderOptions {
   // Trace full images in packets (src/core/packet/packet.h) where the scene and the CPU allow it.
   // The image is bit-identical either way; off forces the scalar renderer (tests, comparisons).
   bool packets = true;
+  // ka·Ia at every hit, or the indirect light's estimate with the scene's bounces (traced by the
+  // scalar renderer: gather rays are incoherent).
+  Ambient ambient = Ambient::kConstant;
 };
 
 // Sums of samples per pixel, row-major from the top-left, plus the sample count.
@@ -95,17 +106,17 @@ struct PassStats {
   bool packets = false;         // traced by the packet tracer (else by the scalar renderer)
 };
 
-// The radiance (or term, or debug value) of one primary ray.
+// The radiance (or term, or debug value) of one primary ray; `ambient` as in RenderOptions.
 Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
                     std::uint32_t sample_index, RayCounts& counts, std::uint32_t seed = 0,
-                    const Vec3* shading_eye = nullptr);
+                    const Vec3* shading_eye = nullptr, Ambient ambient = Ambient::kConstant);
 
 // The same sample, also giving the primary hit's five terms (zero on a miss) in `terms`: every
 // term is computed, and `term`'s value (or the full image's) is read off them, bit for bit what
 // render_sample gives. A debug view's value is cast separately.
 Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
                           std::uint32_t sample_index, RayCounts& counts, Terms& terms, std::uint32_t seed = 0,
-                          const Vec3* shading_eye = nullptr);
+                          const Vec3* shading_eye = nullptr, Ambient ambient = Ambient::kConstant);
 
 // Adds sample number `accum.samples` to every pixel (and its terms, if accum.has_terms()). When `cancel` becomes true the pass stops between tiles; `accum` is then
 // partly updated and must be reset before further use. Returns the pass's statistics.

@@ -21,7 +21,7 @@ constexpr std::size_t field_count() {
 }
 static_assert(field_count<Material>() == 10, "a field added to Material: classify it in changes_between");
 static_assert(field_count<Light>() == 5, "a field added to Light: classify it in changes_between");
-static_assert(field_count<Scene>() == 19, "a field added to Scene: classify it in changes_between");
+static_assert(field_count<Scene>() == 20, "a field added to Scene: classify it in changes_between");
 
 }  // namespace
 
@@ -73,6 +73,7 @@ Changes changes_between(const Scene& a, const Scene& b) {
   c.limits_changed = a.max_depth != b.max_depth || a.min_weight != b.min_weight;
   c.depth_grew = b.max_depth > a.max_depth;
   c.model_changed = a.specular_model != b.specular_model;
+  c.indirect_bounces_changed = a.indirect_bounces != b.indirect_bounces;
   c.ambient_changed = a.ambient != b.ambient;
   c.background_changed = a.background != b.background;
   return c;

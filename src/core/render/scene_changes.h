@@ -30,6 +30,9 @@ struct Changes {
   bool eye_moved = false;              // V at the primary hits: their specular cosines are taken again
   bool model_changed = false;          // every specular cosine is computed again
   bool ambient_changed = false, background_changed = false;
+  // The indirect light's bounces: no pixel of the lecture's image changes (the indirect view,
+  // which reads them, is traced again after any edit but of ka and Ia: progressive.h).
+  bool indirect_bounces_changed = false;
 
   // Something stored at the hits must be brought up to date.
   bool stale_hits() const {

@@ -51,6 +51,10 @@ struct Material {
 
 enum class SpecularModel : std::uint8_t { kPhong, kBlinn };
 
+// Bounces of the indirect light (the scene file's "indirect": {"bounces"}): default and range 1..max.
+inline constexpr int kDefaultIndirectBounces = 4;
+inline constexpr int kMaxIndirectBounces = 64;
+
 struct Sphere {
   Vec3 center{0, 0, 0};
   double radius = 1;  // > 0
@@ -121,6 +125,7 @@ struct Scene {
   int max_depth = 5;                  // recursion depth limit; 0 = local shading only
   double min_weight = 0.001;          // prune child rays whose path weight is below this
   SpecularModel specular_model = SpecularModel::kPhong;
+  int indirect_bounces = kDefaultIndirectBounces;  // of the indirect light, 1..kMaxIndirectBounces
   std::vector<Light> lights;
   std::vector<Material> materials;
   std::vector<Sphere> spheres;

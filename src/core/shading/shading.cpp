@@ -44,8 +44,13 @@ template <bool kExperiment>
 class Equation {
  public:
   Equation(const PreparedScene& prepared, const TraceLimits& limits, RayCounts& counts,
-           TraceRecorder* recorder = nullptr)
-      : prepared_(prepared), scene_(prepared.scene()), limits_(limits), counts_(counts), recorder_(recorder) {}
+           TraceRecorder* recorder = nullptr, IndirectSampler* indirect = nullptr)
+      : prepared_(prepared),
+        scene_(prepared.scene()),
+        limits_(limits),
+        counts_(counts),
+        recorder_(recorder),
+        indirect_(indirect) {}
 
   Color trace(const Ray& ray, int depth, double weight, ProbeNode* probe, const Vec3* shading_eye) {
     if (probe) {
@@ -70,7 +75,7 @@ class Equation {
     const Vec3 v = view_direction(hit.p, ray.dir, shading_eye);
     const double offset = offset_of(hit);
     Terms terms;
-    terms.ambient = m.ka * scene_.ambient;
+    terms.ambient = indirect_ ? gather(m, hit.p, side, offset) : m.ka * scene_.ambient;
     if (probe) record_hit(*probe, hit, side, v);
     if (recorder_) recorder_->begin_hit(ray, hit, side, offset, depth);
     // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0); a recorder of ray
@@ -85,6 +90,20 @@ class Equation {
       probe->total = terms.sum();
     }
     return terms;
+  }
+
+  // The indirect term's estimate at P (indirect_estimate in shading.h): one gather ray.
+  Color gather(const Material& m, const Vec3& p, const HitSide& side, double offset) {
+    if (indirect_->bounces_left() <= 0 || is_zero(m.kd)) return Color(0);
+    double u1 = 0, u2 = 0;
+    indirect_->next_point(u1, u2);
+    const Vec3 dir = cosine_direction(side.n, u1, u2);
+    ++counts_.indirect;
+    // What a camera at P looking along the direction sees: a primary ray's tree, one bounce fewer.
+    indirect_->descend();
+    const Color in = trace(make_ray(offset_origin(p, side.ng, dir, offset), dir), 0, 1.0, nullptr, nullptr);
+    indirect_->ascend();
+    return m.kd * in;
   }
 
  private:
@@ -238,25 +257,36 @@ class Equation {
   const TraceLimits& limits_;
   RayCounts& counts_;
   TraceRecorder* recorder_;
+  IndirectSampler* indirect_;  // null: ka·Ia at every hit
 };
 
 }  // namespace
 
 Terms shade(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
             double weight, RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye,
-            const TermsWanted& wanted) {
+            const TermsWanted& wanted, IndirectSampler* indirect) {
   if (prepared.experiment()) [[unlikely]] {
-    return Equation<true>(prepared, limits, counts).shade(ray, hit, depth, weight, probe, shading_eye, wanted);
+    return Equation<true>(prepared, limits, counts, nullptr, indirect)
+        .shade(ray, hit, depth, weight, probe, shading_eye, wanted);
   }
-  return Equation<false>(prepared, limits, counts).shade(ray, hit, depth, weight, probe, shading_eye, wanted);
+  return Equation<false>(prepared, limits, counts, nullptr, indirect)
+      .shade(ray, hit, depth, weight, probe, shading_eye, wanted);
 }
 
 Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, int depth, double weight,
-            RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye) {
+            RayCounts& counts, ProbeNode* probe, const Vec3* shading_eye, IndirectSampler* indirect) {
   if (prepared.experiment()) [[unlikely]] {
-    return Equation<true>(prepared, limits, counts).trace(ray, depth, weight, probe, shading_eye);
+    return Equation<true>(prepared, limits, counts, nullptr, indirect).trace(ray, depth, weight, probe, shading_eye);
   }
-  return Equation<false>(prepared, limits, counts).trace(ray, depth, weight, probe, shading_eye);
+  return Equation<false>(prepared, limits, counts, nullptr, indirect).trace(ray, depth, weight, probe, shading_eye);
+}
+
+Color indirect_estimate(const PreparedScene& prepared, const TraceLimits& limits, const Material& m, const Vec3& p,
+                        const HitSide& side, double offset, RayCounts& counts, IndirectSampler& indirect) {
+  if (prepared.experiment()) [[unlikely]] {
+    return Equation<true>(prepared, limits, counts, nullptr, &indirect).gather(m, p, side, offset);
+  }
+  return Equation<false>(prepared, limits, counts, nullptr, &indirect).gather(m, p, side, offset);
 }
 
 Color trace_recorded(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, RayCounts& counts,

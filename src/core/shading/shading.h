@@ -11,6 +11,7 @@
 #include "core/geometry/geometry.h"
 #include "core/scene/math.h"
 #include "core/scene/scene.h"
+#include "core/shading/indirect.h"
 
 namespace phonglab {
 
@@ -30,12 +31,14 @@ struct RayCounts {
   std::uint64_t shadow = 0;
   std::uint64_t reflection = 0;
   std::uint64_t refraction = 0;  // includes rays sent along the mirror direction under TIR
-  std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+  std::uint64_t indirect = 0;    // gather rays of the indirect light's estimate
+  std::uint64_t total() const { return primary + shadow + reflection + refraction + indirect; }
   RayCounts& operator+=(const RayCounts& o) {
     primary += o.primary;
     shadow += o.shadow;
     reflection += o.reflection;
     refraction += o.refraction;
+    indirect += o.indirect;
     return *this;
   }
 };
@@ -284,11 +287,14 @@ class TraceRecorder {
 };
 
 // Radiance along a ray (docs/model.md, the equation: trace). `probe`, when given, receives the whole ray tree.
+// `indirect`, when given, replaces ka·Ia at every hit by the estimate of the indirect term with the
+// sampler's bounces left (docs/model.md, indirect light); without it, the lecture's ka·Ia.
 // `shading_eye`, when given, is the eye used for V at this ray's hit only ("move your head":
 // V = normalize(eye - P) instead of -D); the reflected and refracted children still follow the
 // real ray and use their own -D. Without it the result is bit-identical to the plain equation.
 Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, int depth, double weight,
-            RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr);
+            RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr,
+            IndirectSampler* indirect = nullptr);
 
 // trace() of a primary ray (depth 0, weight 1), telling `recorder` of the whole tree. The radiance
 // is trace()'s, bit for bit; more shadow rays are cast (every light at every hit facing it).
@@ -296,10 +302,17 @@ Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray&
 Color trace_recorded(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, RayCounts& counts,
                      TraceRecorder& recorder, const Vec3* shading_eye = nullptr);
 
-// Shading of a known hit, term by term (`shading_eye` as for trace: V at this hit only). Terms
-// that `wanted` leaves out are 0.
+// Shading of a known hit, term by term (`shading_eye` and `indirect` as for trace: V at this hit
+// only; the ambient term is the indirect term's estimate). Terms that `wanted` leaves out are 0.
 Terms shade(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, const Hit& hit, int depth,
             double weight, RayCounts& counts, ProbeNode* probe = nullptr, const Vec3* shading_eye = nullptr,
-            const TermsWanted& wanted = {});
+            const TermsWanted& wanted = {}, IndirectSampler* indirect = nullptr);
+
+// One estimate of the indirect term at a hit of material m (P, the facing normals, the ray
+// offset as for its shadow rays): kd times the radiance a gather ray in a cosine-weighted
+// direction about N brings back, its own hits with one bounce fewer. 0 with no bounce left or
+// kd = 0 (no ray then). The rule both the scalar equation and the probe use.
+Color indirect_estimate(const PreparedScene& prepared, const TraceLimits& limits, const Material& m, const Vec3& p,
+                        const HitSide& side, double offset, RayCounts& counts, IndirectSampler& indirect);
 
 }  // namespace phonglab

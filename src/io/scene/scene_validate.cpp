@@ -42,10 +42,11 @@ namespace {
 
 
 
-constexpr std::array<std::string_view, 10> kSceneKeys = {
-    "camera", "image", "ambient", "background", "max_depth", "min_weight", "specular_model",
+constexpr std::array<std::string_view, 11> kSceneKeys = {
+    "camera", "image", "ambient", "background", "max_depth", "min_weight", "specular_model", "indirect",
     "lights", "materials", "objects"};
 constexpr std::array<std::string_view, 2> kImageKeys = {"width", "height"};
+constexpr std::array<std::string_view, 1> kIndirectKeys = {"bounces"};
 constexpr std::array<std::string_view, 2> kSpecularModels = {"phong", "blinn"};
 constexpr std::array<std::string_view, 4> kObjectTypes = {"sphere", "plane", "triangle", "mesh"};
 constexpr std::array<std::string_view, 5> kSphereKeys = {"type", "name", "center", "radius", "material"};
@@ -85,6 +86,7 @@ class Validator : private SceneMembers {
         s.specular_model = (*name == "blinn") ? SpecularModel::kBlinn : SpecularModel::kPhong;
       }
     }
+    if (const Val* v = top.find("indirect")) indirect(*v, s);
     if (const Val* v = top.find("lights")) lights(*v, s);
     // Materials before objects: objects refer to them by name.
     if (const Val* v = top.find("materials")) materials(*v, s);
@@ -98,6 +100,12 @@ class Validator : private SceneMembers {
     const Fields f = fields(v, kImageKeys);
     if (const Val* w = f.find("width")) set(s.width, read_int(*w, 1, kMaxImageSide));
     if (const Val* h = f.find("height")) set(s.height, read_int(*h, 1, kMaxImageSide));
+  }
+
+  void indirect(const Val& v, Scene& s) {
+    if (!expect_object(v)) return;
+    const Fields f = fields(v, kIndirectKeys);
+    if (const Val* b = f.find("bounces")) set(s.indirect_bounces, read_int(*b, 1, kMaxIndirectBounces));
   }
 
   void lights(const Val& v, Scene& s) {

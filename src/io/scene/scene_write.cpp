@@ -201,6 +201,9 @@ std::string scene_to_json(const Scene& scene, const std::string& save_dir) {
   out += "  \"min_weight\": " + number_text(scene.min_weight) + ",\n";
   out += std::string("  \"specular_model\": ") +
          (scene.specular_model == SpecularModel::kBlinn ? "\"blinn\"" : "\"phong\"") + ",\n";
+  if (scene.indirect_bounces != kDefaultIndirectBounces) {  // a file without it keeps its text
+    out += "  \"indirect\": {\"bounces\": " + std::to_string(scene.indirect_bounces) + "},\n";
+  }
 
   append_lights_and_materials(scene, out);
   out += "  \"objects\": [";
