@@ -359,3 +359,45 @@ TEST_F(CliTest, LessonsListsTheEmbeddedLessonsAndLessonWritesTheHandout) {
   }
   EXPECT_EQ(steps, 8) << "one step-NN.png per step of raytracing, the answers apart";
 }
+
+// --ambient indirect, --term indirect and --bounces (docs/cli.md): a floor under a red sky with
+// no light but the sky: with one bounce its indirect term is kd times the sky (the floor sees
+// nothing else), its full image the same (no direct light reaches it: the light is below).
+TEST_F(CliTest, AmbientIndirectRendersTheLightTheAmbientTermStandsFor) {
+  const std::string scene = write("sky.json", R"({
+  "camera": {"position": [0, 1, 0], "look_at": [0, 1, -1], "up": [0, 1, 0], "fov_y": 90},
+  "image": {"width": 8, "height": 6},
+  "background": [1, 0, 0],
+  "materials": {"white": {"ka": 0.1, "kd": 0.5}},
+  "objects": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "white"}]
+})");
+  ASSERT_EQ(run_cli("render " + scene + " -o " + path("c.pfm") + " --spp 1").exit_code, 0);
+  ASSERT_EQ(run_cli("render " + scene + " -o " + path("i.pfm") + " --spp 3 --ambient indirect --bounces 1").exit_code, 0);
+  ASSERT_EQ(run_cli("render " + scene + " -o " + path("t.pfm") + " --spp 2 --term indirect").exit_code, 0);
+  const auto pixel = [&](const std::string& name, int x, int y) {
+    const Image image = phonglab::read_pfm(path(name));
+    return image.pixels[static_cast<std::size_t>(y) * 8 + x];
+  };
+  EXPECT_NEAR(pixel("c.pfm", 4, 5).x, 0.1, 1e-6);  // ka·Ia, bottom row (the floor)
+  EXPECT_NEAR(pixel("i.pfm", 4, 5).x, 0.5, 1e-6);  // kd ⊙ sky
+  EXPECT_NEAR(pixel("i.pfm", 4, 5).y, 0.0, 1e-6);
+  EXPECT_NEAR(pixel("t.pfm", 4, 5).x, 0.5, 1e-6);
+  EXPECT_NEAR(pixel("i.pfm", 4, 0).x, 1.0, 1e-6);  // the sky itself in the full image
+  EXPECT_EQ(pixel("t.pfm", 4, 0).x, 0.0f);         // and 0 in the term image
+
+  const RunResult bad = run_cli("render " + scene + " -o " + path("x.pfm") + " --ambient indirect --bounces 65");
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+  const RunResult typo = run_cli("render " + scene + " -o " + path("x.pfm") + " --ambient indirekt");
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.out.find("did you mean \"indirect\""), std::string::npos) << typo.out;
+
+  const RunResult probe = run_cli("probe " + scene + " --pixel 4,5 --json --ambient indirect --bounces 1 --spp 64");
+  ASSERT_EQ(probe.exit_code, 0) << probe.out;
+  const nlohmann::json j = nlohmann::json::parse(probe.out);
+  EXPECT_EQ(j["indirect"]["samples"], 64);
+  EXPECT_NEAR(j["indirect"]["estimate"][0].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(j["indirect"]["standard_error"][0].get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(j["indirect"]["ambient"][0].get<double>(), 0.1, 1e-9);
+  EXPECT_NEAR(j["indirect"]["fitted_ka"][0].get<double>(), 0.5, 1e-9);
+  EXPECT_EQ(run_cli("probe " + scene + " --pixel 4,5 --spp 4").exit_code, 2);  // --spp only with indirect
+}

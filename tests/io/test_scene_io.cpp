@@ -956,5 +956,31 @@ TEST(SceneLoader, RandomBytesNeverCrash) {
   }
 }
 
+
+// ----- The indirect light's bounces ----------------------------------------------------------------
+
+TEST(SceneLoader, IndirectBouncesDefaultToFourAndAreKeptOnSave) {
+  EXPECT_EQ(load("{}").scene->indirect_bounces, 4);
+  const LoadResult r = load(R"({"indirect": {"bounces": 16}})");
+  ASSERT_TRUE(r.ok()) << r.error_text();
+  EXPECT_EQ(r.scene->indirect_bounces, 16);
+  const std::string saved = scene_to_json(*r.scene);
+  EXPECT_NE(saved.find(R"("indirect": {"bounces": 16})"), std::string::npos) << saved;
+  EXPECT_EQ(load(saved).scene->indirect_bounces, 16);
+  // The default is not written: a file without it keeps its text.
+  EXPECT_EQ(scene_to_json(*load("{}").scene).find("indirect"), std::string::npos);
+}
+
+TEST(SceneLoader, IndirectBouncesOutsideOneToSixtyFourAreRefusedWithTheirPlace) {
+  EXPECT_EQ(errors(R"({"indirect": {"bounces": 0}})"),
+            "scene.json:1:26: indirect.bounces: must be an integer in 1..64 (got 0)");
+  EXPECT_EQ(errors("{\n  \"indirect\": {\"bounces\": 65}\n}"),
+            "scene.json:2:27: indirect.bounces: must be an integer in 1..64 (got 65)");
+  EXPECT_EQ(errors(R"({"indirect": {"bounces": 2.5}})"),
+            "scene.json:1:26: indirect.bounces: must be an integer in 1..64 (got 2.5)");
+  EXPECT_NE(errors(R"({"indirect": {"bounce": 2}})").find("did you mean \"bounces\""), std::string::npos);
+  EXPECT_NE(errors(R"({"indirect": 3})").find("scene.json:1:14: indirect: must be an object"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace phonglab
