@@ -268,3 +268,27 @@ TEST(Indirect, StandardErrorFallsAsOneOverRootSamples) {
   ASSERT_GT(pixels, 30);
   EXPECT_NEAR(se64 / se1024, 4.0, 0.4);
 }
+
+// The indirect term with the term images: the value is the indirect term, bit for bit as without
+// them, and the terms are the lecture's (ka·Ia), bit for bit as a constant-ambient render's: the
+// two images "side by side" come from one pass.
+TEST(Indirect, TheIndirectTermComesWithTheLecturesTermsBesideIt) {
+  const PreparedScene prepared = room();
+  RenderOptions options;
+  options.term = Term::kIndirect;
+  Accumulator with_terms;
+  with_terms.reset(30, 20, true);
+  render_passes(prepared, options, with_terms, 2);
+  const Accumulator plain = render(prepared, 30, 20, 2, Term::kIndirect, Ambient::kConstant);
+  ASSERT_EQ(with_terms.sum, plain.sum);
+  RenderOptions lecture;
+  lecture.packets = false;
+  Accumulator constant;
+  constant.reset(30, 20, true);
+  render_passes(prepared, lecture, constant, 2);
+  for (std::size_t i = 0; i < constant.terms.size(); ++i) {
+    ASSERT_EQ(with_terms.terms[i].ambient, constant.terms[i].ambient);
+    ASSERT_EQ(with_terms.terms[i].diffuse, constant.terms[i].diffuse);
+    ASSERT_EQ(with_terms.terms[i].reflection, constant.terms[i].reflection);
+  }
+}

@@ -499,3 +499,56 @@ TEST(ProgressiveRenderer, NoSceneOrEmptyImageMeansIdleWithoutFrames) {
   ProgressiveFrame frame;
   EXPECT_FALSE(renderer.take_frame(frame));
 }
+
+// The indirect light's view: an edit of ka (which it never reads) keeps the samples it has and
+// shows them as the new generation's image; an edit of kd starts again. The image after the ka
+// edit is the one a fresh render of the edited scene gives, bit for bit.
+TEST(ProgressiveRenderer, IndirectViewKeepsItsSamplesThroughAKaEditButNotAKdEdit) {
+  ProgressiveSettings settings;
+  settings.target_spp = 4;
+  settings.ambient = Ambient::kIndirect;
+  settings.tree_budget_bytes = 0;
+  ProgressiveRenderer renderer(settings);
+  renderer.set_resolution(48, 27);
+  const auto scene = lecture_scene();
+  renderer.set_scene(scene);
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ProgressiveFrame frame;
+  ASSERT_TRUE(renderer.take_frame(frame));
+  ASSERT_EQ(frame.spp, 4u);
+
+  Scene ka_edit = scene->scene();
+  ka_edit.materials[0].ka = Color(0.9, 0.1, 0.1);
+  ka_edit.ambient = Color(0.3);
+  const std::uint64_t kept = renderer.set_scene(std::make_shared<const PreparedScene>(ka_edit));
+  ASSERT_TRUE(renderer.wait_idle(kLongWait));
+  ASSERT_TRUE(renderer.take_frame(frame));
+  EXPECT_EQ(frame.generation, kept);
+  EXPECT_EQ(frame.spp, 4u);  // no sample was traced again
+  EXPECT_EQ(frame.divisor, 1);
+  RenderOptions options;
+  options.ambient = Ambient::kIndirect;
+  Accumulator fresh;
+  fresh.reset(48, 27);
+  render_passes(PreparedScene(ka_edit), options, fresh, 4);
+  for (std::size_t i = 0; i < fresh.sum.size(); ++i) ASSERT_EQ(frame.pixels[i], glm::vec3(fresh.sum[i] / 4.0));
+
+  Scene kd_edit = ka_edit;
+  kd_edit.materials[0].kd = Color(0.2);
+  const std::uint64_t restarted = renderer.set_scene(std::make_shared<const PreparedScene>(kd_edit));
+  std::vector<std::uint32_t> spps;
+  const auto deadline = std::chrono::steady_clock::now() + kLongWait;
+  while (!renderer.status().idle || renderer.status().generation != restarted) {
+    if (renderer.take_frame(frame)) spps.push_back(frame.spp);
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+    std::this_thread::sleep_for(1ms);
+  }
+  if (renderer.take_frame(frame)) spps.push_back(frame.spp);
+  EXPECT_EQ(frame.generation, restarted);
+  EXPECT_EQ(frame.divisor, 1);
+  ASSERT_FALSE(spps.empty());
+  EXPECT_EQ(frame.spp, 4u);
+  fresh.reset(48, 27);
+  render_passes(PreparedScene(kd_edit), options, fresh, 4);  // traced again: the kd edit's own image
+  for (std::size_t i = 0; i < fresh.sum.size(); ++i) ASSERT_EQ(frame.pixels[i], glm::vec3(fresh.sum[i] / 4.0));
+}

@@ -431,7 +431,7 @@ PacketTracer::PacketTracer(const PreparedScene& prepared, PacketTracer&& recycle
 }
 PacketTracer::~PacketTracer() = default;
 
-bool PacketTracer::draws(Term term) { return is_equation_term(term); }
+bool PacketTracer::draws(Term term) { return is_equation_term(term) && term != Term::kIndirect; }
 
 void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                                std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye,

@@ -1,6 +1,7 @@
 #include "core/render/progressive.h"
 
 #include "core/render/ray_trees.h"
+#include "core/render/scene_changes.h"
 
 #include <algorithm>
 #include <utility>
@@ -30,6 +31,15 @@ void lower_this_thread_priority() {
 
 double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Whether the generation starting carries on the job's accumulation: the indirect light's image
+// of a scene that differs only in ka or Ia, at the same size and settings.
+bool carries_over(const ProgressiveSettings& was, const ProgressiveSettings& now, const PreparedScene* old_scene,
+                  const PreparedScene* new_scene, bool same_size) {
+  return same_size && old_scene && new_scene && shows_indirect(now) && !now.term_images && was.term == now.term &&
+         was.ambient == now.ambient && was.term_images == now.term_images && was.shading_eye == now.shading_eye &&
+         indirect_unchanged(old_scene->scene(), new_scene->scene());
 }
 
 }  // namespace
@@ -146,7 +156,7 @@ std::uint64_t ProgressiveRenderer::set_resolution(int width, int height) {
 std::uint64_t ProgressiveRenderer::set_settings(const ProgressiveSettings& settings) {
   const std::lock_guard lock(mutex_);
   const bool restart = settings.term != settings_.term || settings.term_images != settings_.term_images ||
-                       settings.shading_eye != settings_.shading_eye;
+                       settings.shading_eye != settings_.shading_eye || settings.ambient != settings_.ambient;
   const bool keep_priority = settings_.lower_thread_priority;  // fixed at construction
   settings_ = settings;
   settings_.lower_thread_priority = keep_priority;
@@ -216,6 +226,7 @@ struct ProgressiveRenderer::Job {
   Accumulator accum;
   std::uint64_t nan_count = 0;
   bool published_any = false;
+  bool republish = false;       // the accumulation carries over to this generation: publish it as its own
   bool accum_stale = false;     // accum still holds the previous generation's sums
   bool interacting = false;     // interacting_ when the pass began
   std::chrono::steady_clock::time_point restart_time;
@@ -235,6 +246,11 @@ void ProgressiveRenderer::run() {
   }
   Job job;
   while (wait_for_work(job)) {
+    if (job.republish) {  // the new generation's image is the one accumulated so far
+      job.republish = false;
+      publish(job, PassStats{});
+      continue;
+    }
     if (job.live_shown && !job.interacting) {
       // The hand stopped: the live image is replaced by the exact re-shade, bit for bit render_pass's.
       job.live_shown = job.live = false;
@@ -279,6 +295,7 @@ void ProgressiveRenderer::run() {
       options.term = job.settings.term;
       options.threads = job.settings.threads;
       options.shading_eye = job.settings.shading_eye;
+      options.ambient = job.settings.ambient;
       pass = render_pass(*job.scene, options, job.accum, &cancel_);
     }
     const double divisor_ms = pass.seconds * 1e3;
@@ -328,7 +345,7 @@ bool ProgressiveRenderer::wait_for_work(Job& job) {
       const bool coarse = job.level + 1 < job.levels.size();
       const auto target = static_cast<std::uint32_t>(std::max(job.settings.target_spp, 1));
       const std::uint32_t samples = job.accum_stale ? 0 : job.accum.samples;
-      work = !capped && (coarse || samples < target || job.live_shown);
+      work = job.republish || (!capped && (coarse || samples < target || job.live_shown));
     }
     if (work) {
       idle_ = false;
@@ -342,6 +359,20 @@ bool ProgressiveRenderer::wait_for_work(Job& job) {
 }
 
 void ProgressiveRenderer::start_generation_locked(Job& job) {
+  const bool same_size = !job.levels.empty() && job.levels.back().width == width_ && job.levels.back().height == height_;
+  if (job.published_any && !job.accum_stale && job.accum.samples > 0 &&
+      carries_over(job.settings, settings_, job.scene.get(), scene_.get(), same_size)) {
+    job.generation = generation_;
+    job.scene = scene_;
+    job.restart_time = restart_time_;
+    job.republish = true;
+    decided_generation_ = job.generation;
+    decided_live_ms_ = -1;
+    idle_cv_.notify_all();
+    cancel_.store(false);
+    return;
+  }
+  job.republish = false;
   job.generation = generation_;
   job.scene = scene_;
   if (job.levels.empty() || job.levels.back().width != width_ || job.levels.back().height != height_) {
@@ -349,7 +380,7 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   }
   job.levels = make_levels(width_, height_);
   // An edit that changes no ray (or only shadow rays) is re-shaded at full resolution at once.
-  job.trees_serve = job.scene && job.trees &&
+  job.trees_serve = job.scene && job.trees && !shows_indirect(settings_) &&
                     job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
   job.reshade = job.trees_serve && reshades(settings_.term);
   job.reshaded = job.reshade;
@@ -438,7 +469,7 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
 void ProgressiveRenderer::record_trees(Job& job) {
   const ProgressiveSettings& s = job.settings;
   const ProgressiveLevel& full = job.levels.back();
-  if (s.tree_budget_bytes == 0 || !reshades(s.term)) return;
+  if (s.tree_budget_bytes == 0 || !reshades(s.term) || shows_indirect(s)) return;
   if (job.trees_serve) return;
   const Job::Refusal here{full.width, full.height, s.tree_budget_bytes};
   if (job.refused.width == here.width && job.refused.height == here.height && job.refused.budget == here.budget) return;

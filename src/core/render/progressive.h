@@ -47,7 +47,13 @@ struct ProgressiveSettings {
   std::size_t tree_budget_bytes = std::size_t{512} << 20;
   bool lower_thread_priority = false;  // Linux: render at a higher nice value so the UI stays smooth
   std::optional<Vec3> shading_eye;  // "move your head": RenderOptions::shading_eye (a change restarts)
+  // RenderOptions::ambient (a change restarts). The indirect light is traced every time (no ray
+  // trees); an edit of ka or Ia alone keeps what has converged, any other edit restarts (a kd,
+  // ks, light or geometry edit changes the light every surface gathers from every other).
+  Ambient ambient = Ambient::kConstant;
 };
+// Whether the settings show the indirect light (its full image or its term).
+inline bool shows_indirect(const ProgressiveSettings& s) { return ambient_for(s.term, s.ambient) == Ambient::kIndirect; }
 
 // Statistics of one published image.
 struct FrameStats {

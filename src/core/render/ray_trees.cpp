@@ -19,7 +19,7 @@ namespace {
 
 EditScope edit_scope(const Scene& a, const Scene& b) { return changes_between(a, b).scope(); }
 
-bool reshades(Term term) { return is_equation_term(term); }
+bool reshades(Term term) { return is_equation_term(term) && term != Term::kIndirect; }
 
 void RayTrees::Geometry::push_back(const NodeGeometry& g) {
   if (count == px.size()) {

@@ -120,9 +120,18 @@ Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& fram
     terms = Terms{};
     return debug ? *debug : miss_value(scene, term);
   }
-  std::optional<IndirectSampler> sampler = sampler_for(scene, ambient_for(term, ambient), x, y, sample_index, seed);
-  terms = shade(prepared, TraceLimits{scene.max_depth, scene.min_weight}, ray, *hit, 0, 1.0, counts, nullptr,
-                shading_eye, TermsWanted{}, pointer(sampler));
+  const TraceLimits limits{scene.max_depth, scene.min_weight};
+  if (term == Term::kIndirect) {
+    // The indirect term beside the lecture's five: the terms as §1 has them (ka·Ia), the value
+    // the indirect term's estimate (the same gather render_sample takes: the tree's first).
+    terms = shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, TermsWanted{});
+    IndirectSampler sampler(scene.indirect_bounces, indirect_pixel_key(x, y, seed), sample_index);
+    const HitSide side = hit_side(*hit, ray.dir);
+    return indirect_estimate(prepared, limits, scene.materials[static_cast<std::size_t>(hit->material)], hit->p, side,
+                             surface_offset(scene, *hit), counts, sampler);
+  }
+  std::optional<IndirectSampler> sampler = sampler_for(scene, ambient, x, y, sample_index, seed);
+  terms = shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, TermsWanted{}, pointer(sampler));
   return debug ? *debug : term_value(terms, term);
 }
 

@@ -113,7 +113,9 @@ Color render_sample(const PreparedScene& prepared, const CameraFrame& frame, Ter
 
 // The same sample, also giving the primary hit's five terms (zero on a miss) in `terms`: every
 // term is computed, and `term`'s value (or the full image's) is read off them, bit for bit what
-// render_sample gives. A debug view's value is cast separately.
+// render_sample gives. A debug view's value is cast separately. For Term::kIndirect the terms
+// are the lecture's (ka·Ia in the ambient's place) and the value is the indirect term: the two
+// side by side from one pass.
 Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& frame, Term term, int x, int y,
                           std::uint32_t sample_index, RayCounts& counts, Terms& terms, std::uint32_t seed = 0,
                           const Vec3* shading_eye = nullptr, Ambient ambient = Ambient::kConstant);

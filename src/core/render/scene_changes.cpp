@@ -79,4 +79,16 @@ Changes changes_between(const Scene& a, const Scene& b) {
   return c;
 }
 
+bool indirect_unchanged(const Scene& a, const Scene& b) {
+  const Changes c = changes_between(a, b);
+  if (c.retrace || c.limits_changed || c.model_changed || c.background_changed || c.indirect_bounces_changed ||
+      any(c.light_moved) || any(c.light_shading) || any(c.n_changed) || any(c.bounce_changed)) {
+    return false;
+  }
+  for (std::size_t i = 0; i < b.materials.size(); ++i) {
+    if (a.materials[i].kd != b.materials[i].kd || a.materials[i].ks != b.materials[i].ks) return false;
+  }
+  return true;
+}
+
 }  // namespace phonglab

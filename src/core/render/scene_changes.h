@@ -73,4 +73,8 @@ struct Changes {
 
 Changes changes_between(const Scene& a, const Scene& b);
 
+// Whether the indirect light's images (its full image, its term) are the same for a and b: they
+// read neither ka nor Ia, so an edit of those alone leaves them as they are.
+bool indirect_unchanged(const Scene& a, const Scene& b);
+
 }  // namespace phonglab
