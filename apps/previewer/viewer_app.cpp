@@ -50,6 +50,13 @@ ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std:
   // The small multiples' last cell is the full image, the sum of the five term images: the
   // main image is then the full one, whichever term the panel has selected.
   p.term = small_multiples ? Term::kFull : s.term;
+  // What ambient stands in for: the image with indirect light, or the indirect term with the
+  // lecture's terms beside it (display_pixels puts its ambient term and the indirect one side by side).
+  if (s.ambient_view == ui::AmbientView::kIndirect) p.ambient = Ambient::kIndirect;
+  if (s.ambient_view == ui::AmbientView::kBeside || s.ambient_view == ui::AmbientView::kDifference) {
+    p.term = Term::kIndirect;
+    p.term_images = true;
+  }
   p.interactive_divisor = kInteractiveDivisor;
   p.live_images_per_s = s.live_images_per_s;
   p.tree_budget_bytes = static_cast<std::size_t>(std::max(s.tree_budget_mib, 0)) << 20;
@@ -354,6 +361,7 @@ void Viewer::apply_edits(double frame_start) {
   // A lesson's difference keeps the live image at A's samples: the target follows it.
   if (target_spp() != sent_target_spp_) edits_.settings = true;
   if (edits_.settings) {
+    upload_pending_ = true;  // what the image shows of the same frame may change (the ambient views)
     const std::uint64_t before = renderer_.status().generation;
     ui::RenderSettings settings = render_settings_;
     settings.target_spp = sent_target_spp_ = target_spp();

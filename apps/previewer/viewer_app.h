@@ -213,6 +213,8 @@ class Viewer {
   std::optional<Vec3> head_eye() const;          // "move your head": the shading eye, nullopt when off
   Vec3 head_pivot() const;                       // the point the head turns about: the probed hit or look-at
   std::vector<glm::vec3> display_pixels() const; // shown_, its heat map, or its wipe / difference against A
+  std::optional<std::vector<glm::vec3>> ambient_view_pixels() const;  // the ambient views beside / difference
+  bool ambient_view_pixels_shown(ui::AmbientView view) const;          // that view, and a frame that has it
   bool heat_shown() const;                       // the rays view is on screen as a heat map
   void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
   // Overlay parts (viewer_overlays.cpp).
@@ -405,6 +407,7 @@ class Viewer {
     std::string report;                  // probe_to_text of tree
     bool every_digit = false;            // the probe panel shows every digit (else four significant)
     std::vector<std::string> occluders;  // object_name of each primary-hit light's occluder
+    IndirectProbe indirect;              // ka·Ia beside the indirect term's estimate at the pixel
   };
   ProbeState probed_;
   // Snapshot A of the A/B compare.

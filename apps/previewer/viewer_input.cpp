@@ -253,6 +253,14 @@ void Viewer::shortcut(int key, bool shift) {
       instruments_.small_multiples = !instruments_.small_multiples;
       edits_.settings = true;
       break;
+    case GLFW_KEY_I: {  // what ambient stands in for: the next view (Shift: the previous)
+      const int n = static_cast<int>(ui::AmbientView::kDifference) + 1;
+      const int next = (static_cast<int>(render_settings_.ambient_view) + (shift ? n - 1 : 1)) % n;
+      render_settings_.ambient_view = static_cast<ui::AmbientView>(next);
+      if (next >= static_cast<int>(ui::AmbientView::kBeside)) instruments_.small_multiples = false;
+      edits_.settings = true;
+      break;
+    }
     default: break;
   }
 }

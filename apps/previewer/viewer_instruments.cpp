@@ -21,6 +21,7 @@ namespace phonglab {
 namespace {
 
 constexpr int kFigureCellHeight = 270;  // slide figure cells: a quarter of 1080p per row
+constexpr int kProbeIndirectSamples = 256;  // the probe's gathers for the indirect term: its error about 1/16 of one
 
 }  // namespace
 
@@ -59,6 +60,7 @@ void Viewer::refresh_probe() {
   probed_.report = probe_to_text(snapshot_->scene(), *probed_.tree, probed_.every_digit ? 17 : 4);
   probed_.occluders.clear();
   for (const ProbeLight& light : probed_.tree->root.lights) probed_.occluders.push_back(object_name(snapshot_->scene(), light.occluder));
+  probed_.indirect = probe_indirect(*snapshot_, render_width_, render_height_, probed_.x, probed_.y, kProbeIndirectSamples);
 }
 
 void Viewer::undo() {
@@ -168,10 +170,33 @@ std::vector<glm::vec3> Viewer::display_pixels() const {
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(heat_ramp_srgb(max > 0 ? shown_.pixels[i].x / max : 0));
     return out;
   }
+  if (const std::optional<std::vector<glm::vec3>> ambient = ambient_view_pixels()) return *ambient;
   if (instruments_.compare == 0 || !a_comparable()) return shown_.pixels;
   return compare_pixels(shown_.pixels, compare_.image.pixels, shown_.width,
                         instruments_.compare == 1 ? CompareView::kWipe : CompareView::kDifference,
                         static_cast<double>(instruments_.wipe), static_cast<double>(instruments_.difference_gain));
+}
+
+bool Viewer::ambient_view_pixels_shown(ui::AmbientView view) const {
+  return render_settings_.ambient_view == view && !instruments_.small_multiples &&
+         shown_.terms[0].size() == shown_.pixels.size() && !shown_.pixels.empty();
+}
+
+// The indirect term beside the ambient term, or their difference as heat: from one frame of
+// Term::kIndirect with the term images (the ambient one is ka·Ia). Nothing for the other views.
+std::optional<std::vector<glm::vec3>> Viewer::ambient_view_pixels() const {
+  const std::vector<glm::vec3>& ambient = shown_.terms[0];
+  const bool beside = ambient_view_pixels_shown(ui::AmbientView::kBeside);
+  if (!beside && !ambient_view_pixels_shown(ui::AmbientView::kDifference)) return std::nullopt;
+  if (beside) {
+    return compare_pixels(shown_.pixels, ambient, shown_.width, CompareView::kWipe, static_cast<double>(instruments_.wipe), 1);
+  }
+  std::vector<glm::vec3> gap(shown_.pixels.size());
+  for (std::size_t i = 0; i < gap.size(); ++i) {
+    const glm::vec3 d = glm::abs(shown_.pixels[i] - ambient[i]);
+    gap[i] = glm::vec3(std::max({d.x, d.y, d.z}));
+  }
+  return heat_map_pixels(gap, heat_max(gap));
 }
 
 Vec3 Viewer::head_pivot() const {

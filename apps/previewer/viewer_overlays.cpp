@@ -181,7 +181,10 @@ std::vector<std::string> Viewer::captions() const {
   std::vector<std::string> lines;
   const bool blinn = doc_.scene().specular_model == SpecularModel::kBlinn;
   // What is on screen, when it is not the whole image: a projected slide must say so.
-  if (!instruments_.small_multiples && render_settings_.term != Term::kFull && !heat_shown()) {
+  const std::string ambient = ui::ambient_view_caption(render_settings_.ambient_view);
+  if (!ambient.empty()) {
+    lines.push_back(ambient);
+  } else if (!instruments_.small_multiples && render_settings_.term != Term::kFull && !heat_shown()) {
     lines.push_back(ui::term_caption(render_settings_.term, blinn));
   }
   if (snapshot_ && rays_.depth_cut) {
@@ -263,6 +266,7 @@ void Viewer::draw_cell_labels_and_probe_ring() {
 }
 
 std::optional<float> Viewer::wipe_line_x() const {
+  if (ambient_view_pixels_shown(ui::AmbientView::kBeside)) return viewport_.x + instruments_.wipe * viewport_.width;
   if (instruments_.compare != 1 || !a_comparable() || instruments_.small_multiples) return std::nullopt;
   // compare_pixels shows A left of column wipe * width: the line is drawn at that edge.
   return viewport_.x + instruments_.wipe * viewport_.width;
@@ -284,8 +288,12 @@ void Viewer::draw_wipe_line() {
   const float a = r * 0.55f;
   draw->AddTriangleFilled(ImVec2(*x - a * 1.6f, mid), ImVec2(*x - a * 0.4f, mid - a), ImVec2(*x - a * 0.4f, mid + a), arrow);
   draw->AddTriangleFilled(ImVec2(*x + a * 1.6f, mid), ImVec2(*x + a * 0.4f, mid + a), ImVec2(*x + a * 0.4f, mid - a), arrow);
-  ui::text_on_plate(draw, ImVec2(*x - ImGui::CalcTextSize("A").x - 10 * scale, mid + r + 6 * scale), "A", scale);
-  ui::text_on_plate(draw, ImVec2(*x + 8 * scale, mid + r + 6 * scale), "live", scale);
+  const bool ambient = ambient_view_pixels_shown(ui::AmbientView::kBeside);
+  const std::string left = ambient ? "ka\xC2\xB7" + ui::i_a() : "A";
+  const char* right = ambient ? "indirect" : "live";
+  ui::text_on_plate(draw, ImVec2(*x - ImGui::CalcTextSize(left.c_str()).x - 10 * scale, mid + r + 6 * scale), left.c_str(),
+                    scale);
+  ui::text_on_plate(draw, ImVec2(*x + 8 * scale, mid + r + 6 * scale), right, scale);
 }
 
 bool Viewer::light_markers_shown() const {

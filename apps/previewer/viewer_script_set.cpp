@@ -90,7 +90,7 @@ bool Viewer::set_camera_field(const std::vector<std::string>& w) {
   return true;
 }
 
-// `set render target_spp|resolution_scale|threads|live_images_per_s|tree_budget_mib|term V`.
+// `set render target_spp|resolution_scale|threads|live_images_per_s|tree_budget_mib|term|ambient V`.
 bool Viewer::set_render_field(const std::vector<std::string>& w) {
   const std::string& field = w[2];
   double v = 0;
@@ -98,6 +98,11 @@ bool Viewer::set_render_field(const std::vector<std::string>& w) {
     const std::optional<Term> term = term_from_name(w[3]);
     if (!term) return false;
     render_settings_.term = *term;
+  } else if (field == "ambient") {
+    const std::optional<ui::AmbientView> view = ui::ambient_view_from_name(w[3]);
+    if (!view) return false;
+    render_settings_.ambient_view = *view;
+    if (*view == ui::AmbientView::kBeside || *view == ui::AmbientView::kDifference) instruments_.small_multiples = false;
   } else if (!parse_double(w[3], v)) {
     return false;
   } else if (field == "target_spp" && v >= 1) {

@@ -116,7 +116,10 @@ void Viewer::draw_sidebar() {
 void Viewer::sidebar_show() {
   const Term before = render_settings_.term;
   const bool multiples = instruments_.small_multiples;
-  ui::show_panel(render_settings_.term, instruments_.small_multiples, doc_.scene().specular_model == SpecularModel::kBlinn);
+  const ui::AmbientView ambient = render_settings_.ambient_view;
+  ui::show_panel(render_settings_.term, instruments_.small_multiples, render_settings_.ambient_view,
+                 doc_.scene().specular_model == SpecularModel::kBlinn);
+  if (render_settings_.ambient_view != ambient) edits_.settings = true;
   if (render_settings_.term != before) {
     if (render_settings_.term != Term::kRays) rays_.heat_map = false;
     edits_.settings = true;
@@ -212,6 +215,7 @@ void Viewer::sidebar_probe() {
     view.image_height = render_height_;
     view.report = probed_.report;
     view.occluders = probed_.occluders;
+    view.indirect = probed_.tree ? &probed_.indirect : nullptr;
     view.exposure_ev = display_.exposure_ev;
     if (probed_.tree) {
       const double gain = std::exp2(static_cast<double>(display_.exposure_ev));

@@ -162,6 +162,7 @@ void Viewer::write_rays_state(std::ostream& out) const {
     }
   }
   out << "term=" << term_name(render_settings_.term) << "\n"
+      << "ambient_view=" << ui::ambient_view_name(render_settings_.ambient_view) << "\n"
       << "ray_tree=" << (rays_.overlay ? 1 : 0) << "\n"
       << "tree_segments=" << tree_segments_.size() << "\n"
       << "tree_blocked=" << tree_blocked << "\n"
@@ -193,6 +194,12 @@ void Viewer::write_probe_state(std::ostream& out) const {
     if (node->reflection) stack.push_back(node->reflection.get());
     if (node->refraction) stack.push_back(node->refraction.get());
   }
+  const IndirectProbe& indirect = probed_.indirect;
+  out << "probe_ambient=" << vec(indirect.ambient) << "\n"
+      << "probe_indirect=" << vec(indirect.mean) << "\n"
+      << "probe_indirect_se=" << vec(indirect.standard_error) << "\n"
+      << "probe_indirect_samples=" << indirect.samples << "\n"
+      << "probe_fitted_ka=" << vec(indirect.fitted_ka) << "\n";
   out << "probe_blocked=" << blocked << "\n"
       << "probe_rays=" << probed_.tree->rays.total() << "\n";
   // The shown image's pixel there, when it is the full-resolution 1-spp image of this

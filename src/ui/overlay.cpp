@@ -150,7 +150,7 @@ std::string term_caption(Term term, bool blinn) {
 }
 
 void keys_help() {
-  static constexpr std::array<std::array<const char*, 2>, 24> kRows = {{
+  static constexpr std::array<std::array<const char*, 2>, 25> kRows = {{
       {"left-drag", "orbit: the scene follows the hand"},
       {"right-drag, wheel", "dolly"},
       {"middle-drag, Shift+left-drag", "pan"},
@@ -161,6 +161,7 @@ void keys_help() {
       {"1", "the full image"},
       {"2 3 4 5 6", "ambient, diffuse, specular, reflection, refraction alone"},
       {"M", "the five terms and their sum side by side"},
+      {"I, Shift+I", "what ambient stands in for: ka*Ia, indirect light, the two side by side, their difference"},
       {"Shift+1..9", "solo light L0..L8 (again: every light back)"},
       {"F", "frame the scene"},
       {"R", "reset the camera to the file's"},

@@ -4,12 +4,15 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <imgui.h>
 
+#include "core/render/indirect_probe.h"
 #include "core/render/progressive.h"
 #include "core/render/render.h"
 #include "core/scene/scene.h"
@@ -31,9 +34,17 @@ struct CameraActions {
 // value the renderer cannot use is refused and `notice` says why (shown until the next edit).
 bool camera_panel(Camera& camera, CameraActions& actions, std::string& notice);
 
-// The term buttons (the full image, then each term of the equation), the side-by-side switch and
-// the debug views. Edits `term` and `small_multiples` directly.
-void show_panel(Term& term, bool& small_multiples, bool blinn);
+// "What ambient stands in for" (the key I): the lecture's ka·Ia, the image with the indirect
+// light in its place, the indirect term beside the ambient term (ka·Ia left of the middle,
+// indirect right), or |indirect − ka·Ia| as a heat map.
+enum class AmbientView : std::uint8_t { kConstant, kIndirect, kBeside, kDifference };
+std::string_view ambient_view_name(AmbientView view);  // "constant", "indirect", "beside", "difference"
+std::optional<AmbientView> ambient_view_from_name(std::string_view name);
+std::string ambient_view_caption(AmbientView view);     // what the image shows, for the overlay
+
+// The term buttons (the full image, then each term of the equation), the side-by-side switch,
+// what ambient stands in for and the debug views. Edits them directly.
+void show_panel(Term& term, bool& small_multiples, AmbientView& ambient_view, bool blinn);
 
 // A list of the materials to pick from and the lecture's coefficients of the selected one,
 // each beside the term of the equation it scales. `selected` may change without an edit.
@@ -86,6 +97,7 @@ struct RenderSettings {
   Term term = Term::kFull;      // full image, one term of the equation, or a debug view
   int live_images_per_s = 24;   // while dragging: images a second the start level must allow (0: 1/8 always)
   int tree_budget_mib = 512;    // memory for the first sample's ray trees (re-shading); 0: none
+  AmbientView ambient_view = AmbientView::kConstant;
 };
 bool render_settings_panel(RenderSettings& settings, int hardware_threads);
 
@@ -137,6 +149,7 @@ struct ProbeView {
   std::vector<std::string> occluders;  // per primary-hit light: object_name of its occluder
   unsigned char srgb[3] = {};       // the displayed 8-bit value (exposure and curve applied)
   float exposure_ev = 0;
+  const IndirectProbe* indirect = nullptr;  // what ambient stands in for at the pixel
 };
 // The probed pixel: P, N, V, per light L, R (or H), N.L, R.V (or N.H), the powered factor,
 // visibility, each term's RGB, the children and the totals, to four significant digits (every

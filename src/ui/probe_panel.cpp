@@ -29,6 +29,16 @@ void number_row(const char* label, double value, int digits) {
   ImGui::Text("%.*g", digits, value);
 }
 
+// What ambient stands in for at the pixel: ka·Ia, the indirect term's estimate with its standard
+// error, and the ka that would make ka·Ia equal to it.
+void indirect_rows(const IndirectProbe& p, int d) {
+  ImGui::Separator();
+  ImGui::Text("what ka\xC2\xB7%s stands in for (%d samples, %d bounces):", i_a().c_str(), p.samples, p.bounces);
+  rgb_text("indirect kd\xC2\xB7" "E", p.mean, d);
+  rgb_text("\xC2\xB1 std. error", p.standard_error, d);
+  rgb_text("ka to match", p.fitted_ka, d);
+}
+
 }  // namespace
 
 void head_plot(const HeadPlotView& view) {
@@ -137,6 +147,7 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
   rgb_text("reflection", root.terms.reflection, d);
   rgb_text("refraction", root.terms.refraction, d);
   rgb_text("= total", root.terms.sum(), d);
+  if (view.indirect && view.indirect->hit) indirect_rows(*view.indirect, d);
   rgb_text("kr'", root.kr_eff, d);
   rgb_text("kt'", root.kt_eff, d);
   ImGui::Text("F = %.*g  TIR: %s  entering: %s", d, root.fresnel, root.tir ? "yes" : "no", root.entering ? "yes" : "no");

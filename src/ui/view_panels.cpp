@@ -24,7 +24,31 @@ void format_count(char* out, std::size_t size, std::uint64_t n) {
 
 }  // namespace
 
-void show_panel(Term& term, bool& small_multiples, bool blinn) {
+namespace {
+constexpr std::array<std::string_view, 4> kAmbientViewNames = {"constant", "indirect", "beside", "difference"};
+}  // namespace
+
+std::string_view ambient_view_name(AmbientView view) { return kAmbientViewNames[static_cast<std::size_t>(view)]; }
+
+std::optional<AmbientView> ambient_view_from_name(std::string_view name) {
+  for (std::size_t i = 0; i < kAmbientViewNames.size(); ++i) {
+    if (kAmbientViewNames[i] == name) return static_cast<AmbientView>(i);
+  }
+  return std::nullopt;
+}
+
+std::string ambient_view_caption(AmbientView view) {
+  const std::string dot = font_has(0x00B7) ? "\xC2\xB7" : "*";
+  switch (view) {
+    case AmbientView::kConstant: return "";
+    case AmbientView::kIndirect: return "with indirect light: ka" + dot + i_a() + " replaced by kd" + dot + "E at every hit";
+    case AmbientView::kBeside: return "left: ka" + dot + i_a() + "   |   right: the indirect light kd" + dot + "E it stands in for";
+    case AmbientView::kDifference: return "|indirect - ka" + dot + i_a() + "| as heat: where the constant is most wrong";
+  }
+  return "";
+}
+
+void show_panel(Term& term, bool& small_multiples, AmbientView& ambient_view, bool blinn) {
   // The lecture's terms as buttons, in the order of the equation: one click, and the caption on
   // the image says what is shown.
   static constexpr std::array<Term, 6> kTerms = {Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular,
@@ -46,6 +70,18 @@ void show_panel(Term& term, bool& small_multiples, bool blinn) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", term_caption(kTerms[i], blinn).c_str());
   }
   ImGui::Checkbox("all five and their sum side by side (M)", &small_multiples);
+  int ambient = static_cast<int>(ambient_view);
+  const std::string items = std::string("ka") + (font_has(0x00B7) ? "\xC2\xB7" : "*") + "Ia, the lecture" + '\0' +
+                            "indirect light" + '\0' + "indirect | ambient" + '\0' + "|indirect - ambient|" + '\0';
+  if (ImGui::Combo("ambient (I)", &ambient, items.c_str())) {
+    ambient_view = static_cast<AmbientView>(ambient);
+    if (ambient_view == AmbientView::kBeside || ambient_view == AmbientView::kDifference) small_multiples = false;
+  }
+  locate("show.ambient");
+  help_marker("What the ambient term stands in for: the light that arrives from other surfaces. 'indirect light' "
+              "puts it in ka*Ia's place at every hit (a path tracer's estimate: noise that settles); 'indirect | "
+              "ambient' shows ka*Ia left of the middle and the indirect term right of it; the last, their "
+              "difference as a heat map: where the constant is most wrong.");
   int debug = term == Term::kNormal ? 1 : term == Term::kDepth ? 2 : term == Term::kRays ? 3 : 0;
   if (ImGui::Combo("debug view", &debug, "none\0normal\0depth\0rays per pixel\0")) {
     term = debug == 1 ? Term::kNormal : debug == 2 ? Term::kDepth : debug == 3 ? Term::kRays : Term::kFull;

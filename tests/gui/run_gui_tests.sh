@@ -1281,8 +1281,61 @@ check_browser() {
   check "Esc closes the browser" test -z "$(state "$dir/f5.txt" file_browser)"
 }
 
+# --- What ambient stands in for: the I key's four views, the probe's indirect numbers --------
+session_ambient() {
+  local dir=$OUT/ambient
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+key H
+set render target_spp 4
+wait_idle 120
+screenshot $dir/a0_constant.png
+key I
+wait_idle 120
+screenshot $dir/a1_indirect.png
+probe 460 400
+wait_frames 2
+dump_state $dir/a1.txt
+key I
+wait_idle 120
+screenshot $dir/a2_beside.png
+dump_state $dir/a2.txt
+key I
+wait_idle 120
+screenshot $dir/a3_difference.png
+dump_state $dir/a3.txt
+key I
+wait_idle 120
+dump_state $dir/a4.txt
+quit
+EOF
+  "$BIN" cornell --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_ambient() {
+  local dir=$OUT/ambient
+  echo "session: what ambient stands in for"
+  check_exit "$dir" "the script ran to the end"
+  check "I steps through indirect, beside, difference and back to ka*Ia" \
+    test "$(state "$dir/a1.txt" ambient_view)/$(state "$dir/a2.txt" ambient_view)/$(state "$dir/a3.txt" ambient_view)/$(state "$dir/a4.txt" ambient_view)" = indirect/beside/difference/constant
+  local ind se ka amb
+  ind=$(state "$dir/a1.txt" probe_indirect)
+  se=$(state "$dir/a1.txt" probe_indirect_se)
+  ka=$(state "$dir/a1.txt" probe_fitted_ka)
+  amb=$(state "$dir/a1.txt" probe_ambient)
+  check "the probe on the back wall beside the red wall: indirect $ind ± $se, redder than green (the red wall's bleed)" \
+    awk -v i="$ind" -v e="$se" 'BEGIN { split(i, a, " "); split(e, b, " "); exit !(a[1] > a[2] + 3 * (b[1] + b[2]) && b[1] > 0) }'
+  check "the probe's 256 samples, and the ka to match ($ka) times Ia (0.12) is the estimate (ka*Ia now $amb)" \
+    awk -v n="$(state "$dir/a1.txt" probe_indirect_samples)" -v k="$ka" -v i="$ind" \
+      'BEGIN { split(k, a, " "); split(i, b, " "); exit !(n == 256 && a[1] > 0 && a[1] * 0.12 > 0.999 * b[1] && a[1] * 0.12 < 1.001 * b[1]) }'
+  check "the indirect image differs from ka*Ia's" greater "$(rmse "$dir/a0_constant.png" "$dir/a1_indirect.png" 1280x600+0+60)" 0.02
+  check "the beside view differs from the indirect image" greater "$(rmse "$dir/a1_indirect.png" "$dir/a2_beside.png" 1280x600+0+60)" 0.02
+  check "the difference view differs from the beside view" greater "$(rmse "$dir/a2_beside.png" "$dir/a3_difference.png" 1280x600+0+60)" 0.02
+}
+
 run_gui_script "GUI tests" 1280x720x24 \
   "session_view session_files session_instruments session_rays session_lecture session_conflict session_objects
-   session_browser session_lessons session_recovery" \
+   session_browser session_lessons session_recovery session_ambient" \
   "check_view check_files check_instruments check_rays check_lecture check_conflict check_objects check_browser
-   check_lessons check_recovery check_no_display"
+   check_lessons check_recovery check_ambient check_no_display"
