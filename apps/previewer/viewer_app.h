@@ -142,6 +142,7 @@ class Viewer {
   // The sidebar's panels (viewer_sidebar.cpp).
   void sidebar_show();
   void sidebar_materials();
+  void sidebar_ambient_fit();  // the selected material's best constant ambient for this view
   void sidebar_lights();
   void sidebar_probe();
   void sidebar_instruments();
@@ -410,6 +411,8 @@ class Viewer {
     IndirectProbe indirect;              // ka·Ia beside the indirect term's estimate at the pixel
   };
   ProbeState probed_;
+  std::optional<AmbientFit> ambient_fit_;  // the last "best constant ambient for this view"
+  std::string ambient_fit_material_;       // the material it was asked for
   // Snapshot A of the A/B compare.
   struct CompareState {
     ProgressiveFrame image;  // snapshot A (pixels empty: none)

@@ -292,3 +292,28 @@ TEST(Indirect, TheIndirectTermComesWithTheLecturesTermsBesideIt) {
     ASSERT_EQ(with_terms.terms[i].reflection, constant.terms[i].reflection);
   }
 }
+
+// The best constant ambient for a view: per material, the mean indirect term over its hits, and
+// the ka that makes ka·Ia equal to it. Exact for the sphere under the sky (kd ⊙ B / Ia); the same
+// for any thread count; a material with no hit keeps its ka.
+TEST(Indirect, FittedAmbientIsTheMeanIndirectTermOverAMaterialsHits) {
+  Scene s = convex_scene(Color(0.7, 0.4, 0.2), Color(0.5, 0.8, 1.2));
+  s.ambient = Color(0.5, 1, 2);
+  Material unseen;
+  unseen.ka = Color(0.3);
+  s.materials.push_back(unseen);
+  const PreparedScene prepared(s);
+  const AmbientFit fit = fit_ambient(prepared, 24, 16, 3, 2);
+  ASSERT_EQ(fit.fitted_ka.size(), 2u);
+  EXPECT_GT(fit.hits[0], 100u);
+  EXPECT_EQ(fit.hits[1], 0u);
+  const Color expected = Color(0.7, 0.4, 0.2) * Color(0.5, 0.8, 1.2) / Color(0.5, 1, 2);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(fit.fitted_ka[0][c], expected[c], 1e-12);
+  EXPECT_EQ(fit.fitted_ka[1], Color(0.3));
+
+  const PreparedScene busy = room();
+  const AmbientFit one = fit_ambient(busy, 20, 15, 2, 1);
+  const AmbientFit two = fit_ambient(busy, 20, 15, 2, 2);
+  EXPECT_EQ(one.mean_indirect, two.mean_indirect);
+  EXPECT_EQ(one.hits, two.hits);
+}

@@ -1307,6 +1307,15 @@ dump_state $dir/a3.txt
 key I
 wait_idle 120
 dump_state $dir/a4.txt
+key H
+wait_frames 3
+click 440 250
+wait_frames 3
+show_item materials.fit_ka
+click_item materials.fit_ka
+wait_frames 3
+dump_state $dir/a5.txt
+screenshot $dir/a5_fitted.png
 quit
 EOF
   "$BIN" cornell --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
@@ -1329,6 +1338,12 @@ check_ambient() {
   check "the probe's 256 samples, and the ka to match ($ka) times Ia (0.12) is the estimate (ka*Ia now $amb)" \
     awk -v n="$(state "$dir/a1.txt" probe_indirect_samples)" -v k="$ka" -v i="$ind" \
       'BEGIN { split(k, a, " "); split(i, b, " "); exit !(n == 256 && a[1] > 0 && a[1] * 0.12 > 0.999 * b[1] && a[1] * 0.12 < 1.001 * b[1]) }'
+  local wall before after
+  wall=$(state "$dir/a5.txt" selected_material)
+  before=$(grep -F "material_${wall}_ka=" "$dir/a4.txt" | cut -d= -f2)  # the name holds a slash: no sed
+  after=$(grep -F "material_${wall}_ka=" "$dir/a5.txt" | cut -d= -f2)
+  check "the best constant ambient for this view sets $wall's ka ($before -> $after): the indirect light is brighter than ka*Ia" \
+    awk -v a="$before" -v b="$after" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] > p[1] && q[1] < 10) }'
   check "the indirect image differs from ka*Ia's" greater "$(rmse "$dir/a0_constant.png" "$dir/a1_indirect.png" 1280x600+0+60)" 0.02
   check "the beside view differs from the indirect image" greater "$(rmse "$dir/a1_indirect.png" "$dir/a2_beside.png" 1280x600+0+60)" 0.02
   check "the difference view differs from the beside view" greater "$(rmse "$dir/a2_beside.png" "$dir/a3_difference.png" 1280x600+0+60)" 0.02

@@ -2,6 +2,9 @@
 // ka·Ia beside the indirect term's estimate, its standard error, and the ka that would match it.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "core/accel/prepared_scene.h"
 #include "core/scene/scene.h"
 
@@ -24,5 +27,17 @@ IndirectProbe probe_indirect(const PreparedScene& prepared, int width, int heigh
 
 // ka whose ka·Ia equals `target`, per channel (0 where Ia is 0 or negative).
 Color fitted_ambient(const Color& target, const Color& ia);
+
+// "The best constant ambient for this view": per material, the mean of the indirect term over its
+// primary hits in a width x height image (`samples` per pixel, the render's sample positions and
+// gathers), and the ka whose ka·Ia equals that mean. The same numbers for any thread count.
+struct AmbientFit {
+  std::vector<Color> mean_indirect;  // by material; 0 where it has no hit
+  std::vector<std::uint64_t> hits;   // primary hits counted, by material
+  std::vector<Color> fitted_ka;      // by material; its ka where it has no hit
+  int samples = 0;
+  int bounces = 0;
+};
+AmbientFit fit_ambient(const PreparedScene& prepared, int width, int height, int samples, int threads = 0);
 
 }  // namespace phonglab
