@@ -109,8 +109,9 @@ void Viewer::take_a_when_final() {
 }
 
 int Viewer::target_spp() const {
+  // (Not for the indirect light: its noise settles only with samples; A's edges are what differ.)
   const bool lesson_difference = lesson_.lesson && !lesson_.exploring && compare_.first_full && instruments_.compare == 2 &&
-                                 !compare_.image.pixels.empty();
+                                 !compare_.image.pixels.empty() && render_settings_.ambient_view == ui::AmbientView::kConstant;
   const int target = std::max(render_settings_.target_spp, 1);
   return lesson_difference ? std::min(target, static_cast<int>(std::max(compare_.image.spp, 1u))) : target;
 }
@@ -120,8 +121,10 @@ bool Viewer::a_comparable() const {
       compare_.image.divisor != shown_.divisor || compare_.image.pixels.size() != shown_.pixels.size()) {
     return false;
   }
-  // The difference compares like with like: the same samples, so only a change shows.
-  return instruments_.compare != 2 || compare_.image.spp == shown_.spp;
+  // The difference compares like with like: the same samples, so only a change shows. The
+  // indirect light against ka·Ia differs everywhere: it is shown as it settles.
+  return instruments_.compare != 2 || compare_.image.spp == shown_.spp ||
+         render_settings_.ambient_view != ui::AmbientView::kConstant;
 }
 
 std::string Viewer::compare_caption() const {

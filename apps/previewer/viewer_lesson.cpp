@@ -67,6 +67,7 @@ void Viewer::adopt_step_scene(int step) {
 void Viewer::apply_step_view(const StepView& view) {
   lesson_.view = view;
   render_settings_.term = view.term;
+  render_settings_.ambient_view = view.ambient == Ambient::kIndirect ? ui::AmbientView::kIndirect : ui::AmbientView::kConstant;
   rays_.heat_map = false;
   instruments_.small_multiples = view.small_multiples;
   instruments_.move_head = view.head_angle_deg.has_value();

@@ -19,6 +19,8 @@ namespace phonglab {
 
 namespace {
 
+constexpr int kIndirectSpp = 32;  // samples a pixel of a step that shows the indirect light, at least
+
 const glm::vec3 kOutline{0.0f};  // under every line and marker, so it reads on any image
 
 // An sRGB colour given as the previewer's 8-bit one, in the image's linear RGB.
@@ -258,11 +260,15 @@ Image render_plain(const PreparedScene& prepared, const StepView& view, const st
   }
   RenderOptions render;
   render.term = view.term;
+  render.ambient = view.ambient;
   render.threads = options.threads;
   render.shading_eye = eye;
   Accumulator accum;
   accum.reset(width, height);
-  render_passes(prepared, render, accum, std::max(1, options.spp));
+  // The indirect light is a Monte Carlo estimate: a printed page gets at least kIndirectSpp samples
+  // a pixel, or its noise would hide what it shows.
+  const int spp = view.ambient == Ambient::kIndirect ? std::max(options.spp, kIndirectSpp) : options.spp;
+  render_passes(prepared, render, accum, std::max(1, spp));
   return mean_image(accum);
 }
 

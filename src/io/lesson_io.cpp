@@ -26,14 +26,17 @@ namespace {
 constexpr std::array<std::string_view, 3> kLessonKeys = {"title", "description", "steps"};
 constexpr std::array<std::string_view, 7> kStepKeys = {"title", "caption", "scene", "changes", "show", "question", "answer"};
 constexpr std::array<std::string_view, 6> kChangeKeys = {"materials", "lights", "camera", "max_depth", "ambient", "background"};
-constexpr std::array<std::string_view, 10> kShowKeys = {"term", "small_multiples", "probe", "ray_tree", "depth_cut",
-                                                        "head_angle_deg", "light_markers", "compare", "mute", "solo"};
-constexpr std::array<std::string_view, 8> kAnswerShowKeys = {"term", "small_multiples", "probe", "ray_tree", "depth_cut",
-                                                             "head_angle_deg", "light_markers", "compare"};
+constexpr std::array<std::string_view, 11> kShowKeys = {"term", "small_multiples", "probe", "ray_tree", "depth_cut",
+                                                        "head_angle_deg", "light_markers", "compare", "ambient", "mute",
+                                                        "solo"};
+constexpr std::array<std::string_view, 9> kAnswerShowKeys = {"term", "small_multiples", "probe", "ray_tree", "depth_cut",
+                                                             "head_angle_deg", "light_markers", "compare", "ambient"};
+constexpr std::array<std::string_view, 2> kAmbientChoices = {"constant", "indirect"};
 constexpr std::array<std::string_view, 2> kAnswerKeys = {"caption", "show"};
 constexpr std::array<std::string_view, 4> kCompareKeys = {"against", "view", "wipe", "gain"};
 constexpr std::array<std::string_view, 2> kCompareViews = {"difference", "wipe"};
-constexpr std::array<std::string_view, 8> kTermNames = {"full", "ambient", "diffuse", "specular", "reflection", "refraction", "normal", "depth"};
+constexpr std::array<std::string_view, 9> kTermNames = {"full", "ambient", "diffuse", "specular", "reflection", "refraction",
+                                                        "indirect", "normal", "depth"};
 constexpr int kMaxSteps = 200;
 
 class LessonReader : private SceneMembers {
@@ -206,6 +209,11 @@ class LessonReader : private SceneMembers {
     }
     if (const Val* x = f.find("light_markers")) set(out.light_markers, read_bool(*x));
     if (const Val* x = f.find("compare")) compare(*x, out, step);
+    if (const Val* x = f.find("ambient")) {
+      if (auto name = read_choice(*x, kAmbientChoices, "ambient")) {
+        out.ambient = *name == "indirect" ? Ambient::kIndirect : Ambient::kConstant;
+      }
+    }
     if (const Val* x = f.find("mute")) mute(*x, scene);
     if (const Val* x = f.find("solo")) {
       if (auto i = light_index(*x, scene)) {

@@ -1194,7 +1194,7 @@ check_lessons() {
   check_exit "$dir" "the script ran to the end"
   check "--lesson shading opens at its first step, the ambient term ($(state "$dir/n01.txt" lesson_title))" \
     test "$(state "$dir/n01.txt" lesson)" = shading -a "$(state "$dir/n01.txt" lesson_step)" = 1 \
-    -a "$(state "$dir/n01.txt" lesson_steps)" = 11 -a "$(state "$dir/n01.txt" term)" = ambient
+    -a "$(state "$dir/n01.txt" lesson_steps)" = 13 -a "$(state "$dir/n01.txt" term)" = ambient
   check "Right, then space: step 2 and its answer revealed ($(state "$dir/n02.txt" lesson_title))" \
     test "$(state "$dir/n02.txt" lesson_step)" = 2 -a "$(state "$dir/n02.txt" lesson_revealed)" = 1 \
     -a "$(state "$dir/n02.txt" term)" = diffuse
@@ -1319,7 +1319,25 @@ screenshot $dir/a5_fitted.png
 quit
 EOF
   "$BIN" cornell --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
-  echo "$?" >"$dir/exit_code"
+  local code=$?
+  # The shading lesson's last step: ka·Ia wiped against the indirect light, its answer the difference.
+  cat >"$dir/lesson.txt" <<EOF
+set render target_spp 2
+lesson_goto 13
+wait_idle 120
+wait_idle 120
+dump_state $dir/l13.txt
+screenshot $dir/l13_wipe.png
+lesson_next
+wait_idle 120
+wait_idle 120
+dump_state $dir/l13a.txt
+screenshot $dir/l13_answer.png
+quit
+EOF
+  "$BIN" --lesson shading --size 1280x720 --script "$dir/lesson.txt" >"$dir/lesson_stdout.txt" 2>>"$dir/stderr.txt"
+  local lesson=$?
+  echo "$((code != 0 ? code : lesson))" >"$dir/exit_code"
 }
 
 check_ambient() {
@@ -1344,6 +1362,10 @@ check_ambient() {
   after=$(grep -F "material_${wall}_ka=" "$dir/a5.txt" | cut -d= -f2)
   check "the best constant ambient for this view sets $wall's ka ($before -> $after): the indirect light is brighter than ka*Ia" \
     awk -v a="$before" -v b="$after" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] > p[1] && q[1] < 10) }'
+  check "the lesson's last step shows the indirect light wiped against ka*Ia ($(state "$dir/l13.txt" compare_caption))" \
+    test "$(state "$dir/l13.txt" lesson_step)/$(state "$dir/l13.txt" ambient_view)/$(state "$dir/l13.txt" compare)" = 13/indirect/1
+  check "... and its answer their difference ($(state "$dir/l13a.txt" compare_caption))" \
+    test "$(state "$dir/l13a.txt" lesson_revealed)/$(state "$dir/l13a.txt" ambient_view)/$(state "$dir/l13a.txt" compare)" = 1/indirect/2
   check "the indirect image differs from ka*Ia's" greater "$(rmse "$dir/a0_constant.png" "$dir/a1_indirect.png" 1280x600+0+60)" 0.02
   check "the beside view differs from the indirect image" greater "$(rmse "$dir/a1_indirect.png" "$dir/a2_beside.png" 1280x600+0+60)" 0.02
   check "the difference view differs from the beside view" greater "$(rmse "$dir/a2_beside.png" "$dir/a3_difference.png" 1280x600+0+60)" 0.02

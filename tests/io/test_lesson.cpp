@@ -381,7 +381,7 @@ TEST(Handout, TheTextIsThePagesAndThePngIsTheImage) {
   EXPECT_EQ(be32(16), static_cast<unsigned>(kW));
   EXPECT_EQ(be32(20), static_cast<unsigned>(kH)) << "no text below the image";
   const std::string html = read_all(dir / "index.html");
-  EXPECT_NE(html.find("<h2>1. Ambient alone <span class=\"of\">(step 1 of 11)</span></h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2>1. Ambient alone <span class=\"of\">(step 1 of 13)</span></h2>"), std::string::npos);
   EXPECT_NE(html.find("I = ka\xC2\xB7I\xE2\x82\x90. The ambient term"), std::string::npos) << "Ia as the panels write it";
   EXPECT_NE(html.find("This is the end of the lesson."), std::string::npos);
   std::filesystem::remove_all(dir);
@@ -534,6 +534,44 @@ TEST(LessonFile, ErrorsNumberTheStepFromOneAndSuggestTheScene) {
                 .find("(did you mean \"lecture\"?)"),
             std::string::npos);
   std::filesystem::remove_all(dir);
+}
+
+// A step may show the indirect light ("ambient": "indirect"); a misspelt choice is named.
+TEST(LessonFile, AStepShowsTheIndirectLightWithAmbientIndirect) {
+  const std::string base = "{\"title\": \"t\", \"steps\": [\n{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"lecture\", ";
+  EXPECT_NE(errors_of(base + "\"show\": {\"ambient\": \"indirekt\"}}]}").find("(did you mean \"indirect\"?)"),
+            std::string::npos);
+  const LessonLoad load = load_lesson_text(base + "\"show\": {\"ambient\": \"indirect\"}}]}", "good.json");
+  ASSERT_TRUE(load.lesson) << load.error_text();
+  EXPECT_EQ(load.lesson->steps[0].view.ambient, Ambient::kIndirect);
+}
+
+// The shading lesson ends on what ambient stands in for: the Cornell box with ka·Ia left of the
+// wipe (the previous step's image, bit for bit) and the indirect light right of it.
+TEST(EmbeddedLessons, TheLastStepWipesFromTheConstantToTheIndirectLight) {
+  const Lesson lesson = embedded("shading");
+  const int last = static_cast<int>(lesson.steps.size()) - 1;
+  const StepView& view = lesson.steps.back().view;
+  ASSERT_EQ(view.ambient, Ambient::kIndirect);
+  ASSERT_EQ(view.compare, CompareView::kWipe);
+  ASSERT_EQ(view.compare_against, last - 1);
+  ASSERT_EQ(lesson.steps.back().answer_view.compare, CompareView::kDifference);
+  const Image constant = render_step_view(lesson, LessonPlace{last - 1, false}, small());
+  const Image wiped = render_step_view(lesson, LessonPlace{last, false}, small());
+  ASSERT_EQ(constant.pixels.size(), wiped.pixels.size());
+  int left_same = 0, right_differs = 0, hits = 0;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * kW + static_cast<std::size_t>(x);
+      if (x < kW / 2 - 2) left_same += constant.pixels[i] == wiped.pixels[i] ? 1 : 0;
+      if (x > kW / 2 + 2 && glm::length(constant.pixels[i]) > 0) {
+        ++hits;
+        right_differs += constant.pixels[i] != wiped.pixels[i] ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_EQ(left_same, kH * (kW / 2 - 2));
+  EXPECT_GT(right_differs, hits * 9 / 10);
 }
 
 }  // namespace

@@ -29,6 +29,7 @@ struct StepView {
   int compare_against = -1;                 // A: that step (0-based); -1: this step, the head not moved
   double wipe = 0.5;                        // kWipe: the fraction of the width showing A
   double difference_gain = 4;               // kDifference: |live - A| is scaled by this
+  Ambient ambient = Ambient::kConstant;     // ka·Ia, or the indirect light it stands in for
   bool operator==(const StepView&) const = default;
 };
 
