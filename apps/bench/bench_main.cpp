@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "apps/bench/bench_accel.h"
+#include "apps/bench/bench_indirect.h"
 #include "apps/bench/bench_common.h"
 #include "apps/bench/bench_report.h"
 #include "apps/common/args.h"
@@ -27,7 +28,8 @@ using namespace phonglab;
 using namespace phonglab::cli;
 using bench::median;
 
-constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [--threads N] [--only accel]
+constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [--threads N]
+                      [--only accel|indirect]
        phonglab-bench SCENE [--frames N] [--width W] [--height H] [--threads N]
                       [--scalar] [--edited] [--reshade shading|light|head]
   (also run as `phonglab-cli bench ...`, which executes phonglab-bench)
@@ -35,7 +37,9 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
   (default bench-out/); --quick finishes in about a minute (default: the full
   report). --only accel: the acceleration section and the yardsticks alone
-  (accel.md, accel.csv, yardsticks.csv; default: every section).
+  (accel.md, accel.csv, yardsticks.csv; default: every section); --only
+  indirect: the indirect light's convergence and speed (indirect.md, .csv,
+  .svg).
   With SCENE: time N Whitted frames (default 15; 1 spp each) of one scene at
   W x H (default 1280 x 720, whatever the scene's size) and print the median;
   --scalar: without the packet tracer (the same image, traced ray by ray);
@@ -224,7 +228,10 @@ int run(Args& args) {
   const auto reshade = args.take_value("--reshade");
   const auto positional = args.take_positional();
   if (only) {
-    if (*only != "accel" || positional) throw UsageError{"--only takes 'accel' and no SCENE"};
+    if ((*only != "accel" && *only != "indirect") || positional) {
+      throw UsageError{"--only takes 'accel' or 'indirect' and no SCENE"};
+    }
+    if (*only == "indirect") return bench::write_indirect_report(quick, threads.value_or(0), out_dir.value_or("bench-out"));
     return write_accel_report(AccelBenchOptions{quick, threads.value_or(0)}, out_dir.value_or("bench-out"));
   }
   if (!positional) {  // no SCENE: the whole speed-versus-error report

@@ -11,7 +11,8 @@
 #include <thread>
 #include <vector>
 
-#include "apps/bench/bench_accel.h"  // issue 6: the acceleration section
+#include "apps/bench/bench_accel.h"
+#include "apps/bench/bench_indirect.h"  // issue 6: the acceleration section
 #include "apps/bench/bench_common.h"
 #include "apps/bench/bench_yardsticks.h"
 #include "io/embedded_scenes.h"
@@ -555,6 +556,10 @@ int run_bench_report(const BenchReportOptions& options) {
   out.write("yardsticks.csv", yardsticks.csv);
   precision_section(md, out, quick, threads);
   savings_section(md, out, quick, threads);
+  const bench::IndirectBenchResult indirect = bench::run_indirect_bench(quick, threads);
+  md << indirect.markdown;
+  out.write("indirect.csv", indirect.csv);
+  out.write("indirect_spp.svg", indirect.plot_svg);
   out.write("report.md", md.str());
   std::printf("wrote %s/report.md\n", options.out_dir.c_str());
   return out.ok ? 0 : 1;

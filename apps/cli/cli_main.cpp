@@ -82,11 +82,12 @@ commands:
       answer as answer-NN.png) and DIR/index.html, one page holding them all
       with the captions. W x H: each image (default: its scene's image size);
       N: samples per pixel (default 4).
-  bench [--out DIR] [--quick] [--threads N] [--only accel]
+  bench [--out DIR] [--quick] [--threads N] [--only accel|indirect]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR
       (default bench-out/); --quick finishes in about a minute (default: the
       full report). --only accel: the acceleration section and the yardsticks
-      alone (accel.md, accel.csv, yardsticks.csv; default: every section).
+      alone (accel.md, accel.csv, yardsticks.csv; default: every section);
+      --only indirect: the indirect light's convergence and speed.
   bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
               [--edited] [--reshade shading|light|head]
       Time N Whitted frames (default 15; 1 spp each) of one scene at W x H
