@@ -29,6 +29,8 @@ shot objects/b04_dragged.png objects.png
 shot objects/b02_presets.png presets.png
 shot browser/f5_recent.png file-browser.png
 shot lessons/n06_presenter.png presenter.png
+shot ambient/a2_beside.png ambient-beside.png
+shot ambient/a3_difference.png ambient-difference.png
 # The viewport (left of the 400-pixel panels) of cut 0, 1, 2 in a row.
 convert "$SRC/rays/r04_cut0.png" "$SRC/rays/r05_cut1.png" "$SRC/rays/r06_cut2.png" -crop 880x720+0+0 +repage \
   -bordercolor black -border 4x0 +append -resize 960x -strip "$OUT/depth-cut.png"
@@ -39,3 +41,4 @@ for scene in cornell cornell-sphere; do
 done
 convert "$SRC/cornell.png" "$SRC/cornell-sphere.png" -bordercolor black -border 4x0 +append -strip "$OUT/cornell.png"
 echo "$OUT/cornell.png <- phonglab-cli render cornell, cornell-sphere"
+# indirect-2s.png is tools/indirect-two-seconds.sh's (real time: it needs a quiet machine).
