@@ -137,7 +137,7 @@ std::string Viewer::init() {
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   if (!options_.lesson_arg.empty()) open_lesson(options_.lesson_arg);  // a lesson that fails to load is shown in its panel
   // A lesson's steps are nobody's file: what an earlier session kept is offered once it closes.
-  recovery_.after_lesson = lesson_.lesson.has_value() || lesson_.waiting.has_value();
+  recovery_.after_lesson = lessons_.lesson() != nullptr || lessons_.waiting() != nullptr;
   if (!recovery_.after_lesson) find_recovery();
   if (!options_.script_path.empty()) {
     std::ifstream in(options_.script_path);
@@ -323,8 +323,8 @@ void Viewer::apply_edits(double frame_start) {
   }
   edits_.frame_requested = edits_.reset_requested = false;
   // Any change the lesson did not make itself leaves its step as written: exploring.
-  if (lesson_.lesson && !lesson_.applied && (edits_.scene || edits_.camera || edits_.settings || edits_.view)) {
-    lesson_.exploring = true;
+  if (lessons_.lesson() && !lesson_.applied && (edits_.scene || edits_.camera || edits_.settings || edits_.view)) {
+    lessons_.explored();
   }
   lesson_.applied = false;
   if (edits_.scene) session_.recovery().edited(frame_start);

@@ -261,6 +261,7 @@ class Viewer {
   void start_lesson();                           // lesson_.waiting becomes the lesson, at its first step
   void close_lesson();
   void show_place(LessonPlace place);            // shows a step (or its answer) as written
+  void present(const LessonPresenter::Show& show);  // what the presenter answers: A cleared, scene, view
   void adopt_step_scene(int step);               // the step's scene becomes the document
   void apply_step_view(const StepView& view);    // the term, instruments, probe, head and depth cut of a view
   void update_lesson();                          // after apply_edits: the step's probe, its A, exploring
@@ -304,6 +305,7 @@ class Viewer {
   ViewerOptions options_;
   Session session_;                             // the document, its edits and undo (src/session)
   SceneDocument& doc_ = session_.document();    // its file side, as the shell's files still name it
+  LessonPresenter& lessons_ = session_.lessons();  // the lesson being presented
   ProgressiveRenderer renderer_;
   ImageView image_view_;
 
@@ -447,18 +449,10 @@ class Viewer {
   };
   FrameStats stats_;
   // The lesson being presented (viewer_lesson.cpp).
+  // The shell's side of it: where the lesson stands is the session's (lessons_).
   struct LessonState {
-    std::optional<Lesson> lesson;
-    std::optional<Lesson> waiting;  // opened while unsaved edits wait for the guard's answer
-    LessonPlace place;
-    int scene_step = -1;            // the step whose scene the document holds
-    StepView view;                  // the view shown (the step's, or its answer's)
-    bool exploring = false;         // something was changed since the step was shown
     bool applied = false;           // this frame's edits are the lesson's own
     bool probe_pending = false;     // probe the view's pixel once the step's snapshot exists
-    // A compare: A is taken of the compare source first, then the step itself is shown.
-    enum class CompareStage : std::uint8_t { kNone, kRequestA, kTakingA };
-    CompareStage compare_stage = CompareStage::kNone;
     std::array<int, 2> shown_size{0, 0};  // the render size the step was shown at (0: not yet)
     bool presenting = false;        // presenter mode
     bool sidebar_before = true;     // the panels' visibility before presenter mode

@@ -110,7 +110,7 @@ void Viewer::take_a_when_final() {
 
 int Viewer::target_spp() const {
   // (Not for the indirect light: its noise settles only with samples; A's edges are what differ.)
-  const bool lesson_difference = lesson_.lesson && !lesson_.exploring && compare_.first_full && instruments_.compare == 2 &&
+  const bool lesson_difference = lessons_.lesson() && !lessons_.exploring() && compare_.first_full && instruments_.compare == 2 &&
                                  !compare_.image.pixels.empty() && render_settings_.ambient_view == ui::AmbientView::kConstant;
   const int target = std::max(render_settings_.target_spp, 1);
   return lesson_difference ? std::min(target, static_cast<int>(std::max(compare_.image.spp, 1u))) : target;

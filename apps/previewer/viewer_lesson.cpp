@@ -24,29 +24,24 @@ std::string Viewer::open_lesson(const std::string& lesson_arg) {
     return lesson_.error;
   }
   lesson_.error.clear();
-  lesson_.waiting = std::move(load.lesson);
+  lessons_.offer(std::move(*load.lesson));
   // A lesson replaces the scene: unsaved edits of a file are asked about first; a lesson's own
   // explorations are not (they were never anyone's file).
-  const PendingAction action{PendingAction::Kind::kLesson, lesson_.waiting->name};
-  if (lesson_.lesson) perform(action);
+  const PendingAction action{PendingAction::Kind::kLesson, lessons_.waiting()->name};
+  if (lessons_.lesson()) perform(action);
   else request(action);
   return "";
 }
 
 void Viewer::start_lesson() {
-  if (!lesson_.waiting) return;
-  lesson_.lesson = std::move(lesson_.waiting);
-  lesson_.waiting.reset();
-  lesson_.scene_step = -1;
+  const std::optional<LessonPresenter::Show> show = lessons_.start();
+  if (!show) return;
   lesson_.unfold_panel = true;
-  show_place({0, false});
+  present(*show);
 }
 
 void Viewer::close_lesson() {
-  lesson_.lesson.reset();
-  lesson_.scene_step = -1;
-  lesson_.compare_stage = LessonState::CompareStage::kNone;
-  lesson_.exploring = false;
+  lessons_.close();
   set_presenting(false);
   if (recovery_.after_lesson) {
     recovery_.after_lesson = false;
@@ -55,17 +50,15 @@ void Viewer::close_lesson() {
 }
 
 void Viewer::adopt_step_scene(int step) {
-  const Lesson& lesson = *lesson_.lesson;
+  const Lesson& lesson = *lessons_.lesson();
   char source[512];
   std::snprintf(source, sizeof source, "lesson '%s', step %d: %s", lesson.name.c_str(), step + 1,
                 lesson.steps[static_cast<std::size_t>(step)].scene.c_str());
   doc_.adopt(lesson.steps[static_cast<std::size_t>(step)].prepared_scene, source);
-  lesson_.scene_step = step;
   document_replaced();  // the probe and A are the step view's (apply_step_view, the compare stages)
 }
 
 void Viewer::apply_step_view(const StepView& view) {
-  lesson_.view = view;
   render_settings_.term = view.term;
   render_settings_.ambient_view = view.ambient == Ambient::kIndirect ? ui::AmbientView::kIndirect : ui::AmbientView::kConstant;
   rays_.heat_map = false;
@@ -85,64 +78,53 @@ void Viewer::apply_step_view(const StepView& view) {
 }
 
 void Viewer::show_place(LessonPlace place) {
-  if (!lesson_.lesson) return;
-  const Lesson& lesson = *lesson_.lesson;
-  place.step = std::clamp(place.step, 0, static_cast<int>(lesson.steps.size()) - 1);
-  place.revealed = place.revealed && lesson.steps[static_cast<std::size_t>(place.step)].has_question();
-  lesson_.place = place;
-  const StepView& view = view_at(lesson.steps[static_cast<std::size_t>(place.step)], place.revealed);
+  if (lessons_.lesson()) present(lessons_.show(place));
+}
+
+// What the session's presenter answers for a place: A and the compare view cleared, the step's
+// scene adopted when it asks, its view applied (a compare's source view first, for A).
+void Viewer::present(const LessonPresenter::Show& show) {
   compare_.image = ProgressiveFrame{};
   compare_.requested = compare_.dropped = false;
   instruments_.compare = 0;
-  lesson_.compare_stage = LessonState::CompareStage::kNone;
-  // A compare shows the source first, for A; update_lesson shows the step once A is taken.
-  const CompareSource source = compare_source(lesson, place.step, view);
-  const bool compare = view.compare != CompareView::kNone && !view.small_multiples;
-  const int scene_step = compare ? source.step : place.step;
-  // Revealing an answer keeps the scene (its trees re-shade a view change at once), unless
-  // exploring changed it.
-  if (scene_step != lesson_.scene_step || lesson_.exploring || compare) adopt_step_scene(scene_step);
-  apply_step_view(compare ? source.view : view);
-  if (compare) lesson_.compare_stage = LessonState::CompareStage::kRequestA;
-  lesson_.exploring = false;
+  if (show.adopt_step) adopt_step_scene(*show.adopt_step);
+  apply_step_view(show.view);
   lesson_.applied = true;
   lesson_.shown_size = {0, 0};
 }
 
 void Viewer::update_lesson() {
-  if (!lesson_.lesson) return;
+  if (!lessons_.lesson()) return;
   // A new view size (presenter mode, the panels hidden, the window resized) shows the step
   // again: its probed pixel and its A belong to the size they were made at.
   const std::array<int, 2> size{render_width_, render_height_};
   if (lesson_.shown_size == std::array<int, 2>{0, 0}) {
     lesson_.shown_size = size;
-  } else if (size != lesson_.shown_size && size[0] > 0 && !lesson_.exploring) {
-    show_place(lesson_.place);
+  } else if (size != lesson_.shown_size && size[0] > 0 && !lessons_.exploring()) {
+    show_place(lessons_.place());
     return;
   }
   if (lesson_.probe_pending && snapshot_ && render_width_ > 0 && render_height_ > 0) {
-    if (const auto pixel = probe_in(doc_.scene(), snapshot_->scene().camera, lesson_.view, render_width_, render_height_)) {
+    if (const auto pixel = probe_in(doc_.scene(), snapshot_->scene().camera, lessons_.view(), render_width_, render_height_)) {
       probed_.x = (*pixel)[0];
       probed_.y = (*pixel)[1];
       refresh_probe();
     }
     lesson_.probe_pending = false;
   }
-  using Stage = LessonState::CompareStage;
-  if (lesson_.compare_stage == Stage::kRequestA) {
+  // A compare: A of the source's view first, then the step's own view with the compare on.
+  if (lessons_.take_a_now()) {
     snapshot_a(true);
-    lesson_.compare_stage = Stage::kTakingA;
-  } else if (lesson_.compare_stage == Stage::kTakingA) {
+  } else if (lessons_.awaiting_a()) {
     if (compare_.dropped) {
-      lesson_.compare_stage = Stage::kNone;  // something changed first: the user is exploring
+      lessons_.a_dropped();  // something changed first: the user is exploring
     } else if (!compare_.requested && !compare_.image.pixels.empty()) {
-      lesson_.compare_stage = Stage::kNone;
-      const LessonStep& step = lesson_.lesson->steps[static_cast<std::size_t>(lesson_.place.step)];
-      const StepView& view = view_at(step, lesson_.place.revealed);
-      if (lesson_.scene_step != lesson_.place.step) adopt_step_scene(lesson_.place.step);
-      apply_step_view(view);
-      instruments_.compare = view.compare == CompareView::kWipe ? 1 : 2;
-      lesson_.applied = true;
+      if (const std::optional<LessonPresenter::Show> show = lessons_.a_taken()) {
+        if (show->adopt_step) adopt_step_scene(*show->adopt_step);
+        apply_step_view(show->view);
+        instruments_.compare = show->view.compare == CompareView::kWipe ? 1 : 2;
+        lesson_.applied = true;
+      }
     }
   }
 }
@@ -161,22 +143,20 @@ void Viewer::set_presenting(bool on) {
 
 bool Viewer::lesson_key(int key) {
   if (key == GLFW_KEY_F11) {
-    if (lesson_.lesson || lesson_.presenting) set_presenting(!lesson_.presenting);
-    return lesson_.lesson.has_value();
+    if (lessons_.lesson() || lesson_.presenting) set_presenting(!lesson_.presenting);
+    return lessons_.lesson() != nullptr;
   }
-  if (!lesson_.lesson) return false;
+  if (!lessons_.lesson()) return false;
   if (key == GLFW_KEY_ESCAPE && lesson_.presenting) {
     set_presenting(false);
     return true;
   }
   if (key == GLFW_KEY_RIGHT || key == GLFW_KEY_PAGE_DOWN || key == GLFW_KEY_SPACE) {
-    const LessonPlace next = lesson_next(*lesson_.lesson, lesson_.place);
-    if (next != lesson_.place || lesson_.exploring) show_place(next);
+    if (const std::optional<LessonPresenter::Show> show = lessons_.next()) present(*show);
     return true;
   }
   if (key == GLFW_KEY_LEFT || key == GLFW_KEY_PAGE_UP) {
-    const LessonPlace prev = lesson_prev(*lesson_.lesson, lesson_.place);
-    if (prev != lesson_.place || lesson_.exploring) show_place(prev);
+    if (const std::optional<LessonPresenter::Show> show = lessons_.prev()) present(*show);
     return true;
   }
   return false;
@@ -184,26 +164,28 @@ bool Viewer::lesson_key(int key) {
 
 void Viewer::sidebar_lessons() {
   ui::LessonPanelView view;
-  view.lesson = lesson_.lesson ? &*lesson_.lesson : nullptr;
-  view.place = lesson_.place;
-  view.exploring = lesson_.exploring;
+  view.lesson = lessons_.lesson();
+  view.place = lessons_.place();
+  view.exploring = lessons_.exploring();
   view.presenting = lesson_.presenting;
   view.error = lesson_.error;  // every diagnostic, each with its suggestion
   ui::LessonActions actions;
   ui::lessons_panel(view, lesson_.path_field, actions);
   if (!actions.open.empty()) open_lesson(actions.open);
-  if (!lesson_.lesson) return;
+  if (!lessons_.lesson()) return;
   if (actions.go_to >= 0) show_place({actions.go_to, false});
   if (actions.next) lesson_key(GLFW_KEY_RIGHT);
   if (actions.prev) lesson_key(GLFW_KEY_LEFT);
-  if (actions.back) show_place(lesson_.place);
+  if (actions.back) show_place(lessons_.place());
   if (actions.present) set_presenting(!lesson_.presenting);
   if (actions.close) close_lesson();
 }
 
 void Viewer::draw_lesson_caption() {
-  if (!lesson_.lesson || viewport_.width < 1) return;
-  const LessonStep& step = lesson_.lesson->steps[static_cast<std::size_t>(lesson_.place.step)];
+  if (!lessons_.lesson() || viewport_.width < 1) return;
+  const Lesson& lesson = *lessons_.lesson();
+  const LessonPlace place = lessons_.place();
+  const LessonStep& step = lesson.steps[static_cast<std::size_t>(place.step)];
   ImFont* font = platform_.caption_font();
   if (font == nullptr) font = ImGui::GetFont();
   const float scale = platform_.ui_scale();
@@ -213,8 +195,8 @@ void Viewer::draw_lesson_caption() {
   const float pad = 10 * scale;
   const float wrap = std::max(viewport_.width - 4 * pad, 50.0f);
   char head[512];
-  std::snprintf(head, sizeof head, "%d/%zu  %s%s", lesson_.place.step + 1, lesson_.lesson->steps.size(), step.title.c_str(),
-                lesson_.exploring ? "   (exploring)" : "");
+  std::snprintf(head, sizeof head, "%d/%zu  %s%s", place.step + 1, lesson.steps.size(), step.title.c_str(),
+                lessons_.exploring() ? "   (exploring)" : "");
   struct Line {
     std::string text;
     float size;
@@ -222,9 +204,9 @@ void Viewer::draw_lesson_caption() {
   };
   std::vector<Line> lines = {{head, size, IM_COL32(255, 255, 255, 255)}, {step.caption, small, IM_COL32(225, 225, 225, 255)}};
   if (step.has_question()) lines.push_back({"Q: " + step.question, small, IM_COL32(255, 200, 70, 255)});
-  if (step.has_question() && lesson_.place.revealed) lines.push_back({"A: " + step.answer, small, IM_COL32(140, 235, 140, 255)});
-  const bool posed = step.has_question() && !lesson_.place.revealed;
-  const bool last = lesson_next(*lesson_.lesson, lesson_.place) == lesson_.place;
+  if (step.has_question() && place.revealed) lines.push_back({"A: " + step.answer, small, IM_COL32(140, 235, 140, 255)});
+  const bool posed = step.has_question() && !place.revealed;
+  const bool last = lesson_next(lesson, place) == place;
   const char* hint = posed ? "\xE2\x86\x92 / space: the answer"
                      : last ? "the end of the lesson   \xE2\x86\x90: back"
                             : "\xE2\x86\x92 / space: next   \xE2\x86\x90: back";
@@ -253,14 +235,14 @@ std::optional<std::string> Viewer::script_lesson_command(const std::vector<std::
     return "";
   }
   if (name != "lesson_next" && name != "lesson_prev" && name != "lesson_goto") return std::nullopt;
-  if (!lesson_.lesson) return "no lesson is open (lesson_open NAME|FILE)";
+  if (!lessons_.lesson()) return "no lesson is open (lesson_open NAME|FILE)";
   if (name == "lesson_next" || name == "lesson_prev") {
     if (w.size() != 1) return "usage: " + name;
     lesson_key(name == "lesson_next" ? GLFW_KEY_RIGHT : GLFW_KEY_LEFT);
     return "";
   }
   int n = 0;
-  const int steps = static_cast<int>(lesson_.lesson->steps.size());
+  const int steps = static_cast<int>(lessons_.lesson()->steps.size());
   if (w.size() != 2 || !script::parse_int(w[1], n) || n < 1 || n > steps) {
     return "usage: lesson_goto N, N in 1.." + std::to_string(steps);
   }
@@ -269,15 +251,16 @@ std::optional<std::string> Viewer::script_lesson_command(const std::vector<std::
 }
 
 void Viewer::write_lesson_state(std::ostream& out) const {
-  const bool open = lesson_.lesson.has_value();
-  out << "lesson=" << (open ? lesson_.lesson->name : "") << "\n"
-      << "lesson_step=" << (open ? lesson_.place.step + 1 : 0) << "\n"
-      << "lesson_steps=" << (open ? lesson_.lesson->steps.size() : 0) << "\n"
-      << "lesson_revealed=" << (lesson_.place.revealed ? 1 : 0) << "\n"
-      << "lesson_title=" << (open ? lesson_.lesson->steps[static_cast<std::size_t>(lesson_.place.step)].title : "") << "\n"
-      << "lesson_exploring=" << (lesson_.exploring ? 1 : 0) << "\n"
+  const Lesson* lesson = lessons_.lesson();
+  const LessonPlace place = lessons_.place();
+  out << "lesson=" << (lesson ? lesson->name : "") << "\n"
+      << "lesson_step=" << (lesson ? place.step + 1 : 0) << "\n"
+      << "lesson_steps=" << (lesson ? lesson->steps.size() : 0) << "\n"
+      << "lesson_revealed=" << (place.revealed ? 1 : 0) << "\n"
+      << "lesson_title=" << (lesson ? lesson->steps[static_cast<std::size_t>(place.step)].title : "") << "\n"
+      << "lesson_exploring=" << (lessons_.exploring() ? 1 : 0) << "\n"
       << "lesson_presenting=" << (lesson_.presenting ? 1 : 0) << "\n"
-      << "lesson_comparing=" << (lesson_.compare_stage != LessonState::CompareStage::kNone ? 1 : 0) << "\n"
+      << "lesson_comparing=" << (lessons_.awaiting_a() ? 1 : 0) << "\n"
       << "lesson_error=" << lesson_.error.substr(0, lesson_.error.find('\n')) << "\n";
 }
 

@@ -86,7 +86,7 @@ void Viewer::draw_overlays() {
   const ImVec2 top_right(viewport_.x + viewport_.width - margin, viewport_.y + margin);
   // A lesson's caption takes the bottom of the view: the bottom boxes sit above it.
   float bottom_y = viewport_.y + viewport_.height - margin;
-  if (const auto it = last.find("##lesson_caption"); it != last.end() && lesson_.lesson) bottom_y = it->second.min.y - margin;
+  if (const auto it = last.find("##lesson_caption"); it != last.end() && lessons_.lesson()) bottom_y = it->second.min.y - margin;
   const ImVec2 bottom_left(viewport_.x + margin, bottom_y);
   const ImVec2 bottom_right(viewport_.x + viewport_.width - margin, bottom_y);
 
@@ -163,7 +163,7 @@ void Viewer::draw_overlays() {
     ui::text_on_plate(draw, ImVec2(viewport_.x + (viewport_.width - size.x) / 2, viewport_.y + (viewport_.height - size.y) / 2),
                       text, scale);
   }
-  if (!sidebar_visible_ && !lesson_.lesson) {
+  if (!sidebar_visible_ && !lessons_.lesson()) {
     // With the panels hidden, say how to get them back (bottom centre, clear of the corner boxes).
     const char* text = "H shows the panels  \xC2\xB7  F1 keys";
     const ImVec2 size = ImGui::CalcTextSize(text);
@@ -300,7 +300,7 @@ bool Viewer::light_markers_shown() const {
   // Hidden by the Display toggle, over the small multiples (the markers belong to the one full
   // view), and where a lesson's step asks where the lights are (until exploring).
   if (!display_.light_markers || instruments_.small_multiples) return false;
-  return !lesson_.lesson || lesson_.view.light_markers || lesson_.exploring;
+  return !lessons_.lesson() || lessons_.view().light_markers || lessons_.exploring();
 }
 
 void Viewer::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {

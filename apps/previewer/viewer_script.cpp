@@ -207,7 +207,7 @@ bool Viewer::script_wait_done(double now) {
     case ScriptWait::kFrames: done = --script_.frames_left <= 0; break;
     case ScriptWait::kIdle:
       // A lesson's compare is done once its A is taken and the step itself is final.
-      done = image_is_final() && lesson_.compare_stage == LessonState::CompareStage::kNone && !lesson_.applied;
+      done = image_is_final() && !lessons_.awaiting_a() && !lesson_.applied;
       break;
     case ScriptWait::kImage:
       done = !upload_pending_ && drawn_serial_ > 0 && drawn_generation_ == renderer_.status().generation;

@@ -14,6 +14,7 @@
 #include "core/scene/scene.h"
 #include "interaction/history.h"
 #include "session/document.h"
+#include "session/lesson_presenter.h"
 #include "session/recovery_keeper.h"
 
 namespace phonglab {
@@ -88,6 +89,9 @@ class Session {
   bool dirty() const { return document_.dirty(); }
   RecoveryKeeper& recovery() { return recovery_; }
   const RecoveryKeeper& recovery() const { return recovery_; }
+  // The lesson being presented (its steps' scenes are adopted into the document by the shell).
+  LessonPresenter& lessons() { return lessons_; }
+  const LessonPresenter& lessons() const { return lessons_; }
 
  private:
   void edited();  // dirty again, and an undo step pending
@@ -96,6 +100,7 @@ class Session {
   ui::SceneHistory history_;
   bool pending_ = false;
   RecoveryKeeper recovery_;
+  LessonPresenter lessons_;
 };
 
 }  // namespace phonglab
