@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/scene/hash.h"
+
 namespace phonglab {
 
 double view_up_sine(const Camera& camera) {
@@ -29,16 +31,6 @@ Ray camera_ray(const CameraFrame& f, int x, int y, double u, double v) {
 }
 
 namespace {
-
-// A 32-bit integer hash with good avalanche (the "lowbias32" constants of Wellons).
-std::uint32_t hash32(std::uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
 
 double fract(double x) { return x - std::floor(x); }
 

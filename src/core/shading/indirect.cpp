@@ -3,19 +3,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/scene/hash.h"
+
 namespace phonglab {
 
 namespace {
-
-// A 32-bit integer hash with good avalanche ("lowbias32", Wellons).
-std::uint32_t mix(std::uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
 
 std::uint32_t reverse_bits(std::uint32_t x) {
   x = ((x >> 1) & 0x55555555U) | ((x & 0x55555555U) << 1);
@@ -55,16 +47,16 @@ double unit(std::uint32_t x) { return static_cast<double>(x) * 0x1p-32; }
 }  // namespace
 
 std::uint32_t indirect_pixel_key(int x, int y, std::uint32_t seed) {
-  return mix(static_cast<std::uint32_t>(x) * 0x9E3779B1U ^ mix(static_cast<std::uint32_t>(y) ^ mix(seed ^ 0x5bd1e995U)));
+  return hash32(static_cast<std::uint32_t>(x) * 0x9E3779B1U ^ hash32(static_cast<std::uint32_t>(y) ^ hash32(seed ^ 0x5bd1e995U)));
 }
 
 void IndirectSampler::next_point(double& u1, double& u2) {
-  const std::uint32_t d = mix(key_ ^ mix(dimension_++));
+  const std::uint32_t d = hash32(key_ ^ hash32(dimension_++));
   // The index shuffled (Owen-scrambled: the first 2^k indices stay the first 2^k), so that the
   // gathers of one tree are not correlated with each other, then each coordinate scrambled.
-  const std::uint32_t i = owen_scramble(sample_, mix(d ^ 0x68bc21ebU));
-  u1 = unit(owen_scramble(sobol0(i), mix(d ^ 0x02e5be93U)));
-  u2 = unit(owen_scramble(sobol1(i), mix(d ^ 0x967a889bU)));
+  const std::uint32_t i = owen_scramble(sample_, hash32(d ^ 0x68bc21ebU));
+  u1 = unit(owen_scramble(sobol0(i), hash32(d ^ 0x02e5be93U)));
+  u2 = unit(owen_scramble(sobol1(i), hash32(d ^ 0x967a889bU)));
 }
 
 Vec3 cosine_direction(const Vec3& n, double u1, double u2) {
