@@ -144,7 +144,7 @@ std::string Viewer::init() {
     if (!in) return "cannot read script " + options_.script_path;
     std::ostringstream text;
     text << in.rdbuf();
-    script_.commands = parse_script(text.str());
+    script_.load(parse_script(text.str()));
   }
   if (!options_.stats_log_path.empty()) {
     stats_.log.open(options_.stats_log_path);
@@ -195,7 +195,7 @@ int Viewer::run() {
     if (fb_width <= 0 || fb_height <= 0) continue;  // minimised: nothing to draw, keep running
 
     platform_.begin_backend_frame();
-    step_script(frame_start);
+    script_.step(frame_start);
     ImGui::NewFrame();
     layout();
     handle_viewport_input();
@@ -214,7 +214,7 @@ int Viewer::run() {
   write_stats_summary("session");
   if (!recovery_.keep) session_.recovery().remove();  // a clean quit (saved, or the edits discarded)
   if (exit_code_ != 0) return exit_code_;
-  return script_.failed ? 3 : 0;
+  return script_.failed() ? 3 : 0;
 }
 
 bool Viewer::poll_render_frame() {
@@ -230,7 +230,7 @@ bool Viewer::poll_render_frame() {
 void Viewer::wait_for_next_frame() {
   const ProgressiveStatus status = renderer_.status();
   const double now = glfwGetTime();
-  const bool script_running = script_.index < script_.commands.size() || !script_.input.empty();
+  const bool script_running = script_.running();
   const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
                     script_running || dialogs_.guard_visible || browser_.visible() || drag_.mode != DragMode::kNone;
   stats_.slept_idle = !busy;
@@ -303,10 +303,7 @@ void Viewer::note_restart(std::uint64_t generation, double edit_time) {
   if (stats_.log) stats_.full_pending.emplace_back(generation, edit_time);
   constexpr std::size_t kKeep = 256;  // a few seconds of drag frames; older ones never show
   while (restart_times_.size() > kKeep) restart_times_.pop_front();
-  if (script_.bench_expect_restart) {
-    script_.bench_generation = generation;
-    script_.bench_expect_restart = false;
-  }
+  script_.note_restart(generation);
 }
 
 void Viewer::apply_edits(double frame_start) {
@@ -484,9 +481,8 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (!script_.screenshot.empty()) {
-    save_window_screenshot(script_.screenshot, fb_width, fb_height);
-    script_.screenshot.clear();
+  if (const std::string shot = script_.take_screenshot_request(); !shot.empty()) {
+    save_window_screenshot(shot, fb_width, fb_height);
   }
 }
 
@@ -495,7 +491,7 @@ void Viewer::after_swap() {
   if (stats_.log && drawn_generation_ != 0) {
     // Levels are counted while the hand is on: scripted input or edits under way, a drag, a
     // held slider; not the refinement after it lets go.
-    const bool hand_on = !script_.input.empty() || script_.wait == ScriptWait::kBench || interacting_ ||
+    const bool hand_on = script_.hand_on() || interacting_ ||
                          edits_.while_active;
     if (hand_on) ++stats_.frames_at_level[shown_.divisor];
     // An edit is seen at full resolution once an image of it, or of a later edit, is.

@@ -20,6 +20,7 @@
 #include "session/document.h"
 #include "session/session.h"
 #include "apps/previewer/file_browser.h"
+#include "apps/previewer/script_driver.h"
 #include "apps/previewer/viewer_gl.h"
 #include "apps/previewer/viewer_platform.h"
 #include "io/image_io.h"
@@ -53,28 +54,6 @@ int run_viewer(const ViewerOptions& options);
 void start_signal_watcher();
 // The signal that arrived, 0 while none did.
 int pending_signal();
-
-// One scripted frame of input, injected into ImGui as if it came from the window system.
-struct InputStep {
-  ImVec2 pos;                  // mouse position, window coordinates
-  bool buttons[3] = {};        // left, right, middle held
-  bool shift = false;          // shift held
-  bool ctrl = false;           // control held
-  int key = -1;                // GLFW key code to press or release in this frame, -1 for none
-  bool key_down = false;       // press (true) or release (false) `key`
-  float wheel = 0;             // wheel clicks, positive away from the user
-  std::string text;            // characters typed in this frame (into the active text field)
-};
-
-// One line of a test script: the words, and where it came from.
-struct ScriptCommand {
-  int line = 0;
-  std::vector<std::string> words;
-};
-
-// Splits a script into commands (one per line, '#' starts a comment). Commands are
-// checked when they run; see docs/previewer.md for the list.
-std::vector<ScriptCommand> parse_script(const std::string& text);
 
 class Viewer {
  public:
@@ -116,19 +95,6 @@ class Viewer {
     float width = 0;
     float height = 0;
   };
-  // What the script is waiting for before its next command.
-  enum class ScriptWait : std::uint8_t { kNone, kFrames, kIdle, kImage, kFile, kInput, kBench, kItem };
-  // A scripted click, drag or typed value on a widget found by name (click_item and friends).
-  struct ItemAction {
-    enum class Kind : std::uint8_t { kClick, kDrag, kType };
-    Kind kind = Kind::kClick;
-    std::string name;     // as ui::locate recorded it
-    double dx = 0;        // kDrag: how far, window pixels
-    double dy = 0;
-    int steps = 10;       // kDrag: mouse moves on the way
-    std::string text;     // kType: what is typed
-  };
-
   // Frame phases, in order.
   void wait_for_next_frame();              // 60 Hz pacing, early for a new edit's first image, sleep when idle
   bool poll_render_frame();                // takes the renderer's newest image into shown_, if any
@@ -272,33 +238,6 @@ class Viewer {
   std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
   void write_lesson_state(std::ostream& out) const;
 
-  // Scripts (viewer_script.cpp).
-  void step_script(double now);                  // injects this frame's input, runs commands until one waits
-  bool script_wait_done(double now);             // whether the current wait is over (fails on timeout)
-  bool run_script_command(const ScriptCommand& command, double now);  // false: the script failed
-  struct ScriptStep;  // one command being run (viewer_script.cpp)
-  std::optional<bool> script_wait_command(ScriptStep& step);
-  std::optional<bool> script_input_command(ScriptStep& step);
-  std::optional<bool> script_item_command(ScriptStep& step);
-  std::optional<bool> script_file_command(ScriptStep& step);
-  std::optional<bool> script_other_command(ScriptStep& step);
-  bool script_set(const std::vector<std::string>& words);             // the `set` command
-  bool set_material_field(const std::vector<std::string>& words);     // its parts (viewer_script_set.cpp)
-  bool set_light_field(const std::vector<std::string>& words);
-  bool set_camera_field(const std::vector<std::string>& words);
-  bool set_render_field(const std::vector<std::string>& words);
-  bool set_instrument(const std::vector<std::string>& words);
-  bool set_display_field(const std::vector<std::string>& words);
-  void fail_script(const ScriptCommand& command, const std::string& message);  // report, exit status 3
-  void push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift, int held_key = -1);  // queues a drag's input (a key held throughout)
-  void push_click(ImVec2 at, bool ctrl);          // queues a left click (hover, press, release)
-  bool push_item_input();                        // queues script_.item_action's input; false: no such widget
-  void write_state(const std::string& path) const;                    // `dump_state`
-  void write_document_state(std::ostream& out) const;  // write_state's parts (viewer_state.cpp)
-  void write_layout_state(std::ostream& out) const;
-  void write_rays_state(std::ostream& out) const;
-  void write_probe_state(std::ostream& out) const;
-  std::string depth_cut_label() const;                                // the depth-cut slider's text
   void write_stats_summary(const std::string& label);                 // percentiles into the stats log
 
   Platform& platform_;
@@ -473,34 +412,10 @@ class Viewer {
   };
   Recovery recovery_;
   int exit_code_ = 0;          // set by handle_signal
-  // A test script being run (viewer_script.cpp).
-  struct ScriptRun {
-    std::vector<ScriptCommand> commands;
-    std::size_t index = 0;
-    ScriptWait wait = ScriptWait::kNone;
-    int frames_left = 0;
-    double deadline = 0;
-    std::string file;
-    std::deque<InputStep> input;
-    ItemAction item_action;  // the widget action waiting for its widget to scroll into view
-    bool failed = false;
-    // The soak test's random walk (tests/gui/soak.sh): a command that fails is reported and
-    // skipped (`lenient 1`), dialogs are answered as they open (`auto_modal discard`), and the
-    // script ends at a time (`stop_after S`).
-    bool lenient = false;
-    int ignored = 0;                    // commands that failed and were skipped
-    ui::GuardChoice auto_answer = ui::GuardChoice::kNone;
-    double stop_at = 0;                 // glfwGetTime() to quit at; 0: none
-    std::string screenshot;             // window screenshot to take after drawing this frame
-    int bench_left = 0;                 // bench_edits: edits still to make
-    int bench_gap_frames = 0;           // frames to wait after an image before the next edit
-    std::string bench_kind;             // "material" or "camera"
-    bool bench_waiting_image = false;   // an edit was made; its first image is not up yet
-    bool bench_expect_restart = false;  // the next restart is the bench's edit
-    std::uint64_t bench_generation = 0;
-    int bench_sign = 1;  // edits alternate direction so the scene stays put
-  };
-  ScriptRun script_;
+  // The test script being run (script_driver.h): a friend, for now, that reads and sets the
+  // shell's state directly.
+  friend class ScriptDriver;
+  ScriptDriver script_{*this};
 };
 
 }  // namespace phonglab

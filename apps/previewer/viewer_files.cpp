@@ -235,7 +235,7 @@ void Viewer::save_window_screenshot(const std::string& path, int fb_width, int f
   const std::string error = write_image(path, image);
   if (!error.empty()) {
     std::cerr << "phonglab: screenshot: " << error << "\n";
-    script_.failed = true;
+    script_.fail();
     quit_ = true;
   }
 }

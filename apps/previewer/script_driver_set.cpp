@@ -12,7 +12,7 @@ using script::parse_double;
 using script::parse_int;
 using script::parse_vec3;
 
-bool Viewer::script_set(const std::vector<std::string>& w) {
+bool ScriptDriver::script_set(const std::vector<std::string>& w) {
   if (w.size() < 4) return false;
   const std::string& subject = w[1];
   if (subject == "material" && w.size() >= 5) return set_material_field(w);
@@ -25,14 +25,14 @@ bool Viewer::script_set(const std::vector<std::string>& w) {
 }
 
 // `set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V..`.
-bool Viewer::set_material_field(const std::vector<std::string>& w) {
-  const Scene& scene = session_.scene();
+bool ScriptDriver::set_material_field(const std::vector<std::string>& w) {
+  const Scene& scene = v_.session_.scene();
   int index = -1;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     if (scene.materials[i].name == w[2]) index = static_cast<int>(i);
   }
   if (index < 0) return false;
-  selected_material_ = index;
+  v_.selected_material_ = index;
   Material changed = scene.materials[static_cast<std::size_t>(index)];
   Material* m = &changed;
   const std::string& field = w[3];
@@ -50,13 +50,13 @@ bool Viewer::set_material_field(const std::vector<std::string>& w) {
   } else {
     return false;
   }
-  apply_edit({edit::SetMaterial{index, changed}});
+  v_.apply_edit({edit::SetMaterial{index, changed}});
   return true;
 }
 
 // `set light I position|direction|intensity|enabled V..`.
-bool Viewer::set_light_field(const std::vector<std::string>& w) {
-  const Scene& scene = session_.scene();
+bool ScriptDriver::set_light_field(const std::vector<std::string>& w) {
+  const Scene& scene = v_.session_.scene();
   int index = 0;
   if (!parse_int(w[2], index) || index < 0 || index >= static_cast<int>(scene.lights.size())) return false;
   Light light = scene.lights[static_cast<std::size_t>(index)];
@@ -67,14 +67,14 @@ bool Viewer::set_light_field(const std::vector<std::string>& w) {
   else if (field == "intensity" && parse_vec3(w, 4, true, v)) light.intensity = v;
   else if (field == "enabled" && w.size() == 5) light.enabled = w[4] == "1" || w[4] == "true";
   else return false;
-  selected_light_ = index;
-  apply_edit({edit::SetLight{index, light}});
+  v_.selected_light_ = index;
+  v_.apply_edit({edit::SetLight{index, light}});
   return true;
 }
 
 // `set camera position|look_at|up|fov V..`: refused when the camera would be invalid.
-bool Viewer::set_camera_field(const std::vector<std::string>& w) {
-  Scene& scene = doc_.scene();
+bool ScriptDriver::set_camera_field(const std::vector<std::string>& w) {
+  Scene& scene = v_.doc_.scene();
   Camera edit = scene.camera;
   const std::string& field = w[2];
   Vec3 v;
@@ -86,81 +86,81 @@ bool Viewer::set_camera_field(const std::vector<std::string>& w) {
   else return false;
   if (!ui::camera_is_valid(edit)) return false;
   scene.camera = edit;
-  edits_.camera = true;
+  v_.edits_.camera = true;
   return true;
 }
 
 // `set render target_spp|resolution_scale|threads|live_images_per_s|tree_budget_mib|term|ambient V`.
-bool Viewer::set_render_field(const std::vector<std::string>& w) {
+bool ScriptDriver::set_render_field(const std::vector<std::string>& w) {
   const std::string& field = w[2];
   double v = 0;
   if (field == "term") {
     const std::optional<Term> term = term_from_name(w[3]);
     if (!term) return false;
-    render_settings_.term = *term;
+    v_.render_settings_.term = *term;
   } else if (field == "ambient") {
     const std::optional<ui::AmbientView> view = ui::ambient_view_from_name(w[3]);
     if (!view) return false;
-    render_settings_.ambient_view = *view;
-    if (*view == ui::AmbientView::kBeside || *view == ui::AmbientView::kDifference) instruments_.small_multiples = false;
+    v_.render_settings_.ambient_view = *view;
+    if (*view == ui::AmbientView::kBeside || *view == ui::AmbientView::kDifference) v_.instruments_.small_multiples = false;
   } else if (!parse_double(w[3], v)) {
     return false;
   } else if (field == "target_spp" && v >= 1) {
-    render_settings_.target_spp = static_cast<int>(v);
+    v_.render_settings_.target_spp = static_cast<int>(v);
   } else if (field == "resolution_scale" && v > 0 && v <= 1) {
-    render_settings_.resolution_scale = static_cast<float>(v);
+    v_.render_settings_.resolution_scale = static_cast<float>(v);
   } else if (field == "threads" && v >= 0) {
-    render_settings_.threads = static_cast<int>(v);
+    v_.render_settings_.threads = static_cast<int>(v);
   } else if (field == "live_images_per_s" && v >= 0 && v <= 1000) {
-    render_settings_.live_images_per_s = static_cast<int>(v);
+    v_.render_settings_.live_images_per_s = static_cast<int>(v);
   } else if (field == "tree_budget_mib" && v >= 0 && v <= 65536) {
-    render_settings_.tree_budget_mib = static_cast<int>(v);
+    v_.render_settings_.tree_budget_mib = static_cast<int>(v);
   } else {
     return false;
   }
-  edits_.settings = true;
+  v_.edits_.settings = true;
   return true;
 }
 
 // `set instruments NAME V`: probe mode, multiples, compare, head, the ray tree, depth cut, heat map.
-bool Viewer::set_instrument(const std::vector<std::string>& w) {
+bool ScriptDriver::set_instrument(const std::vector<std::string>& w) {
   double v = 0;
   if (!parse_double(w[3], v)) return false;
-  if (w[2] == "probe_mode") instruments_.probe_mode = v != 0;
-  else if (w[2] == "multiples") instruments_.small_multiples = v != 0;
-  else if (w[2] == "compare" && v >= 0 && v <= 2) instruments_.compare = static_cast<int>(v);
-  else if (w[2] == "wipe" && v >= 0 && v <= 1) instruments_.wipe = static_cast<float>(v);
-  else if (w[2] == "gain" && v > 0) instruments_.difference_gain = static_cast<float>(v);
-  else if (w[2] == "head") instruments_.move_head = v != 0;
-  else if (w[2] == "head_angle" && v >= -90 && v <= 90) instruments_.head_angle_deg = static_cast<float>(v);
-  else if (w[2] == "ray_tree") rays_.overlay = v != 0;
-  else if (w[2] == "tree_shadows") rays_.shadow_rays = v != 0;
-  else if (w[2] == "tree_secondary") rays_.secondary_rays = v != 0;
-  else if (w[2] == "tree_arrows") rays_.arrows = v != 0;
-  else if (w[2] == "tree_legend") rays_.legend = v != 0;
+  if (w[2] == "probe_mode") v_.instruments_.probe_mode = v != 0;
+  else if (w[2] == "multiples") v_.instruments_.small_multiples = v != 0;
+  else if (w[2] == "compare" && v >= 0 && v <= 2) v_.instruments_.compare = static_cast<int>(v);
+  else if (w[2] == "wipe" && v >= 0 && v <= 1) v_.instruments_.wipe = static_cast<float>(v);
+  else if (w[2] == "gain" && v > 0) v_.instruments_.difference_gain = static_cast<float>(v);
+  else if (w[2] == "head") v_.instruments_.move_head = v != 0;
+  else if (w[2] == "head_angle" && v >= -90 && v <= 90) v_.instruments_.head_angle_deg = static_cast<float>(v);
+  else if (w[2] == "ray_tree") v_.rays_.overlay = v != 0;
+  else if (w[2] == "tree_shadows") v_.rays_.shadow_rays = v != 0;
+  else if (w[2] == "tree_secondary") v_.rays_.secondary_rays = v != 0;
+  else if (w[2] == "tree_arrows") v_.rays_.arrows = v != 0;
+  else if (w[2] == "tree_legend") v_.rays_.legend = v != 0;
   else if (w[2] == "depth_cut" && v >= -1 && v <= 100) {
     // -1 ends the cut; 0, 1, ... cut there (as the panel's box and slider).
-    rays_.depth_cut = v >= 0;
-    if (v >= 0) rays_.cut_depth = static_cast<int>(v);
-    edits_.view = true;
+    v_.rays_.depth_cut = v >= 0;
+    if (v >= 0) v_.rays_.cut_depth = static_cast<int>(v);
+    v_.edits_.view = true;
   }
-  else if (w[2] == "heat") set_heat_map(v != 0);
+  else if (w[2] == "heat") v_.set_heat_map(v != 0);
   else return false;
-  upload_pending_ = upload_pending_ || !shown_.pixels.empty();
+  v_.upload_pending_ = v_.upload_pending_ || !v_.shown_.pixels.empty();
   return true;
 }
 
 // `set display exposure|srgb|light_markers|stats|stats_details|sidebar|ui_size V`.
-bool Viewer::set_display_field(const std::vector<std::string>& w) {
+bool ScriptDriver::set_display_field(const std::vector<std::string>& w) {
   double v = 0;
   if (!parse_double(w[3], v)) return false;
-  if (w[2] == "exposure") display_.exposure_ev = static_cast<float>(v);
-  else if (w[2] == "srgb") display_.srgb = v != 0;
-  else if (w[2] == "light_markers") display_.light_markers = v != 0;
-  else if (w[2] == "stats") display_.show_stats = v != 0;
-  else if (w[2] == "stats_details") display_.stats_details = v != 0;
-  else if (w[2] == "sidebar") sidebar_visible_ = v != 0;
-  else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) display_.ui_size = static_cast<float>(v);
+  if (w[2] == "exposure") v_.display_.exposure_ev = static_cast<float>(v);
+  else if (w[2] == "srgb") v_.display_.srgb = v != 0;
+  else if (w[2] == "light_markers") v_.display_.light_markers = v != 0;
+  else if (w[2] == "stats") v_.display_.show_stats = v != 0;
+  else if (w[2] == "stats_details") v_.display_.stats_details = v != 0;
+  else if (w[2] == "sidebar") v_.sidebar_visible_ = v != 0;
+  else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) v_.display_.ui_size = static_cast<float>(v);
   else return false;
   return true;
 }

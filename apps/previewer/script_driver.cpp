@@ -74,69 +74,69 @@ std::vector<ScriptCommand> parse_script(const std::string& text) {
   return commands;
 }
 
-void Viewer::fail_script(const ScriptCommand& command, const std::string& message) {
-  if (script_.lenient) {
+void ScriptDriver::fail_script(const ScriptCommand& command, const std::string& message) {
+  if (run_.lenient) {
     std::cerr << "phonglab: script line " << command.line << " (" << command.words.front() << "): " << message << " (skipped)\n";
-    ++script_.ignored;
-    script_.wait = ScriptWait::kNone;
-    script_.item_action = ItemAction{};
+    ++run_.ignored;
+    run_.wait = ScriptWait::kNone;
+    run_.item_action = ItemAction{};
     return;
   }
   std::cerr << "phonglab: script line " << command.line << " (" << command.words.front() << "): " << message << "\n";
-  if (stats_.log) stats_.log << "script_error line " << command.line << ": " << message << "\n";
-  script_.failed = true;
-  quit_ = true;
+  if (v_.stats_.log) v_.stats_.log << "script_error line " << command.line << ": " << message << "\n";
+  run_.failed = true;
+  v_.quit_ = true;
 }
 
-void Viewer::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift, int held_key) {
+void ScriptDriver::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift, int held_key) {
   InputStep hover;
   hover.pos = from;
   hover.shift = shift;
   hover.key = held_key;  // held from before the press to the release
   hover.key_down = held_key >= 0;
-  script_.input.push_back(hover);  // ImGui learns what is under the mouse before the press
+  run_.input.push_back(hover);  // ImGui learns what is under the mouse before the press
   InputStep press = hover;
   press.buttons[button] = true;
-  script_.input.push_back(press);
+  run_.input.push_back(press);
   for (int i = 1; i <= steps; ++i) {
     const float t = static_cast<float>(i) / static_cast<float>(steps);
     InputStep move = press;
     move.pos = ImVec2(from.x + (to.x - from.x) * t, from.y + (to.y - from.y) * t);
-    script_.input.push_back(move);
+    run_.input.push_back(move);
   }
   InputStep release;
   release.pos = to;
-  script_.input.push_back(release);
+  run_.input.push_back(release);
   if (held_key >= 0) {
     InputStep up = release;
     up.key = held_key;
     up.key_down = false;
-    script_.input.push_back(up);
+    run_.input.push_back(up);
   }
 }
 
-void Viewer::push_click(ImVec2 at, bool ctrl) {
+void ScriptDriver::push_click(ImVec2 at, bool ctrl) {
   InputStep hover;
   hover.pos = at;
   hover.ctrl = ctrl;
-  script_.input.push_back(hover);  // ImGui learns what is under the mouse before the press
+  run_.input.push_back(hover);  // ImGui learns what is under the mouse before the press
   InputStep press = hover;
   press.buttons[0] = true;
-  script_.input.push_back(press);
-  script_.input.push_back(hover);
+  run_.input.push_back(press);
+  run_.input.push_back(hover);
 }
 
-bool Viewer::push_item_input() {
-  const auto it = item_locations_.rects.find(script_.item_action.name);
-  if (it == item_locations_.rects.end()) return false;
+bool ScriptDriver::push_item_input() {
+  const auto it = v_.item_locations_.rects.find(run_.item_action.name);
+  if (it == v_.item_locations_.rects.end()) return false;
   const ImVec2 at((it->second.min.x + it->second.max.x) / 2, (it->second.min.y + it->second.max.y) / 2);
-  if (script_.item_action.kind == ItemAction::Kind::kDrag) {
-    push_drag(0, at, ImVec2(at.x + static_cast<float>(script_.item_action.dx), at.y + static_cast<float>(script_.item_action.dy)),
-              script_.item_action.steps, false);
+  if (run_.item_action.kind == ItemAction::Kind::kDrag) {
+    push_drag(0, at, ImVec2(at.x + static_cast<float>(run_.item_action.dx), at.y + static_cast<float>(run_.item_action.dy)),
+              run_.item_action.steps, false);
     return true;
   }
-  push_click(at, script_.item_action.kind == ItemAction::Kind::kType);
-  if (script_.item_action.kind == ItemAction::Kind::kType) {
+  push_click(at, run_.item_action.kind == ItemAction::Kind::kType);
+  if (run_.item_action.kind == ItemAction::Kind::kType) {
     // A key pressed and released over the field (with Ctrl or not).
     const auto tap = [&](int key, bool ctrl) {
       InputStep step;
@@ -144,28 +144,28 @@ bool Viewer::push_item_input() {
       step.ctrl = ctrl;
       step.key = key;
       step.key_down = true;
-      script_.input.push_back(step);
+      run_.input.push_back(step);
       step.key_down = false;
-      script_.input.push_back(step);
+      run_.input.push_back(step);
     };
     tap(GLFW_KEY_A, true);  // Ctrl+A: a text field's text is selected too, so TEXT replaces it as in a slider's
     InputStep typed;
     typed.pos = at;
-    typed.text = script_.item_action.text;
-    script_.input.push_back(typed);
+    typed.text = run_.item_action.text;
+    run_.input.push_back(typed);
     tap(GLFW_KEY_ENTER, false);
   }
   InputStep after;
   after.pos = at;
-  script_.input.push_back(after);
+  run_.input.push_back(after);
   return true;
 }
 
-void Viewer::step_script(double now) {
+void ScriptDriver::step_script(double now) {
   ImGuiIO& io = ImGui::GetIO();
-  if (!script_.input.empty()) {
-    const InputStep step = script_.input.front();
-    script_.input.pop_front();
+  if (!run_.input.empty()) {
+    const InputStep step = run_.input.front();
+    run_.input.pop_front();
     io.MousePos = step.pos;
     for (int b = 0; b < 3; ++b) io.MouseDown[b] = step.buttons[b];
     io.KeyShift = step.shift;
@@ -173,130 +173,130 @@ void Viewer::step_script(double now) {
     io.MouseWheel += step.wheel;
     if (step.key >= 0) io.KeysDown[step.key] = step.key_down;
     for (const char c : step.text) io.AddInputCharacter(static_cast<unsigned char>(c));
-    platform_.note_event();
+    v_.platform_.note_event();
   }
-  if (script_.stop_at > 0 && now >= script_.stop_at) {
-    quit_ = true;
+  if (run_.stop_at > 0 && now >= run_.stop_at) {
+    v_.quit_ = true;
     return;
   }
-  if (script_.auto_answer != ui::GuardChoice::kNone) {
-    if (dialogs_.guard_visible) dialogs_.scripted_choice = script_.auto_answer;
-    if (dialogs_.conflict_visible) dialogs_.scripted_choice = ui::GuardChoice::kCancel;
-    if (recovery_.modal_visible) recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
+  if (run_.auto_answer != ui::GuardChoice::kNone) {
+    if (v_.dialogs_.guard_visible) v_.dialogs_.scripted_choice = run_.auto_answer;
+    if (v_.dialogs_.conflict_visible) v_.dialogs_.scripted_choice = ui::GuardChoice::kCancel;
+    if (v_.recovery_.modal_visible) v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
   }
-  if (script_.failed || (script_.index >= script_.commands.size() && script_.wait == ScriptWait::kNone)) return;
-  if (script_.wait != ScriptWait::kNone) {
+  if (run_.failed || (run_.index >= run_.commands.size() && run_.wait == ScriptWait::kNone)) return;
+  if (run_.wait != ScriptWait::kNone) {
     if (!script_wait_done(now)) return;
-    script_.wait = ScriptWait::kNone;
+    run_.wait = ScriptWait::kNone;
   }
-  while (script_.index < script_.commands.size() && script_.wait == ScriptWait::kNone && !script_.failed) {
-    const ScriptCommand& command = script_.commands[script_.index++];
-    if (stats_.log) {
-      stats_.log << "script " << now * 1e3;
-      for (const std::string& w : command.words) stats_.log << " " << w;
-      stats_.log << "\n";
+  while (run_.index < run_.commands.size() && run_.wait == ScriptWait::kNone && !run_.failed) {
+    const ScriptCommand& command = run_.commands[run_.index++];
+    if (v_.stats_.log) {
+      v_.stats_.log << "script " << now * 1e3;
+      for (const std::string& w : command.words) v_.stats_.log << " " << w;
+      v_.stats_.log << "\n";
     }
     if (!run_script_command(command, now)) return;
   }
 }
 
-bool Viewer::script_wait_done(double now) {
+bool ScriptDriver::script_wait_done(double now) {
   bool done = false;
-  switch (script_.wait) {
+  switch (run_.wait) {
     case ScriptWait::kNone: return true;
-    case ScriptWait::kFrames: done = --script_.frames_left <= 0; break;
+    case ScriptWait::kFrames: done = --run_.frames_left <= 0; break;
     case ScriptWait::kIdle:
       // A lesson's compare is done once its A is taken and the step itself is final.
-      done = image_is_final() && !lessons_.awaiting_a() && !lesson_.applied;
+      done = v_.image_is_final() && !v_.lessons_.awaiting_a() && !v_.lesson_.applied;
       break;
     case ScriptWait::kImage:
-      done = !upload_pending_ && drawn_serial_ > 0 && drawn_generation_ == renderer_.status().generation;
+      done = !v_.upload_pending_ && v_.drawn_serial_ > 0 && v_.drawn_generation_ == v_.renderer_.status().generation;
       break;
     case ScriptWait::kFile: {
       std::error_code ec;
-      done = std::filesystem::exists(script_.file, ec);
+      done = std::filesystem::exists(run_.file, ec);
       break;
     }
-    case ScriptWait::kInput: done = script_.input.empty(); break;
+    case ScriptWait::kInput: done = run_.input.empty(); break;
     case ScriptWait::kItem:
-      if (--script_.frames_left > 0) break;
+      if (--run_.frames_left > 0) break;
       if (!push_item_input()) {
-        fail_script(script_.commands[script_.index - 1], "no widget named '" + script_.item_action.name + "' was drawn (is its panel open?)");
+        fail_script(run_.commands[run_.index - 1], "no widget named '" + run_.item_action.name + "' was drawn (is its panel open?)");
         return false;
       }
-      script_.wait = ScriptWait::kInput;  // now wait for the injected input to be used
+      run_.wait = ScriptWait::kInput;  // now wait for the injected input to be used
       return false;
     case ScriptWait::kBench:
-      if (script_.bench_waiting_image) {
-        if (!script_.bench_expect_restart && drawn_generation_ >= script_.bench_generation && !upload_pending_) {
-          script_.bench_waiting_image = false;
-          script_.bench_gap_frames = kBenchGapFrames;
+      if (run_.bench_waiting_image) {
+        if (!run_.bench_expect_restart && v_.drawn_generation_ >= run_.bench_generation && !v_.upload_pending_) {
+          run_.bench_waiting_image = false;
+          run_.bench_gap_frames = kBenchGapFrames;
         }
-      } else if (script_.bench_gap_frames > 0) {
-        --script_.bench_gap_frames;
-      } else if (script_.bench_left > 0) {
-        --script_.bench_left;
-        script_.bench_sign = -script_.bench_sign;
-        const Scene& scene = session_.scene();
-        if (script_.bench_kind == "camera") {
+      } else if (run_.bench_gap_frames > 0) {
+        --run_.bench_gap_frames;
+      } else if (run_.bench_left > 0) {
+        --run_.bench_left;
+        run_.bench_sign = -run_.bench_sign;
+        const Scene& scene = v_.session_.scene();
+        if (run_.bench_kind == "camera") {
           Camera camera = scene.camera;
-          ui::orbit(camera, 0.02 * script_.bench_sign, 0);
-          move_camera(camera);
+          ui::orbit(camera, 0.02 * run_.bench_sign, 0);
+          v_.move_camera(camera);
         } else if (!scene.materials.empty()) {
-          const int k = std::clamp(selected_material_, 0, static_cast<int>(scene.materials.size()) - 1);
+          const int k = std::clamp(v_.selected_material_, 0, static_cast<int>(scene.materials.size()) - 1);
           Material m = scene.materials[static_cast<std::size_t>(k)];
-          m.kd *= script_.bench_sign > 0 ? 1.25 : 0.8;  // exact inverses in turn: the scene stays put
-          apply_edit({edit::SetMaterial{k, m}});
+          m.kd *= run_.bench_sign > 0 ? 1.25 : 0.8;  // exact inverses in turn: the scene stays put
+          v_.apply_edit({edit::SetMaterial{k, m}});
         }
-        script_.bench_waiting_image = true;
-        script_.bench_expect_restart = true;
+        run_.bench_waiting_image = true;
+        run_.bench_expect_restart = true;
       } else {
         done = true;
       }
       break;
   }
   if (done) return true;
-  if (now > script_.deadline) {
-    fail_script(script_.commands[script_.index - 1], "timed out");
+  if (now > run_.deadline) {
+    fail_script(run_.commands[run_.index - 1], "timed out");
   }
   return false;
 }
 
 // One command of a script being run: its words, when it started, and the ways it ends.
-struct Viewer::ScriptStep {
-  Viewer& viewer;
+struct ScriptDriver::ScriptStep {
+  ScriptDriver& driver;
   const ScriptCommand& command;
   const std::vector<std::string>& w;
   double now;
   bool fail(const std::string& message) {
-    viewer.fail_script(command, message);
+    driver.fail_script(command, message);
     return false;
   }
   // Waits for `kind`, with the timeout in word `timeout_word` when there is one.
   bool wait_for(ScriptWait kind, std::size_t timeout_word) {
     double timeout = kDefaultWaitSeconds;
     if (w.size() > timeout_word && !parse_double(w[timeout_word], timeout)) return fail("bad timeout");
-    viewer.script_.wait = kind;
-    viewer.script_.deadline = now + timeout;
+    driver.run_.wait = kind;
+    driver.run_.deadline = now + timeout;
     return true;
   }
 };
 
 // Waits: for frames, the renderer, an image, a file, and the edit benchmark. nullopt: not one of them.
-std::optional<bool> Viewer::script_wait_command(ScriptStep& step) {
+std::optional<bool> ScriptDriver::script_wait_command(ScriptStep& step) {
   const std::vector<std::string>& w = step.w;
   const std::string& name = w[0];
   if (name == "wait_frames") {
     int frames = 0;
     if (w.size() != 2 || !parse_int(w[1], frames)) return step.fail("usage: wait_frames N");
-    script_.frames_left = frames;
+    run_.frames_left = frames;
     return step.wait_for(ScriptWait::kFrames, 99);
   }
   if (name == "wait_idle") return step.wait_for(ScriptWait::kIdle, 1);
   if (name == "wait_image") return step.wait_for(ScriptWait::kImage, 1);
   if (name == "wait_file") {
     if (w.size() < 2) return step.fail("usage: wait_file FILE [TIMEOUT]");
-    script_.file = w[1];
+    run_.file = w[1];
     return step.wait_for(ScriptWait::kFile, 2);
   }
   if (name == "bench_edits") {
@@ -304,19 +304,19 @@ std::optional<bool> Viewer::script_wait_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_int(w[1], count) || count < 1 || (w[2] != "material" && w[2] != "camera")) {
       return step.fail("usage: bench_edits N material|camera");
     }
-    script_.bench_left = count;
-    script_.bench_kind = w[2];
-    script_.bench_gap_frames = 0;
-    script_.bench_waiting_image = false;
-    script_.wait = ScriptWait::kBench;
-    script_.deadline = step.now + 10.0 * count + kDefaultWaitSeconds;
+    run_.bench_left = count;
+    run_.bench_kind = w[2];
+    run_.bench_gap_frames = 0;
+    run_.bench_waiting_image = false;
+    run_.wait = ScriptWait::kBench;
+    run_.deadline = step.now + 10.0 * count + kDefaultWaitSeconds;
     return true;
   }
   return std::nullopt;
 }
 
 // Real input: drags, clicks, scrolls, keys, probes, the window size. nullopt: not one of them.
-std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
+std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
   const std::vector<std::string>& w = step.w;
   const std::string& name = w[0];
   if (name == "drag") {
@@ -339,16 +339,16 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     int index = -1;
     double dx = 0, dy = 0;
     int steps = 10;
-    const std::vector<Light>& lights = doc_.scene().lights;
+    const std::vector<Light>& lights = v_.doc_.scene().lights;
     if ((w.size() != 4 && w.size() != 5) || !parse_int(w[1], index) || !parse_double(w[2], dx) ||
         !parse_double(w[3], dy) || index < 0 || index >= static_cast<int>(lights.size()) ||
         (w.size() == 5 && (!parse_int(w[4], steps) || steps < 1))) {
       return step.fail("usage: drag_light I DX DY [STEPS]");
     }
     // Where its marker (or its arrow at the edge) was drawn last frame: what a user would grab.
-    const auto marker = std::find_if(markers_.begin(), markers_.end(),
+    const auto marker = std::find_if(v_.markers_.begin(), v_.markers_.end(),
                                      [&](const ui::LightMarker& m) { return m.index == index; });
-    if (marker == markers_.end()) return step.fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
+    if (marker == v_.markers_.end()) return step.fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
     const ImVec2 from = marker->pos;
     push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), steps, false);
     return step.wait_for(ScriptWait::kInput, 99);
@@ -366,14 +366,14 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
       axis_key = w[4] == "v" ? GLFW_KEY_V : GLFW_KEY_X + (w[4][0] - 'x');
     }
     // No such object, or none to grab on screen: the program says so, as for a refused edit.
-    if (index < 0 || index >= ui::object_count(doc_.scene())) {
-      refuse("no objects[" + w[1] + "]");
+    if (index < 0 || index >= ui::object_count(v_.doc_.scene())) {
+      v_.refuse("no objects[" + w[1] + "]");
       return true;
     }
-    select_object(index);
-    const std::optional<ImVec2> from = object_screen_point(index);
+    v_.select_object(index);
+    const std::optional<ImVec2> from = v_.object_screen_point(index);
     if (!from) {
-      refuse("objects[" + w[1] + "] is behind the camera: nothing to grab");
+      v_.refuse("objects[" + w[1] + "] is behind the camera: nothing to grab");
       return true;
     }
     push_drag(0, *from, ImVec2(from->x + static_cast<float>(dx), from->y + static_cast<float>(dy)), 12, false, axis_key);
@@ -391,11 +391,11 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     } else {
       InputStep hover;
       hover.pos = at;
-      script_.input.push_back(hover);
+      run_.input.push_back(hover);
       InputStep act = hover;
       act.wheel = static_cast<float>(amount);
-      script_.input.push_back(act);
-      script_.input.push_back(hover);
+      run_.input.push_back(act);
+      run_.input.push_back(hover);
     }
     return step.wait_for(ScriptWait::kInput, 99);
   }
@@ -413,11 +413,11 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     press.key_down = true;
     InputStep release = press;
     release.key_down = false;
-    script_.input.push_back(press);
-    script_.input.push_back(release);
+    run_.input.push_back(press);
+    run_.input.push_back(release);
     // The press also arrives as a key event, as GLFW's callback delivers it (the viewer's
     // shortcuts read events; ImGui's widgets read the key state above).
-    platform_.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
+    v_.platform_.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "probe" || name == "ctrl_click") {
@@ -425,14 +425,14 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_double(w[1], x) || !parse_double(w[2], y)) return step.fail("usage: probe|ctrl_click X Y");
     const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
     if (name == "probe") {
-      probe_at(at);
-      if (!probed_.tree) return step.fail("nothing to probe (no scene yet)");
+      v_.probe_at(at);
+      if (!v_.probed_.tree) return step.fail("nothing to probe (no scene yet)");
       return true;
     }
     push_click(at, true);
     InputStep after;  // Ctrl released again
     after.pos = at;
-    script_.input.push_back(after);
+    run_.input.push_back(after);
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "resize") {
@@ -440,31 +440,31 @@ std::optional<bool> Viewer::script_input_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_int(w[1], width) || !parse_int(w[2], height) || width < 1 || height < 1) {
       return step.fail("usage: resize W H");
     }
-    glfwSetWindowSize(platform_.window(), width, height);
+    glfwSetWindowSize(v_.platform_.window(), width, height);
     return true;
   }
   return std::nullopt;
 }
 
 // Widgets found by name, edits (set, undo, redo, solo). nullopt: not one of them.
-std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
+std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
   const std::vector<std::string>& w = step.w;
   const std::string& name = w[0];
   if (name == "undo" || name == "redo" || name == "snapshot_a") {
-    if (name == "undo") undo();
-    else if (name == "redo") redo();
-    else snapshot_a();
+    if (name == "undo") v_.undo();
+    else if (name == "redo") v_.redo();
+    else v_.snapshot_a();
     return true;
   }
   if (name == "solo") {
     int index = 0;
     if (w.size() != 2 || !parse_int(w[1], index) || index < 0 ||
-        index >= static_cast<int>(doc_.scene().lights.size())) {
+        index >= static_cast<int>(v_.doc_.scene().lights.size())) {
       return step.fail("usage: solo I");
     }
-    Scene soloed = session_.scene();
-    ui::toggle_solo(soloed.lights, solo_, index);
-    apply_edit({edit::SetScene{std::move(soloed)}});
+    Scene soloed = v_.session_.scene();
+    ui::toggle_solo(soloed.lights, v_.solo_, index);
+    v_.apply_edit({edit::SetScene{std::move(soloed)}});
     return true;
   }
   if (name == "set") {
@@ -478,8 +478,8 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
   if (name == "show_item") {
     // show_item NAME: scrolls the sidebar until the widget is in view (nothing is clicked).
     if (w.size() != 2) return step.fail("usage: show_item NAME");
-    item_locations_.scroll_to = w[1];
-    script_.frames_left = 3;
+    v_.item_locations_.scroll_to = w[1];
+    run_.frames_left = 3;
     return step.wait_for(ScriptWait::kFrames, 99);
   }
   if (name == "click_item" || name == "drag_item" || name == "type_item") {
@@ -500,72 +500,72 @@ std::optional<bool> Viewer::script_item_command(ScriptStep& step) {
       if (ok) action.text = w[2];
     }
     if (!ok) return step.fail("usage: click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT");
-    script_.item_action = action;
-    item_locations_.scroll_to = action.name;
-    script_.frames_left = 3;  // the scroll lands, the widget is drawn where it will be clicked
+    run_.item_action = action;
+    v_.item_locations_.scroll_to = action.name;
+    run_.frames_left = 3;  // the scroll lands, the widget is drawn where it will be clicked
     return step.wait_for(ScriptWait::kItem, 99);
   }
   return std::nullopt;
 }
 
 // Files: figures, screenshots, images, scenes, dialogs, dump_state. nullopt: not one of them.
-std::optional<bool> Viewer::script_file_command(ScriptStep& step) {
+std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
   const std::vector<std::string>& w = step.w;
   const std::string& name = w[0];
   if (name == "figure") {
     if (w.size() != 2) return step.fail("usage: figure FILE.png");
-    save_figure(w[1]);
-    if (figure_status_.rfind("saved ", 0) != 0) return step.fail(figure_status_);
+    v_.save_figure(w[1]);
+    if (v_.figure_status_.rfind("saved ", 0) != 0) return step.fail(v_.figure_status_);
     return true;
   }
   if (name == "screenshot") {
     if (w.size() != 2) return step.fail("usage: screenshot FILE.png");
-    script_.screenshot = w[1];
+    run_.screenshot = w[1];
     // Taken when this frame is drawn: later commands wait for the next frame so they
     // cannot change what it shows (or resize the window under it).
-    script_.frames_left = 1;
+    run_.frames_left = 1;
     return step.wait_for(ScriptWait::kFrames, 99);
   }
   if (name == "save_png" || name == "save_pfm") {
     if (w.size() != 2) return step.fail("usage: save_png|save_pfm FILE");
-    if (name == "save_png") save_png(w[1]);
-    else save_pfm(w[1]);
-    if (screenshot_state_.status.rfind("saved ", 0) != 0) return step.fail(screenshot_state_.status);
+    if (name == "save_png") v_.save_png(w[1]);
+    else v_.save_pfm(w[1]);
+    if (v_.screenshot_state_.status.rfind("saved ", 0) != 0) return step.fail(v_.screenshot_state_.status);
     return true;
   }
   if (name == "open") {
     if (w.size() != 2) return step.fail("usage: open SCENE");
-    request(PendingAction{PendingAction::Kind::kOpen, w[1]});
+    v_.request(Viewer::PendingAction{Viewer::PendingAction::Kind::kOpen, w[1]});
     return true;
   }
   if (name == "save_as") {
     if (w.size() != 2) return step.fail("usage: save_as FILE");
-    file_state_.path_field = w[1];
-    save_scene(true);
-    if (doc_.dirty()) return step.fail(file_state_.error_text);
+    v_.file_state_.path_field = w[1];
+    v_.save_scene(true);
+    if (v_.doc_.dirty()) return step.fail(v_.file_state_.error_text);
     return true;
   }
   if (name == "close") {
-    glfwSetWindowShouldClose(platform_.window(), GLFW_TRUE);  // as the window manager's close button
+    glfwSetWindowShouldClose(v_.platform_.window(), GLFW_TRUE);  // as the window manager's close button
     return true;
   }
   if (name == "modal") {
     constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload (the recovery offer: restore|discard|later)";
     if (w.size() != 2) return step.fail(kUsage);
-    if (recovery_.modal_visible && !dialogs_.guard_visible && !dialogs_.conflict_visible) {
-      if (w[1] == "restore") recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kRestore);
-      else if (w[1] == "discard") recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kDiscard);
-      else if (w[1] == "later") recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
+    if (v_.recovery_.modal_visible && !v_.dialogs_.guard_visible && !v_.dialogs_.conflict_visible) {
+      if (w[1] == "restore") v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kRestore);
+      else if (w[1] == "discard") v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kDiscard);
+      else if (w[1] == "later") v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
       else return step.fail(kUsage);
       return true;
     }
-    if (!dialogs_.guard_visible && !dialogs_.conflict_visible) return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
-    if (w[1] == "save") dialogs_.scripted_choice = ui::GuardChoice::kSave;
-    else if (w[1] == "save_as") dialogs_.scripted_choice = ui::GuardChoice::kSaveAs;
-    else if (w[1] == "discard") dialogs_.scripted_choice = ui::GuardChoice::kDiscard;
-    else if (w[1] == "cancel") dialogs_.scripted_choice = ui::GuardChoice::kCancel;
-    else if (w[1] == "overwrite") dialogs_.scripted_choice = ui::GuardChoice::kOverwrite;
-    else if (w[1] == "reload") dialogs_.scripted_choice = ui::GuardChoice::kReload;
+    if (!v_.dialogs_.guard_visible && !v_.dialogs_.conflict_visible) return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
+    if (w[1] == "save") v_.dialogs_.scripted_choice = ui::GuardChoice::kSave;
+    else if (w[1] == "save_as") v_.dialogs_.scripted_choice = ui::GuardChoice::kSaveAs;
+    else if (w[1] == "discard") v_.dialogs_.scripted_choice = ui::GuardChoice::kDiscard;
+    else if (w[1] == "cancel") v_.dialogs_.scripted_choice = ui::GuardChoice::kCancel;
+    else if (w[1] == "overwrite") v_.dialogs_.scripted_choice = ui::GuardChoice::kOverwrite;
+    else if (w[1] == "reload") v_.dialogs_.scripted_choice = ui::GuardChoice::kReload;
     else return step.fail(kUsage);
     return true;
   }
@@ -573,7 +573,7 @@ std::optional<bool> Viewer::script_file_command(ScriptStep& step) {
     // The Save button, through the same checks: a file changed on disk opens its dialog, a
     // refusal (an embedded scene, an OBJ) shows in the Scene panel and in dump_state's error.
     if (w.size() != 1) return step.fail("usage: save");
-    save_scene(false);
+    v_.save_scene(false);
     return true;
   }
   if (name == "dump_state") {
@@ -590,7 +590,7 @@ std::optional<bool> Viewer::script_file_command(ScriptStep& step) {
 }
 
 // The script itself: log lines, statistics, fail and quit. nullopt: not one of them.
-std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
+std::optional<bool> ScriptDriver::script_other_command(ScriptStep& step) {
   const std::vector<std::string>& w = step.w;
   const std::string& name = w[0];
   if (name == "log") {
@@ -600,16 +600,16 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
     return true;
   }
   if (name == "stats_reset") {
-    stats_.busy_frame_ms.clear();
-    stats_.latencies_ms.clear();
-    stats_.pass_mrays.clear();
-    stats_.frames_at_level.clear();
-    stats_.full_pending.clear();
-    stats_.edit_to_full_ms.clear();
+    v_.stats_.busy_frame_ms.clear();
+    v_.stats_.latencies_ms.clear();
+    v_.stats_.pass_mrays.clear();
+    v_.stats_.frames_at_level.clear();
+    v_.stats_.full_pending.clear();
+    v_.stats_.edit_to_full_ms.clear();
     return true;
   }
   if (name == "stats_summary") {
-    write_stats_summary(w.size() > 1 ? w[1] : "script");
+    v_.write_stats_summary(w.size() > 1 ? w[1] : "script");
     return true;
   }
   if (name == "fail") {
@@ -618,38 +618,38 @@ std::optional<bool> Viewer::script_other_command(ScriptStep& step) {
     return step.fail(text.empty() ? "fail command reached" : text);
   }
   if (name == "quit") {
-    quit_ = true;
+    v_.quit_ = true;
     return true;
   }
   if (name == "lenient") {
     if (w.size() != 2 || (w[1] != "0" && w[1] != "1")) return step.fail("usage: lenient 0|1");
-    script_.lenient = w[1] == "1";
+    run_.lenient = w[1] == "1";
     return true;
   }
   if (name == "auto_modal") {
     if (w.size() != 2 || (w[1] != "discard" && w[1] != "off")) return step.fail("usage: auto_modal discard|off");
-    script_.auto_answer = w[1] == "discard" ? ui::GuardChoice::kDiscard : ui::GuardChoice::kNone;
+    run_.auto_answer = w[1] == "discard" ? ui::GuardChoice::kDiscard : ui::GuardChoice::kNone;
     return true;
   }
   if (name == "stop_after") {
     double s = 0;
     if (w.size() != 2 || !parse_double(w[1], s) || s <= 0) return step.fail("usage: stop_after SECONDS");
-    script_.stop_at = step.now + s;
+    run_.stop_at = step.now + s;
     return true;
   }
   return std::nullopt;
 }
 
-bool Viewer::run_script_command(const ScriptCommand& command, double now) {
+bool ScriptDriver::run_script_command(const ScriptCommand& command, double now) {
   ScriptStep step{*this, command, command.words, now};
-  if (const std::optional<std::string> error = script_scene_command(command.words)) {
+  if (const std::optional<std::string> error = v_.script_scene_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
-  if (const std::optional<std::string> error = script_lesson_command(command.words)) {
+  if (const std::optional<std::string> error = v_.script_lesson_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
-  for (const auto group : {&Viewer::script_wait_command, &Viewer::script_input_command, &Viewer::script_item_command,
-                           &Viewer::script_file_command, &Viewer::script_other_command}) {
+  for (const auto group : {&ScriptDriver::script_wait_command, &ScriptDriver::script_input_command, &ScriptDriver::script_item_command,
+                           &ScriptDriver::script_file_command, &ScriptDriver::script_other_command}) {
     if (const std::optional<bool> done = (this->*group)(step)) return *done;
   }
   return step.fail("unknown command");

@@ -1,0 +1,214 @@
+// `dump_state`: the previewer's state as key=value lines for the test scripts (docs/previewer.md
+// lists the keys).
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "apps/previewer/viewer_app.h"
+#include "interaction/scene_objects.h"
+#include "ui/ray_tree_overlay.h"
+
+namespace phonglab {
+
+std::string ScriptDriver::depth_cut_label() const {
+  // The depth-cut slider's text, as the Rays panel shows it.
+  const int top = std::max(v_.doc_.scene().max_depth, 0);
+  char text[80];
+  std::snprintf(text, sizeof text, ui::depth_cut_format(top).c_str(), std::clamp(v_.rays_.cut_depth, 0, top));
+  return text;
+}
+
+namespace {
+
+std::string vec(const Vec3& v) {
+  std::ostringstream s;
+  s << v.x << " " << v.y << " " << v.z;
+  return s.str();
+}
+
+}  // namespace
+
+void ScriptDriver::write_state(const std::string& path) const {
+  std::ofstream out(path);
+  write_document_state(out);
+  write_layout_state(out);
+  write_rays_state(out);
+  write_probe_state(out);
+  v_.write_lesson_state(out);
+  out << "script_skipped=" << run_.ignored << "\n";
+  out << "recovery_offer=" << (v_.recovery_.offer ? v_.recovery_.offer->source : "") << "\n"
+      << "recovery_file=" << v_.session_.recovery().written() << "\n";
+}
+
+// The document, the view and the renderer's progress.
+void ScriptDriver::write_document_state(std::ostream& out) const {
+  const Scene& scene = v_.doc_.scene();
+  const ProgressiveStatus status = v_.renderer_.status();
+  const bool have_material = v_.selected_material_ >= 0 && v_.selected_material_ < static_cast<int>(scene.materials.size());
+  int window_w = 0, window_h = 0, fb_w = 0, fb_h = 0;
+  glfwGetWindowSize(v_.platform_.window(), &window_w, &window_h);
+  glfwGetFramebufferSize(v_.platform_.window(), &fb_w, &fb_h);
+  std::string first_error_line = v_.file_state_.error_text.substr(0, v_.file_state_.error_text.find('\n'));
+  const std::vector<std::string> caption_lines = v_.captions();
+  out << "source=" << v_.doc_.source() << "\n"
+      << "file=" << v_.doc_.file_path() << "\n"
+      << "dirty=" << (v_.doc_.dirty() ? 1 : 0) << "\n"
+      << "modal=" << (v_.dialogs_.guard_visible ? 1 : 0) << "\n"
+      << "conflict=" << (v_.dialogs_.conflict_visible ? 1 : 0) << "\n"
+      << "error=" << first_error_line << "\n"
+      << "picked=" << v_.picked_text_ << "\n"
+      << "selected_material=" << (have_material ? scene.materials[static_cast<std::size_t>(v_.selected_material_)].name : "") << "\n"
+      << "selected_light=" << v_.selected_light_ << "\n"
+      << "hovered_light=" << v_.hovered_light_ << "\n"
+      << "lights=" << scene.lights.size() << "\n"
+      << "camera_position=" << vec(scene.camera.position) << "\n"
+      << "camera_look_at=" << vec(scene.camera.look_at) << "\n"
+      << "camera_up=" << vec(scene.camera.up) << "\n"
+      << "camera_fov=" << std::setprecision(17) << (v_.snapshot_ ? v_.snapshot_->scene().camera.fov_y_deg : v_.view_camera().fov_y_deg)
+      << std::setprecision(6) << "\n"
+      << "generation=" << status.generation << "\n"
+      << "drawn_generation=" << v_.drawn_generation_ << "\n"
+      << "spp=" << v_.shown_.spp << "\n"
+      << "divisor=" << v_.shown_.divisor << "\n"
+      << "image=" << v_.shown_.width << "x" << v_.shown_.height << "\n"
+      << "render=" << v_.render_width_ << "x" << v_.render_height_ << "\n"
+      << "window=" << window_w << "x" << window_h << "\n"
+      << "framebuffer=" << fb_w << "x" << fb_h << "\n"
+      << "nan_count=" << v_.shown_.stats.nan_count << "\n"
+      << "status=" << v_.file_state_.status << "\n"
+      << "changed_on_disk=" << (v_.file_state_.changed_on_disk ? 1 : 0) << "\n"
+      << "sidebar=" << (v_.sidebar_visible_ ? 1 : 0) << "\n"
+      << "sidebar_toggles=" << v_.sidebar_toggles_ << "\n"
+      << "help=" << (v_.help_visible_ ? 1 : 0) << "\n"
+      << "ui_size=" << v_.display_.ui_size << "\n"
+      << "ui_scale=" << v_.platform_.ui_scale() << "\n"
+      << "light_markers=" << (v_.display_.light_markers ? 1 : 0) << "\n"
+      << "stats_details=" << (v_.display_.stats_details ? 1 : 0) << "\n"
+      << "camera_notice=" << v_.camera_notice_ << "\n"
+      << "camera_distance=" << glm::length(scene.camera.position - scene.camera.look_at) << "\n"
+      << "can_save=" << (!v_.doc_.file_path().empty() && !v_.doc_.opened_mesh() ? 1 : 0) << "\n"
+      << "figure_status=" << v_.figure_status_ << "\n"
+      << "compare_caption=" << (v_.instruments_.compare != 0 ? v_.compare_caption() : "") << "\n"
+      << "captions=" << caption_lines.size() << "\n";
+  for (std::size_t i = 0; i < caption_lines.size(); ++i) out << "caption" << i << "=" << caption_lines[i] << "\n";
+}
+
+// Where things were drawn last frame, the lights and materials, history and instruments.
+void ScriptDriver::write_layout_state(std::ostream& out) const {
+  const Scene& scene = v_.doc_.scene();
+  // The boxes over the image and the named widgets, where they were drawn last frame: x y width height.
+  for (const auto& [id, rect] : v_.overlay_rects_) {
+    out << "overlay_" << id.substr(2) << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
+        << rect.max.y - rect.min.y << "\n";
+  }
+  for (const auto& [item, rect] : v_.item_locations_.rects) {
+    out << "item_" << item << "=" << rect.min.x << " " << rect.min.y << " " << rect.max.x - rect.min.x << " "
+        << rect.max.y - rect.min.y << "\n";
+  }
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) out << "light" << i << "_position=" << vec(scene.lights[i].position) << "\n";
+  // Where each point light's marker was drawn (window coordinates) and whether it is an arrow at
+  // the edge (the light out of view).
+  for (const ui::LightMarker& m : v_.markers_) {
+    out << "light" << m.index << "_marker=" << m.pos.x << " " << m.pos.y << "\n"
+        << "light" << m.index << "_offscreen=" << (m.offscreen ? 1 : 0) << "\n";
+  }
+  for (const Material& m : scene.materials) {
+    out << "material_" << m.name << "_ka=" << vec(m.ka) << "\n"
+        << "material_" << m.name << "_kd=" << vec(m.kd) << "\n"
+        << "material_" << m.name << "_n=" << m.n << "\n";
+  }
+  // The objects in file order: kind, anchor, material; the selection and the last edit's notice.
+  out << "file_browser=" << (v_.browser_.visible() ? (v_.browser_.saving() ? "save" : "open") : "") << "\n"
+      << "file_browser_folder=" << v_.browser_.folder() << "\n"
+      << "file_browser_name=" << v_.browser_.name() << "\n"
+      << "recent=" << v_.browser_.recent().size() << "\n";
+  for (std::size_t i = 0; i < v_.browser_.recent().size(); ++i) out << "recent" << i << "=" << v_.browser_.recent()[i] << "\n";
+  out << "objects=" << ui::object_count(scene) << "\n"
+      << "selected_object=" << v_.selected_object_ << "\n"
+      << "objects_notice=" << v_.objects_notice_.text << "\n"
+      << "materials=" << scene.materials.size() << "\n";
+  for (int i = 0; i < ui::object_count(scene); ++i) {
+    const int m = ui::object_material(scene, i);
+    out << "object" << i << "_kind=" << ui::kind_name(ui::object_at(scene, i).kind) << "\n"
+        << "object" << i << "_anchor=" << vec(ui::object_anchor(scene, i)) << "\n"
+        << "object" << i << "_material=" << (m >= 0 ? scene.materials[static_cast<std::size_t>(m)].name : "") << "\n";
+    const ObjectRef r = ui::object_at(scene, i);
+    if (r.kind == ObjectRef::Kind::kSphere) out << "object" << i << "_radius=" << scene.spheres[static_cast<std::size_t>(r.index)].radius << "\n";
+    if (const std::optional<ImVec2> at = v_.object_screen_point(i)) out << "object" << i << "_screen=" << at->x << " " << at->y << "\n";
+  }
+  std::string enabled;
+  for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';
+  out << "lights_enabled=" << enabled << "\n"
+      << "undo=" << v_.session_.undo_count() << "\n"
+      << "redo=" << v_.session_.redo_count() << "\n"
+      << "multiples=" << (v_.instruments_.small_multiples ? 1 : 0) << "\n"
+      << "wipe=" << v_.instruments_.wipe << "\n"
+      << "compare=" << v_.instruments_.compare << "\n"
+      << "have_a=" << (v_.compare_.image.pixels.empty() ? 0 : 1) << "\n"
+      << "head=" << (v_.shading_eye_ ? 1 : 0) << "\n";
+  if (v_.shading_eye_) out << "head_eye=" << vec(*v_.shading_eye_) << "\n";
+}
+
+void ScriptDriver::write_rays_state(std::ostream& out) const {
+  const Scene& scene = v_.doc_.scene();
+  // Rays: the overlay as drawn in the last frame, the depth cut and the heat map.
+  int tree_blocked = 0, tree_deepest = 0;
+  for (const ScreenSegment& segment : v_.tree_segments_) {
+    tree_blocked += segment.kind == TreeSegmentKind::kShadowBlocked ? 1 : 0;
+    if (segment.kind == TreeSegmentKind::kReflection || segment.kind == TreeSegmentKind::kRefraction) {
+      tree_deepest = std::max(tree_deepest, segment.depth);
+    }
+  }
+  out << "term=" << term_name(v_.render_settings_.term) << "\n"
+      << "ambient_view=" << ui::ambient_view_name(v_.render_settings_.ambient_view) << "\n"
+      << "ray_tree=" << (v_.rays_.overlay ? 1 : 0) << "\n"
+      << "tree_segments=" << v_.tree_segments_.size() << "\n"
+      << "tree_blocked=" << tree_blocked << "\n"
+      << "tree_deepest=" << tree_deepest << "\n"
+      << "depth_cut=" << (v_.rays_.depth_cut ? v_.rays_.cut_depth : -1) << "\n"
+      << "depth_cut_label=" << depth_cut_label() << "\n"
+      << "scene_max_depth=" << scene.max_depth << "\n"
+      << "render_max_depth=" << (v_.snapshot_ ? v_.snapshot_->scene().max_depth : -1) << "\n"
+      << "heat=" << (v_.heat_shown() ? 1 : 0) << "\n"
+      << "heat_max=" << v_.heat_max_ << "\n";
+}
+
+// The probed pixel: where, what it hit, its blocked shadow rays, and whether it matches the image.
+void ScriptDriver::write_probe_state(std::ostream& out) const {
+  if (!v_.probed_.tree) return;
+  const Color total = v_.probed_.tree->root.total;
+  const ImVec2 on_screen = v_.probe_point_in_cell(v_.cells().count() - 1);
+  out << "probe_pixel=" << v_.probed_.x << " " << v_.probed_.y << "\n"
+      << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
+      << "probe_hit=" << (v_.probed_.tree->root.hit ? 1 : 0) << "\n"
+      << "probe_total=" << vec(total) << "\n";
+  // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).
+  int blocked = 0;
+  std::vector<const ProbeNode*> stack{&v_.probed_.tree->root};
+  while (!stack.empty()) {
+    const ProbeNode* node = stack.back();
+    stack.pop_back();
+    for (const ProbeLight& light : node->lights) blocked += light.lit_side && !light.visible ? 1 : 0;
+    if (node->reflection) stack.push_back(node->reflection.get());
+    if (node->refraction) stack.push_back(node->refraction.get());
+  }
+  const IndirectProbe& indirect = v_.probed_.indirect;
+  out << "probe_ambient=" << vec(indirect.ambient) << "\n"
+      << "probe_indirect=" << vec(indirect.mean) << "\n"
+      << "probe_indirect_se=" << vec(indirect.standard_error) << "\n"
+      << "probe_indirect_samples=" << indirect.samples << "\n"
+      << "probe_fitted_ka=" << vec(indirect.fitted_ka) << "\n";
+  out << "probe_blocked=" << blocked << "\n"
+      << "probe_rays=" << v_.probed_.tree->rays.total() << "\n";
+  // The shown image's pixel there, when it is the full-resolution 1-spp image of this
+  // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
+  if (v_.shown_.divisor == 1 && v_.shown_.spp == 1 && v_.shown_.width == v_.render_width_ && v_.shown_.height == v_.render_height_) {
+    const glm::vec3 shown = v_.shown_.pixels[static_cast<std::size_t>(v_.probed_.y) * static_cast<std::size_t>(v_.shown_.width) +
+                                          static_cast<std::size_t>(v_.probed_.x)];
+    out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";
+  }
+}
+
+}  // namespace phonglab
