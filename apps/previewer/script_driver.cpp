@@ -207,7 +207,7 @@ bool ScriptDriver::script_wait_done(double now) {
     case ScriptWait::kFrames: done = --run_.frames_left <= 0; break;
     case ScriptWait::kIdle:
       // A lesson's compare is done once its A is taken and the step itself is final.
-      done = v_.image_is_final() && !v_.lessons_.awaiting_a() && !v_.lesson_.applied;
+      done = v_.image_is_final() && !v_.lessons_.awaiting_a() && !v_.lesson_shell_.state().applied;
       break;
     case ScriptWait::kImage:
       done = !v_.upload_pending_ && v_.drawn_serial_ > 0 && v_.drawn_generation_ == v_.renderer_.status().generation;
@@ -645,7 +645,7 @@ bool ScriptDriver::run_script_command(const ScriptCommand& command, double now) 
   if (const std::optional<std::string> error = v_.script_scene_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
-  if (const std::optional<std::string> error = v_.script_lesson_command(command.words)) {
+  if (const std::optional<std::string> error = v_.lesson_shell_.script_lesson_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
   for (const auto group : {&ScriptDriver::script_wait_command, &ScriptDriver::script_input_command, &ScriptDriver::script_item_command,

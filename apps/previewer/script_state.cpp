@@ -36,7 +36,7 @@ void ScriptDriver::write_state(const std::string& path) const {
   write_layout_state(out);
   write_rays_state(out);
   write_probe_state(out);
-  v_.write_lesson_state(out);
+  v_.lesson_shell_.write_lesson_state(out);
   out << "script_skipped=" << run_.ignored << "\n";
   out << "recovery_offer=" << (v_.recovery_.offer ? v_.recovery_.offer->source : "") << "\n"
       << "recovery_file=" << v_.session_.recovery().written() << "\n";

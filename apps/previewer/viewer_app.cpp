@@ -135,7 +135,7 @@ std::string Viewer::init() {
   }
   edits_.replaced = true;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
-  if (!options_.lesson_arg.empty()) open_lesson(options_.lesson_arg);  // a lesson that fails to load is shown in its panel
+  if (!options_.lesson_arg.empty()) lesson_shell_.open_lesson(options_.lesson_arg);  // a lesson that fails to load is shown in its panel
   // A lesson's steps are nobody's file: what an earlier session kept is offered once it closes.
   recovery_.after_lesson = lessons_.lesson() != nullptr || lessons_.waiting() != nullptr;
   if (!recovery_.after_lesson) find_recovery();
@@ -176,7 +176,7 @@ int Viewer::run() {
     // Presenter mode reads from the back of a hall: every text and marker grows with the window's
     // height (the UI font about 28 px at 1080 lines, the caption's title about 60 px).
     float presenter = 1;
-    if (lesson_.presenting) {
+    if (lesson_shell_.state().presenting) {
       int window_w = 0, window_h = 0;
       glfwGetWindowSize(window, &window_w, &window_h);
       presenter = std::max(1.0f, static_cast<float>(window_h) / 1080.0f * kPresenterScale);
@@ -204,7 +204,7 @@ int Viewer::run() {
     handle_guard_modal();
     handle_recovery_modal();
     apply_edits(frame_start);
-    update_lesson();
+    lesson_shell_.update_lesson();
     session_.recovery().autosave(doc_, frame_start);
     ImGui::Render();
     draw_gl(fb_width, fb_height);
@@ -320,10 +320,10 @@ void Viewer::apply_edits(double frame_start) {
   }
   edits_.frame_requested = edits_.reset_requested = false;
   // Any change the lesson did not make itself leaves its step as written: exploring.
-  if (lessons_.lesson() && !lesson_.applied && (edits_.scene || edits_.camera || edits_.settings || edits_.view)) {
+  if (lessons_.lesson() && !lesson_shell_.state().applied && (edits_.scene || edits_.camera || edits_.settings || edits_.view)) {
     lessons_.explored();
   }
-  lesson_.applied = false;
+  lesson_shell_.state().applied = false;
   if (edits_.scene) session_.recovery().edited(frame_start);
   if (edits_.replaced) {
     dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());

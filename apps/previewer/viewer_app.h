@@ -20,6 +20,7 @@
 #include "session/document.h"
 #include "session/session.h"
 #include "apps/previewer/file_browser.h"
+#include "apps/previewer/lesson_shell.h"
 #include "apps/previewer/script_driver.h"
 #include "apps/previewer/viewer_gl.h"
 #include "apps/previewer/viewer_platform.h"
@@ -222,21 +223,6 @@ class Viewer {
   void restore_recovery(const ui::RecoveryEntry& entry);
   bool handle_signal();                          // a signal arrived: the recovery written, the exit code set
 
-  // Lessons (viewer_lesson.cpp).
-  std::string open_lesson(const std::string& lesson_arg);  // "" or why not; unsaved edits are guarded as for Open
-  void start_lesson();                           // lesson_.waiting becomes the lesson, at its first step
-  void close_lesson();
-  void show_place(LessonPlace place);            // shows a step (or its answer) as written
-  void present(const LessonPresenter::Show& show);  // what the presenter answers: A cleared, scene, view
-  void adopt_step_scene(int step);               // the step's scene becomes the document
-  void apply_step_view(const StepView& view);    // the term, instruments, probe, head and depth cut of a view
-  void update_lesson();                          // after apply_edits: the step's probe, its A, exploring
-  bool lesson_key(int key);                      // next, previous, presenter mode; true when taken
-  void set_presenting(bool on);                  // full screen, panels hidden, caption large
-  void sidebar_lessons();
-  void draw_lesson_caption();                    // the step's caption across the bottom of the view
-  std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
-  void write_lesson_state(std::ostream& out) const;
 
   void write_stats_summary(const std::string& label);                 // percentiles into the stats log
 
@@ -387,19 +373,9 @@ class Viewer {
     std::ofstream log;
   };
   FrameStats stats_;
-  // The lesson being presented (viewer_lesson.cpp).
-  // The shell's side of it: where the lesson stands is the session's (lessons_).
-  struct LessonState {
-    bool applied = false;           // this frame's edits are the lesson's own
-    bool probe_pending = false;     // probe the view's pixel once the step's snapshot exists
-    std::array<int, 2> shown_size{0, 0};  // the render size the step was shown at (0: not yet)
-    bool presenting = false;        // presenter mode
-    bool sidebar_before = true;     // the panels' visibility before presenter mode
-    bool unfold_panel = false;      // open the Lessons panel once (a lesson was opened)
-    std::string error;              // why the last open failed
-    std::string path_field;         // the panel's lesson file path
-  };
-  LessonState lesson_;
+  // The lesson being presented: the session's LessonPresenter, and its shell (lesson_shell.h).
+  friend class LessonShell;
+  LessonShell lesson_shell_{*this};
   // The offer of kept edits and the exit on a signal (viewer_recovery.cpp; the files are the
   // session's RecoveryKeeper).
   struct Recovery {

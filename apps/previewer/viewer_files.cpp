@@ -44,7 +44,7 @@ void Viewer::perform(const PendingAction& action) {
     case PendingAction::Kind::kQuit: quit_ = true; break;
     case PendingAction::Kind::kOpen: open_scene(action.arg); break;
     case PendingAction::Kind::kReload: reload_scene(false); break;
-    case PendingAction::Kind::kLesson: start_lesson(); break;
+    case PendingAction::Kind::kLesson: lesson_shell_.start_lesson(); break;
     case PendingAction::Kind::kNone: break;
   }
 }

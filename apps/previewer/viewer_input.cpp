@@ -218,7 +218,7 @@ void Viewer::handle_keys() {
       help_visible_ = false;
       continue;
     }
-    if (lesson_key(press.key)) continue;  // a presentation remote's keys step through the lesson
+    if (lesson_shell_.lesson_key(press.key)) continue;  // a presentation remote's keys step through the lesson
     if (io.WantCaptureKeyboard && !help_visible_) continue;  // a widget is active
     shortcut(press.key, shift);
   }

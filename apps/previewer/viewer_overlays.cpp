@@ -92,7 +92,7 @@ void Viewer::draw_overlays() {
 
   // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left (top
   // left when presenting), the heat scale bottom right.
-  if (display_.show_stats && !lesson_.presenting) {
+  if (display_.show_stats && !lesson_shell_.state().presenting) {
     taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, overlay_rects_, [&] { draw_stats(); }));
   }
   draw_ray_tree_lines();
@@ -122,7 +122,7 @@ void Viewer::draw_overlays() {
   }
   if (instruments_.move_head && snapshot_) {
     // In presenter mode (no stats box) top left: the large caption leaves the bottom little room.
-    const bool top = lesson_.presenting;
+    const bool top = lesson_shell_.state().presenting;
     taken.push_back(overlay_window("##head_plot", top ? top_left : bottom_left, ImVec2(0, top ? 0.0f : 1.0f), taken, last,
                                    overlay_rects_, [&] { draw_head_plot(); }));
   }
@@ -150,7 +150,7 @@ void Viewer::draw_overlays() {
     y = r.max.y + 4 * scale;
   }
   draw_cell_labels_and_probe_ring();
-  draw_lesson_caption();
+  lesson_shell_.draw_lesson_caption();
   draw_wipe_line();
   if (light_markers_shown()) draw_light_markers(taken);
   draw_selected_object();

@@ -79,11 +79,11 @@ void Viewer::draw_sidebar() {
     // In the order a lecture uses them: what is shown, the coefficients, the lights, the probe
     // and the instruments; then the camera, the file and the settings.
     if (header("Show", true)) sidebar_show();
-    if (lesson_.unfold_panel) {
+    if (lesson_shell_.state().unfold_panel) {
       ImGui::SetNextItemOpen(true);
-      lesson_.unfold_panel = false;
+      lesson_shell_.state().unfold_panel = false;
     }
-    if (header("Lessons", false)) sidebar_lessons();
+    if (header("Lessons", false)) lesson_shell_.sidebar_lessons();
     if (open_materials_) {
       ImGui::SetNextItemOpen(true);
       open_materials_ = false;

@@ -1,0 +1,269 @@
+// Lessons in the previewer: a lesson's steps shown as written (scene, term, instruments, probe,
+// head, depth cut, compare against A), next and previous from the keys a presentation remote
+// sends, presenter mode, exploring and the way back, the caption over the image, and the
+// lesson script commands.
+#include "apps/previewer/lesson_shell.h"
+
+#include "apps/previewer/viewer_app.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <ostream>
+
+#include "apps/previewer/script_words.h"
+#include "io/lesson_io.h"
+#include "ui/overlay.h"
+#include "ui/widgets.h"
+
+namespace phonglab {
+
+std::string LessonShell::open_lesson(const std::string& lesson_arg) {
+  LessonLoad load = load_lesson_arg(lesson_arg);
+  if (!load.ok()) {
+    state_.error = load.error_text();
+    std::cerr << "phonglab: " << state_.error << "\n";
+    return state_.error;
+  }
+  state_.error.clear();
+  v_.lessons_.offer(std::move(*load.lesson));
+  // A lesson replaces the scene: unsaved edits of a file are asked about first; a lesson's own
+  // explorations are not (they were never anyone's file).
+  const Viewer::PendingAction action{Viewer::PendingAction::Kind::kLesson, v_.lessons_.waiting()->name};
+  if (v_.lessons_.lesson()) v_.perform(action);
+  else v_.request(action);
+  return "";
+}
+
+void LessonShell::start_lesson() {
+  const std::optional<LessonPresenter::Show> show = v_.lessons_.start();
+  if (!show) return;
+  state_.unfold_panel = true;
+  present(*show);
+}
+
+void LessonShell::close_lesson() {
+  v_.lessons_.close();
+  set_presenting(false);
+  if (v_.recovery_.after_lesson) {
+    v_.recovery_.after_lesson = false;
+    v_.find_recovery();
+  }
+}
+
+void LessonShell::adopt_step_scene(int step) {
+  const Lesson& lesson = *v_.lessons_.lesson();
+  char source[512];
+  std::snprintf(source, sizeof source, "lesson '%s', step %d: %s", lesson.name.c_str(), step + 1,
+                lesson.steps[static_cast<std::size_t>(step)].scene.c_str());
+  v_.doc_.adopt(lesson.steps[static_cast<std::size_t>(step)].prepared_scene, source);
+  v_.document_replaced();  // the probe and A are the step view's (apply_step_view, the compare stages)
+}
+
+void LessonShell::apply_step_view(const StepView& view) {
+  v_.render_settings_.term = view.term;
+  v_.render_settings_.ambient_view = view.ambient == Ambient::kIndirect ? ui::AmbientView::kIndirect : ui::AmbientView::kConstant;
+  v_.rays_.heat_map = false;
+  v_.instruments_.small_multiples = view.small_multiples;
+  v_.instruments_.move_head = view.head_angle_deg.has_value();
+  v_.instruments_.head_angle_deg = static_cast<float>(view.head_angle_deg.value_or(0));
+  v_.instruments_.wipe = static_cast<float>(view.wipe);
+  v_.instruments_.difference_gain = static_cast<float>(view.difference_gain);
+  v_.rays_.overlay = view.ray_tree;
+  v_.rays_.depth_cut = view.depth_cut.has_value();
+  v_.rays_.cut_depth = view.depth_cut.value_or(v_.rays_.cut_depth);
+  v_.instruments_.probe_mode = view.probe.has_value();
+  v_.probed_.tree.reset();
+  state_.probe_pending = view.probe.has_value();
+  v_.edits_.settings = true;
+  v_.edits_.view = true;
+}
+
+void LessonShell::show_place(LessonPlace place) {
+  if (v_.lessons_.lesson()) present(v_.lessons_.show(place));
+}
+
+// What the session's presenter answers for a place: A and the compare view cleared, the step's
+// scene adopted when it asks, its view applied (a compare's source view first, for A).
+void LessonShell::present(const LessonPresenter::Show& show) {
+  v_.compare_.image = ProgressiveFrame{};
+  v_.compare_.requested = v_.compare_.dropped = false;
+  v_.instruments_.compare = 0;
+  if (show.adopt_step) adopt_step_scene(*show.adopt_step);
+  apply_step_view(show.view);
+  state_.applied = true;
+  state_.shown_size = {0, 0};
+}
+
+void LessonShell::update_lesson() {
+  if (!v_.lessons_.lesson()) return;
+  // A new view size (presenter mode, the panels hidden, the window resized) shows the step
+  // again: its probed pixel and its A belong to the size they were made at.
+  const std::array<int, 2> size{v_.render_width_, v_.render_height_};
+  if (state_.shown_size == std::array<int, 2>{0, 0}) {
+    state_.shown_size = size;
+  } else if (size != state_.shown_size && size[0] > 0 && !v_.lessons_.exploring()) {
+    show_place(v_.lessons_.place());
+    return;
+  }
+  if (state_.probe_pending && v_.snapshot_ && v_.render_width_ > 0 && v_.render_height_ > 0) {
+    if (const auto pixel = probe_in(v_.doc_.scene(), v_.snapshot_->scene().camera, v_.lessons_.view(), v_.render_width_, v_.render_height_)) {
+      v_.probed_.x = (*pixel)[0];
+      v_.probed_.y = (*pixel)[1];
+      v_.refresh_probe();
+    }
+    state_.probe_pending = false;
+  }
+  // A compare: A of the source's view first, then the step's own view with the compare on.
+  if (v_.lessons_.take_a_now()) {
+    v_.snapshot_a(true);
+  } else if (v_.lessons_.awaiting_a()) {
+    if (v_.compare_.dropped) {
+      v_.lessons_.a_dropped();  // something changed first: the user is exploring
+    } else if (!v_.compare_.requested && !v_.compare_.image.pixels.empty()) {
+      if (const std::optional<LessonPresenter::Show> show = v_.lessons_.a_taken()) {
+        if (show->adopt_step) adopt_step_scene(*show->adopt_step);
+        apply_step_view(show->view);
+        v_.instruments_.compare = show->view.compare == CompareView::kWipe ? 1 : 2;
+        state_.applied = true;
+      }
+    }
+  }
+}
+
+void LessonShell::set_presenting(bool on) {
+  if (on == state_.presenting) return;
+  state_.presenting = on;
+  if (on) {
+    state_.sidebar_before = v_.sidebar_visible_;
+    v_.sidebar_visible_ = false;
+  } else {
+    v_.sidebar_visible_ = state_.sidebar_before;
+  }
+  v_.platform_.set_fullscreen(on);
+}
+
+bool LessonShell::lesson_key(int key) {
+  if (key == GLFW_KEY_F11) {
+    if (v_.lessons_.lesson() || state_.presenting) set_presenting(!state_.presenting);
+    return v_.lessons_.lesson() != nullptr;
+  }
+  if (!v_.lessons_.lesson()) return false;
+  if (key == GLFW_KEY_ESCAPE && state_.presenting) {
+    set_presenting(false);
+    return true;
+  }
+  if (key == GLFW_KEY_RIGHT || key == GLFW_KEY_PAGE_DOWN || key == GLFW_KEY_SPACE) {
+    if (const std::optional<LessonPresenter::Show> show = v_.lessons_.next()) present(*show);
+    return true;
+  }
+  if (key == GLFW_KEY_LEFT || key == GLFW_KEY_PAGE_UP) {
+    if (const std::optional<LessonPresenter::Show> show = v_.lessons_.prev()) present(*show);
+    return true;
+  }
+  return false;
+}
+
+void LessonShell::sidebar_lessons() {
+  ui::LessonPanelView view;
+  view.lesson = v_.lessons_.lesson();
+  view.place = v_.lessons_.place();
+  view.exploring = v_.lessons_.exploring();
+  view.presenting = state_.presenting;
+  view.error = state_.error;  // every diagnostic, each with its suggestion
+  ui::LessonActions actions;
+  ui::lessons_panel(view, state_.path_field, actions);
+  if (!actions.open.empty()) open_lesson(actions.open);
+  if (!v_.lessons_.lesson()) return;
+  if (actions.go_to >= 0) show_place({actions.go_to, false});
+  if (actions.next) lesson_key(GLFW_KEY_RIGHT);
+  if (actions.prev) lesson_key(GLFW_KEY_LEFT);
+  if (actions.back) show_place(v_.lessons_.place());
+  if (actions.present) set_presenting(!state_.presenting);
+  if (actions.close) close_lesson();
+}
+
+void LessonShell::draw_lesson_caption() {
+  if (!v_.lessons_.lesson() || v_.viewport_.width < 1) return;
+  const Lesson& lesson = *v_.lessons_.lesson();
+  const LessonPlace place = v_.lessons_.place();
+  const LessonStep& step = lesson.steps[static_cast<std::size_t>(place.step)];
+  ImFont* font = v_.platform_.caption_font();
+  if (font == nullptr) font = ImGui::GetFont();
+  const float scale = v_.platform_.ui_scale();
+  // Large in presenter mode (read from the back of a hall), the panel's size beside the panels.
+  const float size = state_.presenting ? font->FontSize : font->FontSize * 0.6f;
+  const float small = size * 0.7f;
+  const float pad = 10 * scale;
+  const float wrap = std::max(v_.viewport_.width - 4 * pad, 50.0f);
+  char head[512];
+  std::snprintf(head, sizeof head, "%d/%zu  %s%s", place.step + 1, lesson.steps.size(), step.title.c_str(),
+                v_.lessons_.exploring() ? "   (exploring)" : "");
+  struct Line {
+    std::string text;
+    float size;
+    ImU32 colour;
+  };
+  std::vector<Line> lines = {{head, size, IM_COL32(255, 255, 255, 255)}, {step.caption, small, IM_COL32(225, 225, 225, 255)}};
+  if (step.has_question()) lines.push_back({"Q: " + step.question, small, IM_COL32(255, 200, 70, 255)});
+  if (step.has_question() && place.revealed) lines.push_back({"A: " + step.answer, small, IM_COL32(140, 235, 140, 255)});
+  const bool posed = step.has_question() && !place.revealed;
+  const bool last = lesson_next(lesson, place) == place;
+  const char* hint = posed ? "\xE2\x86\x92 / space: the answer"
+                     : last ? "the end of the lesson   \xE2\x86\x90: back"
+                            : "\xE2\x86\x92 / space: next   \xE2\x86\x90: back";
+  lines.push_back({std::string(hint) + (state_.presenting ? "   F11 / Esc: leave presenter mode" : "   F11: presenter mode"),
+                   small * 0.75f, IM_COL32(170, 170, 170, 255)});
+  float height = pad;
+  for (const Line& l : lines) height += font->CalcTextSizeA(l.size, FLT_MAX, wrap, l.text.c_str()).y + pad * 0.4f;
+  height += pad * 0.6f;
+  const float top = v_.viewport_.y + v_.viewport_.height - height;  // the bottom boxes move above it (draw_overlays)
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  draw->AddRectFilled(ImVec2(v_.viewport_.x, top), ImVec2(v_.viewport_.x + v_.viewport_.width, v_.viewport_.y + v_.viewport_.height),
+                      IM_COL32(0, 0, 0, 190));
+  float y = top + pad;
+  for (const Line& l : lines) {
+    draw->AddText(font, l.size, ImVec2(v_.viewport_.x + 2 * pad, y), l.colour, l.text.c_str(), nullptr, wrap);
+    y += font->CalcTextSizeA(l.size, FLT_MAX, wrap, l.text.c_str()).y + pad * 0.4f;
+  }
+  v_.overlay_rects_["##lesson_caption"] = ui::ScreenRect{ImVec2(v_.viewport_.x, top), ImVec2(v_.viewport_.x + v_.viewport_.width, v_.viewport_.y + v_.viewport_.height)};
+}
+
+std::optional<std::string> LessonShell::script_lesson_command(const std::vector<std::string>& w) {
+  const std::string& name = w[0];
+  if (name == "lesson_open") {
+    if (w.size() != 2) return "usage: lesson_open NAME|FILE";
+    open_lesson(w[1]);  // a lesson that does not load is reported (stderr, lesson_error) and changes nothing
+    return "";
+  }
+  if (name != "lesson_next" && name != "lesson_prev" && name != "lesson_goto") return std::nullopt;
+  if (!v_.lessons_.lesson()) return "no lesson is open (lesson_open NAME|FILE)";
+  if (name == "lesson_next" || name == "lesson_prev") {
+    if (w.size() != 1) return "usage: " + name;
+    lesson_key(name == "lesson_next" ? GLFW_KEY_RIGHT : GLFW_KEY_LEFT);
+    return "";
+  }
+  int n = 0;
+  const int steps = static_cast<int>(v_.lessons_.lesson()->steps.size());
+  if (w.size() != 2 || !script::parse_int(w[1], n) || n < 1 || n > steps) {
+    return "usage: lesson_goto N, N in 1.." + std::to_string(steps);
+  }
+  show_place({n - 1, false});
+  return "";
+}
+
+void LessonShell::write_lesson_state(std::ostream& out) const {
+  const Lesson* lesson = v_.lessons_.lesson();
+  const LessonPlace place = v_.lessons_.place();
+  out << "lesson=" << (lesson ? lesson->name : "") << "\n"
+      << "lesson_step=" << (lesson ? place.step + 1 : 0) << "\n"
+      << "lesson_steps=" << (lesson ? lesson->steps.size() : 0) << "\n"
+      << "lesson_revealed=" << (place.revealed ? 1 : 0) << "\n"
+      << "lesson_title=" << (lesson ? lesson->steps[static_cast<std::size_t>(place.step)].title : "") << "\n"
+      << "lesson_exploring=" << (v_.lessons_.exploring() ? 1 : 0) << "\n"
+      << "lesson_presenting=" << (state_.presenting ? 1 : 0) << "\n"
+      << "lesson_comparing=" << (v_.lessons_.awaiting_a() ? 1 : 0) << "\n"
+      << "lesson_error=" << state_.error.substr(0, state_.error.find('\n')) << "\n";
+}
+
+}  // namespace phonglab

@@ -1,0 +1,61 @@
+// Presenting a lesson in the previewer: what the session's LessonPresenter answers applied to the
+// shell (the step's scene adopted, its view set on the instruments, A taken for a compare), the
+// presenter's keys, presenter mode, the Lessons panel and the caption over the image. A class of
+// its own beside the shell; it reaches the shell's state through `Viewer&` (a friend).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "core/teaching/lesson.h"
+#include "session/lesson_presenter.h"
+
+namespace phonglab {
+
+class Viewer;
+
+class LessonShell {
+ public:
+  // The shell's side of a lesson: where it stands is the session's (LessonPresenter).
+  struct LessonState {
+    bool applied = false;           // this frame's edits are the lesson's own
+    bool probe_pending = false;     // probe the view's pixel once the step's snapshot exists
+    std::array<int, 2> shown_size{0, 0};  // the render size the step was shown at (0: not yet)
+    bool presenting = false;        // presenter mode
+    bool sidebar_before = true;     // the panels' visibility before presenter mode
+    bool unfold_panel = false;      // open the Lessons panel once (a lesson was opened)
+    std::string error;              // why the last open failed
+    std::string path_field;         // the panel's lesson file path
+  };
+
+  explicit LessonShell(Viewer& viewer) : v_(viewer) {}
+  LessonShell(const LessonShell&) = delete;
+  LessonShell& operator=(const LessonShell&) = delete;
+  LessonState& state() { return state_; }
+  const LessonState& state() const { return state_; }
+
+  std::string open_lesson(const std::string& lesson_arg);  // "" or why not; unsaved edits are guarded as for Open
+  void start_lesson();                           // the waiting lesson becomes the lesson, at its first step
+  void close_lesson();
+  void show_place(LessonPlace place);            // shows a step (or its answer) as written
+  void update_lesson();                          // after apply_edits: the step's probe, its A, exploring
+  bool lesson_key(int key);                      // next, previous, presenter mode; true when taken
+  void set_presenting(bool on);                  // full screen, panels hidden, caption large
+  void sidebar_lessons();
+  void draw_lesson_caption();                    // the step's caption across the bottom of the view
+  std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
+  void write_lesson_state(std::ostream& out) const;
+
+ private:
+  void present(const LessonPresenter::Show& show);  // what the presenter answers: A cleared, scene, view
+  void adopt_step_scene(int step);               // the step's scene becomes the document
+  void apply_step_view(const StepView& view);    // the term, instruments, probe, head and depth cut of a view
+
+  Viewer& v_;
+  LessonState state_;
+};
+
+}  // namespace phonglab
