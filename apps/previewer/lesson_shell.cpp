@@ -29,9 +29,9 @@ std::string LessonShell::open_lesson(const std::string& lesson_arg) {
   v_.lessons_.offer(std::move(*load.lesson));
   // A lesson replaces the scene: unsaved edits of a file are asked about first; a lesson's own
   // explorations are not (they were never anyone's file).
-  const Viewer::PendingAction action{Viewer::PendingAction::Kind::kLesson, v_.lessons_.waiting()->name};
-  if (v_.lessons_.lesson()) v_.perform(action);
-  else v_.request(action);
+  const FileShell::PendingAction action{FileShell::PendingAction::Kind::kLesson, v_.lessons_.waiting()->name};
+  if (v_.lessons_.lesson()) v_.files_.perform(action);
+  else v_.files_.request(action);
   return "";
 }
 
@@ -45,9 +45,9 @@ void LessonShell::start_lesson() {
 void LessonShell::close_lesson() {
   v_.lessons_.close();
   set_presenting(false);
-  if (v_.recovery_.after_lesson) {
-    v_.recovery_.after_lesson = false;
-    v_.find_recovery();
+  if (v_.files_.recovery().after_lesson) {
+    v_.files_.recovery().after_lesson = false;
+    v_.files_.find_recovery();
   }
 }
 
@@ -57,7 +57,7 @@ void LessonShell::adopt_step_scene(int step) {
   std::snprintf(source, sizeof source, "lesson '%s', step %d: %s", lesson.name.c_str(), step + 1,
                 lesson.steps[static_cast<std::size_t>(step)].scene.c_str());
   v_.doc_.adopt(lesson.steps[static_cast<std::size_t>(step)].prepared_scene, source);
-  v_.document_replaced();  // the probe and A are the step view's (apply_step_view, the compare stages)
+  v_.files_.document_replaced();  // the probe and A are the step view's (apply_step_view, the compare stages)
 }
 
 void LessonShell::apply_step_view(const StepView& view) {

@@ -180,9 +180,9 @@ void ScriptDriver::step_script(double now) {
     return;
   }
   if (run_.auto_answer != ui::GuardChoice::kNone) {
-    if (v_.dialogs_.guard_visible) v_.dialogs_.scripted_choice = run_.auto_answer;
-    if (v_.dialogs_.conflict_visible) v_.dialogs_.scripted_choice = ui::GuardChoice::kCancel;
-    if (v_.recovery_.modal_visible) v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
+    if (v_.files_.dialogs().guard_visible) v_.files_.dialogs().scripted_choice = run_.auto_answer;
+    if (v_.files_.dialogs().conflict_visible) v_.files_.dialogs().scripted_choice = ui::GuardChoice::kCancel;
+    if (v_.files_.recovery().modal_visible) v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kLater);
   }
   if (run_.failed || (run_.index >= run_.commands.size() && run_.wait == ScriptWait::kNone)) return;
   if (run_.wait != ScriptWait::kNone) {
@@ -528,21 +528,21 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
   }
   if (name == "save_png" || name == "save_pfm") {
     if (w.size() != 2) return step.fail("usage: save_png|save_pfm FILE");
-    if (name == "save_png") v_.save_png(w[1]);
-    else v_.save_pfm(w[1]);
-    if (v_.screenshot_state_.status.rfind("saved ", 0) != 0) return step.fail(v_.screenshot_state_.status);
+    if (name == "save_png") v_.files_.save_png(w[1]);
+    else v_.files_.save_pfm(w[1]);
+    if (v_.files_.screenshot_state().status.rfind("saved ", 0) != 0) return step.fail(v_.files_.screenshot_state().status);
     return true;
   }
   if (name == "open") {
     if (w.size() != 2) return step.fail("usage: open SCENE");
-    v_.request(Viewer::PendingAction{Viewer::PendingAction::Kind::kOpen, w[1]});
+    v_.files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, w[1]});
     return true;
   }
   if (name == "save_as") {
     if (w.size() != 2) return step.fail("usage: save_as FILE");
-    v_.file_state_.path_field = w[1];
-    v_.save_scene(true);
-    if (v_.doc_.dirty()) return step.fail(v_.file_state_.error_text);
+    v_.files_.file_state().path_field = w[1];
+    v_.files_.save_scene(true);
+    if (v_.doc_.dirty()) return step.fail(v_.files_.file_state().error_text);
     return true;
   }
   if (name == "close") {
@@ -552,20 +552,20 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
   if (name == "modal") {
     constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload (the recovery offer: restore|discard|later)";
     if (w.size() != 2) return step.fail(kUsage);
-    if (v_.recovery_.modal_visible && !v_.dialogs_.guard_visible && !v_.dialogs_.conflict_visible) {
-      if (w[1] == "restore") v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kRestore);
-      else if (w[1] == "discard") v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kDiscard);
-      else if (w[1] == "later") v_.recovery_.scripted = static_cast<int>(ui::RecoveryChoice::kLater);
+    if (v_.files_.recovery().modal_visible && !v_.files_.dialogs().guard_visible && !v_.files_.dialogs().conflict_visible) {
+      if (w[1] == "restore") v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kRestore);
+      else if (w[1] == "discard") v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kDiscard);
+      else if (w[1] == "later") v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kLater);
       else return step.fail(kUsage);
       return true;
     }
-    if (!v_.dialogs_.guard_visible && !v_.dialogs_.conflict_visible) return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
-    if (w[1] == "save") v_.dialogs_.scripted_choice = ui::GuardChoice::kSave;
-    else if (w[1] == "save_as") v_.dialogs_.scripted_choice = ui::GuardChoice::kSaveAs;
-    else if (w[1] == "discard") v_.dialogs_.scripted_choice = ui::GuardChoice::kDiscard;
-    else if (w[1] == "cancel") v_.dialogs_.scripted_choice = ui::GuardChoice::kCancel;
-    else if (w[1] == "overwrite") v_.dialogs_.scripted_choice = ui::GuardChoice::kOverwrite;
-    else if (w[1] == "reload") v_.dialogs_.scripted_choice = ui::GuardChoice::kReload;
+    if (!v_.files_.dialogs().guard_visible && !v_.files_.dialogs().conflict_visible) return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
+    if (w[1] == "save") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kSave;
+    else if (w[1] == "save_as") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kSaveAs;
+    else if (w[1] == "discard") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kDiscard;
+    else if (w[1] == "cancel") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kCancel;
+    else if (w[1] == "overwrite") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kOverwrite;
+    else if (w[1] == "reload") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kReload;
     else return step.fail(kUsage);
     return true;
   }
@@ -573,7 +573,7 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
     // The Save button, through the same checks: a file changed on disk opens its dialog, a
     // refusal (an embedded scene, an OBJ) shows in the Scene panel and in dump_state's error.
     if (w.size() != 1) return step.fail("usage: save");
-    v_.save_scene(false);
+    v_.files_.save_scene(false);
     return true;
   }
   if (name == "dump_state") {

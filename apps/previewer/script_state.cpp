@@ -38,7 +38,7 @@ void ScriptDriver::write_state(const std::string& path) const {
   write_probe_state(out);
   v_.lesson_shell_.write_lesson_state(out);
   out << "script_skipped=" << run_.ignored << "\n";
-  out << "recovery_offer=" << (v_.recovery_.offer ? v_.recovery_.offer->source : "") << "\n"
+  out << "recovery_offer=" << (v_.files_.recovery().offer ? v_.files_.recovery().offer->source : "") << "\n"
       << "recovery_file=" << v_.session_.recovery().written() << "\n";
 }
 
@@ -50,13 +50,13 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
   int window_w = 0, window_h = 0, fb_w = 0, fb_h = 0;
   glfwGetWindowSize(v_.platform_.window(), &window_w, &window_h);
   glfwGetFramebufferSize(v_.platform_.window(), &fb_w, &fb_h);
-  std::string first_error_line = v_.file_state_.error_text.substr(0, v_.file_state_.error_text.find('\n'));
+  std::string first_error_line = v_.files_.file_state().error_text.substr(0, v_.files_.file_state().error_text.find('\n'));
   const std::vector<std::string> caption_lines = v_.captions();
   out << "source=" << v_.doc_.source() << "\n"
       << "file=" << v_.doc_.file_path() << "\n"
       << "dirty=" << (v_.doc_.dirty() ? 1 : 0) << "\n"
-      << "modal=" << (v_.dialogs_.guard_visible ? 1 : 0) << "\n"
-      << "conflict=" << (v_.dialogs_.conflict_visible ? 1 : 0) << "\n"
+      << "modal=" << (v_.files_.dialogs().guard_visible ? 1 : 0) << "\n"
+      << "conflict=" << (v_.files_.dialogs().conflict_visible ? 1 : 0) << "\n"
       << "error=" << first_error_line << "\n"
       << "picked=" << v_.picked_text_ << "\n"
       << "selected_material=" << (have_material ? scene.materials[static_cast<std::size_t>(v_.selected_material_)].name : "") << "\n"
@@ -77,8 +77,8 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "window=" << window_w << "x" << window_h << "\n"
       << "framebuffer=" << fb_w << "x" << fb_h << "\n"
       << "nan_count=" << v_.shown_.stats.nan_count << "\n"
-      << "status=" << v_.file_state_.status << "\n"
-      << "changed_on_disk=" << (v_.file_state_.changed_on_disk ? 1 : 0) << "\n"
+      << "status=" << v_.files_.file_state().status << "\n"
+      << "changed_on_disk=" << (v_.files_.file_state().changed_on_disk ? 1 : 0) << "\n"
       << "sidebar=" << (v_.sidebar_visible_ ? 1 : 0) << "\n"
       << "sidebar_toggles=" << v_.sidebar_toggles_ << "\n"
       << "help=" << (v_.help_visible_ ? 1 : 0) << "\n"
@@ -120,11 +120,11 @@ void ScriptDriver::write_layout_state(std::ostream& out) const {
         << "material_" << m.name << "_n=" << m.n << "\n";
   }
   // The objects in file order: kind, anchor, material; the selection and the last edit's notice.
-  out << "file_browser=" << (v_.browser_.visible() ? (v_.browser_.saving() ? "save" : "open") : "") << "\n"
-      << "file_browser_folder=" << v_.browser_.folder() << "\n"
-      << "file_browser_name=" << v_.browser_.name() << "\n"
-      << "recent=" << v_.browser_.recent().size() << "\n";
-  for (std::size_t i = 0; i < v_.browser_.recent().size(); ++i) out << "recent" << i << "=" << v_.browser_.recent()[i] << "\n";
+  out << "file_browser=" << (v_.files_.browser().visible() ? (v_.files_.browser().saving() ? "save" : "open") : "") << "\n"
+      << "file_browser_folder=" << v_.files_.browser().folder() << "\n"
+      << "file_browser_name=" << v_.files_.browser().name() << "\n"
+      << "recent=" << v_.files_.browser().recent().size() << "\n";
+  for (std::size_t i = 0; i < v_.files_.browser().recent().size(); ++i) out << "recent" << i << "=" << v_.files_.browser().recent()[i] << "\n";
   out << "objects=" << ui::object_count(scene) << "\n"
       << "selected_object=" << v_.selected_object_ << "\n"
       << "objects_notice=" << v_.objects_notice_.text << "\n"

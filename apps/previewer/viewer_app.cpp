@@ -127,18 +127,18 @@ std::string Viewer::init() {
     const std::string load_error = doc_.error_text();
     std::cerr << "phonglab: " << load_error << "\n";
     doc_.open("lecture");
-    file_state_.error_text = load_error;
-    file_state_.path_field = options_.scene_arg;
+    files_.file_state().error_text = load_error;
+    files_.file_state().path_field = options_.scene_arg;
   } else {
-    file_state_.status = doc_.status();
-    file_state_.path_field = doc_.file_path();
+    files_.file_state().status = doc_.status();
+    files_.file_state().path_field = doc_.file_path();
   }
   edits_.replaced = true;
   selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
   if (!options_.lesson_arg.empty()) lesson_shell_.open_lesson(options_.lesson_arg);  // a lesson that fails to load is shown in its panel
   // A lesson's steps are nobody's file: what an earlier session kept is offered once it closes.
-  recovery_.after_lesson = lessons_.lesson() != nullptr || lessons_.waiting() != nullptr;
-  if (!recovery_.after_lesson) find_recovery();
+  files_.recovery().after_lesson = lessons_.lesson() != nullptr || lessons_.waiting() != nullptr;
+  if (!files_.recovery().after_lesson) files_.find_recovery();
   if (!options_.script_path.empty()) {
     std::ifstream in(options_.script_path);
     if (!in) return "cannot read script " + options_.script_path;
@@ -159,7 +159,7 @@ int Viewer::run() {
   stats_.last_frame_start = glfwGetTime();
   while (!quit_) {
     wait_for_next_frame();
-    if (handle_signal()) break;
+    if (files_.handle_signal()) break;
     const double frame_start = glfwGetTime();
     const double frame_seconds = frame_start - stats_.last_frame_start;
     stats_.last_frame_start = frame_start;
@@ -186,7 +186,7 @@ int Viewer::run() {
     if (glfwWindowShouldClose(window)) {
       // Closing goes through the unsaved-changes guard like any other way of quitting.
       glfwSetWindowShouldClose(window, GLFW_FALSE);
-      request(PendingAction{PendingAction::Kind::kQuit, {}});
+      files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kQuit, {}});
     }
     poll_scene_file(frame_start);
 
@@ -201,8 +201,8 @@ int Viewer::run() {
     handle_viewport_input();
     draw_sidebar();
     draw_overlays();
-    handle_guard_modal();
-    handle_recovery_modal();
+    files_.handle_guard_modal();
+    files_.handle_recovery_modal();
     apply_edits(frame_start);
     lesson_shell_.update_lesson();
     session_.recovery().autosave(doc_, frame_start);
@@ -212,7 +212,7 @@ int Viewer::run() {
     after_swap();
   }
   write_stats_summary("session");
-  if (!recovery_.keep) session_.recovery().remove();  // a clean quit (saved, or the edits discarded)
+  if (!files_.recovery().keep) session_.recovery().remove();  // a clean quit (saved, or the edits discarded)
   if (exit_code_ != 0) return exit_code_;
   return script_.failed() ? 3 : 0;
 }
@@ -232,7 +232,7 @@ void Viewer::wait_for_next_frame() {
   const double now = glfwGetTime();
   const bool script_running = script_.running();
   const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
-                    script_running || dialogs_.guard_visible || browser_.visible() || drag_.mode != DragMode::kNone;
+                    script_running || files_.dialogs().guard_visible || files_.browser().visible() || drag_.mode != DragMode::kNone;
   stats_.slept_idle = !busy;
   if (!busy) {
     // Nothing moves: sleep until an event, a new image (the render thread posts an empty
@@ -258,15 +258,15 @@ void Viewer::wait_for_next_frame() {
 void Viewer::poll_scene_file(double now) {
   if (now < next_file_poll_) return;
   next_file_poll_ = now + kFilePollPeriod;
-  if (doc_.file_path().empty() || !file_state_.auto_reload || !doc_.changed_on_disk()) {
-    file_state_.changed_on_disk = false;
+  if (doc_.file_path().empty() || !files_.file_state().auto_reload || !doc_.changed_on_disk()) {
+    files_.file_state().changed_on_disk = false;
     return;
   }
   if (doc_.dirty()) {
-    file_state_.changed_on_disk = true;  // never throw away edits silently
+    files_.file_state().changed_on_disk = true;  // never throw away edits silently
     return;
   }
-  reload_scene(true);
+  files_.reload_scene(true);
 }
 
 void Viewer::layout() {
@@ -482,7 +482,7 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (const std::string shot = script_.take_screenshot_request(); !shot.empty()) {
-    save_window_screenshot(shot, fb_width, fb_height);
+    files_.save_window_screenshot(shot, fb_width, fb_height);
   }
 }
 

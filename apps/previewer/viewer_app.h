@@ -20,6 +20,7 @@
 #include "session/document.h"
 #include "session/session.h"
 #include "apps/previewer/file_browser.h"
+#include "apps/previewer/file_shell.h"
 #include "apps/previewer/lesson_shell.h"
 #include "apps/previewer/script_driver.h"
 #include "apps/previewer/viewer_gl.h"
@@ -83,12 +84,6 @@ class Viewer {
     Vec3 object_start{0};    // kObject: its anchor when grabbed
     Vec3 grab_offset{0};     // kObject: anchor minus the grabbed point, in the view plane
   };
-  // An action that would lose unsaved edits, waiting for the modal's answer.
-  struct PendingAction {
-    enum class Kind : std::uint8_t { kNone, kQuit, kOpen, kReload, kLesson };
-    Kind kind = Kind::kNone;
-    std::string arg;  // kOpen: what to open; kLesson: the lesson's name (it waits in lesson_.waiting)
-  };
   // The viewport: the window area left of the panels, in ImGui (window) coordinates.
   struct ViewportRect {
     float x = 0;
@@ -118,8 +113,6 @@ class Viewer {
   void sidebar_file();
   void sidebar_render();
   void draw_overlays();                    // boxes, captions, markers and labels over the image, apart
-  void handle_guard_modal();               // the unsaved-changes dialog and its answer
-  void handle_conflict_modal();            // the changed-on-disk dialog (from Save) and its answer
   void apply_edits(double frame_start);    // at most one restart for everything this frame changed
   void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
   void after_swap();                       // edit-to-image latency of a first image just shown
@@ -163,7 +156,6 @@ class Viewer {
   bool grab_object(ImVec2 mouse, const std::optional<int>& hit_object);  // starts kObject on the selected one
   void drag_object_to(ImVec2 mouse, int view_w, int view_h);
   void sidebar_objects();
-  void handle_file_browser();                    // draws the file browser and carries out its choice
   std::optional<std::string> script_scene_command(const std::vector<std::string>& words);  // viewer_objects.cpp
   std::optional<std::string> script_scene_edit(const std::vector<std::string>& words);
   void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
@@ -200,28 +192,10 @@ class Viewer {
   void draw_selected_object();                   // its outline or handle where the view shows it
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
   std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
-  void request(PendingAction action);            // runs it, or asks first when there are unsaved edits
-  void perform(const PendingAction& action);     // runs it
-  void open_scene(const std::string& scene_arg);
-  void document_replaced();                      // a new document: its selection, status and recovery anew
-  void reload_scene(bool keep_view);
-  void save_scene(bool as);                      // Save (false) or Save as the path field (true), then dialogs_.after_save
-  bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
-  bool begin_screenshot(Image& image);           // the shown image's size, or false (and why) before the first
-  void save_png(const std::string& path);        // what is shown, exposure and curve applied
-  void save_pfm(const std::string& path);        // the linear image
-  // Writes a screenshot and reports it in the Screenshot panel; `kind` prefixes the size.
-  void write_screenshot(const std::string& path, const Image& image, const char* kind);
-  void save_window_screenshot(const std::string& path, int fb_width, int fb_height);  // the whole window
   void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
   void update_title();                           // "phonglab - source *"
   bool image_is_final() const;                   // the renderer idles and its last image is on screen
 
-  // Recovery of unsaved edits (viewer_recovery.cpp).
-  void find_recovery();                          // at start: a recovery to offer
-  void handle_recovery_modal();                  // the offer and its answer
-  void restore_recovery(const ui::RecoveryEntry& entry);
-  bool handle_signal();                          // a signal arrived: the recovery written, the exit code set
 
 
   void write_stats_summary(const std::string& label);                 // percentiles into the stats log
@@ -247,8 +221,6 @@ class Viewer {
   int render_height_ = 0;
 
   // UI state.
-  ui::SceneFileState file_state_;
-  ui::ScreenshotState screenshot_state_;
   ui::RenderSettings render_settings_;
   ui::DisplaySettings display_;
   ui::InstrumentSettings instruments_;
@@ -315,18 +287,6 @@ class Viewer {
     double deferred_since = 0;     // glfwGetTime() of the oldest deferred edit
   };
   EditFlags edits_;
-  // The unsaved-changes and changed-on-disk dialogs and what waits for them.
-  struct Dialogs {
-    PendingAction pending;
-    bool open_guard = false;        // open the modal this frame
-    bool guard_visible = false;     // the modal is up
-    bool open_conflict = false;     // open the changed-on-disk dialog this frame
-    bool conflict_visible = false;  // it is up
-    PendingAction after_save;       // what runs once a save (through the dialogs) succeeds
-    ui::GuardChoice scripted_choice = ui::GuardChoice::kNone;
-  };
-  Dialogs dialogs_;
-  FileBrowser browser_;  // the Open / Save-as file browser and the recent files
   // The probed pixel and what the Probe panel shows of it.
   struct ProbeState {
     std::optional<PixelProbe> tree;  // the probed pixel's ray tree, in snapshot_
@@ -376,17 +336,10 @@ class Viewer {
   // The lesson being presented: the session's LessonPresenter, and its shell (lesson_shell.h).
   friend class LessonShell;
   LessonShell lesson_shell_{*this};
-  // The offer of kept edits and the exit on a signal (viewer_recovery.cpp; the files are the
-  // session's RecoveryKeeper).
-  struct Recovery {
-    std::optional<ui::RecoveryEntry> offer;  // found at start, waiting for an answer
-    bool open_modal = false;   // open the offer's dialog this frame
-    bool modal_visible = false;
-    int scripted = 0;          // `modal restore|discard|later`: 1, 2, 3
-    bool keep = false;         // exiting on a signal: the file stays for the next start
-    bool after_lesson = false; // started with a lesson: the offer waits until it closes (never over a slide)
-  };
-  Recovery recovery_;
+  // The scene file, the screenshots, the guarding dialogs, the file browser and the recovery
+  // offer (file_shell.h).
+  friend class FileShell;
+  FileShell files_{*this};
   int exit_code_ = 0;          // set by handle_signal
   // The test script being run (script_driver.h): a friend, for now, that reads and sets the
   // shell's state directly.

@@ -200,13 +200,13 @@ void Viewer::handle_keys() {
       // Ctrl+Z is also a text field's own undo: taken only when no field has the keyboard.
       if (press.key == GLFW_KEY_Z) shift ? redo() : undo();
       if (press.key == GLFW_KEY_Y) redo();
-      if (press.key == GLFW_KEY_O) browser_.open(false, doc_.file_path());
+      if (press.key == GLFW_KEY_O) files_.browser().open(false, doc_.file_path());
       if (press.key == GLFW_KEY_S) {
         // Ctrl+S saves the document's file; with none to save to (an embedded scene, an OBJ), or
         // with Shift, it asks where.
         const bool can_save = !doc_.file_path().empty() && !doc_.opened_mesh();
-        if (shift || !can_save) browser_.open(true, doc_.file_path());
-        else save_scene(false);
+        if (shift || !can_save) files_.browser().open(true, doc_.file_path());
+        else files_.save_scene(false);
       }
       continue;
     }

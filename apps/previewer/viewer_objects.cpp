@@ -159,7 +159,7 @@ std::string Viewer::drop_file(const std::string& path) {
   if (is_obj_path(path)) return add_object(ObjectRef::Kind::kMesh, path);
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".json" || ext == ".JSON") {
-    request(PendingAction{PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
+    files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
     return {};
   }
   return refuse("dropped '" + path + "': neither a scene (.json) nor a mesh (.obj)");

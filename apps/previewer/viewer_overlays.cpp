@@ -217,7 +217,7 @@ void Viewer::draw_stats() {
   stats.frame = shown_.stats;
   stats.idle = status.idle;
   stats.interacting = interacting_ || edits_.while_active;
-  stats.scene_error = file_state_.error_text;
+  stats.scene_error = files_.file_state().error_text;
   stats.details = display_.stats_details;
   ui::stats_overlay(stats);
 }

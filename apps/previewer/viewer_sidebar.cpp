@@ -100,9 +100,9 @@ void Viewer::draw_sidebar() {
     if (header("Display", false)) ui::display_panel(display_);  // the UI size applies from the next frame
     if (header("Screenshot", false)) {
       ui::ScreenshotActions actions;
-      ui::screenshot_panel(screenshot_state_, actions);
-      if (actions.save_png) save_png(screenshot_state_.png_path);
-      if (actions.save_pfm) save_pfm(screenshot_state_.pfm_path);
+      ui::screenshot_panel(files_.screenshot_state(), actions);
+      if (actions.save_png) files_.save_png(files_.screenshot_state().png_path);
+      if (actions.save_pfm) files_.save_pfm(files_.screenshot_state().pfm_path);
     }
     ImGui::PopItemWidth();
     ImGui::PopTextWrapPos();
@@ -307,19 +307,19 @@ void Viewer::sidebar_camera() {
 }
 
 void Viewer::sidebar_file() {
-  file_state_.source = doc_.source();
-  file_state_.file_path = doc_.file_path();
-  file_state_.dirty = doc_.dirty();
-  file_state_.opened_mesh = doc_.opened_mesh();
+  files_.file_state().source = doc_.source();
+  files_.file_state().file_path = doc_.file_path();
+  files_.file_state().dirty = doc_.dirty();
+  files_.file_state().opened_mesh = doc_.opened_mesh();
   ui::SceneFileActions actions;
-  ui::scene_file_panel(file_state_, actions);
-  if (actions.open) request(PendingAction{PendingAction::Kind::kOpen, file_state_.path_field});
-  if (!actions.open_embedded.empty()) request(PendingAction{PendingAction::Kind::kOpen, actions.open_embedded});
-  if (actions.save) save_scene(false);
-  if (actions.save_as) save_scene(true);
-  if (actions.reload) request(PendingAction{PendingAction::Kind::kReload, {}});
-  if (actions.browse_open) browser_.open(false, doc_.file_path());
-  if (actions.browse_save) browser_.open(true, doc_.file_path());
+  ui::scene_file_panel(files_.file_state(), actions);
+  if (actions.open) files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, files_.file_state().path_field});
+  if (!actions.open_embedded.empty()) files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, actions.open_embedded});
+  if (actions.save) files_.save_scene(false);
+  if (actions.save_as) files_.save_scene(true);
+  if (actions.reload) files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kReload, {}});
+  if (actions.browse_open) files_.browser().open(false, doc_.file_path());
+  if (actions.browse_save) files_.browser().open(true, doc_.file_path());
 }
 
 void Viewer::sidebar_render() {

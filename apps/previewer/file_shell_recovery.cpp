@@ -51,27 +51,27 @@ void start_signal_watcher() {
 
 int pending_signal() { return g_signal.load(); }
 
-bool Viewer::handle_signal() {
+bool FileShell::handle_signal() {
   const int sig = pending_signal();
   if (sig == 0) return false;
-  doc_.update_dirty();
-  if (doc_.dirty()) {
-    const std::string path = session_.recovery().write(doc_);
+  v_.doc_.update_dirty();
+  if (v_.doc_.dirty()) {
+    const std::string path = v_.session_.recovery().write(v_.doc_);
     if (!path.empty()) std::cerr << "recovery: " << path << "\n";
   }
   recovery_.keep = true;
-  exit_code_ = 128 + sig;
-  quit_ = true;
+  v_.exit_code_ = 128 + sig;
+  v_.quit_ = true;
   return true;
 }
 
-void Viewer::find_recovery() {
+void FileShell::find_recovery() {
   // On the document's scene, or with no SCENE given the newest of any scene.
-  recovery_.offer = session_.recovery().find(doc_, !options_.scene_given);
+  recovery_.offer = v_.session_.recovery().find(v_.doc_, !v_.options_.scene_given);
   recovery_.open_modal = recovery_.offer.has_value();
 }
 
-void Viewer::handle_recovery_modal() {
+void FileShell::handle_recovery_modal() {
   if (!recovery_.offer) return;
   char when[64] = "earlier";
   const std::time_t t = static_cast<std::time_t>(recovery_.offer->saved);
@@ -96,11 +96,11 @@ void Viewer::handle_recovery_modal() {
   }
 }
 
-void Viewer::restore_recovery(const ui::RecoveryEntry& entry) {
-  const auto source = RecoveryKeeper::source_of(doc_);
+void FileShell::restore_recovery(const ui::RecoveryEntry& entry) {
+  const auto source = RecoveryKeeper::source_of(v_.doc_);
   if (!source || source->first != entry.source || source->second != entry.embedded) {
     open_scene(entry.source);
-    const auto now_source = RecoveryKeeper::source_of(doc_);
+    const auto now_source = RecoveryKeeper::source_of(v_.doc_);
     if (!now_source || now_source->first != entry.source) {
       file_state_.error_text = "cannot restore: " + entry.source + " does not open (" + file_state_.error_text +
                                "); the kept edits stay in " + entry.scene_path;
@@ -114,11 +114,11 @@ void Viewer::restore_recovery(const ui::RecoveryEntry& entry) {
     file_state_.error_text = r.error_text();
     return;
   }
-  doc_.scene() = std::move(*r.scene);
-  doc_.update_dirty();
-  session_.recovery().adopt(entry);  // this document's now: removed once saved, rewritten on edits
+  v_.doc_.scene() = std::move(*r.scene);
+  v_.doc_.update_dirty();
+  v_.session_.recovery().adopt(entry);  // this document's now: removed once saved, rewritten on edits
   file_state_.status = "restored the unsaved edits kept in " + entry.scene_path;
-  edits_.replaced = true;
+  v_.edits_.replaced = true;
 }
 
 }  // namespace phonglab

@@ -1,4 +1,6 @@
 // The previewer's file actions: open, reload, save (with the unsaved-changes guard and the check for changes made on disk), and screenshots.
+#include "apps/previewer/file_shell.h"
+
 #include "apps/previewer/viewer_app.h"
 #include "interaction/recovery.h"
 
@@ -29,9 +31,9 @@
 
 namespace phonglab {
 
-void Viewer::request(PendingAction action) {
-  doc_.update_dirty();  // edits made earlier in this frame count
-  if (!doc_.dirty()) {
+void FileShell::request(FileShell::PendingAction action) {
+  v_.doc_.update_dirty();  // edits made earlier in this frame count
+  if (!v_.doc_.dirty()) {
     perform(action);
     return;
   }
@@ -39,32 +41,32 @@ void Viewer::request(PendingAction action) {
   dialogs_.open_guard = true;
 }
 
-void Viewer::perform(const PendingAction& action) {
+void FileShell::perform(const FileShell::PendingAction& action) {
   switch (action.kind) {
-    case PendingAction::Kind::kQuit: quit_ = true; break;
-    case PendingAction::Kind::kOpen: open_scene(action.arg); break;
-    case PendingAction::Kind::kReload: reload_scene(false); break;
-    case PendingAction::Kind::kLesson: lesson_shell_.start_lesson(); break;
-    case PendingAction::Kind::kNone: break;
+    case FileShell::PendingAction::Kind::kQuit: v_.quit_ = true; break;
+    case FileShell::PendingAction::Kind::kOpen: open_scene(action.arg); break;
+    case FileShell::PendingAction::Kind::kReload: reload_scene(false); break;
+    case FileShell::PendingAction::Kind::kLesson: v_.lesson_shell_.start_lesson(); break;
+    case FileShell::PendingAction::Kind::kNone: break;
   }
 }
 
-void Viewer::handle_guard_modal() {
+void FileShell::handle_guard_modal() {
   ui::GuardView view;
   view.action = "quit";
-  if (dialogs_.pending.kind == PendingAction::Kind::kOpen) view.action = "open " + dialogs_.pending.arg;
-  if (dialogs_.pending.kind == PendingAction::Kind::kReload) view.action = "reload the file";
-  if (dialogs_.pending.kind == PendingAction::Kind::kLesson) view.action = "open the lesson " + dialogs_.pending.arg;
-  view.can_save = !doc_.file_path().empty() && !doc_.opened_mesh();
-  view.changed_on_disk = !doc_.file_path().empty() && doc_.changed_on_disk();
+  if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kOpen) view.action = "open " + dialogs_.pending.arg;
+  if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kReload) view.action = "reload the file";
+  if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kLesson) view.action = "open the lesson " + dialogs_.pending.arg;
+  view.can_save = !v_.doc_.file_path().empty() && !v_.doc_.opened_mesh();
+  view.changed_on_disk = !v_.doc_.file_path().empty() && v_.doc_.changed_on_disk();
   const ui::GuardChoice choice = ui::unsaved_changes_modal(dialogs_.open_guard, view, file_state_.path_field, dialogs_.scripted_choice);
   if (dialogs_.open_guard) dialogs_.guard_visible = true;
   dialogs_.open_guard = false;
   if (dialogs_.guard_visible) dialogs_.scripted_choice = ui::GuardChoice::kNone;
   if (choice != ui::GuardChoice::kNone) {
     dialogs_.guard_visible = false;
-    PendingAction pending = std::move(dialogs_.pending);
-    dialogs_.pending = PendingAction{};
+    FileShell::PendingAction pending = std::move(dialogs_.pending);
+    dialogs_.pending = FileShell::PendingAction{};
     if (choice == ui::GuardChoice::kSave || choice == ui::GuardChoice::kSaveAs) {
       // A save that meets an outside change asks first; the action waits for that answer.
       dialogs_.after_save = std::move(pending);
@@ -77,125 +79,125 @@ void Viewer::handle_guard_modal() {
   handle_file_browser();
 }
 
-void Viewer::handle_conflict_modal() {
-  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, doc_.file_path(), dialogs_.scripted_choice);
+void FileShell::handle_conflict_modal() {
+  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, v_.doc_.file_path(), dialogs_.scripted_choice);
   if (dialogs_.open_conflict) dialogs_.conflict_visible = true;
   dialogs_.open_conflict = false;
   if (dialogs_.conflict_visible) dialogs_.scripted_choice = ui::GuardChoice::kNone;
   if (choice == ui::GuardChoice::kNone) return;
   dialogs_.conflict_visible = false;
-  PendingAction after = std::move(dialogs_.after_save);
-  dialogs_.after_save = PendingAction{};
+  FileShell::PendingAction after = std::move(dialogs_.after_save);
+  dialogs_.after_save = FileShell::PendingAction{};
   if (choice == ui::GuardChoice::kOverwrite) {
-    if (finish_save(doc_.save(true))) perform(after);
+    if (finish_save(v_.doc_.save(true))) perform(after);
   } else if (choice == ui::GuardChoice::kReload) {
     reload_scene(false);  // the edits go, the file's version comes
-    if (after.kind != PendingAction::Kind::kReload) perform(after);
+    if (after.kind != FileShell::PendingAction::Kind::kReload) perform(after);
   }
 }
 
-void Viewer::open_scene(const std::string& scene_arg) {
+void FileShell::open_scene(const std::string& scene_arg) {
   if (scene_arg.empty()) {
     file_state_.error_text = "Open: type a scene file path or an embedded scene name into the path field";
     return;
   }
-  if (!doc_.open(scene_arg)) {
-    file_state_.error_text = doc_.error_text();  // the old scene stays
+  if (!v_.doc_.open(scene_arg)) {
+    file_state_.error_text = v_.doc_.error_text();  // the old scene stays
     return;
   }
   document_replaced();
-  if (!doc_.file_path().empty()) browser_.remember(doc_.file_path());
-  file_state_.path_field = doc_.file_path().empty() ? scene_arg : doc_.file_path();
-  probed_.tree.reset();
+  if (!v_.doc_.file_path().empty()) browser_.remember(v_.doc_.file_path());
+  file_state_.path_field = v_.doc_.file_path().empty() ? scene_arg : v_.doc_.file_path();
+  v_.probed_.tree.reset();
   // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
-  compare_.image = ProgressiveFrame{};
-  compare_.requested = compare_.dropped = false;
-  instruments_.compare = 0;
+  v_.compare_.image = ProgressiveFrame{};
+  v_.compare_.requested = v_.compare_.dropped = false;
+  v_.instruments_.compare = 0;
 }
 
-void Viewer::document_replaced() {
-  session_.recovery().remove();  // the guard was passed: the last document's edits were saved or discarded
+void FileShell::document_replaced() {
+  v_.session_.recovery().remove();  // the guard was passed: the last document's edits were saved or discarded
   file_state_.error_text.clear();
-  file_state_.status = doc_.status();
+  file_state_.status = v_.doc_.status();
   file_state_.changed_on_disk = false;
-  selected_object_ = -1;
-  selected_material_ = 0;
-  selected_light_ = doc_.scene().lights.empty() ? -1 : 0;
-  picked_text_.clear();
-  drag_ = Drag{};
-  edits_.replaced = true;
+  v_.selected_object_ = -1;
+  v_.selected_material_ = 0;
+  v_.selected_light_ = v_.doc_.scene().lights.empty() ? -1 : 0;
+  v_.picked_text_.clear();
+  v_.drag_ = Viewer::Drag{};
+  v_.edits_.replaced = true;
 }
 
-void Viewer::reload_scene(bool keep_view) {
-  if (!doc_.reload(keep_view)) {
-    file_state_.error_text = doc_.error_text();
+void FileShell::reload_scene(bool keep_view) {
+  if (!v_.doc_.reload(keep_view)) {
+    file_state_.error_text = v_.doc_.error_text();
     return;
   }
-  session_.recovery().remove();  // reloading discarded the edits (the guard asked first)
+  v_.session_.recovery().remove();  // reloading discarded the edits (the guard asked first)
   file_state_.error_text.clear();
-  file_state_.status = doc_.status();
+  file_state_.status = v_.doc_.status();
   file_state_.changed_on_disk = false;
-  selected_object_ = -1;
-  const int materials = static_cast<int>(doc_.scene().materials.size());
-  selected_material_ = std::clamp(selected_material_, 0, std::max(materials - 1, 0));
-  if (selected_light_ >= static_cast<int>(doc_.scene().lights.size())) selected_light_ = -1;
-  drag_ = Drag{};
-  edits_.replaced = true;
+  v_.selected_object_ = -1;
+  const int materials = static_cast<int>(v_.doc_.scene().materials.size());
+  v_.selected_material_ = std::clamp(v_.selected_material_, 0, std::max(materials - 1, 0));
+  if (v_.selected_light_ >= static_cast<int>(v_.doc_.scene().lights.size())) v_.selected_light_ = -1;
+  v_.drag_ = Viewer::Drag{};
+  v_.edits_.replaced = true;
 }
 
-void Viewer::save_scene(bool as) {
+void FileShell::save_scene(bool as) {
   if (as) {
-    const bool ok = doc_.save_as(file_state_.path_field);
-    if (ok) browser_.remember(doc_.file_path());
+    const bool ok = v_.doc_.save_as(file_state_.path_field);
+    if (ok) browser_.remember(v_.doc_.file_path());
     if (finish_save(ok ? SceneDocument::SaveResult::kSaved : SceneDocument::SaveResult::kFailed)) {
       perform(dialogs_.after_save);
     }
-    dialogs_.after_save = PendingAction{};
+    dialogs_.after_save = FileShell::PendingAction{};
     return;
   }
-  const SceneDocument::SaveResult result = doc_.save();
+  const SceneDocument::SaveResult result = v_.doc_.save();
   if (result == SceneDocument::SaveResult::kChangedOnDisk) {
     dialogs_.open_conflict = true;  // the answer decides; dialogs_.after_save waits for it
     return;
   }
   if (finish_save(result)) perform(dialogs_.after_save);
-  dialogs_.after_save = PendingAction{};
+  dialogs_.after_save = FileShell::PendingAction{};
 }
 
-bool Viewer::finish_save(SceneDocument::SaveResult result) {
+bool FileShell::finish_save(SceneDocument::SaveResult result) {
   if (result != SceneDocument::SaveResult::kSaved) {
-    file_state_.error_text = doc_.error_text();
+    file_state_.error_text = v_.doc_.error_text();
     return false;
   }
   file_state_.error_text.clear();
-  file_state_.status = doc_.status();
+  file_state_.status = v_.doc_.status();
   file_state_.changed_on_disk = false;
   return true;
 }
 
-bool Viewer::begin_screenshot(Image& image) {
-  if (shown_.pixels.empty()) {
+bool FileShell::begin_screenshot(Image& image) {
+  if (v_.shown_.pixels.empty()) {
     screenshot_state_.status = "no image yet";
     return false;
   }
-  image.width = shown_.width;
-  image.height = shown_.height;
+  image.width = v_.shown_.width;
+  image.height = v_.shown_.height;
   return true;
 }
 
-void Viewer::save_png(const std::string& path) {
+void FileShell::save_png(const std::string& path) {
   Image image;
   if (!begin_screenshot(image)) return;
-  image.pixels.reserve(shown_.pixels.size());
+  image.pixels.reserve(v_.shown_.pixels.size());
   // The heat map is written as shown: its colours, without exposure.
-  const bool heat = heat_shown();
-  const std::vector<glm::vec3> source = heat ? display_pixels() : shown_.pixels;
-  const float exposure = heat ? 1.0f : std::exp2(display_.exposure_ev);
+  const bool heat = v_.heat_shown();
+  const std::vector<glm::vec3> source = heat ? v_.display_pixels() : v_.shown_.pixels;
+  const float exposure = heat ? 1.0f : std::exp2(v_.display_.exposure_ev);
   for (const glm::vec3& p : source) {
     glm::vec3 v = glm::clamp(p * exposure, 0.0f, 1.0f);
     // Linear display shows the values themselves as 8-bit codes: pre-decode them so the
     // sRGB encoder of write_image gives those codes back.
-    if (!display_.srgb) {
+    if (!v_.display_.srgb) {
       for (int c = 0; c < 3; ++c) v[c] = static_cast<float>(srgb_to_linear(v[c]));
     }
     image.pixels.push_back(v);
@@ -203,25 +205,25 @@ void Viewer::save_png(const std::string& path) {
   write_screenshot(path, image, "");
 }
 
-void Viewer::save_pfm(const std::string& path) {
+void FileShell::save_pfm(const std::string& path) {
   Image image;
   if (!begin_screenshot(image)) return;
-  image.pixels = shown_.pixels;
+  image.pixels = v_.shown_.pixels;
   write_screenshot(path, image, "linear, ");
 }
 
-void Viewer::write_screenshot(const std::string& path, const Image& image, const char* kind) {
+void FileShell::write_screenshot(const std::string& path, const Image& image, const char* kind) {
   const std::string error = write_image(path, image);
   std::ostringstream status;
   if (error.empty()) {
-    status << "saved " << path << " (" << kind << image.width << "x" << image.height << ", " << shown_.spp << " spp)";
+    status << "saved " << path << " (" << kind << image.width << "x" << image.height << ", " << v_.shown_.spp << " spp)";
   } else {
     status << error;
   }
   screenshot_state_.status = status.str();
 }
 
-void Viewer::save_window_screenshot(const std::string& path, int fb_width, int fb_height) {
+void FileShell::save_window_screenshot(const std::string& path, int fb_width, int fb_height) {
   const std::vector<unsigned char> rgb = read_framebuffer_rgb8(fb_width, fb_height);
   Image image;
   image.width = fb_width;
@@ -235,16 +237,16 @@ void Viewer::save_window_screenshot(const std::string& path, int fb_width, int f
   const std::string error = write_image(path, image);
   if (!error.empty()) {
     std::cerr << "phonglab: screenshot: " << error << "\n";
-    script_.fail();
-    quit_ = true;
+    v_.script_.fail();
+    v_.quit_ = true;
   }
 }
 
-void Viewer::handle_file_browser() {
+void FileShell::handle_file_browser() {
   const FileBrowser::Choice choice = browser_.draw();
   using Kind = FileBrowser::Choice::Kind;
   if (choice.kind == Kind::kOpen) {
-    request(PendingAction{PendingAction::Kind::kOpen, choice.path});  // through the unsaved-changes guard
+    request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, choice.path});  // through the unsaved-changes guard
   } else if (choice.kind == Kind::kSaveAs) {
     file_state_.path_field = choice.path;
     save_scene(true);

@@ -1,0 +1,96 @@
+// The previewer's files: opening, reloading and saving the scene through the unsaved-changes and
+// changed-on-disk dialogs, the file browser, screenshots, and the offer of kept edits at start and
+// the exit on a signal. The document itself is the session's (SceneDocument, RecoveryKeeper); this
+// class holds the dialogs' and panels' state and reaches the rest of the shell through `Viewer&`
+// (a friend).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "apps/previewer/file_browser.h"
+#include "interaction/recovery.h"
+#include "io/image_io.h"
+#include "session/document.h"
+#include "ui/panels.h"
+
+namespace phonglab {
+
+class Viewer;
+
+class FileShell {
+ public:
+  // An action that would lose unsaved edits, waiting for the modal's answer.
+  struct PendingAction {
+    enum class Kind : std::uint8_t { kNone, kQuit, kOpen, kReload, kLesson };
+    Kind kind = Kind::kNone;
+    std::string arg;  // kOpen: what to open; kLesson: the lesson's name (it waits in the session)
+  };
+  // The unsaved-changes and changed-on-disk dialogs and what waits for them.
+  struct Dialogs {
+    PendingAction pending;
+    bool open_guard = false;        // open the modal this frame
+    bool guard_visible = false;     // the modal is up
+    bool open_conflict = false;     // open the changed-on-disk dialog this frame
+    bool conflict_visible = false;  // it is up
+    PendingAction after_save;       // what runs once a save (through the dialogs) succeeds
+    ui::GuardChoice scripted_choice = ui::GuardChoice::kNone;
+  };
+  // The offer of kept edits and the exit on a signal (the files are the session's RecoveryKeeper).
+  struct Recovery {
+    std::optional<ui::RecoveryEntry> offer;  // found at start, waiting for an answer
+    bool open_modal = false;   // open the offer's dialog this frame
+    bool modal_visible = false;
+    int scripted = 0;          // `modal restore|discard|later`: 1, 2, 3
+    bool keep = false;         // exiting on a signal: the file stays for the next start
+    bool after_lesson = false; // started with a lesson: the offer waits until it closes (never over a slide)
+  };
+
+  explicit FileShell(Viewer& viewer) : v_(viewer) {}
+  FileShell(const FileShell&) = delete;
+  FileShell& operator=(const FileShell&) = delete;
+
+  ui::SceneFileState& file_state() { return file_state_; }
+  const ui::SceneFileState& file_state() const { return file_state_; }
+  ui::ScreenshotState& screenshot_state() { return screenshot_state_; }
+  const ui::ScreenshotState& screenshot_state() const { return screenshot_state_; }
+  Dialogs& dialogs() { return dialogs_; }
+  const Dialogs& dialogs() const { return dialogs_; }
+  FileBrowser& browser() { return browser_; }
+  const FileBrowser& browser() const { return browser_; }
+  Recovery& recovery() { return recovery_; }
+  const Recovery& recovery() const { return recovery_; }
+
+  void handle_guard_modal();               // the unsaved-changes dialog and its answer
+  void handle_conflict_modal();            // the changed-on-disk dialog (from Save) and its answer
+  void handle_file_browser();              // draws the file browser and carries out its choice
+  void request(PendingAction action);      // runs it, or asks first when there are unsaved edits
+  void perform(const PendingAction& action);  // runs it
+  void open_scene(const std::string& scene_arg);
+  void document_replaced();                // a new document: its selection, status and recovery anew
+  void reload_scene(bool keep_view);
+  void save_scene(bool as);                // Save (false) or Save as the path field (true), then dialogs_.after_save
+  bool begin_screenshot(Image& image);     // the shown image's size, or false (and why) before the first
+  void save_png(const std::string& path);  // what is shown, exposure and curve applied
+  void save_pfm(const std::string& path);  // the linear image
+  void save_window_screenshot(const std::string& path, int fb_width, int fb_height);  // the whole window
+  void find_recovery();                    // at start: a recovery to offer
+  void handle_recovery_modal();            // the offer and its answer
+  bool handle_signal();                    // a signal arrived: the recovery written, the exit code set
+
+ private:
+  bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
+  // Writes a screenshot and reports it in the Screenshot panel; `kind` prefixes the size.
+  void write_screenshot(const std::string& path, const Image& image, const char* kind);
+  void restore_recovery(const ui::RecoveryEntry& entry);
+
+  Viewer& v_;
+  ui::SceneFileState file_state_;
+  ui::ScreenshotState screenshot_state_;
+  Dialogs dialogs_;
+  FileBrowser browser_;  // the Open / Save-as file browser and the recent files
+  Recovery recovery_;
+};
+
+}  // namespace phonglab
