@@ -367,13 +367,13 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
     }
     // No such object, or none to grab on screen: the program says so, as for a refused edit.
     if (index < 0 || index >= ui::object_count(v_.doc_.scene())) {
-      v_.refuse("no objects[" + w[1] + "]");
+      v_.builder_.refuse("no objects[" + w[1] + "]");
       return true;
     }
-    v_.select_object(index);
-    const std::optional<ImVec2> from = v_.object_screen_point(index);
+    v_.builder_.select_object(index);
+    const std::optional<ImVec2> from = v_.builder_.object_screen_point(index);
     if (!from) {
-      v_.refuse("objects[" + w[1] + "] is behind the camera: nothing to grab");
+      v_.builder_.refuse("objects[" + w[1] + "] is behind the camera: nothing to grab");
       return true;
     }
     push_drag(0, *from, ImVec2(from->x + static_cast<float>(dx), from->y + static_cast<float>(dy)), 12, false, axis_key);
@@ -642,7 +642,7 @@ std::optional<bool> ScriptDriver::script_other_command(ScriptStep& step) {
 
 bool ScriptDriver::run_script_command(const ScriptCommand& command, double now) {
   ScriptStep step{*this, command, command.words, now};
-  if (const std::optional<std::string> error = v_.script_scene_command(command.words)) {
+  if (const std::optional<std::string> error = v_.builder_.script_scene_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
   if (const std::optional<std::string> error = v_.lesson_shell_.script_lesson_command(command.words)) {

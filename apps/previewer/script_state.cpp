@@ -127,7 +127,7 @@ void ScriptDriver::write_layout_state(std::ostream& out) const {
   for (std::size_t i = 0; i < v_.files_.browser().recent().size(); ++i) out << "recent" << i << "=" << v_.files_.browser().recent()[i] << "\n";
   out << "objects=" << ui::object_count(scene) << "\n"
       << "selected_object=" << v_.selected_object_ << "\n"
-      << "objects_notice=" << v_.objects_notice_.text << "\n"
+      << "objects_notice=" << v_.builder_.notice().text << "\n"
       << "materials=" << scene.materials.size() << "\n";
   for (int i = 0; i < ui::object_count(scene); ++i) {
     const int m = ui::object_material(scene, i);
@@ -136,7 +136,7 @@ void ScriptDriver::write_layout_state(std::ostream& out) const {
         << "object" << i << "_material=" << (m >= 0 ? scene.materials[static_cast<std::size_t>(m)].name : "") << "\n";
     const ObjectRef r = ui::object_at(scene, i);
     if (r.kind == ObjectRef::Kind::kSphere) out << "object" << i << "_radius=" << scene.spheres[static_cast<std::size_t>(r.index)].radius << "\n";
-    if (const std::optional<ImVec2> at = v_.object_screen_point(i)) out << "object" << i << "_screen=" << at->x << " " << at->y << "\n";
+    if (const std::optional<ImVec2> at = v_.builder_.object_screen_point(i)) out << "object" << i << "_screen=" << at->x << " " << at->y << "\n";
   }
   std::string enabled;
   for (const Light& light : scene.lights) enabled += light.enabled ? '1' : '0';

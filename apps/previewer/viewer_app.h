@@ -21,6 +21,7 @@
 #include "session/session.h"
 #include "apps/previewer/file_browser.h"
 #include "apps/previewer/file_shell.h"
+#include "apps/previewer/scene_builder.h"
 #include "apps/previewer/lesson_shell.h"
 #include "apps/previewer/script_driver.h"
 #include "apps/previewer/viewer_gl.h"
@@ -139,25 +140,9 @@ class Viewer {
   void pick(ImVec2 mouse);                       // selects the object (and its material) under a click
   std::optional<Hit> hit_at(ImVec2 mouse) const;  // the nearest hit of the ray through a viewport point
   std::optional<int> object_under(ImVec2 mouse) const;  // the file index of the object seen there
-  // Building the scene (viewer_objects.cpp). Each returns "" or why nothing changed.
-  std::string edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move);  // one undo step
-  std::string place_meshes(Scene& scene) const;  // meshes loaded again where their transforms say
-  std::string add_object(ObjectRef::Kind kind, const std::string& obj_path);  // last, in front, selected
-  std::string delete_object(int object);
-  std::string refuse(std::string why);           // objects_notice_ says why nothing changed; returns it
-  std::string duplicate(int object);             // the copy beside the original, selected
-  std::string set_object(int object, const std::string& field, const std::vector<double>& values,
-                         const std::string& text);
-  std::string apply_material_preset(const std::string& name, const std::string& preset);  // a new material if none is so named
-  std::string add_material(const std::string& name);
-  std::string drop_file(const std::string& path);  // a .json opens (guarded), an .obj becomes a mesh object
-  void select_object(int object);                // -1: none; selects its material too
-  std::optional<ImVec2> object_screen_point(int object) const;  // its anchor on screen
   bool grab_object(ImVec2 mouse, const std::optional<int>& hit_object);  // starts kObject on the selected one
   void drag_object_to(ImVec2 mouse, int view_w, int view_h);
   void sidebar_objects();
-  std::optional<std::string> script_scene_command(const std::vector<std::string>& words);  // viewer_objects.cpp
-  std::optional<std::string> script_scene_edit(const std::vector<std::string>& words);
   void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
   void refresh_probe();                          // probes the same pixel again in the newest snapshot
   void undo();                                   // Ctrl+Z: the scene before the last edit
@@ -228,9 +213,6 @@ class Viewer {
   ui::ItemLocations item_locations_;  // named widgets' rectangles (io.UserData), for test scripts
   int selected_material_ = 0;
   int selected_object_ = -1;         // index into the file's objects, -1: none
-  ui::EditNotice objects_notice_;    // the last object or material edit's result or refusal
-  std::string mesh_path_field_;      // the Objects panel's OBJ path
-  std::string material_name_field_;  // the Materials panel's name for "Rename to"
   int selected_light_ = -1;
   int hovered_light_ = -1;
   std::vector<ui::LightMarker> markers_;  // the light markers as drawn last frame (for grabbing)
@@ -340,6 +322,9 @@ class Viewer {
   // offer (file_shell.h).
   friend class FileShell;
   FileShell files_{*this};
+  // Building the scene: objects and materials added, edited, deleted (scene_builder.h).
+  friend class SceneBuilder;
+  SceneBuilder builder_{*this};
   int exit_code_ = 0;          // set by handle_signal
   // The test script being run (script_driver.h): a friend, for now, that reads and sets the
   // shell's state directly.

@@ -189,7 +189,7 @@ void Viewer::move_camera(const Camera& camera) {
 
 void Viewer::handle_keys() {
   const ImGuiIO& io = ImGui::GetIO();
-  for (const std::string& path : platform_.take_drops()) drop_file(path);
+  for (const std::string& path : platform_.take_drops()) builder_.drop_file(path);
   // Presses come from GLFW's key events, not from the key state once per frame: a tap shorter
   // than a frame still counts. A text field being edited keeps its keys.
   for (const KeyPress& press : platform_.take_key_presses()) {
@@ -344,12 +344,12 @@ void Viewer::drag_object_to(ImVec2 mouse, int view_w, int view_h) {
   const Vec3 delta = target - ui::object_anchor(scene, drag_.object);
   if (delta == Vec3(0)) return;
   const bool mesh = ui::object_at(scene, drag_.object).kind == ObjectRef::Kind::kMesh;
-  edit_scene([&](Scene& s) { return ui::move_object(s, drag_.object, delta); }, mesh);
+  builder_.edit_scene([&](Scene& s) { return ui::move_object(s, drag_.object, delta); }, mesh);
 }
 
 bool Viewer::grab_object(ImVec2 mouse, const std::optional<int>& hit_object) {
   if (selected_object_ < 0) return false;
-  const std::optional<ImVec2> marker = object_screen_point(selected_object_);
+  const std::optional<ImVec2> marker = builder_.object_screen_point(selected_object_);
   const float grab = ui::light_marker_radius(platform_.ui_scale()) * kMarkerGrabFactor;
   const bool on_marker = marker && (marker->x - mouse.x) * (marker->x - mouse.x) + (marker->y - mouse.y) * (marker->y - mouse.y) <= grab * grab;
   if (!on_marker && hit_object != selected_object_) return false;

@@ -75,7 +75,7 @@ void Viewer::restored() {
   const Scene& scene = session_.scene();
   selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
   if (selected_object_ >= ui::object_count(scene)) selected_object_ = -1;
-  objects_notice_ = ui::EditNotice{};
+  builder_.notice() = ui::EditNotice{};
   edits_.scene = true;
   edits_.through_session = true;
 }

@@ -376,7 +376,7 @@ void Viewer::draw_ray_tree_lines() {
 // The selected object, marked where the view shows it: a sphere's outline (its silhouette's
 // radius at its centre's depth), and for every kind a square handle at its anchor to grab it by.
 void Viewer::draw_selected_object() {
-  const std::optional<ImVec2> at = object_screen_point(selected_object_);
+  const std::optional<ImVec2> at = builder_.object_screen_point(selected_object_);
   if (!at) return;
   const Scene& scene = doc_.scene();
   const float scale = platform_.ui_scale();

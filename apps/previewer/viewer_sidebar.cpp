@@ -145,26 +145,26 @@ void Viewer::sidebar_materials() {
   }
   sidebar_ambient_fit();
   ui::MaterialActions actions;
-  ui::material_library(scene, selected_material_, material_name_field_, actions);
+  ui::material_library(scene, selected_material_, builder_.material_name_field(), actions);
   const int m = selected_material_;
-  if (actions.add) add_material(ui::unused_material_name(scene, "material"));
+  if (actions.add) builder_.add_material(ui::unused_material_name(scene, "material"));
   if (actions.duplicate) {
     int copy = -1;
-    if (edit_scene([&](Scene& s) { return ui::duplicate_material(s, m, copy); }, false).empty()) selected_material_ = copy;
+    if (builder_.edit_scene([&](Scene& s) { return ui::duplicate_material(s, m, copy); }, false).empty()) selected_material_ = copy;
   }
   if (actions.remove) {
     // A mesh's faces carry their MTL materials' indices: with meshes, they are placed again.
     const bool meshes = !scene.meshes.empty();
-    if (edit_scene([&](Scene& s) { return ui::delete_material(s, m); }, meshes).empty()) {
+    if (builder_.edit_scene([&](Scene& s) { return ui::delete_material(s, m); }, meshes).empty()) {
       selected_material_ = std::max(0, m - 1);
     }
   }
-  if (!actions.rename.empty()) edit_scene([&](Scene& s) { return ui::rename_material(s, m, actions.rename); }, false);
+  if (!actions.rename.empty()) builder_.edit_scene([&](Scene& s) { return ui::rename_material(s, m, actions.rename); }, false);
   if (!actions.preset.empty() && m >= 0 && m < static_cast<int>(scene.materials.size())) {
-    apply_material_preset(scene.materials[static_cast<std::size_t>(m)].name, actions.preset);
+    builder_.apply_material_preset(scene.materials[static_cast<std::size_t>(m)].name, actions.preset);
   }
-  if (objects_notice_.refused) ImGui::TextColored(ui::kErrorColor, "%s", objects_notice_.text.c_str());
-  else if (objects_notice_.material) ImGui::TextWrapped("%s", ui::with_font_subscripts(objects_notice_.text).c_str());
+  if (builder_.notice().refused) ImGui::TextColored(ui::kErrorColor, "%s", builder_.notice().text.c_str());
+  else if (builder_.notice().material) ImGui::TextWrapped("%s", ui::with_font_subscripts(builder_.notice().text).c_str());
 }
 
 // "The best constant ambient for this view": the selected material's ka set so that ka·Ia is the
@@ -199,13 +199,13 @@ void Viewer::sidebar_ambient_fit() {
 void Viewer::sidebar_objects() {
   ui::ObjectActions actions;
   int selected = selected_object_;
-  ui::objects_panel(doc_.scene(), selected, mesh_path_field_, objects_notice_, actions);
-  if (selected != selected_object_) select_object(selected);
-  if (actions.add != ObjectRef::Kind::kNone) add_object(actions.add, mesh_path_field_);
-  if (actions.duplicate >= 0) duplicate(actions.duplicate);
-  if (actions.remove >= 0) delete_object(actions.remove);
+  ui::objects_panel(doc_.scene(), selected, builder_.mesh_path_field(), builder_.notice(), actions);
+  if (selected != selected_object_) builder_.select_object(selected);
+  if (actions.add != ObjectRef::Kind::kNone) builder_.add_object(actions.add, builder_.mesh_path_field());
+  if (actions.duplicate >= 0) builder_.duplicate(actions.duplicate);
+  if (actions.remove >= 0) builder_.delete_object(actions.remove);
   if (!actions.field.empty() && selected_object_ >= 0) {
-    set_object(selected_object_, actions.field, actions.values, actions.text);
+    builder_.set_object(selected_object_, actions.field, actions.values, actions.text);
   }
 }
 

@@ -7,6 +7,8 @@
 #include <optional>
 
 #include "apps/previewer/script_words.h"
+#include "apps/previewer/scene_builder.h"
+
 #include "apps/previewer/viewer_app.h"
 #include "core/accel/accel.h"
 #include "interaction/camera_control.h"
@@ -17,10 +19,10 @@
 
 namespace phonglab {
 
-std::string Viewer::place_meshes(Scene& scene) const {
+std::string SceneBuilder::place_meshes(Scene& scene) const {
   if (scene.meshes.empty()) return {};
-  const bool embedded = doc_.file_path().empty();
-  const std::string dir = embedded ? "" : std::filesystem::path(doc_.file_path()).parent_path().string();
+  const bool embedded = v_.doc_.file_path().empty();
+  const std::string dir = embedded ? "" : std::filesystem::path(v_.doc_.file_path()).parent_path().string();
   LoadResult loaded = reload_meshes(scene, dir, embedded);
   if (!loaded.ok()) {
     // "the edited scene:91:30: objects[7].file: bunny.obj:2: ...": the position is in text no
@@ -34,31 +36,31 @@ std::string Viewer::place_meshes(Scene& scene) const {
   return {};
 }
 
-std::string Viewer::refuse(std::string why) {
-  objects_notice_ = ui::EditNotice{why, true};
+std::string SceneBuilder::refuse(std::string why) {
+  notice_ = ui::EditNotice{why, true};
   return why;
 }
 
-std::string Viewer::edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move) {
-  Scene scene = doc_.scene();
+std::string SceneBuilder::edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move) {
+  Scene scene = v_.doc_.scene();
   ui::complete_object_indices(scene);
   std::string error = edit(scene);
   if (error.empty() && meshes_move) error = place_meshes(scene);
   if (!error.empty()) return refuse(error);  // the scene stays as it was
-  objects_notice_ = ui::EditNotice{};
+  notice_ = ui::EditNotice{};
   // An object dragged is one undo step when the drag ends.
-  apply_edit({edit::SetScene{std::move(scene)}, drag_.mode != DragMode::kNone || ImGui::IsAnyItemActive()});
+  v_.apply_edit({edit::SetScene{std::move(scene)}, v_.drag_.mode != Viewer::DragMode::kNone || ImGui::IsAnyItemActive()});
   return {};
 }
 
-void Viewer::select_object(int object) {
-  const Scene& scene = doc_.scene();
-  selected_object_ = object >= 0 && object < ui::object_count(scene) ? object : -1;
-  const int material = selected_object_ >= 0 ? ui::object_material(scene, selected_object_) : -1;
-  if (material >= 0) selected_material_ = material;
+void SceneBuilder::select_object(int object) {
+  const Scene& scene = v_.doc_.scene();
+  v_.selected_object_ = object >= 0 && object < ui::object_count(scene) ? object : -1;
+  const int material = v_.selected_object_ >= 0 ? ui::object_material(scene, v_.selected_object_) : -1;
+  if (material >= 0) v_.selected_material_ = material;
 }
 
-std::string Viewer::add_object(ObjectRef::Kind kind, const std::string& obj_path) {
+std::string SceneBuilder::add_object(ObjectRef::Kind kind, const std::string& obj_path) {
   int added = -1;
   std::string error;
   if (kind == ObjectRef::Kind::kMesh) {
@@ -73,62 +75,62 @@ std::string Viewer::add_object(ObjectRef::Kind kind, const std::string& obj_path
       added = ui::append_mesh_object(s, std::move(mesh));
       std::string failed = place_meshes(s);
       if (!failed.empty()) return failed;
-      return ui::place_new_object(s, view_camera(), view_aspect(), added);
+      return ui::place_new_object(s, v_.view_camera(), v_.view_aspect(), added);
     }, true);
   } else {
     error = edit_scene([&](Scene& s) {
-      int material = selected_material_;
+      int material = v_.selected_material_;
       if (s.materials.empty()) {
         std::string failed = ui::new_material(s, "default", material);
         if (!failed.empty()) return failed;
       }
       material = std::clamp(material, 0, static_cast<int>(s.materials.size()) - 1);
-      added = ui::add_primitive(s, kind, ui::placement_in_front_of(view_camera()), material);
+      added = ui::add_primitive(s, kind, ui::placement_in_front_of(v_.view_camera()), material);
       if (added < 0) return std::string("only a sphere, a plane, a triangle or a mesh can be added");
-      return ui::place_new_object(s, view_camera(), view_aspect(), added);
+      return ui::place_new_object(s, v_.view_camera(), v_.view_aspect(), added);
     }, false);
   }
   if (error.empty()) {
     select_object(added);
-    objects_notice_.text = "added " + ui::object_label(doc_.scene(), added);
+    notice_.text = "added " + ui::object_label(v_.doc_.scene(), added);
   }
   return error;
 }
 
-std::string Viewer::delete_object(int object) {
-  const int count = ui::object_count(doc_.scene());
+std::string SceneBuilder::delete_object(int object) {
+  const int count = ui::object_count(v_.doc_.scene());
   const std::string error = edit_scene([&](Scene& s) { return ui::delete_object(s, object); }, false);
   if (!error.empty()) return error;
-  selected_object_ = -1;
-  objects_notice_.text = count == 1 ? "deleted the last object: the scene is empty (Ctrl+Z brings it back)"
+  v_.selected_object_ = -1;
+  notice_.text = count == 1 ? "deleted the last object: the scene is empty (Ctrl+Z brings it back)"
                                     : "deleted objects[" + std::to_string(object) + "]";
   return {};
 }
 
-std::string Viewer::duplicate(int object) {
+std::string SceneBuilder::duplicate(int object) {
   int copy = -1;
   // The copy stands where the original does, selected (its handle shows it): drag it away, as
   // after Blender's Shift+D.
   const std::string error = edit_scene([&](Scene& s) { return ui::duplicate_object(s, object, copy); }, false);
   if (error.empty()) {
     select_object(copy);
-    objects_notice_.text = "duplicated objects[" + std::to_string(object) + "] as " +
-                           ui::object_label(doc_.scene(), copy) + ", in the same place: drag it away";
+    notice_.text = "duplicated objects[" + std::to_string(object) + "] as " +
+                           ui::object_label(v_.doc_.scene(), copy) + ", in the same place: drag it away";
   }
   return error;
 }
 
-std::string Viewer::set_object(int object, const std::string& field, const std::vector<double>& values,
+std::string SceneBuilder::set_object(int object, const std::string& field, const std::vector<double>& values,
                                const std::string& text) {
-  const bool mesh = ui::object_at(doc_.scene(), object).kind == ObjectRef::Kind::kMesh;
+  const bool mesh = ui::object_at(v_.doc_.scene(), object).kind == ObjectRef::Kind::kMesh;
   const bool moves = mesh && (ui::moves_mesh_geometry(field) || field == "material");
   return edit_scene([&](Scene& s) { return ui::set_object_field(s, object, field, values, text); }, moves);
 }
 
-std::string Viewer::apply_material_preset(const std::string& name, const std::string& preset_name) {
+std::string SceneBuilder::apply_material_preset(const std::string& name, const std::string& preset_name) {
   const ui::MaterialPreset* preset = ui::find_preset(preset_name);
   if (preset == nullptr) return refuse("no preset named '" + preset_name + "'");
-  int index = ui::find_material(doc_.scene(), name);
+  int index = ui::find_material(v_.doc_.scene(), name);
   Color scale(1);
   const std::string error = edit_scene([&](Scene& s) {
     if (index < 0) {  // a new material of that name, starting from the preset
@@ -139,40 +141,40 @@ std::string Viewer::apply_material_preset(const std::string& name, const std::st
     return std::string();
   }, false);
   if (error.empty()) {
-    selected_material_ = index;
+    v_.selected_material_ = index;
     // What the preset's ambient note means for this scene: in the Materials panel, not on stderr.
-    objects_notice_ = ui::EditNotice{ui::preset_applied_text(*preset, scale, doc_.scene().ambient), false, true};
+    notice_ = ui::EditNotice{ui::preset_applied_text(*preset, scale, v_.doc_.scene().ambient), false, true};
   }
   return error;
 }
 
-std::string Viewer::add_material(const std::string& name) {
+std::string SceneBuilder::add_material(const std::string& name) {
   int index = -1;
   const std::string error = edit_scene([&](Scene& s) { return ui::new_material(s, name, index); }, false);
-  if (error.empty()) selected_material_ = index;
+  if (error.empty()) v_.selected_material_ = index;
   return error;
 }
 
-std::string Viewer::drop_file(const std::string& path) {
+std::string SceneBuilder::drop_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return refuse("dropped '" + path + "': not a file");
   if (is_obj_path(path)) return add_object(ObjectRef::Kind::kMesh, path);
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".json" || ext == ".JSON") {
-    files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
+    v_.files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
     return {};
   }
   return refuse("dropped '" + path + "': neither a scene (.json) nor a mesh (.obj)");
 }
 
-std::optional<ImVec2> Viewer::object_screen_point(int object) const {
-  const Scene& scene = doc_.scene();
+std::optional<ImVec2> SceneBuilder::object_screen_point(int object) const {
+  const Scene& scene = v_.doc_.scene();
   if (object < 0 || object >= ui::object_count(scene)) return std::nullopt;
-  const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
-  const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
-  const auto p = ui::project(view_camera(), ui::object_anchor(scene, object), w, h);
+  const int w = std::max(1, static_cast<int>(std::lround(v_.viewport_.width)));
+  const int h = std::max(1, static_cast<int>(std::lround(v_.viewport_.height)));
+  const auto p = ui::project(v_.view_camera(), ui::object_anchor(scene, object), w, h);
   if (!p) return std::nullopt;
-  return ImVec2(viewport_.x + static_cast<float>(p->x), viewport_.y + static_cast<float>(p->y));
+  return ImVec2(v_.viewport_.x + static_cast<float>(p->x), v_.viewport_.y + static_cast<float>(p->y));
 }
 
 }  // namespace phonglab
@@ -196,16 +198,16 @@ bool parse_numbers(const std::vector<std::string>& w, std::size_t first, std::ve
 // when `w` is none of them, else "" or what is wrong with the command. An edit the scene's rules
 // refuse (a radius of -1, a material in use) is not a broken script: the program says why, as
 // the panel does, in dump_state's objects_notice and on stderr, and the script goes on.
-std::optional<std::string> Viewer::script_scene_command(const std::vector<std::string>& w) {
-  objects_notice_.refused = false;  // what this command refuses, not an earlier one
+std::optional<std::string> SceneBuilder::script_scene_command(const std::vector<std::string>& w) {
+  notice_.refused = false;  // what this command refuses, not an earlier one
   const std::optional<std::string> usage = script_scene_edit(w);
-  if (usage && usage->empty() && objects_notice_.refused) {
-    std::cerr << "phonglab: " << w[0] << ": " << objects_notice_.text << "\n";
+  if (usage && usage->empty() && notice_.refused) {
+    std::cerr << "phonglab: " << w[0] << ": " << notice_.text << "\n";
   }
   return usage;
 }
 
-std::optional<std::string> Viewer::script_scene_edit(const std::vector<std::string>& w) {
+std::optional<std::string> SceneBuilder::script_scene_edit(const std::vector<std::string>& w) {
   const std::string& name = w[0];
   int index = -1;
   const auto object_word = [&](std::size_t i) { return w.size() > i && script::parse_int(w[i], index); };
@@ -220,7 +222,7 @@ std::optional<std::string> Viewer::script_scene_edit(const std::vector<std::stri
   }
   if (name == "select_object") {
     if (w.size() != 2 || !object_word(1)) return "usage: select_object I";
-    if (index < -1 || index >= ui::object_count(doc_.scene())) {
+    if (index < -1 || index >= ui::object_count(v_.doc_.scene())) {
       refuse("no objects[" + w[1] + "]");
       return "";
     }
