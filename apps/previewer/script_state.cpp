@@ -51,7 +51,7 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
   glfwGetWindowSize(v_.platform_.window(), &window_w, &window_h);
   glfwGetFramebufferSize(v_.platform_.window(), &fb_w, &fb_h);
   std::string first_error_line = v_.files_.file_state().error_text.substr(0, v_.files_.file_state().error_text.find('\n'));
-  const std::vector<std::string> caption_lines = v_.captions();
+  const std::vector<std::string> caption_lines = v_.overlays_.captions();
   out << "source=" << v_.doc_.source() << "\n"
       << "file=" << v_.doc_.file_path() << "\n"
       << "dirty=" << (v_.doc_.dirty() ? 1 : 0) << "\n"
@@ -179,7 +179,7 @@ void ScriptDriver::write_rays_state(std::ostream& out) const {
 void ScriptDriver::write_probe_state(std::ostream& out) const {
   if (!v_.probed_.tree) return;
   const Color total = v_.probed_.tree->root.total;
-  const ImVec2 on_screen = v_.probe_point_in_cell(v_.cells().count() - 1);
+  const ImVec2 on_screen = v_.overlays_.probe_point_in_cell(v_.cells().count() - 1);
   out << "probe_pixel=" << v_.probed_.x << " " << v_.probed_.y << "\n"
       << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
       << "probe_hit=" << (v_.probed_.tree->root.hit ? 1 : 0) << "\n"

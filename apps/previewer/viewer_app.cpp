@@ -199,8 +199,8 @@ int Viewer::run() {
     ImGui::NewFrame();
     layout();
     handle_viewport_input();
-    draw_sidebar();
-    draw_overlays();
+    panels_.draw_sidebar();
+    overlays_.draw_overlays();
     files_.handle_guard_modal();
     files_.handle_recovery_modal();
     apply_edits(frame_start);
@@ -556,6 +556,11 @@ void Viewer::write_stats_summary(const std::string& label) {
                << " of_full " << (full_median > 0 ? median / full_median : 0) << "\n";
   }
   stats_.log.flush();
+}
+
+void Viewer::apply_edit(const Edit& edit) {
+  session_.apply(edit);
+  edits_.scene = edits_.through_session = true;  // a restart, as for any edit a panel reports
 }
 
 }  // namespace phonglab

@@ -22,6 +22,8 @@
 #include "apps/previewer/file_browser.h"
 #include "apps/previewer/file_shell.h"
 #include "apps/previewer/scene_builder.h"
+#include "apps/previewer/overlays.h"
+#include "apps/previewer/sidebar.h"
 #include "apps/previewer/lesson_shell.h"
 #include "apps/previewer/script_driver.h"
 #include "apps/previewer/viewer_gl.h"
@@ -101,19 +103,6 @@ class Viewer {
   void drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int view_w, int view_h);  // one drag step
   void handle_keys();                      // this frame's key presses (GLFW events, none lost)
   void shortcut(int key, bool shift);      // what a plain (or shifted) key does over the view
-  void draw_sidebar();                     // the panels; edits set the flags below
-  // The sidebar's panels (viewer_sidebar.cpp).
-  void sidebar_show();
-  void sidebar_materials();
-  void sidebar_ambient_fit();  // the selected material's best constant ambient for this view
-  void sidebar_lights();
-  void sidebar_probe();
-  void sidebar_instruments();
-  void sidebar_rays();
-  void sidebar_camera();
-  void sidebar_file();
-  void sidebar_render();
-  void draw_overlays();                    // boxes, captions, markers and labels over the image, apart
   void apply_edits(double frame_start);    // at most one restart for everything this frame changed
   void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
   void after_swap();                       // edit-to-image latency of a first image just shown
@@ -142,7 +131,6 @@ class Viewer {
   std::optional<int> object_under(ImVec2 mouse) const;  // the file index of the object seen there
   bool grab_object(ImVec2 mouse, const std::optional<int>& hit_object);  // starts kObject on the selected one
   void drag_object_to(ImVec2 mouse, int view_w, int view_h);
-  void sidebar_objects();
   void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
   void refresh_probe();                          // probes the same pixel again in the newest snapshot
   void undo();                                   // Ctrl+Z: the scene before the last edit
@@ -162,19 +150,7 @@ class Viewer {
   bool ambient_view_pixels_shown(ui::AmbientView view) const;          // that view, and a frame that has it
   bool heat_shown() const;                       // the rays view is on screen as a heat map
   void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
-  // Overlay parts (viewer_overlays.cpp).
-  std::vector<std::string> captions() const;     // what the top-centre captions say, top first
   std::string compare_caption() const;           // what the compare view shows, or why it cannot
-  void draw_stats();                             // the stats box's contents
-  void draw_head_plot();                         // the "move your head" plot's contents
-  void draw_cell_labels_and_probe_ring();        // small multiples' labels, the probed pixel's ring
-  ImVec2 probe_point_in_cell(int cell) const;    // the probed pixel's centre as cell `cell` shows it
-  bool light_markers_shown() const;
-  std::optional<float> wipe_line_x() const;      // where the wipe's split line is drawn, when it is
-  void draw_wipe_line();
-  void draw_light_markers(const std::vector<ui::ScreenRect>& taken);  // markers and labels, clear of `taken`
-  void draw_ray_tree_lines();                    // the probed tree over the full image's cell
-  void draw_selected_object();                   // its outline or handle where the view shows it
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
   std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
   void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
@@ -325,6 +301,12 @@ class Viewer {
   // Building the scene: objects and materials added, edited, deleted (scene_builder.h).
   friend class SceneBuilder;
   SceneBuilder builder_{*this};
+  // The panels down the right (sidebar.h).
+  friend class Sidebar;
+  Sidebar panels_{*this};
+  // What is drawn over the image (overlays.h).
+  friend class Overlays;
+  Overlays overlays_{*this};
   int exit_code_ = 0;          // set by handle_signal
   // The test script being run (script_driver.h): a friend, for now, that reads and sets the
   // shell's state directly.

@@ -81,7 +81,7 @@ void Viewer::handle_viewport_input() {
   }
 
   // The wipe's split line, grabbed anywhere along its height.
-  const std::optional<float> wipe_x = wipe_line_x();
+  const std::optional<float> wipe_x = overlays_.wipe_line_x();
   const float wipe_grab = ui::light_marker_radius(platform_.ui_scale());
   const bool wipe_hovered = mouse_is_ours && hovered_light_ < 0 && wipe_x && std::abs(mouse.x - *wipe_x) <= wipe_grab;
   if (wipe_hovered || drag_.mode == DragMode::kWipe) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);

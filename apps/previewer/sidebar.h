@@ -1,0 +1,36 @@
+// The previewer's panels down the right, in the order a lecture uses them: what is shown,
+// materials, objects, lights, the probe, the instruments, rays, camera, file, render settings.
+// Each draws ImGui widgets over the shell's state and turns what they change into session edits
+// or settings (src/ui holds the widgets themselves). It reaches the shell through `Viewer&` (a
+// friend).
+#pragma once
+
+namespace phonglab {
+
+class Viewer;
+
+class Sidebar {
+ public:
+  explicit Sidebar(Viewer& viewer) : v_(viewer) {}
+  Sidebar(const Sidebar&) = delete;
+  Sidebar& operator=(const Sidebar&) = delete;
+
+  void draw_sidebar();  // the panels; edits set the shell's flags
+
+ private:
+  void sidebar_show();
+  void sidebar_materials();
+  void sidebar_ambient_fit();  // the selected material's best constant ambient for this view
+  void sidebar_objects();
+  void sidebar_lights();
+  void sidebar_probe();
+  void sidebar_instruments();
+  void sidebar_rays();
+  void sidebar_camera();
+  void sidebar_file();
+  void sidebar_render();
+
+  Viewer& v_;
+};
+
+}  // namespace phonglab
