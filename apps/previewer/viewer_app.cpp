@@ -563,4 +563,21 @@ void Viewer::apply_edit(const Edit& edit) {
   edits_.scene = edits_.through_session = true;  // a restart, as for any edit a panel reports
 }
 
+void Viewer::undo() {
+  if (session_.undo()) restored();
+}
+
+void Viewer::redo() {
+  if (session_.redo()) restored();
+}
+
+void Viewer::restored() {
+  const Scene& scene = session_.scene();
+  selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
+  if (selected_object_ >= ui::object_count(scene)) selected_object_ = -1;
+  builder_.notice() = ui::EditNotice{};
+  edits_.scene = true;
+  edits_.through_session = true;
+}
+
 }  // namespace phonglab

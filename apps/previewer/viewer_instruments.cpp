@@ -63,23 +63,6 @@ void Viewer::refresh_probe() {
   probed_.indirect = probe_indirect(*snapshot_, render_width_, render_height_, probed_.x, probed_.y, kProbeIndirectSamples);
 }
 
-void Viewer::undo() {
-  if (session_.undo()) restored();
-}
-
-void Viewer::redo() {
-  if (session_.redo()) restored();
-}
-
-void Viewer::restored() {
-  const Scene& scene = session_.scene();
-  selected_light_ = std::min(selected_light_, static_cast<int>(scene.lights.size()) - 1);
-  if (selected_object_ >= ui::object_count(scene)) selected_object_ = -1;
-  builder_.notice() = ui::EditNotice{};
-  edits_.scene = true;
-  edits_.through_session = true;
-}
-
 void Viewer::snapshot_a(bool first_full) {
   // A is the finished image of what is on screen now, never a half-converged one (its noise
   // would show in |live - A| as if something had changed). Until it is done, A waits; an edit
