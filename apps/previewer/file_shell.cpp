@@ -108,10 +108,10 @@ void FileShell::open_scene(const std::string& scene_arg) {
   document_replaced();
   if (!v_.doc_.file_path().empty()) browser_.remember(v_.doc_.file_path());
   file_state_.path_field = v_.doc_.file_path().empty() ? scene_arg : v_.doc_.file_path();
-  v_.probed_.tree.reset();
+  v_.tools_.probe().tree.reset();
   // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
-  v_.compare_.image = ProgressiveFrame{};
-  v_.compare_.requested = v_.compare_.dropped = false;
+  v_.tools_.compare().image = ProgressiveFrame{};
+  v_.tools_.compare().requested = v_.tools_.compare().dropped = false;
   v_.instruments_.compare = 0;
 }
 
@@ -190,8 +190,8 @@ void FileShell::save_png(const std::string& path) {
   if (!begin_screenshot(image)) return;
   image.pixels.reserve(v_.shown_.pixels.size());
   // The heat map is written as shown: its colours, without exposure.
-  const bool heat = v_.heat_shown();
-  const std::vector<glm::vec3> source = heat ? v_.display_pixels() : v_.shown_.pixels;
+  const bool heat = v_.tools_.heat_shown();
+  const std::vector<glm::vec3> source = heat ? v_.tools_.display_pixels() : v_.shown_.pixels;
   const float exposure = heat ? 1.0f : std::exp2(v_.display_.exposure_ev);
   for (const glm::vec3& p : source) {
     glm::vec3 v = glm::clamp(p * exposure, 0.0f, 1.0f);

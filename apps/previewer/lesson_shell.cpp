@@ -73,7 +73,7 @@ void LessonShell::apply_step_view(const StepView& view) {
   v_.rays_.depth_cut = view.depth_cut.has_value();
   v_.rays_.cut_depth = view.depth_cut.value_or(v_.rays_.cut_depth);
   v_.instruments_.probe_mode = view.probe.has_value();
-  v_.probed_.tree.reset();
+  v_.tools_.probe().tree.reset();
   state_.probe_pending = view.probe.has_value();
   v_.edits_.settings = true;
   v_.edits_.view = true;
@@ -86,8 +86,8 @@ void LessonShell::show_place(LessonPlace place) {
 // What the session's presenter answers for a place: A and the compare view cleared, the step's
 // scene adopted when it asks, its view applied (a compare's source view first, for A).
 void LessonShell::present(const LessonPresenter::Show& show) {
-  v_.compare_.image = ProgressiveFrame{};
-  v_.compare_.requested = v_.compare_.dropped = false;
+  v_.tools_.compare().image = ProgressiveFrame{};
+  v_.tools_.compare().requested = v_.tools_.compare().dropped = false;
   v_.instruments_.compare = 0;
   if (show.adopt_step) adopt_step_scene(*show.adopt_step);
   apply_step_view(show.view);
@@ -108,19 +108,19 @@ void LessonShell::update_lesson() {
   }
   if (state_.probe_pending && v_.snapshot_ && v_.render_width_ > 0 && v_.render_height_ > 0) {
     if (const auto pixel = probe_in(v_.doc_.scene(), v_.snapshot_->scene().camera, v_.lessons_.view(), v_.render_width_, v_.render_height_)) {
-      v_.probed_.x = (*pixel)[0];
-      v_.probed_.y = (*pixel)[1];
-      v_.refresh_probe();
+      v_.tools_.probe().x = (*pixel)[0];
+      v_.tools_.probe().y = (*pixel)[1];
+      v_.tools_.refresh_probe();
     }
     state_.probe_pending = false;
   }
   // A compare: A of the source's view first, then the step's own view with the compare on.
   if (v_.lessons_.take_a_now()) {
-    v_.snapshot_a(true);
+    v_.tools_.snapshot_a(true);
   } else if (v_.lessons_.awaiting_a()) {
-    if (v_.compare_.dropped) {
+    if (v_.tools_.compare().dropped) {
       v_.lessons_.a_dropped();  // something changed first: the user is exploring
-    } else if (!v_.compare_.requested && !v_.compare_.image.pixels.empty()) {
+    } else if (!v_.tools_.compare().requested && !v_.tools_.compare().image.pixels.empty()) {
       if (const std::optional<LessonPresenter::Show> show = v_.lessons_.a_taken()) {
         if (show->adopt_step) adopt_step_scene(*show->adopt_step);
         apply_step_view(show->view);

@@ -98,7 +98,7 @@ void Overlays::draw_overlays() {
     taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, v_.overlay_rects_, [&] { draw_stats(); }));
   }
   draw_ray_tree_lines();
-  if (v_.probed_.tree && v_.rays_.overlay && v_.rays_.legend && !v_.tree_segments_.empty()) {
+  if (v_.tools_.probe().tree && v_.rays_.overlay && v_.rays_.legend && !v_.tree_segments_.empty()) {
     const bool blinn = v_.snapshot_ && v_.snapshot_->scene().specular_model == SpecularModel::kBlinn;
     // The legend must not hide the tree it explains: top right, unless the probed point is there,
     // then bottom right, then bottom left.
@@ -128,7 +128,7 @@ void Overlays::draw_overlays() {
     taken.push_back(overlay_window("##head_plot", top ? top_left : bottom_left, ImVec2(0, top ? 0.0f : 1.0f), taken, last,
                                    v_.overlay_rects_, [&] { draw_head_plot(); }));
   }
-  if (v_.heat_shown() && v_.heat_max_ > 0) {
+  if (v_.tools_.heat_shown() && v_.heat_max_ > 0) {
     taken.push_back(overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), taken, last, v_.overlay_rects_,
                                    [&] { ui::heat_legend(v_.heat_max_, 220 * scale); }));
   }
@@ -186,7 +186,7 @@ std::vector<std::string> Overlays::captions() const {
   const std::string ambient = ui::ambient_view_caption(v_.render_settings_.ambient_view);
   if (!ambient.empty()) {
     lines.push_back(ambient);
-  } else if (!v_.instruments_.small_multiples && v_.render_settings_.term != Term::kFull && !v_.heat_shown()) {
+  } else if (!v_.instruments_.small_multiples && v_.render_settings_.term != Term::kFull && !v_.tools_.heat_shown()) {
     lines.push_back(ui::term_caption(v_.render_settings_.term, blinn));
   }
   if (v_.snapshot_ && v_.rays_.depth_cut) {
@@ -195,7 +195,7 @@ std::vector<std::string> Overlays::captions() const {
                   v_.doc_.scene().max_depth);
     lines.emplace_back(caption);
   }
-  if (v_.instruments_.compare != 0) lines.push_back(v_.compare_caption());
+  if (v_.instruments_.compare != 0) lines.push_back(v_.tools_.compare_caption());
   return lines;
 }
 
@@ -215,7 +215,7 @@ void Overlays::draw_stats() {
   stats.image_width = v_.shown_.width;
   stats.image_height = v_.shown_.height;
   stats.spp = v_.shown_.spp;
-  stats.target_spp = v_.target_spp();
+  stats.target_spp = v_.tools_.target_spp();
   stats.frame = v_.shown_.stats;
   stats.idle = status.idle;
   stats.interacting = v_.interacting_ || v_.edits_.while_active;
@@ -227,12 +227,12 @@ void Overlays::draw_stats() {
 void Overlays::draw_head_plot() {
   // "Move your head": the highlight against the head angle.
   ui::HeadPlotView plot;
-  plot.hit = v_.probed_.tree ? &v_.probed_.tree->root : nullptr;
+  plot.hit = v_.tools_.probe().tree ? &v_.tools_.probe().tree->root : nullptr;
   plot.eye_at_zero = v_.snapshot_->scene().camera.position;
   plot.axis = glm::normalize(make_camera_frame(v_.snapshot_->scene().camera, 1, 1).up);
-  if (v_.probed_.tree && v_.probed_.tree->root.hit && v_.probed_.tree->root.material >= 0 &&
-      v_.probed_.tree->root.material < static_cast<int>(v_.snapshot_->scene().materials.size())) {
-    plot.shininess = v_.snapshot_->scene().materials[static_cast<std::size_t>(v_.probed_.tree->root.material)].n;
+  if (v_.tools_.probe().tree && v_.tools_.probe().tree->root.hit && v_.tools_.probe().tree->root.material >= 0 &&
+      v_.tools_.probe().tree->root.material < static_cast<int>(v_.snapshot_->scene().materials.size())) {
+    plot.shininess = v_.snapshot_->scene().materials[static_cast<std::size_t>(v_.tools_.probe().tree->root.material)].n;
   }
   plot.blinn = v_.snapshot_->scene().specular_model == SpecularModel::kBlinn;
   plot.angle_deg = v_.instruments_.head_angle_deg;
@@ -244,8 +244,8 @@ ImVec2 Overlays::probe_point_in_cell(int cell) const {
   // The probed pixel's centre as cell `cell` shows it.
   const Viewer::Cells c = v_.cells();
   const ImVec2 origin = c.origin(cell);
-  return ImVec2(origin.x + (static_cast<float>(v_.probed_.x) + 0.5f) / static_cast<float>(std::max(v_.render_width_, 1)) * c.width,
-                origin.y + (static_cast<float>(v_.probed_.y) + 0.5f) / static_cast<float>(std::max(v_.render_height_, 1)) * c.height);
+  return ImVec2(origin.x + (static_cast<float>(v_.tools_.probe().x) + 0.5f) / static_cast<float>(std::max(v_.render_width_, 1)) * c.width,
+                origin.y + (static_cast<float>(v_.tools_.probe().y) + 0.5f) / static_cast<float>(std::max(v_.render_height_, 1)) * c.height);
 }
 
 void Overlays::draw_cell_labels_and_probe_ring() {
@@ -263,13 +263,13 @@ void Overlays::draw_cell_labels_and_probe_ring() {
     }
   }
   // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
-  if (!v_.probed_.tree || v_.render_width_ <= 0 || v_.render_height_ <= 0) return;
+  if (!v_.tools_.probe().tree || v_.render_width_ <= 0 || v_.render_height_ <= 0) return;
   for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
 }
 
 std::optional<float> Overlays::wipe_line_x() const {
-  if (v_.ambient_view_pixels_shown(ui::AmbientView::kBeside)) return v_.viewport_.x + v_.instruments_.wipe * v_.viewport_.width;
-  if (v_.instruments_.compare != 1 || !v_.a_comparable() || v_.instruments_.small_multiples) return std::nullopt;
+  if (v_.tools_.ambient_view_pixels_shown(ui::AmbientView::kBeside)) return v_.viewport_.x + v_.instruments_.wipe * v_.viewport_.width;
+  if (v_.instruments_.compare != 1 || !v_.tools_.a_comparable() || v_.instruments_.small_multiples) return std::nullopt;
   // compare_pixels shows A left of column wipe * width: the line is drawn at that edge.
   return v_.viewport_.x + v_.instruments_.wipe * v_.viewport_.width;
 }
@@ -290,7 +290,7 @@ void Overlays::draw_wipe_line() {
   const float a = r * 0.55f;
   draw->AddTriangleFilled(ImVec2(*x - a * 1.6f, mid), ImVec2(*x - a * 0.4f, mid - a), ImVec2(*x - a * 0.4f, mid + a), arrow);
   draw->AddTriangleFilled(ImVec2(*x + a * 1.6f, mid), ImVec2(*x + a * 0.4f, mid + a), ImVec2(*x + a * 0.4f, mid - a), arrow);
-  const bool ambient = v_.ambient_view_pixels_shown(ui::AmbientView::kBeside);
+  const bool ambient = v_.tools_.ambient_view_pixels_shown(ui::AmbientView::kBeside);
   const std::string left = ambient ? "ka\xC2\xB7" + ui::i_a() : "A";
   const char* right = ambient ? "indirect" : "live";
   ui::text_on_plate(draw, ImVec2(*x - ImGui::CalcTextSize(left.c_str()).x - 10 * scale, mid + r + 6 * scale), left.c_str(),
@@ -356,7 +356,7 @@ void Overlays::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
 void Overlays::draw_ray_tree_lines() {
   // The ray tree over the full image: the only cell, or the last of the small multiples.
   v_.tree_segments_.clear();
-  if (!v_.probed_.tree || !v_.rays_.overlay || !v_.snapshot_ || v_.render_width_ <= 0 || v_.render_height_ <= 0) return;
+  if (!v_.tools_.probe().tree || !v_.rays_.overlay || !v_.snapshot_ || v_.render_width_ <= 0 || v_.render_height_ <= 0) return;
   const Viewer::Cells c = v_.cells();
   const ImVec2 full_cell = c.origin(c.count() - 1);
   RayTreeViewOptions options;
@@ -365,10 +365,10 @@ void Overlays::draw_ray_tree_lines() {
   options.arrows = v_.rays_.arrows;
   // The probe was taken in snapshot_ at the render size: project with that camera and size.
   const CameraFrame frame = make_camera_frame(v_.snapshot_->scene().camera, v_.render_width_, v_.render_height_);
-  v_.tree_segments_ = project_ray_tree(frame, ray_tree_segments(v_.snapshot_->scene(), v_.probed_.tree->root, options),
-                                    ray_tree_near(v_.snapshot_->scene(), v_.probed_.tree->root));
+  v_.tree_segments_ = project_ray_tree(frame, ray_tree_segments(v_.snapshot_->scene(), v_.tools_.probe().tree->root, options),
+                                    ray_tree_near(v_.snapshot_->scene(), v_.tools_.probe().tree->root));
   int lit_lights = 0;
-  for (const ProbeLight& light : v_.probed_.tree->root.lights) lit_lights += light.lit_side ? 1 : 0;
+  for (const ProbeLight& light : v_.tools_.probe().tree->root.lights) lit_lights += light.lit_side ? 1 : 0;
   const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(v_.render_width_),
                                              c.height / static_cast<float>(v_.render_height_))};
   const bool blinn = v_.snapshot_->scene().specular_model == SpecularModel::kBlinn;

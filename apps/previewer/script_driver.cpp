@@ -425,8 +425,8 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_double(w[1], x) || !parse_double(w[2], y)) return step.fail("usage: probe|ctrl_click X Y");
     const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
     if (name == "probe") {
-      v_.probe_at(at);
-      if (!v_.probed_.tree) return step.fail("nothing to probe (no scene yet)");
+      v_.tools_.probe_at(at);
+      if (!v_.tools_.probe().tree) return step.fail("nothing to probe (no scene yet)");
       return true;
     }
     push_click(at, true);
@@ -453,7 +453,7 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
   if (name == "undo" || name == "redo" || name == "snapshot_a") {
     if (name == "undo") v_.undo();
     else if (name == "redo") v_.redo();
-    else v_.snapshot_a();
+    else v_.tools_.snapshot_a();
     return true;
   }
   if (name == "solo") {
@@ -514,7 +514,7 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
   const std::string& name = w[0];
   if (name == "figure") {
     if (w.size() != 2) return step.fail("usage: figure FILE.png");
-    v_.save_figure(w[1]);
+    v_.tools_.save_figure(w[1]);
     if (v_.figure_status_.rfind("saved ", 0) != 0) return step.fail(v_.figure_status_);
     return true;
   }

@@ -144,7 +144,7 @@ bool ScriptDriver::set_instrument(const std::vector<std::string>& w) {
     if (v >= 0) v_.rays_.cut_depth = static_cast<int>(v);
     v_.edits_.view = true;
   }
-  else if (w[2] == "heat") v_.set_heat_map(v != 0);
+  else if (w[2] == "heat") v_.tools_.set_heat_map(v != 0);
   else return false;
   v_.upload_pending_ = v_.upload_pending_ || !v_.shown_.pixels.empty();
   return true;

@@ -90,7 +90,7 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "camera_distance=" << glm::length(scene.camera.position - scene.camera.look_at) << "\n"
       << "can_save=" << (!v_.doc_.file_path().empty() && !v_.doc_.opened_mesh() ? 1 : 0) << "\n"
       << "figure_status=" << v_.figure_status_ << "\n"
-      << "compare_caption=" << (v_.instruments_.compare != 0 ? v_.compare_caption() : "") << "\n"
+      << "compare_caption=" << (v_.instruments_.compare != 0 ? v_.tools_.compare_caption() : "") << "\n"
       << "captions=" << caption_lines.size() << "\n";
   for (std::size_t i = 0; i < caption_lines.size(); ++i) out << "caption" << i << "=" << caption_lines[i] << "\n";
 }
@@ -146,7 +146,7 @@ void ScriptDriver::write_layout_state(std::ostream& out) const {
       << "multiples=" << (v_.instruments_.small_multiples ? 1 : 0) << "\n"
       << "wipe=" << v_.instruments_.wipe << "\n"
       << "compare=" << v_.instruments_.compare << "\n"
-      << "have_a=" << (v_.compare_.image.pixels.empty() ? 0 : 1) << "\n"
+      << "have_a=" << (v_.tools_.compare().image.pixels.empty() ? 0 : 1) << "\n"
       << "head=" << (v_.shading_eye_ ? 1 : 0) << "\n";
   if (v_.shading_eye_) out << "head_eye=" << vec(*v_.shading_eye_) << "\n";
 }
@@ -171,22 +171,22 @@ void ScriptDriver::write_rays_state(std::ostream& out) const {
       << "depth_cut_label=" << depth_cut_label() << "\n"
       << "scene_max_depth=" << scene.max_depth << "\n"
       << "render_max_depth=" << (v_.snapshot_ ? v_.snapshot_->scene().max_depth : -1) << "\n"
-      << "heat=" << (v_.heat_shown() ? 1 : 0) << "\n"
+      << "heat=" << (v_.tools_.heat_shown() ? 1 : 0) << "\n"
       << "heat_max=" << v_.heat_max_ << "\n";
 }
 
 // The probed pixel: where, what it hit, its blocked shadow rays, and whether it matches the image.
 void ScriptDriver::write_probe_state(std::ostream& out) const {
-  if (!v_.probed_.tree) return;
-  const Color total = v_.probed_.tree->root.total;
+  if (!v_.tools_.probe().tree) return;
+  const Color total = v_.tools_.probe().tree->root.total;
   const ImVec2 on_screen = v_.overlays_.probe_point_in_cell(v_.cells().count() - 1);
-  out << "probe_pixel=" << v_.probed_.x << " " << v_.probed_.y << "\n"
+  out << "probe_pixel=" << v_.tools_.probe().x << " " << v_.tools_.probe().y << "\n"
       << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
-      << "probe_hit=" << (v_.probed_.tree->root.hit ? 1 : 0) << "\n"
+      << "probe_hit=" << (v_.tools_.probe().tree->root.hit ? 1 : 0) << "\n"
       << "probe_total=" << vec(total) << "\n";
   // Shadow rays of the probed tree that found their light blocked (the overlay's red rays).
   int blocked = 0;
-  std::vector<const ProbeNode*> stack{&v_.probed_.tree->root};
+  std::vector<const ProbeNode*> stack{&v_.tools_.probe().tree->root};
   while (!stack.empty()) {
     const ProbeNode* node = stack.back();
     stack.pop_back();
@@ -194,19 +194,19 @@ void ScriptDriver::write_probe_state(std::ostream& out) const {
     if (node->reflection) stack.push_back(node->reflection.get());
     if (node->refraction) stack.push_back(node->refraction.get());
   }
-  const IndirectProbe& indirect = v_.probed_.indirect;
+  const IndirectProbe& indirect = v_.tools_.probe().indirect;
   out << "probe_ambient=" << vec(indirect.ambient) << "\n"
       << "probe_indirect=" << vec(indirect.mean) << "\n"
       << "probe_indirect_se=" << vec(indirect.standard_error) << "\n"
       << "probe_indirect_samples=" << indirect.samples << "\n"
       << "probe_fitted_ka=" << vec(indirect.fitted_ka) << "\n";
   out << "probe_blocked=" << blocked << "\n"
-      << "probe_rays=" << v_.probed_.tree->rays.total() << "\n";
+      << "probe_rays=" << v_.tools_.probe().tree->rays.total() << "\n";
   // The shown image's pixel there, when it is the full-resolution 1-spp image of this
   // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
   if (v_.shown_.divisor == 1 && v_.shown_.spp == 1 && v_.shown_.width == v_.render_width_ && v_.shown_.height == v_.render_height_) {
-    const glm::vec3 shown = v_.shown_.pixels[static_cast<std::size_t>(v_.probed_.y) * static_cast<std::size_t>(v_.shown_.width) +
-                                          static_cast<std::size_t>(v_.probed_.x)];
+    const glm::vec3 shown = v_.shown_.pixels[static_cast<std::size_t>(v_.tools_.probe().y) * static_cast<std::size_t>(v_.shown_.width) +
+                                          static_cast<std::size_t>(v_.tools_.probe().x)];
     out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";
   }
 }

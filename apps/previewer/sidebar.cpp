@@ -178,23 +178,23 @@ void Sidebar::sidebar_ambient_fit() {
   if (m < 0 || m >= static_cast<int>(scene.materials.size()) || !v_.snapshot_) return;
   const auto index = static_cast<std::size_t>(m);
   if (ImGui::Button("best constant ambient for this view")) {
-    v_.ambient_fit_ = fit_ambient(*v_.snapshot_, std::max(1, v_.render_width_ / 4), std::max(1, v_.render_height_ / 4), 4,
+    v_.tools_.ambient_fit() = fit_ambient(*v_.snapshot_, std::max(1, v_.render_width_ / 4), std::max(1, v_.render_height_ / 4), 4,
                                v_.render_settings_.threads);
-    v_.ambient_fit_material_ = scene.materials[index].name;
-    if (v_.ambient_fit_->hits[index] > 0) {
+    v_.tools_.ambient_fit_material() = scene.materials[index].name;
+    if (v_.tools_.ambient_fit()->hits[index] > 0) {
       Material fitted = scene.materials[index];
-      fitted.ka = v_.ambient_fit_->fitted_ka[index];
+      fitted.ka = v_.tools_.ambient_fit()->fitted_ka[index];
       v_.apply_edit({edit::SetMaterial{m, fitted}, false});
     }
   }
   ui::locate("materials.fit_ka");
   ui::help_marker("Sets ka so that ka*Ia equals the indirect light this material receives, averaged over its hits in "
                   "this view: the constant that stands in for it best. Show 'indirect | ambient' to see what is left.");
-  if (v_.ambient_fit_ && v_.ambient_fit_material_ == scene.materials[index].name && index < v_.ambient_fit_->hits.size()) {
-    const Color ka = v_.ambient_fit_->fitted_ka[index];
-    if (v_.ambient_fit_->hits[index] == 0) ImGui::TextDisabled("not seen in this view: ka kept");
+  if (v_.tools_.ambient_fit() && v_.tools_.ambient_fit_material() == scene.materials[index].name && index < v_.tools_.ambient_fit()->hits.size()) {
+    const Color ka = v_.tools_.ambient_fit()->fitted_ka[index];
+    if (v_.tools_.ambient_fit()->hits[index] == 0) ImGui::TextDisabled("not seen in this view: ka kept");
     else ImGui::TextDisabled("fitted ka (%.3g, %.3g, %.3g) over %llu hits", ka.x, ka.y, ka.z,
-                             static_cast<unsigned long long>(v_.ambient_fit_->hits[index]));
+                             static_cast<unsigned long long>(v_.tools_.ambient_fit()->hits[index]));
   }
 }
 
@@ -237,40 +237,40 @@ void Sidebar::sidebar_probe() {
   {
     ui::ProbeView view;
     view.scene = v_.snapshot_ ? &v_.snapshot_->scene() : nullptr;
-    view.probe = v_.probed_.tree ? &*v_.probed_.tree : nullptr;
+    view.probe = v_.tools_.probe().tree ? &*v_.tools_.probe().tree : nullptr;
     view.image_width = v_.render_width_;
     view.image_height = v_.render_height_;
-    view.report = v_.probed_.report;
-    view.occluders = v_.probed_.occluders;
-    view.indirect = v_.probed_.tree ? &v_.probed_.indirect : nullptr;
+    view.report = v_.tools_.probe().report;
+    view.occluders = v_.tools_.probe().occluders;
+    view.indirect = v_.tools_.probe().tree ? &v_.tools_.probe().indirect : nullptr;
     view.exposure_ev = v_.display_.exposure_ev;
-    if (v_.probed_.tree) {
+    if (v_.tools_.probe().tree) {
       const double gain = std::exp2(static_cast<double>(v_.display_.exposure_ev));
       for (int c = 0; c < 3; ++c) {
-        const double v = std::clamp(v_.probed_.tree->root.total[c] * gain, 0.0, 1.0);
+        const double v = std::clamp(v_.tools_.probe().tree->root.total[c] * gain, 0.0, 1.0);
         view.srgb[c] = v_.display_.srgb ? linear_to_srgb8(v) : static_cast<unsigned char>(std::lround(v * 255));
       }
     }
-    const bool digits_before = v_.probed_.every_digit;
-    ui::probe_panel(view, v_.probed_.every_digit);
-    if (v_.probed_.every_digit != digits_before) v_.refresh_probe();
+    const bool digits_before = v_.tools_.probe().every_digit;
+    ui::probe_panel(view, v_.tools_.probe().every_digit);
+    if (v_.tools_.probe().every_digit != digits_before) v_.tools_.refresh_probe();
   }
 }
 
 void Sidebar::sidebar_instruments() {
   ui::InstrumentActions actions;
   const ui::InstrumentSettings before = v_.instruments_;
-  if (ui::instruments_panel(v_.instruments_, actions, !v_.compare_.image.pixels.empty(), v_.session_.undo_count(),
+  if (ui::instruments_panel(v_.instruments_, actions, !v_.tools_.compare().image.pixels.empty(), v_.session_.undo_count(),
                             v_.session_.redo_count(), v_.figure_path_, v_.figure_status_)) {
     if (before.small_multiples != v_.instruments_.small_multiples) v_.edits_.settings = true;
     v_.upload_pending_ = v_.upload_pending_ || !v_.shown_.pixels.empty();  // a compare view changed
   }
-  if (actions.snapshot_a) v_.snapshot_a();
+  if (actions.snapshot_a) v_.tools_.snapshot_a();
   if (actions.undo) v_.undo();
   if (actions.redo) v_.redo();
-  if (actions.save_figure) v_.save_figure(v_.figure_path_);
+  if (actions.save_figure) v_.tools_.save_figure(v_.figure_path_);
   if (actions.head_reference) {
-    v_.snapshot_a();
+    v_.tools_.snapshot_a();
     v_.instruments_.compare = 2;
     v_.upload_pending_ = v_.upload_pending_ || !v_.shown_.pixels.empty();
   }
@@ -280,14 +280,14 @@ void Sidebar::sidebar_rays() {
   v_.rays_.heat_map = v_.render_settings_.term == Term::kRays;
   const ui::RayTreeSettings before = v_.rays_;
   ui::RayTreeSummary summary;
-  summary.probe = v_.probed_.tree ? &*v_.probed_.tree : nullptr;
+  summary.probe = v_.tools_.probe().tree ? &*v_.tools_.probe().tree : nullptr;
   summary.scene_max_depth = v_.doc_.scene().max_depth;
   summary.heat_max = v_.heat_max_;
   if (ui::rays_panel(v_.rays_, summary)) {
     if (before.depth_cut != v_.rays_.depth_cut || (v_.rays_.depth_cut && before.cut_depth != v_.rays_.cut_depth)) {
       v_.edits_.view = true;
     }
-    if (before.heat_map != v_.rays_.heat_map) v_.set_heat_map(v_.rays_.heat_map);
+    if (before.heat_map != v_.rays_.heat_map) v_.tools_.set_heat_map(v_.rays_.heat_map);
   }
 }
 

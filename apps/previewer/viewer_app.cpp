@@ -21,6 +21,7 @@
 #include "core/teaching/ray_tree_view.h"
 #include "core/shading/shading.h"
 #include "interaction/camera_control.h"
+#include "interaction/scene_objects.h"
 #include "ui/widgets.h"
 
 namespace phonglab {
@@ -342,13 +343,13 @@ void Viewer::apply_edits(double frame_start) {
   // eye leaves the trees half updated, so they are dropped and every later eye of the drag is
   // traced, coarse. (A scene edit's wait is bounded by kMaxDeferral; an eye's image is a
   // re-shade, or a coarse trace when no trees serve: both come.)
-  const std::optional<Vec3> eye = head_eye();
+  const std::optional<Vec3> eye = tools_.head_eye();
   const bool holding = interacting_ || edits_.while_active || ImGui::IsAnyItemActive();
   const bool image_pending = renderer_.status().published_generation < sent_generation_;
   if (eye != shading_eye_ && !(holding && image_pending)) {
     shading_eye_ = eye;
     edits_.settings = true;
-    if (probed_.tree) refresh_probe();
+    if (tools_.probe().tree) tools_.refresh_probe();
   }
   // The small multiples, turned on or off from anywhere (panel, M, script): term images or none.
   if (instruments_.small_multiples != multiples_sent_) {
@@ -356,12 +357,12 @@ void Viewer::apply_edits(double frame_start) {
     edits_.settings = true;
   }
   // A lesson's difference keeps the live image at A's samples: the target follows it.
-  if (target_spp() != sent_target_spp_) edits_.settings = true;
+  if (tools_.target_spp() != sent_target_spp_) edits_.settings = true;
   if (edits_.settings) {
     upload_pending_ = true;  // what the image shows of the same frame may change (the ambient views)
     const std::uint64_t before = renderer_.status().generation;
     ui::RenderSettings settings = render_settings_;
-    settings.target_spp = sent_target_spp_ = target_spp();
+    settings.target_spp = sent_target_spp_ = tools_.target_spp();
     const std::uint64_t generation = renderer_.set_settings(progressive_settings(settings, shading_eye_, multiples_sent_));
     if (generation != before) {
       sent_generation_ = generation;
@@ -411,7 +412,7 @@ void Viewer::apply_edits(double frame_start) {
     sent_generation_ = generation;
     // Latency counts from the oldest edit this snapshot carries.
     if (scene_changed) note_restart(generation, edits_.deferred_since);
-    if (probed_.tree) refresh_probe();
+    if (tools_.probe().tree) tools_.refresh_probe();
   }
   renderer_.set_interacting(interacting_ || edits_.while_active);
   // A live edit (a slider held, a light dragged) shows in the UI frame that made it: its image
@@ -424,7 +425,7 @@ void Viewer::apply_edits(double frame_start) {
     poll_render_frame();
   }
   edits_.scene = edits_.camera = edits_.replaced = edits_.settings = edits_.view = false;
-  take_a_when_final();
+  tools_.take_a_when_final();
   update_title();
 }
 
@@ -433,17 +434,17 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   // The heat map's colours are final: exposure does not apply to them.
-  const float exposure_ev = heat_shown() ? 0.0f : display_.exposure_ev;
+  const float exposure_ev = tools_.heat_shown() ? 0.0f : display_.exposure_ev;
   const bool has_frame = shown_.width > 0 && shown_.height > 0;
   if (upload_pending_) {
-    heat_max_ = heat_shown() ? heat_max(shown_.pixels) : 0;
+    heat_max_ = tools_.heat_shown() ? heat_max(shown_.pixels) : 0;
     if (shown_.generation != drawn_generation_) first_image_generation_ = shown_.generation;
     drawn_generation_ = shown_.generation;
     drawn_serial_ = shown_.stats.serial;
   }
   // A new image, or new display settings for the one on screen: encoded and uploaded again.
   if (has_frame && (upload_pending_ || !image_view_.shows(exposure_ev, display_.srgb))) {
-    image_view_.upload(shown_.width, shown_.height, display_pixels(), exposure_ev, display_.srgb);
+    image_view_.upload(shown_.width, shown_.height, tools_.display_pixels(), exposure_ev, display_.srgb);
   }
   // The small multiples' cells: the five term images of the same samples, when it has them.
   for (std::size_t i = 0; i < terms_.views.size(); ++i) {

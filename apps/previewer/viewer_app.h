@@ -22,6 +22,7 @@
 #include "apps/previewer/file_browser.h"
 #include "apps/previewer/file_shell.h"
 #include "apps/previewer/scene_builder.h"
+#include "apps/previewer/instruments.h"
 #include "apps/previewer/overlays.h"
 #include "apps/previewer/sidebar.h"
 #include "apps/previewer/lesson_shell.h"
@@ -131,28 +132,11 @@ class Viewer {
   std::optional<int> object_under(ImVec2 mouse) const;  // the file index of the object seen there
   bool grab_object(ImVec2 mouse, const std::optional<int>& hit_object);  // starts kObject on the selected one
   void drag_object_to(ImVec2 mouse, int view_w, int view_h);
-  void probe_at(ImVec2 mouse);                   // probes the rendered pixel under a click
-  void refresh_probe();                          // probes the same pixel again in the newest snapshot
   void undo();                                   // Ctrl+Z: the scene before the last edit
   void redo();                                   // Ctrl+Shift+Z
   void restored();                               // after an undo or redo step: selection and restart
   void apply_edit(const Edit& edit);             // a panel's or a script's edit, to the session; restarts
   void move_camera(const Camera& camera);        // navigation (a drag, the wheel), to the session; restarts
-  void snapshot_a(bool first_full = false);      // asks for A: the image shown, once it is done (or at full resolution)
-  int target_spp() const;                        // the renderer's target: a lesson's difference stays at A's samples
-  void take_a_when_final();                      // takes the asked-for A when the image is done
-  bool a_comparable() const;                     // A and the live image can be compared as the view asks
-  void save_figure(const std::string& path);     // the slide figure of the current snapshot
-  std::optional<Vec3> head_eye() const;          // "move your head": the shading eye, nullopt when off
-  Vec3 head_pivot() const;                       // the point the head turns about: the probed hit or look-at
-  std::vector<glm::vec3> display_pixels() const; // shown_, its heat map, or its wipe / difference against A
-  std::optional<std::vector<glm::vec3>> ambient_view_pixels() const;  // the ambient views beside / difference
-  bool ambient_view_pixels_shown(ui::AmbientView view) const;          // that view, and a frame that has it
-  bool heat_shown() const;                       // the rays view is on screen as a heat map
-  void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
-  std::string compare_caption() const;           // what the compare view shows, or why it cannot
-  // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
-  std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
   void note_restart(std::uint64_t generation, double edit_time);  // remembers when its edit happened
   void update_title();                           // "phonglab - source *"
   bool image_is_final() const;                   // the renderer idles and its last image is on screen
@@ -213,7 +197,6 @@ class Viewer {
   std::string figure_status_;
   std::optional<Vec3> shading_eye_;    // the head-moved eye the renderers and the probe use now
   ui::RayTreeSettings rays_;           // ray tree overlay, depth cut, heat map
-  Term term_before_heat_ = Term::kFull;  // what the heat map switch goes back to
   std::vector<ScreenSegment> tree_segments_;  // the overlay as drawn this frame (image coordinates)
   double heat_max_ = 0;                // top of the heat map's scale in the image on screen
   static constexpr int kTermCells = 5;  // the small multiples besides the full image
@@ -245,27 +228,6 @@ class Viewer {
     double deferred_since = 0;     // glfwGetTime() of the oldest deferred edit
   };
   EditFlags edits_;
-  // The probed pixel and what the Probe panel shows of it.
-  struct ProbeState {
-    std::optional<PixelProbe> tree;  // the probed pixel's ray tree, in snapshot_
-    int x = 0;                       // the probed render pixel
-    int y = 0;
-    std::string report;                  // probe_to_text of tree
-    bool every_digit = false;            // the probe panel shows every digit (else four significant)
-    std::vector<std::string> occluders;  // object_name of each primary-hit light's occluder
-    IndirectProbe indirect;              // ka·Ia beside the indirect term's estimate at the pixel
-  };
-  ProbeState probed_;
-  std::optional<AmbientFit> ambient_fit_;  // the last "best constant ambient for this view"
-  std::string ambient_fit_material_;       // the material it was asked for
-  // Snapshot A of the A/B compare.
-  struct CompareState {
-    ProgressiveFrame image;  // snapshot A (pixels empty: none)
-    bool requested = false;  // Snapshot A was pressed; A is taken when the image is done
-    bool dropped = false;    // an edit came before that image was done: no A
-    bool first_full = false; // a lesson's A: its first full-resolution image, not its last
-  };
-  CompareState compare_;
   // The small multiples: a texture per term, from the main renderer's term images
   // (ProgressiveFrame::terms, in kCellTerms' order).
   struct TermCells {
@@ -307,6 +269,10 @@ class Viewer {
   // What is drawn over the image (overlays.h).
   friend class Overlays;
   Overlays overlays_{*this};
+  // The teaching instruments' state and rules: the probe, A and the compare, the heat map, the
+  // head, the ambient views (instruments.h).
+  friend class Instruments;
+  Instruments tools_{*this};
   int exit_code_ = 0;          // set by handle_signal
   // The test script being run (script_driver.h): a friend, for now, that reads and sets the
   // shell's state directly.

@@ -126,7 +126,7 @@ void Viewer::handle_viewport_input() {
   } else {
     if (drag_.mode == DragMode::kOrbit && !drag_.moved) {
       // Plain click selects a material (as before); Ctrl+click, or any click in probe mode, probes.
-      if (instruments_.probe_mode || io.KeyCtrl) probe_at(drag_.start);
+      if (instruments_.probe_mode || io.KeyCtrl) tools_.probe_at(drag_.start);
       else pick(drag_.start);
     }
     drag_ = Drag{};

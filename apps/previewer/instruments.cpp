@@ -1,0 +1,213 @@
+// The previewer's teaching instruments: the probe, undo and redo, snapshot A and the compare
+// views, the heat map, "move your head" and the slide figure.
+#include "apps/previewer/instruments.h"
+
+#include "apps/previewer/viewer_app.h"
+#include "core/teaching/compare.h"
+#include "interaction/scene_objects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/figure.h"
+#include "core/teaching/heat_map.h"
+#include "io/probe_report.h"
+#include "interaction/camera_control.h"
+
+namespace phonglab {
+
+namespace {
+
+constexpr int kFigureCellHeight = 270;  // slide figure cells: a quarter of 1080p per row
+constexpr int kProbeIndirectSamples = 256;  // the probe's gathers for the indirect term: its error about 1/16 of one
+
+}  // namespace
+
+std::optional<std::array<int, 2>> Instruments::render_pixel_at(ImVec2 mouse) const {
+  if (v_.render_width_ <= 0 || v_.render_height_ <= 0 || v_.viewport_.width < 1 || v_.viewport_.height < 1) return std::nullopt;
+  const Viewer::Cells c = v_.cells();
+  // In double, as the image's pixels are counted.
+  const double cell_w = static_cast<double>(v_.viewport_.width) / c.columns;
+  const double cell_h = static_cast<double>(v_.viewport_.height) / c.rows;
+  const double x = mouse.x - v_.viewport_.x;
+  const double y = mouse.y - v_.viewport_.y;
+  // Within its cell, the point maps to the render pixel the cell shows there.
+  const double u = (x - std::floor(x / cell_w) * cell_w) / cell_w;
+  const double v = (y - std::floor(y / cell_h) * cell_h) / cell_h;
+  return std::array<int, 2>{std::clamp(static_cast<int>(std::floor(u * v_.render_width_)), 0, v_.render_width_ - 1),
+                            std::clamp(static_cast<int>(std::floor(v * v_.render_height_)), 0, v_.render_height_ - 1)};
+}
+
+void Instruments::probe_at(ImVec2 mouse) {
+  const auto pixel = render_pixel_at(mouse);
+  if (!pixel || !v_.snapshot_) return;
+  probed_.x = (*pixel)[0];
+  probed_.y = (*pixel)[1];
+  refresh_probe();
+}
+
+void Instruments::refresh_probe() {
+  if (!v_.snapshot_ || v_.render_width_ <= 0 || v_.render_height_ <= 0) {
+    probed_.tree.reset();
+    return;
+  }
+  probed_.x = std::clamp(probed_.x, 0, v_.render_width_ - 1);
+  probed_.y = std::clamp(probed_.y, 0, v_.render_height_ - 1);
+  // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
+  probed_.tree = probe_pixel(*v_.snapshot_, v_.render_width_, v_.render_height_, probed_.x, probed_.y, v_.shading_eye_);
+  probed_.report = probe_to_text(v_.snapshot_->scene(), *probed_.tree, probed_.every_digit ? 17 : 4);
+  probed_.occluders.clear();
+  for (const ProbeLight& light : probed_.tree->root.lights) probed_.occluders.push_back(object_name(v_.snapshot_->scene(), light.occluder));
+  probed_.indirect = probe_indirect(*v_.snapshot_, v_.render_width_, v_.render_height_, probed_.x, probed_.y, kProbeIndirectSamples);
+}
+
+void Instruments::snapshot_a(bool first_full) {
+  // A is the finished image of what is on screen now, never a half-converged one (its noise
+  // would show in |live - A| as if something had changed). Until it is done, A waits; an edit
+  // before then means the image asked for no longer exists. A lesson's A is its first image at
+  // full resolution (every pixel's centre sample): the answer is on screen in seconds, and its
+  // difference stays exact by keeping the live image at A's samples (target_spp).
+  compare_.requested = true;
+  compare_.first_full = first_full;
+  v_.a_generation_ = v_.renderer_.status().generation;
+  compare_.dropped = false;
+  if (v_.instruments_.compare == 0) v_.instruments_.compare = 1;
+  take_a_when_final();
+}
+
+void Instruments::take_a_when_final() {
+  if (!compare_.requested) return;
+  if (v_.renderer_.status().generation != v_.a_generation_) {
+    compare_.requested = false;
+    compare_.dropped = true;
+    return;
+  }
+  const bool ready = compare_.first_full ? v_.shown_.generation == v_.a_generation_ && v_.shown_.divisor == 1 : v_.image_is_final();
+  if (!ready || v_.shown_.pixels.empty()) return;
+  compare_.image = v_.shown_;
+  compare_.requested = false;
+  v_.upload_pending_ = true;
+}
+
+int Instruments::target_spp() const {
+  // (Not for the indirect light: its noise settles only with samples; A's edges are what differ.)
+  const bool lesson_difference = v_.lessons_.lesson() && !v_.lessons_.exploring() && compare_.first_full && v_.instruments_.compare == 2 &&
+                                 !compare_.image.pixels.empty() && v_.render_settings_.ambient_view == ui::AmbientView::kConstant;
+  const int target = std::max(v_.render_settings_.target_spp, 1);
+  return lesson_difference ? std::min(target, static_cast<int>(std::max(compare_.image.spp, 1u))) : target;
+}
+
+bool Instruments::a_comparable() const {
+  if (compare_.image.pixels.empty() || compare_.image.width != v_.shown_.width || compare_.image.height != v_.shown_.height ||
+      compare_.image.divisor != v_.shown_.divisor || compare_.image.pixels.size() != v_.shown_.pixels.size()) {
+    return false;
+  }
+  // The difference compares like with like: the same samples, so only a change shows. The
+  // indirect light against ka·Ia differs everywhere: it is shown as it settles.
+  return v_.instruments_.compare != 2 || compare_.image.spp == v_.shown_.spp ||
+         v_.render_settings_.ambient_view != ui::AmbientView::kConstant;
+}
+
+std::string Instruments::compare_caption() const {
+  char text[160];
+  if (compare_.requested && compare_.first_full) {
+    std::snprintf(text, sizeof text, "A is taken at its first full-resolution image");
+  } else if (compare_.requested) {
+    std::snprintf(text, sizeof text, "A is taken when the image is done (%u of %d spp)", v_.shown_.spp,
+                  v_.render_settings_.target_spp);
+  } else if (compare_.image.pixels.empty()) {
+    std::snprintf(text, sizeof text, "%s", compare_.dropped ? "A was not taken: the view changed before the image was done"
+                                                      : "no A yet: Snapshot A keeps the finished image");
+  } else if (compare_.image.width != v_.shown_.width || compare_.image.height != v_.shown_.height) {
+    std::snprintf(text, sizeof text, "A is %dx%d, the view is now %dx%d: take A again to compare", compare_.image.width,
+                  compare_.image.height, v_.shown_.width, v_.shown_.height);
+  } else if (!a_comparable()) {
+    std::snprintf(text, sizeof text, "|live - A| shows when live has A's %u spp (now %u)", compare_.image.spp, v_.shown_.spp);
+  } else if (v_.instruments_.compare == 1) {
+    std::snprintf(text, sizeof text, "wipe: A (%u spp) left of the line, live right", compare_.image.spp);
+  } else {
+    std::snprintf(text, sizeof text, "|live - A| \xC3\x97 %.0f (%u spp each)", static_cast<double>(v_.instruments_.difference_gain),
+                  compare_.image.spp);
+  }
+  return text;
+}
+
+bool Instruments::heat_shown() const {
+  return v_.render_settings_.term == Term::kRays && v_.instruments_.compare == 0 && !v_.instruments_.small_multiples;
+}
+
+void Instruments::set_heat_map(bool on) {
+  if (on == (v_.render_settings_.term == Term::kRays)) return;
+  if (on) term_before_heat_ = v_.render_settings_.term;
+  v_.render_settings_.term = on ? Term::kRays : (term_before_heat_ == Term::kRays ? Term::kFull : term_before_heat_);
+  v_.rays_.heat_map = on;
+  v_.edits_.settings = true;
+}
+
+std::vector<glm::vec3> Instruments::display_pixels() const {
+  if (heat_shown()) {
+    // Rays per pixel on the ramp, 0 to the image's maximum. With the sRGB curve the shader
+    // encodes heat_color back to the ramp; raw display shows the ramp's codes themselves.
+    const double max = heat_max(v_.shown_.pixels);
+    if (v_.display_.srgb) return heat_map_pixels(v_.shown_.pixels, max);
+    std::vector<glm::vec3> out(v_.shown_.pixels.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(heat_ramp_srgb(max > 0 ? v_.shown_.pixels[i].x / max : 0));
+    return out;
+  }
+  if (const std::optional<std::vector<glm::vec3>> ambient = ambient_view_pixels()) return *ambient;
+  if (v_.instruments_.compare == 0 || !a_comparable()) return v_.shown_.pixels;
+  return compare_pixels(v_.shown_.pixels, compare_.image.pixels, v_.shown_.width,
+                        v_.instruments_.compare == 1 ? CompareView::kWipe : CompareView::kDifference,
+                        static_cast<double>(v_.instruments_.wipe), static_cast<double>(v_.instruments_.difference_gain));
+}
+
+bool Instruments::ambient_view_pixels_shown(ui::AmbientView view) const {
+  return v_.render_settings_.ambient_view == view && !v_.instruments_.small_multiples &&
+         v_.shown_.terms[0].size() == v_.shown_.pixels.size() && !v_.shown_.pixels.empty();
+}
+
+// The indirect term beside the ambient term, or their difference as heat: from one frame of
+// Term::kIndirect with the term images (the ambient one is ka·Ia). Nothing for the other views.
+std::optional<std::vector<glm::vec3>> Instruments::ambient_view_pixels() const {
+  const std::vector<glm::vec3>& ambient = v_.shown_.terms[0];
+  const bool beside = ambient_view_pixels_shown(ui::AmbientView::kBeside);
+  if (!beside && !ambient_view_pixels_shown(ui::AmbientView::kDifference)) return std::nullopt;
+  if (beside) {
+    return compare_pixels(v_.shown_.pixels, ambient, v_.shown_.width, CompareView::kWipe, static_cast<double>(v_.instruments_.wipe), 1);
+  }
+  std::vector<glm::vec3> gap(v_.shown_.pixels.size());
+  for (std::size_t i = 0; i < gap.size(); ++i) {
+    const glm::vec3 d = glm::abs(v_.shown_.pixels[i] - ambient[i]);
+    gap[i] = glm::vec3(std::max({d.x, d.y, d.z}));
+  }
+  return heat_map_pixels(gap, heat_max(gap));
+}
+
+Vec3 Instruments::head_pivot() const {
+  if (probed_.tree && probed_.tree->root.hit) return probed_.tree->root.p;
+  return v_.doc_.scene().camera.look_at;
+}
+
+std::optional<Vec3> Instruments::head_eye() const {
+  if (!v_.instruments_.move_head) return std::nullopt;
+  return phonglab::head_eye(v_.doc_.scene().camera, head_pivot(), static_cast<double>(v_.instruments_.head_angle_deg));
+}
+
+void Instruments::save_figure(const std::string& path) {
+  if (!v_.snapshot_ || v_.viewport_.height < 1) {
+    v_.figure_status_ = "no scene yet";
+    return;
+  }
+  FigureOptions options;
+  options.cell_height = kFigureCellHeight;
+  options.cell_width = std::max(1, static_cast<int>(std::lround(kFigureCellHeight * v_.viewport_.width / v_.viewport_.height)));
+  options.threads = v_.render_settings_.threads;
+  const std::string error = write_figure(path, *v_.snapshot_, options);
+  v_.figure_status_ = error.empty() ? "saved " + std::filesystem::absolute(path).lexically_normal().string() : error;
+}
+
+}  // namespace phonglab
