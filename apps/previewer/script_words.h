@@ -1,4 +1,4 @@
-// The words of a test-script command read as numbers (viewer_script.cpp, viewer_script_set.cpp).
+// The words of a test-script command read as numbers (script_driver.cpp, script_driver_set.cpp, lesson_shell.cpp).
 #pragma once
 
 #include <cmath>
