@@ -59,10 +59,9 @@ void FileShell::handle_guard_modal() {
   if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kLesson) view.action = "open the lesson " + dialogs_.pending.arg;
   view.can_save = !v_.doc_.file_path().empty() && !v_.doc_.opened_mesh();
   view.changed_on_disk = !v_.doc_.file_path().empty() && v_.doc_.changed_on_disk();
-  const ui::GuardChoice choice = ui::unsaved_changes_modal(dialogs_.open_guard, view, file_state_.path_field, dialogs_.scripted_choice);
+  const ui::GuardChoice choice = ui::unsaved_changes_modal(dialogs_.open_guard, view, file_state_.path_field);
   if (dialogs_.open_guard) dialogs_.guard_visible = true;
   dialogs_.open_guard = false;
-  if (dialogs_.guard_visible) dialogs_.scripted_choice = ui::GuardChoice::kNone;
   if (choice != ui::GuardChoice::kNone) {
     dialogs_.guard_visible = false;
     FileShell::PendingAction pending = std::move(dialogs_.pending);
@@ -80,10 +79,9 @@ void FileShell::handle_guard_modal() {
 }
 
 void FileShell::handle_conflict_modal() {
-  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, v_.doc_.file_path(), dialogs_.scripted_choice);
+  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, v_.doc_.file_path());
   if (dialogs_.open_conflict) dialogs_.conflict_visible = true;
   dialogs_.open_conflict = false;
-  if (dialogs_.conflict_visible) dialogs_.scripted_choice = ui::GuardChoice::kNone;
   if (choice == ui::GuardChoice::kNone) return;
   dialogs_.conflict_visible = false;
   FileShell::PendingAction after = std::move(dialogs_.after_save);

@@ -35,14 +35,12 @@ class FileShell {
     bool open_conflict = false;     // open the changed-on-disk dialog this frame
     bool conflict_visible = false;  // it is up
     PendingAction after_save;       // what runs once a save (through the dialogs) succeeds
-    ui::GuardChoice scripted_choice = ui::GuardChoice::kNone;
   };
   // The offer of kept edits and the exit on a signal (the files are the session's RecoveryKeeper).
   struct Recovery {
     std::optional<ui::RecoveryEntry> offer;  // found at start, waiting for an answer
     bool open_modal = false;   // open the offer's dialog this frame
     bool modal_visible = false;
-    int scripted = 0;          // `modal restore|discard|later`: 1, 2, 3
     bool keep = false;         // exiting on a signal: the file stays for the next start
     bool after_lesson = false; // started with a lesson: the offer waits until it closes (never over a slide)
   };

@@ -78,11 +78,9 @@ void FileShell::handle_recovery_modal() {
   if (std::tm tm{}; localtime_r(&t, &tm) != nullptr) std::strftime(when, sizeof when, "at %Y-%m-%d %H:%M:%S", &tm);
   const std::string source = recovery_.offer->embedded ? "the embedded scene '" + recovery_.offer->source + "'"
                                                        : recovery_.offer->source;
-  const auto choice = ui::recovery_modal(recovery_.open_modal, source, when,
-                                         static_cast<ui::RecoveryChoice>(recovery_.scripted));
+  const auto choice = ui::recovery_modal(recovery_.open_modal, source, when);
   if (recovery_.open_modal) recovery_.modal_visible = true;
   recovery_.open_modal = false;
-  recovery_.scripted = 0;
   if (choice == ui::RecoveryChoice::kNone) return;
   recovery_.modal_visible = false;
   const ui::RecoveryEntry entry = *recovery_.offer;

@@ -179,10 +179,20 @@ void ScriptDriver::step_script(double now) {
     v_.quit_ = true;
     return;
   }
-  if (run_.auto_answer != ui::GuardChoice::kNone) {
-    if (v_.files_.dialogs().guard_visible) v_.files_.dialogs().scripted_choice = run_.auto_answer;
-    if (v_.files_.dialogs().conflict_visible) v_.files_.dialogs().scripted_choice = ui::GuardChoice::kCancel;
-    if (v_.files_.recovery().modal_visible) v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kLater);
+  if (!run_.auto_answer.empty() && run_.input.empty()) {
+    // `auto_modal`: a dialog that opens is answered with a click on its button, as a user would.
+    const FileShell::Dialogs& dialogs = v_.files_.dialogs();
+    std::string name;
+    if (dialogs.guard_visible) name = "guard." + run_.auto_answer;
+    else if (dialogs.conflict_visible) name = "conflict.cancel";
+    else if (v_.files_.recovery().modal_visible) name = "recovery.later";
+    if (!name.empty()) {
+      const ItemAction saved = run_.item_action;
+      run_.item_action = ItemAction{};
+      run_.item_action.name = name;
+      push_item_input();
+      run_.item_action = saved;
+    }
   }
   if (run_.failed || (run_.index >= run_.commands.size() && run_.wait == ScriptWait::kNone)) return;
   if (run_.wait != ScriptWait::kNone) {
@@ -550,24 +560,23 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
     return true;
   }
   if (name == "modal") {
+    // The open dialog's button, clicked as a user would (its name as the dialog locates it).
     constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload (the recovery offer: restore|discard|later)";
     if (w.size() != 2) return step.fail(kUsage);
-    if (v_.files_.recovery().modal_visible && !v_.files_.dialogs().guard_visible && !v_.files_.dialogs().conflict_visible) {
-      if (w[1] == "restore") v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kRestore);
-      else if (w[1] == "discard") v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kDiscard);
-      else if (w[1] == "later") v_.files_.recovery().scripted = static_cast<int>(ui::RecoveryChoice::kLater);
-      else return step.fail(kUsage);
-      return true;
+    const FileShell::Dialogs& dialogs = v_.files_.dialogs();
+    const bool recovery = v_.files_.recovery().modal_visible && !dialogs.guard_visible && !dialogs.conflict_visible;
+    if (!recovery && !dialogs.guard_visible && !dialogs.conflict_visible) {
+      return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
     }
-    if (!v_.files_.dialogs().guard_visible && !v_.files_.dialogs().conflict_visible) return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
-    if (w[1] == "save") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kSave;
-    else if (w[1] == "save_as") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kSaveAs;
-    else if (w[1] == "discard") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kDiscard;
-    else if (w[1] == "cancel") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kCancel;
-    else if (w[1] == "overwrite") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kOverwrite;
-    else if (w[1] == "reload") v_.files_.dialogs().scripted_choice = ui::GuardChoice::kReload;
-    else return step.fail(kUsage);
-    return true;
+    const std::string& a = w[1];
+    const bool known = recovery ? (a == "restore" || a == "discard" || a == "later")
+                       : dialogs.conflict_visible ? (a == "overwrite" || a == "reload" || a == "cancel")
+                                                  : (a == "save" || a == "save_as" || a == "discard" || a == "cancel");
+    if (!known) return step.fail(kUsage);
+    run_.item_action = ItemAction{};
+    run_.item_action.name = (recovery ? "recovery." : dialogs.conflict_visible ? "conflict." : "guard.") + a;
+    run_.frames_left = 1;
+    return step.wait_for(ScriptWait::kItem, 99);
   }
   if (name == "save") {
     // The Save button, through the same checks: a file changed on disk opens its dialog, a
@@ -628,7 +637,7 @@ std::optional<bool> ScriptDriver::script_other_command(ScriptStep& step) {
   }
   if (name == "auto_modal") {
     if (w.size() != 2 || (w[1] != "discard" && w[1] != "off")) return step.fail("usage: auto_modal discard|off");
-    run_.auto_answer = w[1] == "discard" ? ui::GuardChoice::kDiscard : ui::GuardChoice::kNone;
+    run_.auto_answer = w[1] == "discard" ? "discard" : "";
     return true;
   }
   if (name == "stop_after") {

@@ -120,7 +120,7 @@ class ScriptDriver {
     // script ends at a time (`stop_after S`).
     bool lenient = false;
     int ignored = 0;                    // commands that failed and were skipped
-    ui::GuardChoice auto_answer = ui::GuardChoice::kNone;
+    std::string auto_answer;            // `auto_modal discard`: the guard's button clicked ("" off)
     double stop_at = 0;                 // glfwGetTime() to quit at; 0: none
     std::string screenshot;             // window screenshot to take after drawing this frame
     int bench_left = 0;                 // bench_edits: edits still to make

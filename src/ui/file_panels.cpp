@@ -26,11 +26,11 @@ bool begin_centred_modal(const char* title, bool open_now) {
   return ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
 }
 
-// The last row of a dialog: Cancel (or Esc), a scripted answer in place of the user's, and the
-// dialog closed once answered. Call inside BeginPopupModal; ends the popup.
-GuardChoice end_choice(GuardChoice choice, GuardChoice scripted) {
+// The last row of a dialog: Cancel (or Esc; located as "<dialog>.cancel"), and the dialog closed
+// once answered. Call inside BeginPopupModal; ends the popup.
+GuardChoice end_choice(GuardChoice choice, const char* dialog) {
   if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = GuardChoice::kCancel;
-  if (scripted != GuardChoice::kNone) choice = scripted;
+  locate(std::string(dialog) + ".cancel");
   if (choice != GuardChoice::kNone) ImGui::CloseCurrentPopup();
   ImGui::EndPopup();
   return choice;
@@ -104,8 +104,7 @@ void screenshot_panel(ScreenshotState& state, ScreenshotActions& actions) {
   if (!state.status.empty()) ImGui::TextWrapped("%s", state.status.c_str());
 }
 
-GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
-                                  GuardChoice scripted) {
+GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path) {
   constexpr const char* kTitle = "Unsaved changes";
   GuardChoice choice = GuardChoice::kNone;
   if (begin_centred_modal(kTitle, open_now)) {
@@ -120,20 +119,22 @@ GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::str
     ImGui::BeginDisabled(!view.can_save);
     if (ImGui::Button("Save")) choice = GuardChoice::kSave;
     ImGui::EndDisabled();
+    locate("guard.save");
     ImGui::SameLine();
     if (ImGui::Button("Save as")) choice = GuardChoice::kSaveAs;
+    locate("guard.save_as");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 16);
     input_text("##save_as", save_as_path);
     if (ImGui::Button("Discard")) choice = GuardChoice::kDiscard;
+    locate("guard.discard");
     ImGui::SameLine();
-    choice = end_choice(choice, scripted);
+    choice = end_choice(choice, "guard");
   }
   return choice;
 }
 
-RecoveryChoice recovery_modal(bool open_now, const std::string& source, const std::string& saved,
-                              RecoveryChoice scripted) {
+RecoveryChoice recovery_modal(bool open_now, const std::string& source, const std::string& saved) {
   constexpr const char* kTitle = "Unsaved edits were kept";
   RecoveryChoice choice = RecoveryChoice::kNone;
   if (begin_centred_modal(kTitle, open_now)) {
@@ -148,14 +149,13 @@ RecoveryChoice recovery_modal(bool open_now, const std::string& source, const st
     ImGui::SameLine();
     if (ImGui::Button("Not now") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) choice = RecoveryChoice::kLater;
     locate("recovery.later");
-    if (scripted != RecoveryChoice::kNone) choice = scripted;
     if (choice != RecoveryChoice::kNone) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
   return choice;
 }
 
-GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted) {
+GuardChoice changed_on_disk_modal(bool open_now, const std::string& file) {
   constexpr const char* kTitle = "The file changed on disk";
   GuardChoice choice = GuardChoice::kNone;
   if (begin_centred_modal(kTitle, open_now)) {
@@ -163,10 +163,12 @@ GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardC
     ImGui::Text("Saving now would overwrite that change with your version.");
     ImGui::Spacing();
     if (ImGui::Button("Overwrite")) choice = GuardChoice::kOverwrite;
+    locate("conflict.overwrite");
     ImGui::SameLine();
     if (ImGui::Button("Reload from disk (lose my edits)")) choice = GuardChoice::kReload;
+    locate("conflict.reload");
     ImGui::SameLine();
-    choice = end_choice(choice, scripted);
+    choice = end_choice(choice, "conflict");
   }
   return choice;
 }

@@ -256,19 +256,20 @@ struct GuardView {
 };
 // Call every frame. `open_now` opens it (on the frame the guarded action is asked for). Save is
 // offered when the document has a file; Save as (to `save_as_path`, edited in the dialog) always.
-// kNone while undecided or closed. `scripted`, when not kNone, answers for the user (test scripts).
-GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path,
-                                  GuardChoice scripted = GuardChoice::kNone);
+// kNone while undecided or closed. Its buttons are located as guard.save, guard.save_as,
+// guard.discard and guard.cancel (a test script clicks them as a user does).
+GuardChoice unsaved_changes_modal(bool open_now, const GuardView& view, std::string& save_as_path);
 
 // The offer of a recovery file at start: Restore, Discard, or Not now (kept for the next start).
 enum class RecoveryChoice : std::uint8_t { kNone, kRestore, kDiscard, kLater };
 // Call every frame while an offer waits. `source` names the scene, `saved` says when (text).
-RecoveryChoice recovery_modal(bool open_now, const std::string& source, const std::string& saved,
-                              RecoveryChoice scripted = RecoveryChoice::kNone);
+// Buttons: recovery.restore, recovery.discard, recovery.later.
+RecoveryChoice recovery_modal(bool open_now, const std::string& source, const std::string& saved);
 
 // Call every frame. Opens (with `open_now`) when Save finds that `file` changed on disk since it
-// was read or written: Overwrite, Reload from disk (losing the edits) or Cancel.
-GuardChoice changed_on_disk_modal(bool open_now, const std::string& file, GuardChoice scripted = GuardChoice::kNone);
+// was read or written: Overwrite, Reload from disk (losing the edits) or Cancel (conflict.overwrite,
+// conflict.reload, conflict.cancel).
+GuardChoice changed_on_disk_modal(bool open_now, const std::string& file);
 
 // What the Lessons panel shows.
 struct LessonPanelView {
