@@ -93,13 +93,15 @@ std::optional<double> loglog_at(const std::vector<double>& xs, const std::vector
 
 
 // Renders `spp` passes of `scene` at w x h (`packets`: RenderOptions::packets).
-Render render(const PreparedScene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets) {
+Render render(const PreparedScene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets,
+              Ambient ambient) {
   Render r;
   r.accum.reset(w, h);
   RenderOptions opt;
   opt.threads = threads;
   opt.seed = seed;
   opt.packets = packets;
+  opt.ambient = ambient;
   const auto t0 = Clock::now();
   r.stats = render_passes(scene, opt, r.accum, spp);
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();

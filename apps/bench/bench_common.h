@@ -58,8 +58,9 @@ struct Render {
   double seconds = 0;
 };
 
-// Renders `spp` passes of `scene` at w x h (`packets`: RenderOptions::packets), timed.
-Render render(const PreparedScene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets = true);
+// Renders `spp` passes of `scene` at w x h (`packets`, `ambient`: RenderOptions'), timed.
+Render render(const PreparedScene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets = true,
+              Ambient ambient = Ambient::kConstant);
 // The same for a scene prepared here, outside the timing.
 Render render(const Scene& scene, int w, int h, int spp, int threads, std::uint32_t seed, bool packets = true);
 

@@ -8,14 +8,7 @@ namespace {
 
 // Mean of `passes` passes of the indirect view (the full image with indirect light).
 std::vector<Color> indirect_image(const PreparedScene& scene, int w, int h, int passes, int threads, std::uint32_t seed) {
-  RenderOptions options;
-  options.ambient = Ambient::kIndirect;
-  options.threads = threads;
-  options.seed = seed;
-  Accumulator accum;
-  accum.reset(w, h);
-  render_passes(scene, options, accum, passes);
-  return means(accum);
+  return means(render(scene, w, h, passes, threads, seed, true, Ambient::kIndirect).accum);
 }
 
 // The Whitted image's and the indirect view's Mrays/s: one pass each, alternating, `rounds` times.
@@ -26,12 +19,7 @@ Speeds alternate_speeds(const PreparedScene& scene, int w, int h, int rounds, in
   Speeds s;
   for (int r = 0; r < rounds; ++r) {
     for (const Ambient ambient : {Ambient::kConstant, Ambient::kIndirect}) {
-      RenderOptions options;
-      options.ambient = ambient;
-      options.threads = threads;
-      Accumulator accum;
-      accum.reset(w, h);
-      const PassStats pass = render_pass(scene, options, accum);
+      const PassStats pass = render(scene, w, h, 1, threads, 0, true, ambient).stats;
       const double mrays = static_cast<double>(pass.rays.total()) / pass.seconds * 1e-6;
       (ambient == Ambient::kConstant ? s.whitted : s.indirect).push_back(mrays);
     }

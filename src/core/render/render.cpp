@@ -125,10 +125,9 @@ Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& fram
     // The indirect term beside the lecture's five: the terms as §1 has them (ka·Ia), the value
     // the indirect term's estimate (the same gather render_sample takes: the tree's first).
     terms = shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, TermsWanted{});
-    IndirectSampler sampler(scene.indirect_bounces, indirect_pixel_key(x, y, seed), sample_index);
-    const HitSide side = hit_side(*hit, ray.dir);
-    return indirect_estimate(prepared, limits, scene.materials[static_cast<std::size_t>(hit->material)], hit->p, side,
-                             surface_offset(scene, *hit), counts, sampler);
+    std::optional<IndirectSampler> sampler = sampler_for(scene, Ambient::kIndirect, x, y, sample_index, seed);
+    return indirect_estimate(prepared, limits, scene.materials[static_cast<std::size_t>(hit->material)], hit->p,
+                             hit_side(*hit, ray.dir), surface_offset(scene, *hit), counts, *sampler);
   }
   std::optional<IndirectSampler> sampler = sampler_for(scene, ambient, x, y, sample_index, seed);
   terms = shade(prepared, limits, ray, *hit, 0, 1.0, counts, nullptr, shading_eye, TermsWanted{}, pointer(sampler));
