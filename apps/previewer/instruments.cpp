@@ -62,8 +62,14 @@ void Instruments::refresh_probe() {
   probed_.report = probe_to_text(v_.snapshot_->scene(), *probed_.tree, probed_.every_digit ? 17 : 4);
   probed_.occluders.clear();
   for (const ProbeLight& light : probed_.tree->root.lights) probed_.occluders.push_back(object_name(v_.snapshot_->scene(), light.occluder));
-  probed_.indirect = probe_indirect(*v_.snapshot_, v_.render_width_, v_.render_height_, probed_.x, probed_.y, kProbeIndirectSamples);
+  // The indirect term's numbers only with an ambient view on: 256 gathers, every refresh.
+  probed_.with_indirect = shows_indirect();
+  probed_.indirect = probed_.with_indirect ? probe_indirect(*v_.snapshot_, v_.render_width_, v_.render_height_, probed_.x,
+                                                            probed_.y, kProbeIndirectSamples)
+                                           : IndirectProbe{};
 }
+
+bool Instruments::shows_indirect() const { return v_.render_settings_.ambient_view != ui::AmbientView::kConstant; }
 
 void Instruments::snapshot_a(bool first_full) {
   // A is the finished image of what is on screen now, never a half-converged one (its noise

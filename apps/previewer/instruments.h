@@ -32,6 +32,7 @@ class Instruments {
     bool every_digit = false;            // the probe panel shows every digit (else four significant)
     std::vector<std::string> occluders;  // object_name of each primary-hit light's occluder
     IndirectProbe indirect;              // ka·Ia beside the indirect term's estimate at the pixel
+    bool with_indirect = false;          // `indirect` was taken (an ambient view is on)
   };
   // Snapshot A of the A/B compare.
   struct CompareState {
@@ -64,6 +65,7 @@ class Instruments {
   std::vector<glm::vec3> display_pixels() const; // the shown image, its heat map, its wipe / difference against A
   bool ambient_view_pixels_shown(ui::AmbientView view) const;  // that view, and a frame that has it
   bool heat_shown() const;                       // the rays view is on screen as a heat map
+  bool shows_indirect() const;                   // an ambient view other than ka·Ia is chosen
   void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
   std::string compare_caption() const;           // what the compare view shows, or why it cannot
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.

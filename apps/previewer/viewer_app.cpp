@@ -360,6 +360,8 @@ void Viewer::apply_edits(double frame_start) {
   if (tools_.target_spp() != sent_target_spp_) edits_.settings = true;
   if (edits_.settings) {
     upload_pending_ = true;  // what the image shows of the same frame may change (the ambient views)
+    // The probe's indirect numbers come with an ambient view and go with it.
+    if (tools_.probe().tree && tools_.probe().with_indirect != tools_.shows_indirect()) tools_.refresh_probe();
     const std::uint64_t before = renderer_.status().generation;
     ui::RenderSettings settings = render_settings_;
     settings.target_spp = sent_target_spp_ = tools_.target_spp();
