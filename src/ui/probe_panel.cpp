@@ -33,10 +33,12 @@ void number_row(const char* label, double value, int digits) {
 // error, and the ka that would make ka·Ia equal to it.
 void indirect_rows(const IndirectProbe& p, int d) {
   ImGui::Separator();
-  ImGui::Text("what ka\xC2\xB7%s stands in for (%d samples, %d bounces):", i_a().c_str(), p.samples, p.bounces);
-  rgb_text("indirect kd\xC2\xB7" "E", p.mean, d);
-  rgb_text("\xC2\xB1 std. error", p.standard_error, d);
-  rgb_text("ka to match", p.fitted_ka, d);
+  ImGui::TextWrapped("what ka\xC2\xB7%s stands in for: the indirect term kd\xC2\xB7" "E, its standard error over %d "
+                     "samples (%d bounces), and the ka with ka\xC2\xB7%s equal to it:",
+                     i_a().c_str(), p.samples, p.bounces, i_a().c_str());
+  rgb_text("indirect", p.mean, d);
+  rgb_text("\xC2\xB1 error", p.standard_error, d);
+  rgb_text("ka match", p.fitted_ka, d);
 }
 
 }  // namespace
@@ -147,10 +149,10 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
   rgb_text("reflection", root.terms.reflection, d);
   rgb_text("refraction", root.terms.refraction, d);
   rgb_text("= total", root.terms.sum(), d);
-  if (view.indirect && view.indirect->hit) indirect_rows(*view.indirect, d);
   rgb_text("kr'", root.kr_eff, d);
   rgb_text("kt'", root.kt_eff, d);
   ImGui::Text("F = %.*g  TIR: %s  entering: %s", d, root.fresnel, root.tir ? "yes" : "no", root.entering ? "yes" : "no");
+  if (view.indirect && view.indirect->hit) indirect_rows(*view.indirect, d);
   for (std::size_t i = 0; i < root.lights.size(); ++i) {
     const ProbeLight& light = root.lights[i];
     ImGui::PushID(static_cast<int>(i));
