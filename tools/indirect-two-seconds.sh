@@ -5,13 +5,18 @@
 #
 #   xvfb-run -a -s '-screen 0 1280x720x24' tools/indirect-two-seconds.sh BUILD_DIR OUT.png
 #
-# Needs xdotool and ImageMagick (import).
+# RENDER_THREADS=N renders on N threads (the slow case: 1). Needs xdotool and ImageMagick (import).
 set -euo pipefail
 BUILD=${1:?usage: tools/indirect-two-seconds.sh BUILD_DIR OUT.png}
 OUT=${2:?usage: tools/indirect-two-seconds.sh BUILD_DIR OUT.png}
-"$BUILD/bin/phonglab" cornell --size 1280x720 &
+script=$(mktemp)
+{
+  [ -n "${RENDER_THREADS:-}" ] && echo "set render threads $RENDER_THREADS"
+  echo "wait_file /nonexistent-$$ 600"  # the script waits; the window takes real input meanwhile
+} >"$script"
+"$BUILD/bin/phonglab" cornell --size 1280x720 --script "$script" &
 pid=$!
-trap 'kill $pid 2>/dev/null || true' EXIT
+trap 'kill $pid 2>/dev/null || true; rm -f "$script"' EXIT
 sleep 12  # start, and the lecture's image at its target spp
 xdotool search --sync --onlyvisible --name phonglab windowactivate --sync >/dev/null 2>&1 || true
 xdotool key h
