@@ -37,10 +37,14 @@ double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_c
 // of a scene that differs only in ka or Ia, at the same size and settings.
 bool carries_over(const ProgressiveSettings& was, const ProgressiveSettings& now, const PreparedScene* old_scene,
                   const PreparedScene* new_scene, bool same_size) {
-  return same_size && old_scene && new_scene && shows_indirect(now) && !now.term_images && was.term == now.term &&
-         was.ambient == now.ambient && was.term_images == now.term_images && was.shading_eye == now.shading_eye &&
+  return same_size && old_scene && new_scene && shows_indirect(now) && !now.term_images && !was.term_images &&
+         was.term == now.term && was.ambient == now.ambient && was.shading_eye == now.shading_eye &&
          indirect_unchanged(old_scene->scene(), new_scene->scene());
 }
+
+// Whether the first sample's ray trees can stand for what the settings show: one of the lecture's
+// images (the indirect light is traced every time).
+bool trees_apply(const ProgressiveSettings& s) { return reshades(s.term) && !shows_indirect(s); }
 
 }  // namespace
 
@@ -232,7 +236,7 @@ struct ProgressiveRenderer::Job {
   std::chrono::steady_clock::time_point restart_time;
   ProgressiveSettings settings;
   std::unique_ptr<RayTrees> trees;  // the first sample's trees of a recent scene, or null
-  bool trees_serve = false;         // they can re-shade this generation (scene, size and eye)
+  bool trees_serve = false;         // they can re-shade this generation (scene, size, eye and what is shown)
   struct Refusal {
     int width = 0, height = 0;
     std::size_t budget = 0;
@@ -380,9 +384,9 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   }
   job.levels = make_levels(width_, height_);
   // An edit that changes no ray (or only shadow rays) is re-shaded at full resolution at once.
-  job.trees_serve = job.scene && job.trees && !shows_indirect(settings_) &&
+  job.trees_serve = job.scene && job.trees && trees_apply(settings_) &&
                     job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
-  job.reshade = job.trees_serve && reshades(settings_.term);
+  job.reshade = job.trees_serve;
   job.reshaded = job.reshade;
   // While the hand is on, a linear edit is recombined from the trees' sums (its exact re-shade
   // follows when the hand stops).
@@ -469,7 +473,7 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
 void ProgressiveRenderer::record_trees(Job& job) {
   const ProgressiveSettings& s = job.settings;
   const ProgressiveLevel& full = job.levels.back();
-  if (s.tree_budget_bytes == 0 || !reshades(s.term) || shows_indirect(s)) return;
+  if (s.tree_budget_bytes == 0 || !trees_apply(s)) return;
   if (job.trees_serve) return;
   const Job::Refusal here{full.width, full.height, s.tree_budget_bytes};
   if (job.refused.width == here.width && job.refused.height == here.height && job.refused.budget == here.budget) return;
