@@ -27,6 +27,22 @@ bool packet_cpu_supported() {
 #endif
 }
 
+bool packet_fma_supported() {
+#if defined(PHONGLAB_PACKET_AVX2)
+  static const bool supported = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return supported;
+#else
+  return false;
+#endif
+}
+
+int whole_power_exponent(double n) {
+  if (!(n >= 1 && n <= 4096) || n != static_cast<double>(static_cast<int>(n))) return -1;
+  const int k = static_cast<int>(n);
+  const int steps = (31 - __builtin_clz(static_cast<unsigned>(k))) + __builtin_popcount(static_cast<unsigned>(k)) - 1;
+  return steps <= kWholePowerSteps ? k : -1;
+}
+
 bool packet_tracing_applies(const PreparedScene& prepared) {
   const Accelerator* accel = prepared.accel();
   const bool walkable = accel ? dynamic_cast<const SceneBvh*>(accel) != nullptr : prepared.scene().meshes.empty();
@@ -89,6 +105,7 @@ PacketTracer::Impl::Impl(const PreparedScene& p) : prepared(p), scene(p.scene())
     mi.ior = m.ior;
     mi.ambient = m.ka * scene.ambient;
     info.push_back(mi);
+    if (packet_fma_supported()) power.push_back(!mi.specular ? 0 : whole_power_exponent(m.n));
     ambient.push(mi.ambient);
   }
   for (const Light& light : scene.lights) {

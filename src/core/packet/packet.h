@@ -27,6 +27,13 @@ namespace phonglab {
 
 // Whether this CPU runs the packet kernels (AVX2), checked once.
 bool packet_cpu_supported();
+// The CPU also has fused multiply-add (packet::specular_powers needs it).
+bool packet_fma_supported();
+// The specular exponent n as the whole number packet::specular_powers raises to, or -1 where the
+// lanes take std::pow: n not whole, above 4096, or more than kWholePowerSteps squarings and
+// products (docs/speed.md).
+constexpr int kWholePowerSteps = 24;
+int whole_power_exponent(double n);
 
 // Whether the packet tracer can render `scene` (prepared) on this CPU.
 bool packet_tracing_applies(const PreparedScene& prepared);

@@ -104,7 +104,7 @@ struct Level {
   // it is seen with its specular factor.
   std::vector<double> n_dot_l, cos_spec, sox, soy, soz, sdx, sdy, sdz, st_max, spec;
   std::vector<Shadow> shadow;
-  std::vector<std::uint8_t> blocked, seen;
+  std::vector<std::uint8_t> blocked, seen, pending;  // pending: seen, its factor still to take
   // Children: the bounce at mirror and glass hits (kernel output), the level's reflected and
   // refracted rays, and what they bring back.
   std::vector<std::uint8_t> bounces, tir;
@@ -134,6 +134,7 @@ struct Level {
     fit(shadow, size);
     fit(blocked, size);
     fit(seen, size);
+    fit(pending, size);
     fit(kr, size);
     fit(kt, size);
     fit(reflected_index, size);

@@ -47,6 +47,9 @@ struct PacketTracer::Impl {
   std::vector<packet::MeshTree> mesh_trees;
   int mesh_id = 0;  // id of mesh 0
   std::vector<MaterialInfo> info;
+  // packet::specular_powers' exponent by material (whole_power_exponent; 0 without ks, -1 for
+  // std::pow); empty where the CPU has no FMA.
+  std::vector<int> power;
   MaterialColors light_kd, light_ks;  // I_l * kd and I_l * ks, per light and material
   MaterialColors ambient;             // ka * Ia per material
   std::vector<Level> levels;

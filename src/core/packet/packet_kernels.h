@@ -141,6 +141,15 @@ void add_light(const ByMaterial& kd, const ByMaterial& ks, const std::int32_t* m
                const double* n_dot_l, const double* spec, int lanes, const ColorLanes& diffuse,
                const ColorLanes& specular);
 
+// The specular factor (specular_factor: max(0, cos)^n) of the lanes where `seen` is set, by
+// material: power[m] is a whole n in [1, 4096] that this kernel raises to, 0 for a material
+// without ks (factor 0), or -1 (std::pow). Writes spec where the value is certainly std::pow's
+// double (packet_pow_fma.cpp says why) and sets pending[i] = 1 on the seen lanes left to the
+// caller's std::pow (about one in five of a whole n's, every lane of -1, and lanes of mixed
+// materials), 0 elsewhere. Built with FMA: call only where the CPU has it (packet_fma_supported).
+void specular_powers(const double* cos_spec, const std::int32_t* material, const int* power,
+                     const std::uint8_t* seen, int lanes, double* spec, std::uint8_t* pending);
+
 // The box of the hit points (lanes [0, live) whose id is >= 0; a NaN coordinate is passed
 // over) and their largest offset: out = lo x, y, z, hi x, y, z, the offset (+inf, -inf and 0
 // with no hit).

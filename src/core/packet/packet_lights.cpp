@@ -181,10 +181,23 @@ int PacketTracer::Impl::mark_seen(Level& lv, int lanes) const {
     std::memcpy(&blocked, &lv.blocked[at(h)], 4);
     const std::uint32_t seen = lit & ((shadow & kOnes) | ((shadow >> 1) & ~blocked & kOnes));
     std::memcpy(&lv.seen[at(h)], &seen, 4);
-    if (seen == 0) continue;
+    count += static_cast<int>((seen * kOnes) >> 24);  // the four bytes' sum (each 0 or 1)
+  }
+  if (count == 0) return 0;
+  // The specular factors: whole exponents four lanes at a time where the CPU can, std::pow for
+  // the lanes that leaves.
+  const std::uint8_t* left = lv.seen.data();
+  if (!power.empty()) {
+    packet::specular_powers(lv.cos_spec.data(), lv.material.data(), power.data(), lv.seen.data(), padded(lanes),
+                            lv.spec.data(), lv.pending.data());
+    left = lv.pending.data();
+  }
+  for (int h = 0; h < padded(lanes); h += 4) {
+    std::uint32_t word;
+    std::memcpy(&word, left + h, 4);
+    if (word == 0) continue;
     for (int j = 0; j < 4; ++j) {
-      if (!(seen >> (8 * j) & 1)) continue;
-      ++count;
+      if (!(word >> (8 * j) & 1)) continue;
       const std::size_t u = at(h + j);
       const MaterialInfo& mi = info[at(lv.material[u])];
       lv.spec[u] = mi.specular ? specular_factor(lv.cos_spec[u], mi.n) : 0.0;
