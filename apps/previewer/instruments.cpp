@@ -28,7 +28,7 @@ constexpr int kProbeIndirectSamples = 256;  // the probe's gathers for the indir
 }  // namespace
 
 std::optional<std::array<int, 2>> Instruments::render_pixel_at(ImVec2 mouse) const {
-  if (v_.render_width_ <= 0 || v_.render_height_ <= 0 || v_.viewport_.width < 1 || v_.viewport_.height < 1) return std::nullopt;
+  if (v_.schedule_.width() <= 0 || v_.schedule_.height() <= 0 || v_.viewport_.width < 1 || v_.viewport_.height < 1) return std::nullopt;
   const Viewer::Cells c = v_.cells();
   // In double, as the image's pixels are counted.
   const double cell_w = static_cast<double>(v_.viewport_.width) / c.columns;
@@ -38,33 +38,33 @@ std::optional<std::array<int, 2>> Instruments::render_pixel_at(ImVec2 mouse) con
   // Within its cell, the point maps to the render pixel the cell shows there.
   const double u = (x - std::floor(x / cell_w) * cell_w) / cell_w;
   const double v = (y - std::floor(y / cell_h) * cell_h) / cell_h;
-  return std::array<int, 2>{std::clamp(static_cast<int>(std::floor(u * v_.render_width_)), 0, v_.render_width_ - 1),
-                            std::clamp(static_cast<int>(std::floor(v * v_.render_height_)), 0, v_.render_height_ - 1)};
+  return std::array<int, 2>{std::clamp(static_cast<int>(std::floor(u * v_.schedule_.width())), 0, v_.schedule_.width() - 1),
+                            std::clamp(static_cast<int>(std::floor(v * v_.schedule_.height())), 0, v_.schedule_.height() - 1)};
 }
 
 void Instruments::probe_at(ImVec2 mouse) {
   const auto pixel = render_pixel_at(mouse);
-  if (!pixel || !v_.snapshot_) return;
+  if (!pixel || !v_.schedule_.snapshot()) return;
   probed_.x = (*pixel)[0];
   probed_.y = (*pixel)[1];
   refresh_probe();
 }
 
 void Instruments::refresh_probe() {
-  if (!v_.snapshot_ || v_.render_width_ <= 0 || v_.render_height_ <= 0) {
+  if (!v_.schedule_.snapshot() || v_.schedule_.width() <= 0 || v_.schedule_.height() <= 0) {
     probed_.tree.reset();
     return;
   }
-  probed_.x = std::clamp(probed_.x, 0, v_.render_width_ - 1);
-  probed_.y = std::clamp(probed_.y, 0, v_.render_height_ - 1);
+  probed_.x = std::clamp(probed_.x, 0, v_.schedule_.width() - 1);
+  probed_.y = std::clamp(probed_.y, 0, v_.schedule_.height() - 1);
   // The renderer's own replay of the pixel's centre ray: the numbers are the image's.
-  probed_.tree = probe_pixel(*v_.snapshot_, v_.render_width_, v_.render_height_, probed_.x, probed_.y, v_.shading_eye_);
-  probed_.report = probe_to_text(v_.snapshot_->scene(), *probed_.tree, probed_.every_digit ? 17 : 4);
+  probed_.tree = probe_pixel(*v_.schedule_.snapshot(), v_.schedule_.width(), v_.schedule_.height(), probed_.x, probed_.y, v_.schedule_.eye());
+  probed_.report = probe_to_text(v_.schedule_.snapshot()->scene(), *probed_.tree, probed_.every_digit ? 17 : 4);
   probed_.occluders.clear();
-  for (const ProbeLight& light : probed_.tree->root.lights) probed_.occluders.push_back(object_name(v_.snapshot_->scene(), light.occluder));
+  for (const ProbeLight& light : probed_.tree->root.lights) probed_.occluders.push_back(object_name(v_.schedule_.snapshot()->scene(), light.occluder));
   // The indirect term's numbers only with an ambient view on: 256 gathers, every refresh.
   probed_.with_indirect = shows_indirect();
-  probed_.indirect = probed_.with_indirect ? probe_indirect(*v_.snapshot_, v_.render_width_, v_.render_height_, probed_.x,
+  probed_.indirect = probed_.with_indirect ? probe_indirect(*v_.schedule_.snapshot(), v_.schedule_.width(), v_.schedule_.height(), probed_.x,
                                                             probed_.y, kProbeIndirectSamples)
                                            : IndirectProbe{};
 }
@@ -204,7 +204,7 @@ std::optional<Vec3> Instruments::head_eye() const {
 }
 
 void Instruments::save_figure(const std::string& path) {
-  if (!v_.snapshot_ || v_.viewport_.height < 1) {
+  if (!v_.schedule_.snapshot() || v_.viewport_.height < 1) {
     v_.figure_status_ = "no scene yet";
     return;
   }
@@ -212,7 +212,7 @@ void Instruments::save_figure(const std::string& path) {
   options.cell_height = kFigureCellHeight;
   options.cell_width = std::max(1, static_cast<int>(std::lround(kFigureCellHeight * v_.viewport_.width / v_.viewport_.height)));
   options.threads = v_.render_settings_.threads;
-  const std::string error = write_figure(path, *v_.snapshot_, options);
+  const std::string error = write_figure(path, *v_.schedule_.snapshot(), options);
   v_.figure_status_ = error.empty() ? "saved " + std::filesystem::absolute(path).lexically_normal().string() : error;
 }
 

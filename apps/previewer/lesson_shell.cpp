@@ -99,15 +99,15 @@ void LessonShell::update_lesson() {
   if (!v_.lessons_.lesson()) return;
   // A new view size (presenter mode, the panels hidden, the window resized) shows the step
   // again: its probed pixel and its A belong to the size they were made at.
-  const std::array<int, 2> size{v_.render_width_, v_.render_height_};
+  const std::array<int, 2> size{v_.schedule_.width(), v_.schedule_.height()};
   if (state_.shown_size == std::array<int, 2>{0, 0}) {
     state_.shown_size = size;
   } else if (size != state_.shown_size && size[0] > 0 && !v_.lessons_.exploring()) {
     show_place(v_.lessons_.place());
     return;
   }
-  if (state_.probe_pending && v_.snapshot_ && v_.render_width_ > 0 && v_.render_height_ > 0) {
-    if (const auto pixel = probe_in(v_.doc_.scene(), v_.snapshot_->scene().camera, v_.lessons_.view(), v_.render_width_, v_.render_height_)) {
+  if (state_.probe_pending && v_.schedule_.snapshot() && v_.schedule_.width() > 0 && v_.schedule_.height() > 0) {
+    if (const auto pixel = probe_in(v_.doc_.scene(), v_.schedule_.snapshot()->scene().camera, v_.lessons_.view(), v_.schedule_.width(), v_.schedule_.height())) {
       v_.tools_.probe().x = (*pixel)[0];
       v_.tools_.probe().y = (*pixel)[1];
       v_.tools_.refresh_probe();

@@ -99,11 +99,11 @@ void Overlays::draw_overlays() {
   }
   draw_ray_tree_lines();
   if (v_.tools_.probe().tree && v_.rays_.overlay && v_.rays_.legend && !v_.tree_segments_.empty()) {
-    const bool blinn = v_.snapshot_ && v_.snapshot_->scene().specular_model == SpecularModel::kBlinn;
+    const bool blinn = v_.schedule_.snapshot() && v_.schedule_.snapshot()->scene().specular_model == SpecularModel::kBlinn;
     // The legend must not hide the tree it explains: top right, unless the probed point is there,
     // then bottom right, then bottom left.
     ImVec2 anchor = top_right, pivot(1, 0);
-    if (const auto it = last.find("##ray_tree_legend"); it != last.end() && v_.render_width_ > 0 && v_.render_height_ > 0) {
+    if (const auto it = last.find("##ray_tree_legend"); it != last.end() && v_.schedule_.width() > 0 && v_.schedule_.height() > 0) {
       const ImVec2 size = ui::size_of(it->second);
       const ImVec2 hit = probe_point_in_cell(v_.cells().count() - 1);
       const float keep = 40 * scale;  // the ring and the N, L, R, V arrows around it
@@ -122,7 +122,7 @@ void Overlays::draw_overlays() {
     taken.push_back(overlay_window("##ray_tree_legend", anchor, pivot, taken, last, v_.overlay_rects_,
                                    [&] { ui::ray_tree_legend(v_.tree_segments_, blinn); }));
   }
-  if (v_.instruments_.move_head && v_.snapshot_) {
+  if (v_.instruments_.move_head && v_.schedule_.snapshot()) {
     // In presenter mode (no stats box) top left: the large caption leaves the bottom little room.
     const bool top = v_.lesson_shell_.state().presenting;
     taken.push_back(overlay_window("##head_plot", top ? top_left : bottom_left, ImVec2(0, top ? 0.0f : 1.0f), taken, last,
@@ -189,9 +189,9 @@ std::vector<std::string> Overlays::captions() const {
   } else if (!v_.instruments_.small_multiples && v_.render_settings_.term != Term::kFull && !v_.tools_.heat_shown()) {
     lines.push_back(ui::term_caption(v_.render_settings_.term, blinn));
   }
-  if (v_.snapshot_ && v_.rays_.depth_cut) {
+  if (v_.schedule_.snapshot() && v_.rays_.depth_cut) {
     char caption[96];
-    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", v_.snapshot_->scene().max_depth,
+    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", v_.schedule_.snapshot()->scene().max_depth,
                   v_.doc_.scene().max_depth);
     lines.emplace_back(caption);
   }
@@ -228,13 +228,13 @@ void Overlays::draw_head_plot() {
   // "Move your head": the highlight against the head angle.
   ui::HeadPlotView plot;
   plot.hit = v_.tools_.probe().tree ? &v_.tools_.probe().tree->root : nullptr;
-  plot.eye_at_zero = v_.snapshot_->scene().camera.position;
-  plot.axis = glm::normalize(make_camera_frame(v_.snapshot_->scene().camera, 1, 1).up);
+  plot.eye_at_zero = v_.schedule_.snapshot()->scene().camera.position;
+  plot.axis = glm::normalize(make_camera_frame(v_.schedule_.snapshot()->scene().camera, 1, 1).up);
   if (v_.tools_.probe().tree && v_.tools_.probe().tree->root.hit && v_.tools_.probe().tree->root.material >= 0 &&
-      v_.tools_.probe().tree->root.material < static_cast<int>(v_.snapshot_->scene().materials.size())) {
-    plot.shininess = v_.snapshot_->scene().materials[static_cast<std::size_t>(v_.tools_.probe().tree->root.material)].n;
+      v_.tools_.probe().tree->root.material < static_cast<int>(v_.schedule_.snapshot()->scene().materials.size())) {
+    plot.shininess = v_.schedule_.snapshot()->scene().materials[static_cast<std::size_t>(v_.tools_.probe().tree->root.material)].n;
   }
-  plot.blinn = v_.snapshot_->scene().specular_model == SpecularModel::kBlinn;
+  plot.blinn = v_.schedule_.snapshot()->scene().specular_model == SpecularModel::kBlinn;
   plot.angle_deg = v_.instruments_.head_angle_deg;
   plot.width = 340 * v_.platform_.ui_scale();
   ui::head_plot(plot);
@@ -244,8 +244,8 @@ ImVec2 Overlays::probe_point_in_cell(int cell) const {
   // The probed pixel's centre as cell `cell` shows it.
   const Viewer::Cells c = v_.cells();
   const ImVec2 origin = c.origin(cell);
-  return ImVec2(origin.x + (static_cast<float>(v_.tools_.probe().x) + 0.5f) / static_cast<float>(std::max(v_.render_width_, 1)) * c.width,
-                origin.y + (static_cast<float>(v_.tools_.probe().y) + 0.5f) / static_cast<float>(std::max(v_.render_height_, 1)) * c.height);
+  return ImVec2(origin.x + (static_cast<float>(v_.tools_.probe().x) + 0.5f) / static_cast<float>(std::max(v_.schedule_.width(), 1)) * c.width,
+                origin.y + (static_cast<float>(v_.tools_.probe().y) + 0.5f) / static_cast<float>(std::max(v_.schedule_.height(), 1)) * c.height);
 }
 
 void Overlays::draw_cell_labels_and_probe_ring() {
@@ -263,7 +263,7 @@ void Overlays::draw_cell_labels_and_probe_ring() {
     }
   }
   // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
-  if (!v_.tools_.probe().tree || v_.render_width_ <= 0 || v_.render_height_ <= 0) return;
+  if (!v_.tools_.probe().tree || v_.schedule_.width() <= 0 || v_.schedule_.height() <= 0) return;
   for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
 }
 
@@ -356,22 +356,22 @@ void Overlays::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
 void Overlays::draw_ray_tree_lines() {
   // The ray tree over the full image: the only cell, or the last of the small multiples.
   v_.tree_segments_.clear();
-  if (!v_.tools_.probe().tree || !v_.rays_.overlay || !v_.snapshot_ || v_.render_width_ <= 0 || v_.render_height_ <= 0) return;
+  if (!v_.tools_.probe().tree || !v_.rays_.overlay || !v_.schedule_.snapshot() || v_.schedule_.width() <= 0 || v_.schedule_.height() <= 0) return;
   const Viewer::Cells c = v_.cells();
   const ImVec2 full_cell = c.origin(c.count() - 1);
   RayTreeViewOptions options;
   options.shadow_rays = v_.rays_.shadow_rays;
   options.secondary_rays = v_.rays_.secondary_rays;
   options.arrows = v_.rays_.arrows;
-  // The probe was taken in snapshot_ at the render size: project with that camera and size.
-  const CameraFrame frame = make_camera_frame(v_.snapshot_->scene().camera, v_.render_width_, v_.render_height_);
-  v_.tree_segments_ = project_ray_tree(frame, ray_tree_segments(v_.snapshot_->scene(), v_.tools_.probe().tree->root, options),
-                                    ray_tree_near(v_.snapshot_->scene(), v_.tools_.probe().tree->root));
+  // The probe was taken in schedule_.snapshot() at the render size: project with that camera and size.
+  const CameraFrame frame = make_camera_frame(v_.schedule_.snapshot()->scene().camera, v_.schedule_.width(), v_.schedule_.height());
+  v_.tree_segments_ = project_ray_tree(frame, ray_tree_segments(v_.schedule_.snapshot()->scene(), v_.tools_.probe().tree->root, options),
+                                    ray_tree_near(v_.schedule_.snapshot()->scene(), v_.tools_.probe().tree->root));
   int lit_lights = 0;
   for (const ProbeLight& light : v_.tools_.probe().tree->root.lights) lit_lights += light.lit_side ? 1 : 0;
-  const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(v_.render_width_),
-                                             c.height / static_cast<float>(v_.render_height_))};
-  const bool blinn = v_.snapshot_->scene().specular_model == SpecularModel::kBlinn;
+  const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(v_.schedule_.width()),
+                                             c.height / static_cast<float>(v_.schedule_.height()))};
+  const bool blinn = v_.schedule_.snapshot()->scene().specular_model == SpecularModel::kBlinn;
   ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), v_.tree_segments_, rect, v_.platform_.ui_scale(), blinn, lit_lights);
 }
 

@@ -66,14 +66,14 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "camera_position=" << vec(scene.camera.position) << "\n"
       << "camera_look_at=" << vec(scene.camera.look_at) << "\n"
       << "camera_up=" << vec(scene.camera.up) << "\n"
-      << "camera_fov=" << std::setprecision(17) << (v_.snapshot_ ? v_.snapshot_->scene().camera.fov_y_deg : v_.view_camera().fov_y_deg)
+      << "camera_fov=" << std::setprecision(17) << (v_.schedule_.snapshot() ? v_.schedule_.snapshot()->scene().camera.fov_y_deg : v_.view_camera().fov_y_deg)
       << std::setprecision(6) << "\n"
       << "generation=" << status.generation << "\n"
       << "drawn_generation=" << v_.drawn_generation_ << "\n"
       << "spp=" << v_.shown_.spp << "\n"
       << "divisor=" << v_.shown_.divisor << "\n"
       << "image=" << v_.shown_.width << "x" << v_.shown_.height << "\n"
-      << "render=" << v_.render_width_ << "x" << v_.render_height_ << "\n"
+      << "render=" << v_.schedule_.width() << "x" << v_.schedule_.height() << "\n"
       << "window=" << window_w << "x" << window_h << "\n"
       << "framebuffer=" << fb_w << "x" << fb_h << "\n"
       << "nan_count=" << v_.shown_.stats.nan_count << "\n"
@@ -147,8 +147,8 @@ void ScriptDriver::write_layout_state(std::ostream& out) const {
       << "wipe=" << v_.instruments_.wipe << "\n"
       << "compare=" << v_.instruments_.compare << "\n"
       << "have_a=" << (v_.tools_.compare().image.pixels.empty() ? 0 : 1) << "\n"
-      << "head=" << (v_.shading_eye_ ? 1 : 0) << "\n";
-  if (v_.shading_eye_) out << "head_eye=" << vec(*v_.shading_eye_) << "\n";
+      << "head=" << (v_.schedule_.eye() ? 1 : 0) << "\n";
+  if (v_.schedule_.eye()) out << "head_eye=" << vec(*v_.schedule_.eye()) << "\n";
 }
 
 void ScriptDriver::write_rays_state(std::ostream& out) const {
@@ -170,7 +170,7 @@ void ScriptDriver::write_rays_state(std::ostream& out) const {
       << "depth_cut=" << (v_.rays_.depth_cut ? v_.rays_.cut_depth : -1) << "\n"
       << "depth_cut_label=" << depth_cut_label() << "\n"
       << "scene_max_depth=" << scene.max_depth << "\n"
-      << "render_max_depth=" << (v_.snapshot_ ? v_.snapshot_->scene().max_depth : -1) << "\n"
+      << "render_max_depth=" << (v_.schedule_.snapshot() ? v_.schedule_.snapshot()->scene().max_depth : -1) << "\n"
       << "heat=" << (v_.tools_.heat_shown() ? 1 : 0) << "\n"
       << "heat_max=" << v_.heat_max_ << "\n";
 }
@@ -204,7 +204,7 @@ void ScriptDriver::write_probe_state(std::ostream& out) const {
       << "probe_rays=" << v_.tools_.probe().tree->rays.total() << "\n";
   // The shown image's pixel there, when it is the full-resolution 1-spp image of this
   // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
-  if (v_.shown_.divisor == 1 && v_.shown_.spp == 1 && v_.shown_.width == v_.render_width_ && v_.shown_.height == v_.render_height_) {
+  if (v_.shown_.divisor == 1 && v_.shown_.spp == 1 && v_.shown_.width == v_.schedule_.width() && v_.shown_.height == v_.schedule_.height()) {
     const glm::vec3 shown = v_.shown_.pixels[static_cast<std::size_t>(v_.tools_.probe().y) * static_cast<std::size_t>(v_.shown_.width) +
                                           static_cast<std::size_t>(v_.tools_.probe().x)];
     out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";

@@ -175,10 +175,10 @@ void Sidebar::sidebar_materials() {
 void Sidebar::sidebar_ambient_fit() {
   const Scene& scene = v_.doc_.scene();
   const int m = v_.selected_material_;
-  if (m < 0 || m >= static_cast<int>(scene.materials.size()) || !v_.snapshot_) return;
+  if (m < 0 || m >= static_cast<int>(scene.materials.size()) || !v_.schedule_.snapshot()) return;
   const auto index = static_cast<std::size_t>(m);
   if (ImGui::Button("best constant ambient for this view")) {
-    v_.tools_.ambient_fit() = fit_ambient(*v_.snapshot_, std::max(1, v_.render_width_ / 4), std::max(1, v_.render_height_ / 4), 4,
+    v_.tools_.ambient_fit() = fit_ambient(*v_.schedule_.snapshot(), std::max(1, v_.schedule_.width() / 4), std::max(1, v_.schedule_.height() / 4), 4,
                                v_.render_settings_.threads);
     v_.tools_.ambient_fit_material() = scene.materials[index].name;
     if (v_.tools_.ambient_fit()->hits[index] > 0) {
@@ -236,10 +236,10 @@ void Sidebar::sidebar_probe() {
   // In the sidebar itself, wrapped at its width: the wheel scrolls the panels, never a box inside.
   {
     ui::ProbeView view;
-    view.scene = v_.snapshot_ ? &v_.snapshot_->scene() : nullptr;
+    view.scene = v_.schedule_.snapshot() ? &v_.schedule_.snapshot()->scene() : nullptr;
     view.probe = v_.tools_.probe().tree ? &*v_.tools_.probe().tree : nullptr;
-    view.image_width = v_.render_width_;
-    view.image_height = v_.render_height_;
+    view.image_width = v_.schedule_.width();
+    view.image_height = v_.schedule_.height();
     view.report = v_.tools_.probe().report;
     view.occluders = v_.tools_.probe().occluders;
     view.indirect = v_.tools_.probe().tree ? &v_.tools_.probe().indirect : nullptr;

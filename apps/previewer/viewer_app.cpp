@@ -38,13 +38,11 @@ constexpr double kIdleWait = 0.5;           // idle wake-up period, seconds: als
 constexpr double kFilePollPeriod = 0.5;     // "poll mtime about twice a second"
 constexpr float kSidebarWidth = 400;        // panel width at UI scale 1, ImGui units
 constexpr int kInteractiveDivisor = 4;      // while dragging, refine no further than 1/4 resolution
-constexpr double kMaxDeferral = 1.0;        // a drag's edit waits at most this long for the renderer, s
 constexpr float kPresenterScale = 1.9f;     // presenter mode's UI size at 1080 lines (in proportion to the height)
 
-ProgressiveSettings progressive_settings(const ui::RenderSettings& s, const std::optional<Vec3>& shading_eye,
-                                         bool small_multiples) {
+// The renderer's settings for the panel's; the eye is the schedule's (RenderSchedule::send_settings).
+ProgressiveSettings progressive_settings(const ui::RenderSettings& s, bool small_multiples) {
   ProgressiveSettings p;
-  p.shading_eye = shading_eye;
   p.term_images = small_multiples;  // one trace, five sums
   p.target_spp = s.target_spp;
   p.threads = s.threads;
@@ -111,7 +109,8 @@ Viewer::Viewer(Platform& platform, const ViewerOptions& options)
     : platform_(platform),
       options_(options),
       // The render thread only wakes the event loop; the UI takes the image itself.
-      renderer_(progressive_settings(ui::RenderSettings{}, std::nullopt, false), [] { glfwPostEmptyEvent(); }) {}
+      renderer_(progressive_settings(ui::RenderSettings{}, false), [] { glfwPostEmptyEvent(); }),
+      schedule_(renderer_) {}
 
 Viewer::~Viewer() = default;
 
@@ -337,37 +336,23 @@ void Viewer::apply_edits(double frame_start) {
   // One undo step per gesture: a slider drag, a light drag or an object drag commits when it ends.
   session_.settle(ImGui::IsAnyItemActive() || drag_.mode != DragMode::kNone);
 
-  // "Move your head": a new shading eye (angle, probe or camera changed) re-shades. While the
-  // angle slider is held, the next eye waits for the image of the last one, however long it
-  // takes: each restart would cancel the re-shade under way, and a cancelled re-shade of a new
-  // eye leaves the trees half updated, so they are dropped and every later eye of the drag is
-  // traced, coarse. (A scene edit's wait is bounded by kMaxDeferral; an eye's image is a
-  // re-shade, or a coarse trace when no trees serve: both come.)
-  const std::optional<Vec3> eye = tools_.head_eye();
-  const bool holding = interacting_ || edits_.while_active || ImGui::IsAnyItemActive();
-  const bool image_pending = renderer_.status().published_generation < sent_generation_;
-  if (eye != shading_eye_ && !(holding && image_pending)) {
-    shading_eye_ = eye;
+  // "Move your head": a new shading eye (angle, probe or camera changed) re-shades; while a
+  // slider is held, the next eye waits for the last one's image (RenderSchedule::offer_eye).
+  if (schedule_.offer_eye(tools_.head_eye(), interacting_ || edits_.while_active || ImGui::IsAnyItemActive())) {
     edits_.settings = true;
     if (tools_.probe().tree) tools_.refresh_probe();
   }
-  // The small multiples, turned on or off from anywhere (panel, M, script): term images or none.
-  if (instruments_.small_multiples != multiples_sent_) {
-    multiples_sent_ = instruments_.small_multiples;
-    edits_.settings = true;
-  }
-  // A lesson's difference keeps the live image at A's samples: the target follows it.
-  if (tools_.target_spp() != sent_target_spp_) edits_.settings = true;
+  // The small multiples, turned on or off from anywhere (panel, M, script): term images or none;
+  // a lesson's difference keeps the live image at A's samples: the target follows it.
+  if (schedule_.wants_changed(instruments_.small_multiples, tools_.target_spp())) edits_.settings = true;
   if (edits_.settings) {
     upload_pending_ = true;  // what the image shows of the same frame may change (the ambient views)
     // The probe's indirect numbers come with an ambient view and go with it.
     if (tools_.probe().tree && tools_.probe().with_indirect != tools_.shows_indirect()) tools_.refresh_probe();
-    const std::uint64_t before = renderer_.status().generation;
     ui::RenderSettings settings = render_settings_;
-    settings.target_spp = sent_target_spp_ = tools_.target_spp();
-    const std::uint64_t generation = renderer_.set_settings(progressive_settings(settings, shading_eye_, multiples_sent_));
-    if (generation != before) {
-      sent_generation_ = generation;
+    settings.target_spp = tools_.target_spp();
+    const bool multiples = instruments_.small_multiples;
+    if (const std::uint64_t generation = schedule_.send_settings(progressive_settings(settings, multiples), multiples)) {
       note_restart(generation, frame_start);
     }
   }
@@ -385,45 +370,30 @@ void Viewer::apply_edits(double frame_start) {
   } else {
     width = height = 0;  // nothing visible: the renderer idles
   }
-  const bool resized = width != render_width_ || height != render_height_;
   // A new window aspect may widen or narrow the fitted field of view: a new camera.
-  if (snapshot_ && !same_camera(view_camera(), snapshot_->scene().camera)) edits_.camera = true;
-  const bool edited = edits_.scene || edits_.camera || edits_.replaced || edits_.view || !snapshot_;
-  if (edited && !edits_.deferred) edits_.deferred_since = frame_start;
-  const bool scene_changed = edited || edits_.deferred;
-  // During a drag, a new snapshot waits until the renderer has shown the previous one:
-  // restarting every UI frame would cancel each coarse pass before it finishes whenever a
-  // pass takes longer than a frame, and the view would freeze until the drag ends.
+  const auto& snapshot = schedule_.snapshot();
+  if (snapshot && !same_camera(view_camera(), snapshot->scene().camera)) edits_.camera = true;
   const bool dragging = interacting_ || edits_.while_active;
-  const bool first_image_pending = renderer_.status().published_generation < sent_generation_;
-  const bool defer = scene_changed && dragging && !resized && !edits_.replaced && first_image_pending &&
-                     frame_start - edits_.deferred_since < kMaxDeferral;
-  edits_.deferred = defer;
-  if ((scene_changed && !defer) || resized) {
-    if (scene_changed) {
-      Scene snapshot = scene;
-      snapshot.camera = view_camera();
-      // The depth cut changes what is rendered, never the scene: history and file keep max_depth.
-      apply_depth_cut(snapshot, ui::depth_cut_of(rays_));
-      snapshot_ = std::make_shared<const PreparedScene>(std::move(snapshot));
-    }
-    render_width_ = width;
-    render_height_ = height;
-    // One restart per UI frame, however many edits it gathered.
-    const std::uint64_t generation = renderer_.set_scene(snapshot_, width, height);
-    sent_generation_ = generation;
-    // Latency counts from the oldest edit this snapshot carries.
-    if (scene_changed) note_restart(generation, edits_.deferred_since);
-    if (tools_.probe().tree) tools_.refresh_probe();
-  }
+  const RenderSchedule::Sent sent = schedule_.send_scene(
+      {edits_.scene || edits_.camera || edits_.replaced || edits_.view, edits_.replaced, dragging, width, height, frame_start},
+      [&] {
+        Scene snapshot_scene = scene;
+        snapshot_scene.camera = view_camera();
+        // The depth cut changes what is rendered, never the scene: history and file keep max_depth.
+        apply_depth_cut(snapshot_scene, ui::depth_cut_of(rays_));
+        return snapshot_scene;
+      });
+  // Latency counts from the oldest edit this snapshot carries.
+  if (sent.scene) note_restart(sent.generation, sent.edit_time);
+  if (sent.restarted && tools_.probe().tree) tools_.refresh_probe();
   renderer_.set_interacting(interacting_ || edits_.while_active);
   // A live edit (a slider held, a light dragged) shows in the UI frame that made it: its image
   // takes a few milliseconds, far less than the wait for the next frame. The frame waits only
   // as long as its period leaves after drawing, and only when the last live image took no longer.
   const auto left = std::chrono::duration<double>(frame_start + kFramePeriod - kDrawTime - glfwGetTime());
   const auto wait = std::min(std::chrono::duration_cast<std::chrono::milliseconds>(left), kLiveImageWait);
-  if (scene_changed && !defer && dragging && wait.count() > 0 &&
-      renderer_.wait_for_live_image(sent_generation_, wait, wait)) {
+  if (sent.scene && dragging && wait.count() > 0 &&
+      renderer_.wait_for_live_image(schedule_.sent_generation(), wait, wait)) {
     poll_render_frame();
   }
   edits_.scene = edits_.camera = edits_.replaced = edits_.settings = edits_.view = false;

@@ -18,6 +18,7 @@
 #include <imgui.h>
 
 #include "session/document.h"
+#include "session/render_schedule.h"
 #include "session/session.h"
 #include "apps/previewer/file_browser.h"
 #include "apps/previewer/file_shell.h"
@@ -151,6 +152,7 @@ class Viewer {
   SceneDocument& doc_ = session_.document();    // its file side, as the shell's files still name it
   LessonPresenter& lessons_ = session_.lessons();  // the lesson being presented
   ProgressiveRenderer renderer_;
+  RenderSchedule schedule_;                     // what each frame sends it: snapshot, size, settings (src/session)
   ImageView image_view_;
 
   // The image on screen: the newest frame taken from the renderer.
@@ -158,12 +160,6 @@ class Viewer {
   bool upload_pending_ = false;          // shown_ is newer than the texture
   std::uint64_t drawn_generation_ = 0;   // generation of the image last put on screen
   std::uint64_t drawn_serial_ = 0;       // its FrameStats::serial
-  std::shared_ptr<const PreparedScene> snapshot_;  // the prepared scene the renderer has (for picking)
-
-  // Edits gathered during a UI frame, applied once at its end.
-  std::uint64_t sent_generation_ = 0;  // generation of the last snapshot handed over
-  int render_width_ = 0;           // full-resolution size last given to the renderer
-  int render_height_ = 0;
 
   // UI state.
   ui::RenderSettings render_settings_;
@@ -195,7 +191,6 @@ class Viewer {
   std::uint64_t a_generation_ = 0;     // the renderer generation A was asked of
   std::string figure_path_ = "phonglab-figure.png";
   std::string figure_status_;
-  std::optional<Vec3> shading_eye_;    // the head-moved eye the renderers and the probe use now
   ui::RayTreeSettings rays_;           // ray tree overlay, depth cut, heat map
   std::vector<ScreenSegment> tree_segments_;  // the overlay as drawn this frame (image coordinates)
   double heat_max_ = 0;                // top of the heat map's scale in the image on screen
@@ -224,8 +219,6 @@ class Viewer {
     bool frame_requested = false;  // F / "Frame"
     bool reset_requested = false;  // R / "Reset"
     bool while_active = false;     // a slider drag is editing: render coarse while it lasts
-    bool deferred = false;         // a drag's edit waits for the renderer's current first image
-    double deferred_since = 0;     // glfwGetTime() of the oldest deferred edit
   };
   EditFlags edits_;
   // The small multiples: a texture per term, from the main renderer's term images
@@ -233,8 +226,6 @@ class Viewer {
   struct TermCells {
     std::array<ImageView, kTermCells> views;
   };
-  bool multiples_sent_ = false;  // whether the renderer was last asked for term images
-  int sent_target_spp_ = 0;      // the target spp the renderer was last given
   TermCells terms_;
   // Frame pacing and the stats log's measurements.
   struct FrameStats {

@@ -266,7 +266,7 @@ void Viewer::shortcut(int key, bool shift) {
 }
 
 std::optional<Hit> Viewer::hit_at(ImVec2 mouse) const {
-  if (!snapshot_) return std::nullopt;
+  if (!schedule_.snapshot()) return std::nullopt;
   const int w = std::max(1, static_cast<int>(std::lround(viewport_.width)));
   const int h = std::max(1, static_cast<int>(std::lround(viewport_.height)));
   const double x = mouse.x - viewport_.x;
@@ -275,24 +275,24 @@ std::optional<Hit> Viewer::hit_at(ImVec2 mouse) const {
   const int py = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
   // The same camera formula as the renderer, through the clicked point of the pixel.
   const CameraFrame frame = make_camera_frame(view_camera(), w, h);
-  return intersect(*snapshot_, camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0)));
+  return intersect(*schedule_.snapshot(), camera_ray(frame, px, py, std::clamp(x - px, 0.0, 1.0), std::clamp(y - py, 0.0, 1.0)));
 }
 
 std::optional<int> Viewer::object_under(ImVec2 mouse) const {
   const std::optional<Hit> hit = hit_at(mouse);
   if (!hit) return std::nullopt;
-  return ui::file_object_of(snapshot_->scene(), hit->object);
+  return ui::file_object_of(schedule_.snapshot()->scene(), hit->object);
 }
 
 void Viewer::pick(ImVec2 mouse) {
-  if (!snapshot_) return;
+  if (!schedule_.snapshot()) return;
   const std::optional<Hit> hit = hit_at(mouse);
   if (!hit) {
     picked_text_ = "the background";
     selected_object_ = -1;
     return;
   }
-  const Scene& scene = snapshot_->scene();
+  const Scene& scene = schedule_.snapshot()->scene();
   selected_material_ = hit->material;
   selected_object_ = ui::file_object_of(scene, hit->object);
   open_materials_ = true;
