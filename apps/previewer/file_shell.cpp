@@ -108,8 +108,7 @@ void FileShell::open_scene(const std::string& scene_arg) {
   file_state_.path_field = v_.doc_.file_path().empty() ? scene_arg : v_.doc_.file_path();
   v_.tools_.probe().tree.reset();
   // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
-  v_.tools_.compare().image = ProgressiveFrame{};
-  v_.tools_.compare().requested = v_.tools_.compare().dropped = false;
+  v_.tools_.compare().clear();
   v_.instruments_.compare = 0;
 }
 

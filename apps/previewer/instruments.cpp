@@ -72,74 +72,29 @@ void Instruments::refresh_probe() {
 bool Instruments::shows_indirect() const { return v_.render_settings_.ambient_view != ui::AmbientView::kConstant; }
 
 void Instruments::snapshot_a(bool first_full) {
-  // A is the finished image of what is on screen now, never a half-converged one (its noise
-  // would show in |live - A| as if something had changed). Until it is done, A waits; an edit
-  // before then means the image asked for no longer exists. A lesson's A is its first image at
-  // full resolution (every pixel's centre sample): the answer is on screen in seconds, and its
-  // difference stays exact by keeping the live image at A's samples (target_spp).
-  compare_.requested = true;
-  compare_.first_full = first_full;
-  v_.a_generation_ = v_.renderer_.status().generation;
-  compare_.dropped = false;
+  a_.request(v_.renderer_.status().generation, first_full);
   if (v_.instruments_.compare == 0) v_.instruments_.compare = 1;
   take_a_when_final();
 }
 
 void Instruments::take_a_when_final() {
-  if (!compare_.requested) return;
-  if (v_.renderer_.status().generation != v_.a_generation_) {
-    compare_.requested = false;
-    compare_.dropped = true;
-    return;
+  if (a_.take_when_ready(v_.renderer_.status().generation, v_.shown_, a_.requested() && v_.image_is_final())) {
+    v_.upload_pending_ = true;
   }
-  const bool ready = compare_.first_full ? v_.shown_.generation == v_.a_generation_ && v_.shown_.divisor == 1 : v_.image_is_final();
-  if (!ready || v_.shown_.pixels.empty()) return;
-  compare_.image = v_.shown_;
-  compare_.requested = false;
-  v_.upload_pending_ = true;
 }
+
+CompareView Instruments::compare_view() const { return static_cast<CompareView>(v_.instruments_.compare); }
 
 int Instruments::target_spp() const {
-  // (Not for the indirect light: its noise settles only with samples; A's edges are what differ.)
-  const bool lesson_difference = v_.lessons_.lesson() && !v_.lessons_.exploring() && compare_.first_full && v_.instruments_.compare == 2 &&
-                                 !compare_.image.pixels.empty() && v_.render_settings_.ambient_view == ui::AmbientView::kConstant;
-  const int target = std::max(v_.render_settings_.target_spp, 1);
-  return lesson_difference ? std::min(target, static_cast<int>(std::max(compare_.image.spp, 1u))) : target;
+  return a_.target_spp(v_.render_settings_.target_spp, v_.lessons_.lesson() && !v_.lessons_.exploring(), compare_view(),
+                       !shows_indirect());
 }
 
-bool Instruments::a_comparable() const {
-  if (compare_.image.pixels.empty() || compare_.image.width != v_.shown_.width || compare_.image.height != v_.shown_.height ||
-      compare_.image.divisor != v_.shown_.divisor || compare_.image.pixels.size() != v_.shown_.pixels.size()) {
-    return false;
-  }
-  // The difference compares like with like: the same samples, so only a change shows. The
-  // indirect light against ka·Ia differs everywhere: it is shown as it settles.
-  return v_.instruments_.compare != 2 || compare_.image.spp == v_.shown_.spp ||
-         v_.render_settings_.ambient_view != ui::AmbientView::kConstant;
-}
+bool Instruments::a_comparable() const { return a_.comparable(v_.shown_, compare_view(), !shows_indirect()); }
 
 std::string Instruments::compare_caption() const {
-  char text[160];
-  if (compare_.requested && compare_.first_full) {
-    std::snprintf(text, sizeof text, "A is taken at its first full-resolution image");
-  } else if (compare_.requested) {
-    std::snprintf(text, sizeof text, "A is taken when the image is done (%u of %d spp)", v_.shown_.spp,
-                  v_.render_settings_.target_spp);
-  } else if (compare_.image.pixels.empty()) {
-    std::snprintf(text, sizeof text, "%s", compare_.dropped ? "A was not taken: the view changed before the image was done"
-                                                      : "no A yet: Snapshot A keeps the finished image");
-  } else if (compare_.image.width != v_.shown_.width || compare_.image.height != v_.shown_.height) {
-    std::snprintf(text, sizeof text, "A is %dx%d, the view is now %dx%d: take A again to compare", compare_.image.width,
-                  compare_.image.height, v_.shown_.width, v_.shown_.height);
-  } else if (!a_comparable()) {
-    std::snprintf(text, sizeof text, "|live - A| shows when live has A's %u spp (now %u)", compare_.image.spp, v_.shown_.spp);
-  } else if (v_.instruments_.compare == 1) {
-    std::snprintf(text, sizeof text, "wipe: A (%u spp) left of the line, live right", compare_.image.spp);
-  } else {
-    std::snprintf(text, sizeof text, "|live - A| \xC3\x97 %.0f (%u spp each)", static_cast<double>(v_.instruments_.difference_gain),
-                  compare_.image.spp);
-  }
-  return text;
+  return a_.caption(v_.shown_, compare_view(), !shows_indirect(), v_.render_settings_.target_spp,
+                    static_cast<double>(v_.instruments_.difference_gain));
 }
 
 bool Instruments::heat_shown() const {
@@ -166,7 +121,7 @@ std::vector<glm::vec3> Instruments::display_pixels() const {
   }
   if (const std::optional<std::vector<glm::vec3>> ambient = ambient_view_pixels()) return *ambient;
   if (v_.instruments_.compare == 0 || !a_comparable()) return v_.shown_.pixels;
-  return compare_pixels(v_.shown_.pixels, compare_.image.pixels, v_.shown_.width,
+  return compare_pixels(v_.shown_.pixels, a_.image().pixels, v_.shown_.width,
                         v_.instruments_.compare == 1 ? CompareView::kWipe : CompareView::kDifference,
                         static_cast<double>(v_.instruments_.wipe), static_cast<double>(v_.instruments_.difference_gain));
 }

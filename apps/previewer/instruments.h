@@ -15,6 +15,7 @@
 #include "core/render/indirect_probe.h"
 #include "core/render/progressive.h"
 #include "core/render/render.h"
+#include "session/snapshot_a.h"
 #include "ui/panels.h"
 
 namespace phonglab {
@@ -34,22 +35,14 @@ class Instruments {
     IndirectProbe indirect;              // ka·Ia beside the indirect term's estimate at the pixel
     bool with_indirect = false;          // `indirect` was taken (an ambient view is on)
   };
-  // Snapshot A of the A/B compare.
-  struct CompareState {
-    ProgressiveFrame image;  // snapshot A (pixels empty: none)
-    bool requested = false;  // Snapshot A was pressed; A is taken when the image is done
-    bool dropped = false;    // an edit came before that image was done: no A
-    bool first_full = false; // a lesson's A: its first full-resolution image, not its last
-  };
-
   explicit Instruments(Viewer& viewer) : v_(viewer) {}
   Instruments(const Instruments&) = delete;
   Instruments& operator=(const Instruments&) = delete;
 
   ProbeState& probe() { return probed_; }
   const ProbeState& probe() const { return probed_; }
-  CompareState& compare() { return compare_; }
-  const CompareState& compare() const { return compare_; }
+  SnapshotA& compare() { return a_; }  // snapshot A (src/session/snapshot_a.h)
+  const SnapshotA& compare() const { return a_; }
   std::optional<AmbientFit>& ambient_fit() { return ambient_fit_; }  // the last "best constant ambient for this view"
   std::string& ambient_fit_material() { return ambient_fit_material_; }  // the material it was asked for
 
@@ -73,10 +66,11 @@ class Instruments {
 
  private:
   std::optional<std::vector<glm::vec3>> ambient_view_pixels() const;  // the ambient views beside / difference
+  CompareView compare_view() const;  // the panel's compare choice
 
   Viewer& v_;
   ProbeState probed_;
-  CompareState compare_;
+  SnapshotA a_;
   std::optional<AmbientFit> ambient_fit_;
   std::string ambient_fit_material_;
   Term term_before_heat_ = Term::kFull;  // what the heat map switch goes back to

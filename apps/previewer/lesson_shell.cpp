@@ -86,8 +86,7 @@ void LessonShell::show_place(LessonPlace place) {
 // What the session's presenter answers for a place: A and the compare view cleared, the step's
 // scene adopted when it asks, its view applied (a compare's source view first, for A).
 void LessonShell::present(const LessonPresenter::Show& show) {
-  v_.tools_.compare().image = ProgressiveFrame{};
-  v_.tools_.compare().requested = v_.tools_.compare().dropped = false;
+  v_.tools_.compare().clear();
   v_.instruments_.compare = 0;
   if (show.adopt_step) adopt_step_scene(*show.adopt_step);
   apply_step_view(show.view);
@@ -118,9 +117,9 @@ void LessonShell::update_lesson() {
   if (v_.lessons_.take_a_now()) {
     v_.tools_.snapshot_a(true);
   } else if (v_.lessons_.awaiting_a()) {
-    if (v_.tools_.compare().dropped) {
+    if (v_.tools_.compare().dropped()) {
       v_.lessons_.a_dropped();  // something changed first: the user is exploring
-    } else if (!v_.tools_.compare().requested && !v_.tools_.compare().image.pixels.empty()) {
+    } else if (!v_.tools_.compare().requested() && v_.tools_.compare().has_image()) {
       if (const std::optional<LessonPresenter::Show> show = v_.lessons_.a_taken()) {
         if (show->adopt_step) adopt_step_scene(*show->adopt_step);
         apply_step_view(show->view);

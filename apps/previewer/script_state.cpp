@@ -146,7 +146,7 @@ void ScriptDriver::write_layout_state(std::ostream& out) const {
       << "multiples=" << (v_.instruments_.small_multiples ? 1 : 0) << "\n"
       << "wipe=" << v_.instruments_.wipe << "\n"
       << "compare=" << v_.instruments_.compare << "\n"
-      << "have_a=" << (v_.tools_.compare().image.pixels.empty() ? 0 : 1) << "\n"
+      << "have_a=" << (v_.tools_.compare().has_image() ? 1 : 0) << "\n"
       << "head=" << (v_.schedule_.eye() ? 1 : 0) << "\n";
   if (v_.schedule_.eye()) out << "head_eye=" << vec(*v_.schedule_.eye()) << "\n";
 }

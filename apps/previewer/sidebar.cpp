@@ -260,7 +260,7 @@ void Sidebar::sidebar_probe() {
 void Sidebar::sidebar_instruments() {
   ui::InstrumentActions actions;
   const ui::InstrumentSettings before = v_.instruments_;
-  if (ui::instruments_panel(v_.instruments_, actions, !v_.tools_.compare().image.pixels.empty(), v_.session_.undo_count(),
+  if (ui::instruments_panel(v_.instruments_, actions, v_.tools_.compare().has_image(), v_.session_.undo_count(),
                             v_.session_.redo_count(), v_.figure_path_, v_.figure_status_)) {
     if (before.small_multiples != v_.instruments_.small_multiples) v_.edits_.settings = true;
     v_.upload_pending_ = v_.upload_pending_ || !v_.shown_.pixels.empty();  // a compare view changed

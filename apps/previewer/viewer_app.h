@@ -188,7 +188,6 @@ class Viewer {
 
   // Instruments.
   std::string camera_notice_;          // why the last typed camera value was refused
-  std::uint64_t a_generation_ = 0;     // the renderer generation A was asked of
   std::string figure_path_ = "phonglab-figure.png";
   std::string figure_status_;
   ui::RayTreeSettings rays_;           // ray tree overlay, depth cut, heat map
