@@ -14,6 +14,7 @@ set(_rules
   "apps/cli|core/ io/ apps/common/ apps/cli/|imgui GL/ glad GLFW embree3"
   "apps/previewer|core/ io/ interaction/ session/ ui/ apps/common/ apps/previewer/|embree3"
   "apps/bench|core/ io/ experiments/ apps/common/ apps/bench/|imgui GL/ glad GLFW"
+  "apps/web|core/ io/ interaction/ session/ apps/web/|imgui GL/ glad GLFW embree3"
 )
 set(_project_prefixes core/ io/ experiments/ interaction/ session/ ui/ apps/)
 set(_errors 0)

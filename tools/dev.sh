@@ -2,6 +2,7 @@
 # One entry point for a fresh Debian 12 machine:
 #   tools/dev.sh run [SCENE]   install what is missing, build, start the previewer
 #   tools/dev.sh test          install what is missing, build, run the whole test suite
+#   tools/dev.sh web           install what is missing, build the web page: build-web/phonglab.html
 #   tools/dev.sh deps|build    the first steps alone
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,7 +13,7 @@ PACKAGES=(
   libgtest-dev libembree-dev
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri
   xvfb xauth xdotool imagemagick fonts-dejavu-core desktop-file-utils man-db dpkg-dev
-  clang libclang-rt-14-dev chromium shared-mime-info libxml2-utils
+  clang libclang-rt-14-dev chromium shared-mime-info libxml2-utils emscripten
 )
 
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
@@ -27,6 +28,18 @@ deps() {
     as_root apt-get update -qq
     as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
   fi
+  # npm for the web page's test packages (tests/web); a Node.js from elsewhere brings its own.
+  if ! command -v npm >/dev/null; then
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends npm
+  fi
+}
+
+# The web page, build-web/phonglab.html (Emscripten; apps/web). Emscripten's optimizer needs
+# Debian's node modules (acorn) when the `node` on PATH is another one.
+web() {
+  export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
+  emcmake cmake -S . -B build-web -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build build-web --parallel "$(nproc)"
 }
 
 # build DIR [cmake args...]
@@ -45,8 +58,11 @@ run() {
 test_all() {
   deps
   local start=$SECONDS
-  echo "== release build and tests (the previewer's run under Xvfb in both builds)"
-  build build
+  echo "== the web page (Emscripten) and its test packages (puppeteer-core, npm)"
+  web
+  (cd tests/web && npm ci --no-audit --no-fund --silent)
+  echo "== release build and tests (the previewer's run under Xvfb in both builds; the web page in headless Chromium)"
+  build build -DPHONGLAB_WEB_PAGE="$PWD/build-web/phonglab.html"
   (cd build && ctest --output-on-failure --parallel "$(nproc)")
 
   # One clang build serves both the sanitizer run of the tests and the fuzzer (libFuzzer's
@@ -80,5 +96,6 @@ case "${1:-}" in
   test) test_all ;;
   deps) deps ;;
   build) deps; build build ;;
-  *) echo "usage: tools/dev.sh run [SCENE] | test | deps | build" >&2; exit 2 ;;
+  web) deps; web ;;
+  *) echo "usage: tools/dev.sh run [SCENE] | test | web | deps | build" >&2; exit 2 ;;
 esac

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace phonglab::ui {
 
@@ -12,10 +13,19 @@ double tidy_float(double value) {
   const auto f = static_cast<float>(value);
   if (!std::isfinite(f)) return value;
   std::array<char, 32> text{};
+#if defined(__EMSCRIPTEN__)
+  // Emscripten's libc++ has no floating-point to_chars: the fewest %g digits that read back.
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(text.data(), text.size(), "%.*g", digits, static_cast<double>(f));
+    if (std::strtof(text.data(), nullptr) == f) break;
+  }
+  return std::strtod(text.data(), nullptr);
+#else
   const auto result = std::to_chars(text.data(), text.data() + text.size(), f);  // shortest round trip
   double tidy = value;
   std::from_chars(text.data(), result.ptr, tidy);
   return tidy;
+#endif
 }
 
 double shown_value(double value, const char* format) {

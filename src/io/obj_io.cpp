@@ -1,4 +1,5 @@
 #include "io/obj_io.h"
+#include "core/scene/chars.h"
 #include "io/memory_budget.h"
 
 #include <algorithm>
@@ -135,7 +136,7 @@ Prescan prescan(std::string_view text, const std::string& name) {
         while (token_end < stop && !is_blank(*token_end)) ++token_end;
         double x = 0;
         const char* number = p < token_end && *p == '+' ? p + 1 : p;
-        const auto [after, ec] = std::from_chars(number, token_end, x);
+        const auto [after, ec] = double_from_chars(number, token_end, x);
         if (ec != std::errc() || after != token_end || !std::isfinite(x)) {
           const std::string token(p, token_end);
           out.errors.push_back(line_diagnostic(name, line,
@@ -210,7 +211,7 @@ std::vector<Diagnostic> mtl_value_warnings(std::string_view text, const std::str
       if (word == "spectral" || word == "xyz") break;  // other notations: not numbers to check
       double x = 0;
       const char* first = word.data() + (word[0] == '+' ? 1 : 0);
-      const auto [after, ec] = std::from_chars(first, word.data() + word.size(), x);
+      const auto [after, ec] = double_from_chars(first, word.data() + word.size(), x);
       std::string why;
       if (ec != std::errc() || after != word.data() + word.size() || !std::isfinite(x)) {
         why = "is not a finite number";

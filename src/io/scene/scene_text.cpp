@@ -2,6 +2,7 @@
 // pass 1, the prescan (NUL bytes, nesting, numbers that overflow double); pass 2, nlohmann's
 // syntax errors as positioned plain messages; pass 3, the position index (every value's offsets).
 #include "io/scene/scene_load.h"
+#include "core/scene/chars.h"
 #include "io/scene/scene_reader.h"
 #include "io/memory_budget.h"
 
@@ -238,7 +239,7 @@ bool number_overflows(std::string_view tok) {
   if (magnitude < kSafe) return false;  // zero, or surely below DBL_MAX: no need to convert
   if (magnitude > kSafe) return true;
   double value = 0;
-  return std::from_chars(tok.data(), tok.data() + tok.size(), value).ec ==
+  return double_from_chars(tok.data(), tok.data() + tok.size(), value).ec ==
          std::errc::result_out_of_range;
 }
 

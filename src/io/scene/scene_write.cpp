@@ -43,8 +43,16 @@ std::string number_text(double x) {
   if (!std::isfinite(x)) return "null";
   if (x == 0 && std::signbit(x)) return "-0.0";  // "-0" would be read as the integer 0
   std::array<char, 32> buf;
+#if defined(__EMSCRIPTEN__)
+  // Emscripten's libc++ has no floating-point to_chars: the fewest %g digits that read back.
+  for (int digits = 1;; ++digits) {
+    std::snprintf(buf.data(), buf.size(), "%.*g", digits, x);
+    if (digits == 17 || std::strtod(buf.data(), nullptr) == x) return buf.data();
+  }
+#else
   const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), x);
   return std::string(buf.data(), r.ptr);
+#endif
 }
 
 std::string vec_text(const Vec3& v) {

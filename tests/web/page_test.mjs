@@ -1,0 +1,128 @@
+// The web page (build-web/phonglab.html) in headless Chromium, from file://, with real input
+// events through the DevTools protocol (puppeteer-core over Debian's chromium):
+//
+//   node tests/web/page_test.mjs PAGE CLI OUT_DIR
+//
+// PAGE: build-web/phonglab.html; CLI: a native phonglab-cli (the reference image); OUT_DIR: where
+// screenshots and images go. Checks: the page loads and its first image arrives; the image at
+// spp=4 equals the native CLI's PNG of the same scene and size within 1 code per channel on 99.9 %
+// of the pixels; a kd slider drag changes the diffuse term and not the specular one; an orbit drag
+// moves the image; a click picks the material under it; a broken scene file shows its positioned
+// error and keeps the last good scene. Exit 0 when every check passes.
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import puppeteer from 'puppeteer-core';
+
+const [page_path, cli, out] = process.argv.slice(2);
+mkdirSync(out, { recursive: true });
+let failures = 0;
+function check(ok, what) {
+  console.log(`  ${ok ? 'ok  ' : 'FAIL'}  ${what}`);
+  if (!ok) failures++;
+}
+
+// Raw RGB bytes of a PNG, through ImageMagick.
+function png_rgb(file) { return execFileSync('convert', [file, '-depth', '8', 'rgb:-'], { maxBuffer: 1 << 26 }); }
+
+const browser = await puppeteer.launch({
+  executablePath: '/usr/bin/chromium', headless: 'new',
+  args: ['--no-sandbox', '--allow-file-access-from-files', '--disable-gpu'] });
+const url = (query) => 'file://' + path.resolve(page_path) + '?' + query;
+
+async function open(query) {
+  const page = await browser.newPage();
+  page.on('pageerror', (e) => console.log('  page error: ' + e.message));
+  await page.setViewport({ width: 1280, height: 720 });
+  await page.goto(url(query));
+  await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
+  return page;
+}
+// Waits until the page's image is of the view as it is now, at full resolution with `spp`
+// samples; returns its RGB bytes.
+async function image_at(page, spp) {
+  await page.waitForFunction(`(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && s.spp >= ${spp}; })()`,
+                             { timeout: 120000 });
+  const rgba = await page.evaluate(() => Array.from(window.phonglab.view.pixels()));
+  const rgb = Buffer.alloc(rgba.length / 4 * 3);
+  for (let i = 0, j = 0; i < rgba.length; i += 4, j += 3) rgb[j] = rgba[i], rgb[j + 1] = rgba[i + 1], rgb[j + 2] = rgba[i + 2];
+  return rgb;
+}
+function differing(a, b, tolerance) {
+  let count = 0;
+  for (let i = 0; i < a.length; i += 3) {
+    if (Math.abs(a[i] - b[i]) > tolerance || Math.abs(a[i + 1] - b[i + 1]) > tolerance ||
+        Math.abs(a[i + 2] - b[i + 2]) > tolerance) count++;
+  }
+  return count;
+}
+
+// 1. The first image, and the image at 4 spp against the native CLI's.
+{
+  const page = await open('scene=lecture&size=320x180&spp=4');
+  await page.waitForFunction('window.phonglab.frames > 0', { timeout: 60000 });
+  check(true, 'the page loads from file:// and its first image arrives');
+  const web = await image_at(page, 4);
+  await page.screenshot({ path: path.join(out, 'lecture.png') });
+  execFileSync(cli, ['render', 'lecture', '-o', path.join(out, 'cli.png'), '--width', '320', '--height', '180', '--spp', '4']);
+  const native = png_rgb(path.join(out, 'cli.png'));
+  const pixels = native.length / 3;
+  const off = web.length === native.length ? differing(web, native, 1) : pixels;
+  check(off <= pixels / 1000, `spp=4 equals phonglab-cli render's PNG within 1 code on 99.9 % of pixels (${off} of ${pixels} differ)`);
+  await page.close();
+}
+
+// 2. A kd slider drag changes the diffuse term, not the specular one; an orbit drag moves the image.
+{
+  const page = await open('scene=lecture&size=320x180&spp=1');
+  const term_image = async (key) => {
+    await page.keyboard.press(key);
+    const term = await page.evaluate(() => window.phonglab.state().term);
+    if (term !== Number(key) - 1) throw new Error(`key ${key} did not choose term ${Number(key) - 1} (term ${term})`);
+    return image_at(page, 1);
+  };
+  // The plastic sphere's material, picked by a click on it.
+  const box = await (await page.$('#image')).boundingBox();
+  await page.mouse.click(box.x + box.width * 0.44, box.y + box.height * 0.6);
+  const picked = await page.evaluate(() => window.phonglab.state().material);
+  check(picked >= 0, `a click picks the material under it (material ${picked})`);
+  const diffuse_before = await term_image('3'), specular_before = await term_image('4');
+  const slider = await (await page.$('#slider-kd')).boundingBox();
+  await page.mouse.move(slider.x + slider.width * 0.8, slider.y + slider.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(slider.x + slider.width * 0.2, slider.y + slider.height / 2, { steps: 8 });
+  await page.mouse.up();
+  const specular_after = await image_at(page, 1);
+  const diffuse_after = await term_image('3');
+  check(differing(diffuse_before, diffuse_after, 0) > 100, 'a kd slider drag changes the diffuse term');
+  check(differing(specular_before, specular_after, 0) === 0, '... and not the specular term');
+  const full_before = await term_image('1');
+  await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.7, box.y + box.height * 0.5, { steps: 6 });
+  await page.mouse.up();
+  const full_after = await image_at(page, 1);
+  check(differing(full_before, full_after, 0) > 1000, 'an orbit drag moves the image');
+  await page.screenshot({ path: path.join(out, 'after-drags.png') });
+  await page.close();
+}
+
+// 3. A broken scene file shows its positioned error; the last good scene stays.
+{
+  const page = await open('scene=lecture&size=160x90&spp=1');
+  const broken = path.join(out, 'broken.json');
+  writeFileSync(broken, '{"camera": {"position": [0, 1, 5], "look_at": [0, 0, 0], "fov": "wide"}}\n');
+  const input = await page.$('#file');
+  await input.uploadFile(broken);
+  await page.waitForFunction('window.phonglab.error !== ""', { timeout: 30000 });
+  const error = await page.evaluate(() => window.phonglab.error);
+  check(/^broken\.json:\d+:\d+: /.test(error), `a broken scene file shows its positioned error (${error.split('\n')[0]})`);
+  const kept = await page.evaluate(() => window.phonglab.view.materialCount());
+  check(kept === 6, 'the last good scene is kept');
+  await page.screenshot({ path: path.join(out, 'broken.png') });
+  await page.close();
+}
+
+await browser.close();
+console.log(`web page tests: ${failures} failure(s)`);
+process.exit(failures === 0 ? 0 : 1);
