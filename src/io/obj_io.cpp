@@ -1,5 +1,6 @@
 #include "io/obj_io.h"
 #include "core/scene/chars.h"
+#include "core/render/threads.h"
 #include "io/memory_budget.h"
 
 #include <algorithm>
@@ -384,27 +385,18 @@ struct Parsed {
 Parsed parse_obj(const std::string& obj_text, const std::string& obj_name, const FileReader& read_mtl,
                  const TriangleCountHook& on_prescan, std::vector<Diagnostic>& mtl_warnings) {
   Parsed p;
-  std::exception_ptr prescan_error;
-  std::thread prescan_thread([&] {
-    try {
-      p.pre = prescan(obj_text, obj_name);
-      if (p.pre.errors.empty() && on_prescan) on_prescan(p.pre.max_triangles);
-    } catch (...) {
-      prescan_error = std::current_exception();  // out of memory, say: rethrown below
-    }
-  });
-  try {
-    TextStreamBuf buffer(obj_text);
-    std::istream stream(&buffer);
-    MtlReader reader(read_mtl, mtl_warnings, obj_name);
-    p.ok = tinyobj::LoadObj(&p.attrib, &p.shapes, &p.mtl, &p.warn, &p.err, &stream, &reader,
-                            /*triangulate=*/false, /*default_vcols_fallback=*/false);
-  } catch (...) {
-    prescan_thread.join();
-    throw;
-  }
-  prescan_thread.join();
-  if (prescan_error) std::rethrow_exception(prescan_error);
+  in_parallel(
+      [&] {
+        p.pre = prescan(obj_text, obj_name);
+        if (p.pre.errors.empty() && on_prescan) on_prescan(p.pre.max_triangles);
+      },
+      [&] {
+        TextStreamBuf buffer(obj_text);
+        std::istream stream(&buffer);
+        MtlReader reader(read_mtl, mtl_warnings, obj_name);
+        p.ok = tinyobj::LoadObj(&p.attrib, &p.shapes, &p.mtl, &p.warn, &p.err, &stream, &reader,
+                                /*triangulate=*/false, /*default_vcols_fallback=*/false);
+      });
   return p;
 }
 

@@ -107,7 +107,27 @@ function differing(a, b, tolerance) {
   await page.close();
 }
 
-// 3. A broken scene file shows its positioned error; the last good scene stays.
+// 3. A lesson: its address opens a step, the Right key goes on, a compare's A is taken and shown.
+{
+  const page = await open('size=320x180&spp=1#lesson=shading&step=1');
+  await page.waitForFunction('window.phonglab.lesson && window.phonglab.lesson.lesson === "shading"', { timeout: 30000 });
+  const first = await page.evaluate(() => window.phonglab.lesson);
+  check(first.step === 0 && first.steps >= 10, `#lesson=shading&step=1 opens the lesson at its first step (of ${first.steps})`);
+  await image_at(page, 1);
+  await (await page.$('#image')).click();  // the page has the focus, not a control
+  await page.keyboard.press('ArrowRight');
+  const second = await page.evaluate(() => window.phonglab.lesson);
+  check(second.step === 1, `the Right key goes on to step 2 (${second.step_title})`);
+  await page.goto(url('size=320x180&spp=1#lesson=shading&step=7'));
+  await page.waitForFunction('window.phonglab.ready && window.phonglab.lesson && window.phonglab.lesson.step === 6', { timeout: 30000 });
+  await page.waitForFunction('JSON.parse(window.phonglab.view.lessonState()).compare === true', { timeout: 120000 });
+  await image_at(page, 1);
+  check(true, 'step 7 takes its A (the head not moved) and shows |live - A|');
+  await page.screenshot({ path: path.join(out, 'lesson-step7.png') });
+  await page.close();
+}
+
+// 4. A broken scene file shows its positioned error; the last good scene stays.
 {
   const page = await open('scene=lecture&size=160x90&spp=1');
   const broken = path.join(out, 'broken.json');

@@ -1,4 +1,5 @@
 #include "core/accel/accel.h"
+#include "core/render/threads.h"
 
 #include <chrono>
 #include <exception>
@@ -109,22 +110,7 @@ std::shared_ptr<const MeshGeometry> make_mesh_geometry(std::size_t count, const 
       for (std::size_t slot = begin; slot < end; ++slot) room[slot] = make(order[slot]);
     };
     if (count >= kParallelFill) {
-      std::exception_ptr upper_error;
-      std::thread upper([&] {
-        try {
-          fill(count / 2, count);
-        } catch (...) {
-          upper_error = std::current_exception();  // from `make`: rethrown below
-        }
-      });
-      try {
-        fill(0, count / 2);
-      } catch (...) {
-        upper.join();
-        throw;
-      }
-      upper.join();
-      if (upper_error) std::rethrow_exception(upper_error);
+      in_parallel([&] { fill(count / 2, count); }, [&] { fill(0, count / 2); });
     } else {
       fill(0, count);
     }

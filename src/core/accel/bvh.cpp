@@ -1,4 +1,5 @@
 #include "core/accel/bvh.h"
+#include "core/render/threads.h"
 
 #include <algorithm>
 #include <array>
@@ -85,28 +86,6 @@ struct RangeBounds {
 int bin_of(double c, double lo, double scale) {
   const int b = static_cast<int>((c - lo) * scale);
   return std::clamp(b, 0, kBins - 1);
-}
-
-// Runs `a` on a thread of its own and `b` on this one, and returns when both are done; an
-// exception from either (out of memory, say) is rethrown here, `b`'s first.
-template <class A, class B>
-void in_parallel(A&& a, B&& b) {
-  std::exception_ptr a_error;
-  std::thread thread([&] {
-    try {
-      a();
-    } catch (...) {
-      a_error = std::current_exception();
-    }
-  });
-  try {
-    b();
-  } catch (...) {
-    thread.join();
-    throw;
-  }
-  thread.join();
-  if (a_error) std::rethrow_exception(a_error);
 }
 
 // Min and max do not depend on the order they are taken in, and counts add exactly: bins filled

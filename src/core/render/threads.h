@@ -1,6 +1,7 @@
 // The one way the renderer and its tools fan work out over threads.
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <thread>
 
@@ -19,5 +20,33 @@ inline int resolve_thread_count(int requested) {
 // calling thread has helpers of its own, so concurrent callers (the previewer's renderers) never
 // wait for each other; they end with it.
 void run_workers(int n, const std::function<void(int)>& work);
+
+// Runs `a` on a thread of its own and `b` on this one, and returns when both are done; an
+// exception from either (out of memory, say) is rethrown here, `b`'s first. Where there are no
+// threads (the web page's WebAssembly without pthreads), `b` and then `a` on this one.
+template <class A, class B>
+void in_parallel(A&& a, B&& b) {
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+  b();
+  a();
+#else
+  std::exception_ptr a_error;
+  std::thread thread([&] {
+    try {
+      a();
+    } catch (...) {
+      a_error = std::current_exception();
+    }
+  });
+  try {
+    b();
+  } catch (...) {
+    thread.join();
+    throw;
+  }
+  thread.join();
+  if (a_error) std::rethrow_exception(a_error);
+#endif
+}
 
 }  // namespace phonglab

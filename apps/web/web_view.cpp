@@ -1,0 +1,255 @@
+#include "apps/web/web_view.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "core/scene/display8.h"
+#include "core/teaching/compare.h"
+#include "interaction/camera_control.h"
+#include "io/probe_report.h"
+#include "io/scene/scene_io.h"
+
+namespace phonglab {
+namespace {
+
+constexpr int kDivisors[] = {8, 4, 2, 1};
+constexpr int kColumns = 3, kRows = 2;  // the small multiples: the five terms, then the full image
+
+Color* colour(Material& m, const std::string& name) {
+  if (name == "ka") return &m.ka;
+  if (name == "kd") return &m.kd;
+  if (name == "ks") return &m.ks;
+  if (name == "kr") return &m.kr;
+  if (name == "kt") return &m.kt;
+  return nullptr;
+}
+double largest(const Color& c) { return std::max({c.x, c.y, c.z}); }
+// A colour to `value` at its largest channel, keeping its hue (black becomes grey).
+Color scaled(const Color& c, double value) { return largest(c) > 0 ? c * (value / largest(c)) : Color(value); }
+
+}  // namespace
+
+std::string WebView::open(const std::string& scene_arg) {
+  if (!session_.open(scene_arg)) return session_.document().error_text();
+  close_lesson();
+  restart();
+  return "";
+}
+
+std::string WebView::scene_json() const { return scene_to_json(session_.scene()); }
+
+void WebView::set_size(int width, int height) {
+  width_ = std::max(width, 1);
+  height_ = std::max(height, 1);
+  restart();
+}
+
+void WebView::set_term(int term) {
+  view_.term = static_cast<Term>(std::clamp(term, 0, 5));
+  view_.small_multiples = false;
+  edited_by_hand();
+  restart();
+}
+
+void WebView::set_head_angle(double degrees) {
+  view_.head_angle_deg = degrees != 0 ? std::optional<double>(degrees) : std::nullopt;
+  edited_by_hand();
+  restart();
+}
+
+void WebView::set_interacting(bool on) {
+  interacting_ = on;
+  if (!on) session_.settle(false);
+}
+
+bool WebView::step() {
+  if (!prepared_) {
+    prepared_ = std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
+    eye_ = view_shading_eye(*prepared_, view_, width_, height_);
+  }
+  const int finest = interacting_ ? 1 : 3;
+  if (level_ > finest) return false;
+  // A difference against a first-full A compares like with like: the live image stays at A's sample.
+  const bool difference = view_.compare == CompareView::kDifference && !a_.empty();
+  if (level_ == 3 && accum_.samples >= static_cast<std::uint32_t>(difference ? 1 : target_)) return false;
+  const int divisor = kDivisors[level_];
+  const int cells_x = view_.small_multiples ? kColumns : 1, cells_y = view_.small_multiples ? kRows : 1;
+  const int w = std::max(1, width_ / cells_x / divisor), h = std::max(1, height_ / cells_y / divisor);
+  if (accum_.width != w || accum_.height != h || accum_.samples == 0) accum_.reset(w, h, view_.small_multiples);
+  RenderOptions options;
+  options.term = view_.small_multiples ? Term::kFull : view_.term;
+  options.ambient = view_.ambient;
+  options.shading_eye = eye_;
+  options.threads = 1;
+  render_pass(*prepared_, options, accum_);
+  encode();
+  if (level_ < finest) {
+    ++level_;
+    accum_.samples = 0;
+  }
+  update_lesson();
+  return true;
+}
+
+emscripten::val WebView::pixels() const {
+  return emscripten::val(emscripten::typed_memory_view(rgba_.size(), rgba_.data()));
+}
+
+void WebView::orbit(double dx_px, double dy_px) {
+  Camera camera = session_.scene().camera;
+  ui::orbit(camera, -dx_px * 0.01, dy_px * 0.01);
+  apply({edit::SetCamera{camera}, false});
+}
+
+void WebView::dolly(double steps) {
+  Camera camera = session_.scene().camera;
+  ui::dolly(camera, std::pow(0.9, steps));
+  apply({edit::SetCamera{camera}, false});
+}
+
+int WebView::material_at(double u, double v) const {
+  const PixelProbe probe = probe_at(u, v);
+  return probe.root.hit ? probe.root.material : -1;
+}
+
+std::string WebView::probe(double u, double v) const { return probe_to_text(session_.scene(), probe_at(u, v), 4); }
+
+std::string WebView::material_name(int m) const {
+  return m >= 0 && m < material_count() ? session_.scene().materials[static_cast<std::size_t>(m)].name : "";
+}
+
+double WebView::coefficient(int m, const std::string& name) const {
+  if (m < 0 || m >= material_count()) return 0;
+  Material mat = session_.scene().materials[static_cast<std::size_t>(m)];
+  if (const Color* c = colour(mat, name)) return largest(*c);
+  if (name == "n") return mat.n;
+  if (name == "ior") return mat.ior;
+  return 0;
+}
+
+void WebView::set_coefficient(int m, const std::string& name, double value, bool held) {
+  if (m < 0 || m >= material_count()) return;
+  Material mat = session_.scene().materials[static_cast<std::size_t>(m)];
+  if (Color* c = colour(mat, name)) {
+    *c = scaled(*c, value);
+  } else if (name == "n") {
+    mat.n = value;
+  } else if (name == "ior") {
+    mat.ior = value;
+  } else {
+    return;
+  }
+  apply({edit::SetMaterial{m, mat}, held});
+}
+
+double WebView::light_intensity(int l) const {
+  return l >= 0 && l < light_count() ? largest(session_.scene().lights[static_cast<std::size_t>(l)].intensity) : 0;
+}
+
+void WebView::set_light_intensity(int l, double value, bool held) {
+  if (l < 0 || l >= light_count()) return;
+  Light light = session_.scene().lights[static_cast<std::size_t>(l)];
+  light.intensity = scaled(light.intensity, value);
+  apply({edit::SetLight{l, light}, held});
+}
+
+bool WebView::undo() {
+  if (!session_.undo()) return false;
+  edited_by_hand();
+  restart();
+  return true;
+}
+
+bool WebView::redo() {
+  if (!session_.redo()) return false;
+  edited_by_hand();
+  restart();
+  return true;
+}
+
+void WebView::apply(const Edit& e) {
+  if (!session_.apply(e).changed) return;
+  edited_by_hand();
+  restart();
+}
+
+void WebView::restart() {
+  ++generation_;
+  prepared_.reset();
+  level_ = interacting_ ? 1 : 0;
+  accum_.samples = 0;
+}
+
+PixelProbe WebView::probe_at(double u, double v) const {
+  const PreparedScene prepared(view_scene(session_.scene(), view_));
+  const int x = std::clamp(static_cast<int>(u * width_), 0, width_ - 1);
+  const int y = std::clamp(static_cast<int>(v * height_), 0, height_ - 1);
+  return probe_pixel(prepared, width_, height_, x, y, eye_);
+}
+
+// The image as the desktop shows it: the accumulator's means, or the small multiples' grid (the
+// five terms in the equation's order, then the full image).
+std::vector<glm::vec3> WebView::live_pixels() const {
+  const int w = accum_.width, h = accum_.height;
+  if (!view_.small_multiples) {
+    std::vector<glm::vec3> out(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) out[static_cast<std::size_t>(y * w + x)] = glm::vec3(accum_.mean(x, y));
+    return out;
+  }
+  const int gw = w * kColumns;
+  std::vector<glm::vec3> out(static_cast<std::size_t>(gw) * static_cast<std::size_t>(h * kRows));
+  const double inv = 1.0 / static_cast<double>(std::max(accum_.samples, 1u));
+  for (int cell = 0; cell < kColumns * kRows; ++cell) {
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y * w + x);
+        const Color c = cell < 5 ? accum_.terms[i].*kFiveTermMembers[static_cast<std::size_t>(cell)] * inv
+                                 : accum_.mean(x, y);
+        out[static_cast<std::size_t>((cell / kColumns * h + y) * gw + cell % kColumns * w + x)] = glm::vec3(c);
+      }
+    }
+  }
+  return out;
+}
+
+std::string WebView::bench(int frames) const {
+  const PreparedScene prepared(session_.scene());
+  RenderOptions options;
+  options.threads = 1;
+  std::string times;
+  std::uint64_t rays = 0;
+  for (int f = 0; f < frames; ++f) {
+    Accumulator accum;
+    accum.reset(width_, height_);
+    const auto start = std::chrono::steady_clock::now();
+    const PassStats pass = render_pass(prepared, options, accum);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    times += (times.empty() ? "" : ", ") + std::to_string(ms);
+    rays = pass.rays.total();
+  }
+  return "{\"ms\": [" + times + "], \"rays\": " + std::to_string(rays) + "}";
+}
+
+// 8-bit sRGB of the image (what `phonglab-cli render -o x.png` writes), against A in a compare.
+void WebView::encode() {
+  std::vector<glm::vec3> live = live_pixels();
+  shown_width_ = accum_.width * (view_.small_multiples ? kColumns : 1);
+  shown_height_ = accum_.height * (view_.small_multiples ? kRows : 1);
+  if (view_.compare != CompareView::kNone && a_.size() == live.size()) {
+    live = compare_pixels(live, a_, shown_width_, view_.compare, view_.wipe, view_.difference_gain);
+  }
+  const Display8Encoder& srgb = Display8Encoder::srgb();
+  rgba_.resize(4 * live.size());
+  for (std::size_t i = 0; i < live.size(); ++i) {
+    rgba_[4 * i] = srgb(live[i].x), rgba_[4 * i + 1] = srgb(live[i].y), rgba_[4 * i + 2] = srgb(live[i].z);
+    rgba_[4 * i + 3] = 255;
+  }
+  shown_spp_ = accum_.samples;
+  shown_divisor_ = kDivisors[level_];
+  shown_generation_ = generation_;
+}
+
+}  // namespace phonglab

@@ -1,0 +1,111 @@
+// The web page's view of one session (bound to JavaScript in web_main.cpp): the document, its
+// edits and undo are the session's (src/session); the image is the core's render_pass, coarse
+// to fine (1/8, 1/4, 1/2, full resolution, then more samples), one pass per step(), on the page's
+// one thread; a lesson is the session's LessonPresenter, its views applied here as the desktop's
+// LessonShell applies them (web_lesson.cpp).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <emscripten/val.h>
+
+#include "core/accel/prepared_scene.h"
+#include "core/render/render.h"
+#include "core/teaching/lesson.h"
+#include "session/session.h"
+
+namespace phonglab {
+
+class WebView {
+ public:
+  WebView() : session_("") {}
+
+  // The document: an embedded scene's name or a file in the page's memory file system (an
+  // upload): "" or the positioned errors, the last good scene kept.
+  std::string open(const std::string& scene_arg);
+  std::string scene_json() const;
+  std::string source() const { return session_.document().source(); }
+
+  void set_size(int width, int height);
+  void set_target(int spp) { target_ = std::max(spp, 1); }
+  void set_term(int term);            // 0..5: the full image, then the five terms
+  void set_head_angle(double degrees);  // "move your head" (0: off)
+  void set_interacting(bool on);      // while the hand is on, the image stays at 1/4 resolution
+
+  // One pass: true when it made a new image (false: the target is reached).
+  bool step();
+  int image_width() const { return shown_width_; }
+  int image_height() const { return shown_height_; }
+  int spp() const { return static_cast<int>(shown_spp_); }
+  int divisor() const { return shown_divisor_; }
+  int generation() const { return generation_; }             // restarts so far
+  int shown_generation() const { return shown_generation_; }  // the one the image belongs to
+  emscripten::val pixels() const;  // RGBA, image_width() x image_height()
+
+  // Navigation, as on the desktop: a drag orbits about look_at, the wheel dollies.
+  void orbit(double dx_px, double dy_px);
+  void dolly(double steps);
+
+  // The material under a point of the image (u, v in [0, 1) from the top-left), -1: none; the
+  // equation's numbers there, as `phonglab-cli probe` prints them.
+  int material_at(double u, double v) const;
+  std::string probe(double u, double v) const;
+
+  int material_count() const { return static_cast<int>(session_.scene().materials.size()); }
+  std::string material_name(int m) const;
+  double coefficient(int m, const std::string& name) const;  // a colour's largest channel, or n, ior
+  void set_coefficient(int m, const std::string& name, double value, bool held);
+  int light_count() const { return static_cast<int>(session_.scene().lights.size()); }
+  double light_intensity(int l) const;  // the largest channel
+  void set_light_intensity(int l, double value, bool held);
+  bool undo();
+  bool redo();
+
+  // Lessons (web_lesson.cpp): an embedded lesson's name, "" or its errors; the presenter's keys;
+  // where it stands as JSON (title, step, steps, caption, question, revealed, exploring).
+  std::string open_lesson(const std::string& name);
+  bool lesson_next();
+  bool lesson_prev();
+  bool lesson_show(int step);
+  void close_lesson();
+  std::string lesson_state() const;
+  std::string view_probe() const { return view_probe_; }  // the step's probed pixel's numbers
+
+  // The speed: `frames` passes of the document at the page's size, 1 spp each on this thread,
+  // the full image as the desktop's scalar renderer traces it; JSON: the passes' times (ms) and
+  // the rays of one.
+  std::string bench(int frames) const;
+
+ private:
+  void apply(const Edit& e);
+  void edited_by_hand();
+  void restart();
+  PixelProbe probe_at(double u, double v) const;
+  void encode();
+  std::vector<glm::vec3> live_pixels() const;
+  void present(const LessonPresenter::Show& show);
+  void adopt_step(int index);  // the document takes a lesson step's scene
+  void apply_view(const StepView& view);
+  void update_lesson();
+
+  Session session_;
+  std::shared_ptr<const PreparedScene> prepared_;
+  Accumulator accum_;
+  std::vector<unsigned char> rgba_;
+  int width_ = 640, height_ = 360, target_ = 16, level_ = 0;
+  int shown_width_ = 0, shown_height_ = 0, shown_divisor_ = 8;
+  std::uint32_t shown_spp_ = 0;
+  int generation_ = 0, shown_generation_ = -1;
+  bool interacting_ = false;
+  StepView view_;                      // what the image shows (the term keys, a lesson's step)
+  std::optional<Vec3> eye_;            // "move your head"'s eye, from view_ at each restart
+  std::vector<glm::vec3> a_;           // snapshot A of a lesson's compare (empty: none)
+  bool a_wanted_ = false;              // a compare's source view is shown: A is its first full image
+  std::string view_probe_;
+};
+
+}  // namespace phonglab
