@@ -78,10 +78,12 @@ commands:
   scenes               List the embedded scenes.
   lessons              List the embedded lessons.
   lesson LESSON -o DIR [--width W] [--height H] [--spp N] [--threads N]
+                       [--live URL]
       The lesson's handout: DIR/step-NN.png (each step's image; a question's
       answer as answer-NN.png) and DIR/index.html, one page holding them all
       with the captions. W x H: each image (default: its scene's image size);
-      N: samples per pixel (default 4).
+      N: samples per pixel (default 4). --live: each step of an embedded
+      lesson links to the web page at URL (e.g. phonglab.html beside it).
   bench [--out DIR] [--quick] [--threads N] [--only accel|indirect]
       The speed-versus-error report: report.md, CSV files and SVG plots in DIR
       (default bench-out/); --quick finishes in about a minute (default: the
@@ -321,6 +323,7 @@ int cmd_lesson(Args& args) {
   options.height = args.take_int("--height", 1, 8192).value_or(0);
   options.spp = args.take_int("--spp", 1, 1 << 12).value_or(options.spp);
   options.threads = args.take_int("--threads", 0, 1024).value_or(0);
+  options.live_page = args.take_value("--live").value_or("");
   const auto lesson_arg = args.take_positional();
   if (!lesson_arg) throw UsageError{"lesson needs LESSON (see phonglab-cli lessons)"};
   if (!out) throw UsageError{"lesson needs -o DIR"};

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/scene/camera.h"
+#include "io/embedded_scenes.h"
 #include "core/scene/math.h"
 #include "core/teaching/ray_tree_view.h"
 #include "io/figure.h"
@@ -368,11 +369,16 @@ std::string write_handout(const Lesson& lesson, const std::string& dir, const Ha
           "</style>\n</head>\n<body>\n<h1>"
        << html_escape(lesson.title) << "</h1>\n<p>" << html_escape(lesson.description) << "</p>\n";
   const int steps = static_cast<int>(lesson.steps.size());
+  const bool live = !options.live_page.empty() && find_embedded_lesson(lesson.name) != nullptr;
   for (int i = 0; i < steps; ++i) {
     const LessonStep& step = lesson.steps[static_cast<std::size_t>(i)];
     html << "<section class=\"step\" id=\"step-" << i + 1 << "\">\n<h2>" << i + 1 << ". " << html_escape(step.title)
          << " <span class=\"of\">(step " << i + 1 << " of " << steps << ")</span></h2>\n<p>" << html_escape(step.caption)
          << "</p>\n";
+    if (live) {
+      html << "<p><a href=\"" << html_escape(options.live_page) << "#lesson=" << html_escape(lesson.name) << "&amp;step=" << i + 1
+           << "\">Open this step live</a></p>\n";
+    }
     for (const bool revealed : {false, true}) {
       if (revealed && !step.has_question()) break;
       const std::string name = step_file(i, revealed);

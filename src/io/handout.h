@@ -18,6 +18,9 @@ struct HandoutOptions {
   int height = 0;   // pixels down; 0: its scene's own height
   int spp = 4;      // samples per pixel
   int threads = 0;  // 0: all hardware threads (the bytes do not depend on it)
+  // The web page (tools/dev.sh web) each step links to, as URL#lesson=NAME&step=K; empty: no
+  // links. Only an embedded lesson's steps link (the page has those inside).
+  std::string live_page;
 };
 
 // The image a step shows at `place` (linear RGB), as the previewer's view shows it: its term

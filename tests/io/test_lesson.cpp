@@ -574,5 +574,22 @@ TEST(EmbeddedLessons, TheLastStepWipesFromTheConstantToTheIndirectLight) {
   EXPECT_GT(right_differs, hits * 9 / 10);
 }
 
+// With a live page, each step of an embedded lesson links to it at that step (the web page's
+// address #lesson=NAME&step=K); without one, no links.
+TEST(Handout, EachStepLinksToTheLivePage) {
+  const Lesson lesson = embedded("raytracing");
+  const auto dir = std::filesystem::temp_directory_path() / ("phonglab_handout_live_" + std::to_string(::getpid()));
+  HandoutOptions o = small();
+  o.live_page = "phonglab.html";
+  ASSERT_EQ(write_handout(lesson, (dir / "live").string(), o), "");
+  const std::string html = read_all(dir / "live" / "index.html");
+  for (std::size_t i = 1; i <= lesson.steps.size(); ++i) {
+    EXPECT_NE(html.find("href=\"phonglab.html#lesson=raytracing&amp;step=" + std::to_string(i) + "\""), std::string::npos) << i;
+  }
+  ASSERT_EQ(write_handout(lesson, (dir / "plain").string(), small()), "");
+  EXPECT_EQ(read_all(dir / "plain" / "index.html").find("Open this step live"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace phonglab
