@@ -1,7 +1,7 @@
 // The test scripts' driver: commands run from inside the previewer's main loop, real input
 // injected into ImGui as the window system's would be, waits on frames, the renderer, images and
-// files, and `dump_state` (docs/previewer.md lists the commands). A class of its own beside the
-// shell; it reaches the shell's state through `Viewer&` (a friend), the seam still to narrow.
+// files, and `dump_state` (docs/previewer.md lists the commands). The main loop calls it only
+// through `FrameClient`; the commands reach the shell's state through `Viewer&` (a friend).
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@
 
 #include <imgui.h>
 
+#include "apps/previewer/frame_client.h"
 #include "ui/panels.h"
 
 namespace phonglab {
@@ -42,28 +43,28 @@ struct ScriptCommand {
 // checked when they run; see docs/previewer.md for the list.
 std::vector<ScriptCommand> parse_script(const std::string& text);
 
-class ScriptDriver {
+class ScriptDriver : public FrameClient {
  public:
   explicit ScriptDriver(Viewer& viewer) : v_(viewer) {}
   ScriptDriver(const ScriptDriver&) = delete;
   ScriptDriver& operator=(const ScriptDriver&) = delete;
 
   void load(std::vector<ScriptCommand> commands) { run_.commands = std::move(commands); }
-  void step(double now) { step_script(now); }  // injects this frame's input, runs commands until one waits
-  bool failed() const { return run_.failed; }
-  void fail() { run_.failed = true; }          // the program fails the script (exit status 3)
-  // Commands or injected input still to come.
-  bool running() const { return run_.index < run_.commands.size() || !run_.input.empty(); }
-  // The hand is on: injected input is under way, or the edit benchmark runs.
-  bool hand_on() const { return !run_.input.empty() || run_.wait == ScriptWait::kBench; }
-  // A restart happened: the edit benchmark's, when it waits for one.
-  void note_restart(std::uint64_t generation) {
+  // The shell's frame (FrameClient): this frame's input injected and commands run until one
+  // waits; a restart (the edit benchmark's, when it waits for one); the window screenshot asked
+  // for after this frame's drawing; commands or input still to come; the hand on (injected
+  // input under way, or the edit benchmark); exit status 3 when the script failed.
+  void before_frame(double now) override { step_script(now); }
+  void restarted(std::uint64_t generation) override {
     if (!run_.bench_expect_restart) return;
     run_.bench_generation = generation;
     run_.bench_expect_restart = false;
   }
-  // The window screenshot asked for after this frame's drawing, taken (empty: none).
-  std::string take_screenshot_request() { return std::exchange(run_.screenshot, std::string()); }
+  std::string screenshot_wanted() override { return std::exchange(run_.screenshot, std::string()); }
+  bool busy() const override { return run_.index < run_.commands.size() || !run_.input.empty(); }
+  bool hand_on() const override { return !run_.input.empty() || run_.wait == ScriptWait::kBench; }
+  int exit_status() const override { return run_.failed ? 3 : 0; }
+  void fail() { run_.failed = true; }  // the program fails the script
 
  private:
   // What the script is waiting for before its next command.

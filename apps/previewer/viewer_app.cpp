@@ -145,6 +145,7 @@ std::string Viewer::init() {
     std::ostringstream text;
     text << in.rdbuf();
     script_.load(parse_script(text.str()));
+    client_ = &script_;
   }
   if (!options_.stats_log_path.empty()) {
     stats_.log.open(options_.stats_log_path);
@@ -195,7 +196,7 @@ int Viewer::run() {
     if (fb_width <= 0 || fb_height <= 0) continue;  // minimised: nothing to draw, keep running
 
     platform_.begin_backend_frame();
-    script_.step(frame_start);
+    if (client_) client_->before_frame(frame_start);
     ImGui::NewFrame();
     layout();
     handle_viewport_input();
@@ -214,7 +215,7 @@ int Viewer::run() {
   write_stats_summary("session");
   if (!files_.recovery().keep) session_.recovery().remove();  // a clean quit (saved, or the edits discarded)
   if (exit_code_ != 0) return exit_code_;
-  return script_.failed() ? 3 : 0;
+  return client_ ? client_->exit_status() : 0;
 }
 
 bool Viewer::poll_render_frame() {
@@ -230,7 +231,7 @@ bool Viewer::poll_render_frame() {
 void Viewer::wait_for_next_frame() {
   const ProgressiveStatus status = renderer_.status();
   const double now = glfwGetTime();
-  const bool script_running = script_.running();
+  const bool script_running = client_ && client_->busy();
   const bool busy = !status.idle || upload_pending_ || now - platform_.last_event_time() < kActivityWindow ||
                     script_running || files_.dialogs().guard_visible || files_.browser().visible() || drag_.mode != DragMode::kNone;
   stats_.slept_idle = !busy;
@@ -303,7 +304,7 @@ void Viewer::note_restart(std::uint64_t generation, double edit_time) {
   if (stats_.log) stats_.full_pending.emplace_back(generation, edit_time);
   constexpr std::size_t kKeep = 256;  // a few seconds of drag frames; older ones never show
   while (restart_times_.size() > kKeep) restart_times_.pop_front();
-  script_.note_restart(generation);
+  if (client_) client_->restarted(generation);
 }
 
 void Viewer::apply_edits(double frame_start) {
@@ -454,7 +455,7 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (const std::string shot = script_.take_screenshot_request(); !shot.empty()) {
+  if (const std::string shot = client_ ? client_->screenshot_wanted() : ""; !shot.empty()) {
     files_.save_window_screenshot(shot, fb_width, fb_height);
   }
 }
@@ -464,7 +465,7 @@ void Viewer::after_swap() {
   if (stats_.log && drawn_generation_ != 0) {
     // Levels are counted while the hand is on: scripted input or edits under way, a drag, a
     // held slider; not the refinement after it lets go.
-    const bool hand_on = script_.hand_on() || interacting_ ||
+    const bool hand_on = (client_ && client_->hand_on()) || interacting_ ||
                          edits_.while_active;
     if (hand_on) ++stats_.frames_at_level[shown_.divisor];
     // An edit is seen at full resolution once an image of it, or of a later edit, is.

@@ -268,6 +268,9 @@ class Viewer {
   // shell's state directly.
   friend class ScriptDriver;
   ScriptDriver script_{*this};
+  // What drives the loop from inside, through the one seam of frame_client.h (the script when
+  // --script is given; null otherwise).
+  FrameClient* client_ = nullptr;
 };
 
 }  // namespace phonglab
