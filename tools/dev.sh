@@ -3,6 +3,7 @@
 #   tools/dev.sh run [SCENE]   install what is missing, build, start the previewer
 #   tools/dev.sh test          install what is missing, build, run the whole test suite
 #   tools/dev.sh web           install what is missing, build the web page: build-web/phonglab.html
+#   tools/dev.sh serve [PORT]  the web page served cross-origin isolated (on every core) at localhost
 #   tools/dev.sh deps|build    the first steps alone
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,10 +37,22 @@ deps() {
 
 # The web page, build-web/phonglab.html (Emscripten; apps/web). Emscripten's optimizer needs
 # Debian's node modules (acorn) when the `node` on PATH is another one.
+# Two modules in the one page: the threaded one (build-web/threads, pthreads) for cross-origin
+# isolated pages, carried as text, and the one-thread one for every other page.
 web() {
   export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
-  emcmake cmake -S . -B build-web -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  emcmake cmake -S . -B build-web/threads -G Ninja -DCMAKE_BUILD_TYPE=Release -DPHONGLAB_WEB_THREADS=ON >/dev/null
+  cmake --build build-web/threads --parallel "$(nproc)"
+  emcmake cmake -S . -B build-web -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DPHONGLAB_WEB_THREADS_DIR="$PWD/build-web/threads" >/dev/null
   cmake --build build-web --parallel "$(nproc)"
+}
+
+# The page from a local web server that makes it cross-origin isolated: every core renders.
+serve() {
+  web
+  echo "== http://localhost:${1:-8000}/phonglab.html (Ctrl-C stops it)"
+  exec /usr/bin/python3 tools/serve_isolated.py build-web "${1:-8000}"
 }
 
 # build DIR [cmake args...]
@@ -97,5 +110,6 @@ case "${1:-}" in
   deps) deps ;;
   build) deps; build build ;;
   web) deps; web ;;
-  *) echo "usage: tools/dev.sh run [SCENE] | test | web | deps | build" >&2; exit 2 ;;
+  serve) shift; deps; serve "$@" ;;
+  *) echo "usage: tools/dev.sh run [SCENE] | test | web | serve [PORT] | deps | build" >&2; exit 2 ;;
 esac

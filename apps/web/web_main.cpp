@@ -39,6 +39,8 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("setTerm", &WebView::set_term)
       .function("setHeadAngle", &WebView::set_head_angle)
       .function("setInteracting", &WebView::set_interacting)
+      .function("setThreads", &WebView::set_threads)
+      .function("threads", &WebView::threads)
       .function("step", &WebView::step)
       .function("imageWidth", &WebView::image_width)
       .function("imageHeight", &WebView::image_height)

@@ -82,7 +82,7 @@ bool WebView::step() {
   options.term = view_.small_multiples ? Term::kFull : view_.term;
   options.ambient = view_.ambient;
   options.shading_eye = eye_;
-  options.threads = 1;
+  options.threads = threads_;
   render_pass(*prepared_, options, accum_);
   encode();
   if (level_ < finest) {
@@ -218,7 +218,7 @@ std::vector<glm::vec3> WebView::live_pixels() const {
 std::string WebView::bench(int frames) const {
   const PreparedScene prepared(session_.scene());
   RenderOptions options;
-  options.threads = 1;
+  options.threads = threads_;
   std::string times;
   std::uint64_t rays = 0;
   for (int f = 0; f < frames; ++f) {

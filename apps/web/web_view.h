@@ -1,10 +1,11 @@
 // The web page's view of one session (bound to JavaScript in web_main.cpp): the document, its
 // edits and undo are the session's (src/session); the image is the core's render_pass, coarse
 // to fine (1/8, 1/4, 1/2, full resolution, then more samples), one pass per step(), on the page's
-// one thread; a lesson is the session's LessonPresenter, its views applied here as the desktop's
+// thread and, in the threaded module, its helpers (the image the same bits for any count); a lesson is the session's LessonPresenter, its views applied here as the desktop's
 // LessonShell applies them (web_lesson.cpp).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <optional>
@@ -35,6 +36,10 @@ class WebView {
   void set_term(int term);            // 0..5: the full image, then the five terms
   void set_head_angle(double degrees);  // "move your head" (0: off)
   void set_interacting(bool on);      // while the hand is on, the image stays at 1/4 resolution
+  // Threads a pass runs on: 1 in the page's one-thread module; in the threaded one, at most the
+  // workers started with it (the page passes navigator.hardwareConcurrency).
+  void set_threads(int threads) { threads_ = std::clamp(threads, 1, 64); }
+  int threads() const { return threads_; }
 
   // One pass: true when it made a new image (false: the target is reached).
   bool step();
@@ -75,7 +80,7 @@ class WebView {
   std::string lesson_state() const;
   std::string view_probe() const { return view_probe_; }  // the step's probed pixel's numbers
 
-  // The speed: `frames` passes of the document at the page's size, 1 spp each on this thread,
+  // The speed: `frames` passes of the document at the page's size, 1 spp each on threads(),
   // the full image as the desktop's scalar renderer traces it; JSON: the passes' times (ms) and
   // the rays of one.
   std::string bench(int frames) const;
@@ -96,7 +101,7 @@ class WebView {
   std::shared_ptr<const PreparedScene> prepared_;
   Accumulator accum_;
   std::vector<unsigned char> rgba_;
-  int width_ = 640, height_ = 360, target_ = 16, level_ = 0;
+  int width_ = 640, height_ = 360, target_ = 16, level_ = 0, threads_ = 1;
   int shown_width_ = 0, shown_height_ = 0, shown_divisor_ = 8;
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1;

@@ -8,9 +8,12 @@
 // spp=4 equals the native CLI's PNG of the same scene and size within 1 code per channel on 99.9 %
 // of the pixels; a kd slider drag changes the diffuse term and not the specular one; an orbit drag
 // moves the image; a click picks the material under it; a broken scene file shows its positioned
-// error and keeps the last good scene. Exit 0 when every check passes.
+// error and keeps the last good scene; served cross-origin isolated (as tools/dev.sh serve does),
+// the page starts its threaded module, renders on every core and gives the same bits as from
+// file:// on one thread. Exit 0 when every check passes.
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import http from 'node:http';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
 
@@ -30,11 +33,11 @@ const browser = await puppeteer.launch({
   args: ['--no-sandbox', '--allow-file-access-from-files', '--disable-gpu'] });
 const url = (query) => 'file://' + path.resolve(page_path) + '?' + query;
 
-async function open(query) {
+async function open(query, address = url(query)) {
   const page = await browser.newPage();
   page.on('pageerror', (e) => console.log('  page error: ' + e.message));
   await page.setViewport({ width: 1280, height: 720 });
-  await page.goto(url(query));
+  await page.goto(address);
   await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
   return page;
 }
@@ -58,6 +61,7 @@ function differing(a, b, tolerance) {
 }
 
 // 1. The first image, and the image at 4 spp against the native CLI's.
+let one_thread_image;
 {
   const page = await open('scene=lecture&size=320x180&spp=4');
   await page.waitForFunction('window.phonglab.frames > 0', { timeout: 60000 });
@@ -69,6 +73,9 @@ function differing(a, b, tolerance) {
   const pixels = native.length / 3;
   const off = web.length === native.length ? differing(web, native, 1) : pixels;
   check(off <= pixels / 1000, `spp=4 equals phonglab-cli render's PNG within 1 code on 99.9 % of pixels (${off} of ${pixels} differ)`);
+  const state = await page.evaluate(() => window.phonglab.state());
+  check(!state.isolated && state.threads === 1, 'from file:// the page is not cross-origin isolated and renders on one thread');
+  one_thread_image = web;
   await page.close();
 }
 
@@ -141,6 +148,29 @@ function differing(a, b, tolerance) {
   check(kept === 6, 'the last good scene is kept');
   await page.screenshot({ path: path.join(out, 'broken.png') });
   await page.close();
+}
+
+// 5. Served with COOP/COEP (what tools/dev.sh serve sends): the threaded module on every core,
+// the same bits as the one-thread image of section 1.
+{
+  const html = readFileSync(page_path);
+  const server = http.createServer((request, response) => {
+    response.writeHead(200, { 'Content-Type': 'text/html', 'Cross-Origin-Opener-Policy': 'same-origin',
+                              'Cross-Origin-Embedder-Policy': 'require-corp' });
+    response.end(html);
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const address = `http://127.0.0.1:${server.address().port}/phonglab.html?scene=lecture&size=320x180&spp=4`;
+  const page = await open('', address);
+  const state = await page.evaluate(() => window.phonglab.state());
+  const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+  check(state.isolated && state.threads === cores && cores > 1,
+        `served cross-origin isolated, the page renders on every core (${state.threads} threads of ${cores})`);
+  const threaded = await image_at(page, 4);
+  check(threaded.equals(one_thread_image), `... and its image has the same bits as on one thread from file:// (${differing(threaded, one_thread_image, 0)} pixels differ)`);
+  await page.screenshot({ path: path.join(out, 'threads.png') });
+  await page.close();
+  server.close();
 }
 
 await browser.close();
