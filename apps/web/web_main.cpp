@@ -41,6 +41,8 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("setInteracting", &WebView::set_interacting)
       .function("setThreads", &WebView::set_threads)
       .function("threads", &WebView::threads)
+      .function("live", &WebView::live)
+      .function("reshaded", &WebView::reshaded)
       .function("step", &WebView::step)
       .function("imageWidth", &WebView::image_width)
       .function("imageHeight", &WebView::image_height)

@@ -61,14 +61,17 @@ void WebView::set_head_angle(double degrees) {
 
 void WebView::set_interacting(bool on) {
   interacting_ = on;
-  if (!on) session_.settle(false);
+  if (on) return;
+  session_.settle(false);
+  if (live_shown_) {  // the hand stopped: the exact re-shade replaces the recombined image
+    live_shown_ = false;
+    next_ = FromTrees::kReshade;
+  }
 }
 
 bool WebView::step() {
-  if (!prepared_) {
-    prepared_ = std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
-    eye_ = view_shading_eye(*prepared_, view_, width_, height_);
-  }
+  if (!prepared_) begin_generation();
+  if (next_ != FromTrees::kTrace) return shade_from_trees();
   const int finest = interacting_ ? 1 : 3;
   if (level_ > finest) return false;
   // A difference against a first-full A compares like with like: the live image stays at A's sample.
@@ -79,7 +82,7 @@ bool WebView::step() {
   const int w = std::max(1, width_ / cells_x / divisor), h = std::max(1, height_ / cells_y / divisor);
   if (accum_.width != w || accum_.height != h || accum_.samples == 0) accum_.reset(w, h, view_.small_multiples);
   RenderOptions options;
-  options.term = view_.small_multiples ? Term::kFull : view_.term;
+  options.term = pass_term();
   options.ambient = view_.ambient;
   options.shading_eye = eye_;
   options.threads = threads_;
@@ -88,9 +91,57 @@ bool WebView::step() {
   if (level_ < finest) {
     ++level_;
     accum_.samples = 0;
+  } else if (level_ == 3 && accum_.samples == 1 && !interacting_) {
+    record_trees();
   }
   update_lesson();
   return true;
+}
+
+void WebView::begin_generation() {
+  prepared_ = std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
+  eye_ = view_shading_eye(*prepared_, view_, width_, height_);
+  next_ = FromTrees::kTrace;
+  live_shown_ = reshaded_ = false;
+  if (!trees_ || !trees_apply() || trees_->scope_for(*prepared_, width_, height_, eye_) == EditScope::kRetrace) return;
+  const bool linear = trees_->recombines(*prepared_, width_, height_, pass_term(), eye_, view_.small_multiples);
+  next_ = interacting_ && linear ? FromTrees::kLive : FromTrees::kReshade;
+  level_ = 3;
+}
+
+// As on the desktop: the Whitted image and its terms, not the indirect light (a random estimate
+// per sample). The small multiples' grid is re-shaded whole (term images), never recombined.
+bool WebView::trees_apply() const {
+  return reshades(pass_term()) && ambient_for(pass_term(), view_.ambient) != Ambient::kIndirect;
+}
+
+bool WebView::shade_from_trees() {
+  const int w = view_.small_multiples ? std::max(1, width_ / kColumns) : width_;
+  const int h = view_.small_multiples ? std::max(1, height_ / kRows) : height_;
+  if (next_ == FromTrees::kLive) {
+    accum_.reset(w, h, false);
+    live_shown_ = trees_->recombine(*prepared_, pass_term(), threads_, accum_).completed;
+  }
+  if (!live_shown_) {  // the exact re-shade (or a sum the trees could not give)
+    accum_.reset(w, h, view_.small_multiples);
+    trees_->reshade(prepared_, pass_term(), eye_, threads_, accum_);
+    reshaded_ = true;
+    if (!trees_->usable() || trees_->worn()) trees_.reset();  // the next traced image records anew
+  }
+  next_ = FromTrees::kTrace;
+  encode();
+  update_lesson();
+  return true;
+}
+
+// Once per view that the kept trees do not serve: sample 0 at full resolution again, its trees
+// kept (the new ones take over the old ones' memory).
+void WebView::record_trees() {
+  if (!trees_apply() || reshaded_) return;
+  constexpr std::size_t kBudget = std::size_t{256} << 20;
+  trees_ = RayTrees::record(prepared_, width_ / (view_.small_multiples ? kColumns : 1),
+                            height_ / (view_.small_multiples ? kRows : 1), eye_, threads_, kBudget, nullptr, true,
+                            std::move(trees_));
 }
 
 emscripten::val WebView::pixels() const {

@@ -1,7 +1,10 @@
 // The web page's view of one session (bound to JavaScript in web_main.cpp): the document, its
 // edits and undo are the session's (src/session); the image is the core's render_pass, coarse
 // to fine (1/8, 1/4, 1/2, full resolution, then more samples), one pass per step(), on the page's
-// thread and, in the threaded module, its helpers (the image the same bits for any count); a lesson is the session's LessonPresenter, its views applied here as the desktop's
+// thread and, in the threaded module, its helpers (the image the same bits for any count). An
+// edit that changes no ray is re-shaded from the first sample's ray trees at full resolution, as
+// on the desktop (core/render/ray_trees.h): while the hand is on, a linear edit's image is
+// recombined from the trees' sums, and the exact re-shade replaces it when the hand stops; a lesson is the session's LessonPresenter, its views applied here as the desktop's
 // LessonShell applies them (web_lesson.cpp).
 #pragma once
 
@@ -15,6 +18,7 @@
 #include <emscripten/val.h>
 
 #include "core/accel/prepared_scene.h"
+#include "core/render/ray_trees.h"
 #include "core/render/render.h"
 #include "core/teaching/lesson.h"
 #include "session/session.h"
@@ -47,6 +51,8 @@ class WebView {
   int image_height() const { return shown_height_; }
   int spp() const { return static_cast<int>(shown_spp_); }
   int divisor() const { return shown_divisor_; }
+  bool live() const { return live_shown_; }          // the image is a linear edit's recombination
+  bool reshaded() const { return reshaded_; }        // this generation's first sample was re-shaded
   int generation() const { return generation_; }             // restarts so far
   int shown_generation() const { return shown_generation_; }  // the one the image belongs to
   emscripten::val pixels() const;  // RGBA, image_width() x image_height()
@@ -89,6 +95,11 @@ class WebView {
   void apply(const Edit& e);
   void edited_by_hand();
   void restart();
+  void begin_generation();  // the view's scene prepared, and how its first sample is made
+  bool trees_apply() const;
+  Term pass_term() const { return view_.small_multiples ? Term::kFull : view_.term; }
+  bool shade_from_trees();  // the first sample from the stored trees
+  void record_trees();
   PixelProbe probe_at(double u, double v) const;
   void encode();
   std::vector<glm::vec3> live_pixels() const;
@@ -106,6 +117,12 @@ class WebView {
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1;
   bool interacting_ = false;
+  // The ray trees of the last traced full-resolution first sample, and how the next first sample
+  // is made from them (kTrace: traced).
+  enum class FromTrees { kTrace, kReshade, kLive };
+  std::unique_ptr<RayTrees> trees_;
+  FromTrees next_ = FromTrees::kTrace;
+  bool live_shown_ = false, reshaded_ = false;
   StepView view_;                      // what the image shows (the term keys, a lesson's step)
   std::optional<Vec3> eye_;            // "move your head"'s eye, from view_ at each restart
   std::vector<glm::vec3> a_;           // snapshot A of a lesson's compare (empty: none)
