@@ -8,6 +8,7 @@
 #include "core/scene/display8.h"
 #include "core/teaching/compare.h"
 #include "interaction/camera_control.h"
+#include "interaction/numbers.h"
 #include "io/probe_report.h"
 #include "io/scene/scene_io.h"
 
@@ -158,6 +159,46 @@ void WebView::dolly(double steps) {
   Camera camera = session_.scene().camera;
   ui::dolly(camera, std::pow(0.9, steps));
   apply({edit::SetCamera{camera}, false});
+}
+
+void WebView::pan(double dx_px, double dy_px) {
+  Camera camera = session_.scene().camera;
+  ui::pan(camera, dx_px, dy_px, height_);
+  apply({edit::SetCamera{camera}, false});
+}
+
+std::string WebView::light_markers() const {
+  const Scene& scene = session_.scene();
+  std::string out = "[";
+  for (const Light& light : scene.lights) {
+    const auto at = light.type == LightType::kPoint ? ui::project(scene.camera, light.position, width_, height_)
+                                                    : std::nullopt;
+    if (out.size() > 1) out += ", ";
+    out += at ? "[" + std::to_string(at->x) + ", " + std::to_string(at->y) + "]" : "null";
+  }
+  return out + "]";
+}
+
+double WebView::light_depth(int l) const {
+  if (l < 0 || l >= light_count()) return 0;
+  const Scene& scene = session_.scene();
+  return ui::view_depth(scene.camera, scene.lights[static_cast<std::size_t>(l)].position);
+}
+
+void WebView::drag_light(int l, double x_px, double y_px, double depth) {
+  if (l < 0 || l >= light_count() || !(depth > 0)) return;
+  const Scene& scene = session_.scene();
+  const Vec3 p = ui::unproject(scene.camera, {x_px, y_px}, depth, width_, height_);
+  Light light = scene.lights[static_cast<std::size_t>(l)];
+  // Kept to float precision, as the desktop keeps a dragged light: a saved file reads 1.8074448.
+  light.position = Vec3(ui::tidy_float(p.x), ui::tidy_float(p.y), ui::tidy_float(p.z));
+  apply({edit::SetLight{l, light}, true});
+}
+
+void WebView::set_small_multiples(bool on) {
+  view_.small_multiples = on;
+  edited_by_hand();
+  restart();
 }
 
 int WebView::material_at(double u, double v) const {

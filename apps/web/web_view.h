@@ -57,9 +57,19 @@ class WebView {
   int shown_generation() const { return shown_generation_; }  // the one the image belongs to
   emscripten::val pixels() const;  // RGBA, image_width() x image_height()
 
-  // Navigation, as on the desktop: a drag orbits about look_at, the wheel dollies.
+  // Navigation, as on the desktop: a drag orbits about look_at, the wheel dollies, a shift-drag
+  // (or the middle button) pans.
   void orbit(double dx_px, double dy_px);
   void dolly(double steps);
+  void pan(double dx_px, double dy_px);
+  // The point lights' markers: JSON [[x, y] or null (behind the camera or not a point light), ...]
+  // in the image's pixels. A marker dragged moves its light in the view plane at the depth it
+  // had when grabbed (light_depth), one undo step for the drag (held until set_interacting(false)).
+  std::string light_markers() const;
+  double light_depth(int l) const;
+  void drag_light(int l, double x_px, double y_px, double depth);
+  // The five terms and the full image side by side (the desktop's key M).
+  void set_small_multiples(bool on);
 
   // The material under a point of the image (u, v in [0, 1) from the top-left), -1: none; the
   // equation's numbers there, as `phonglab-cli probe` prints them.

@@ -7,7 +7,7 @@
 // screenshots and images go. Checks: the page loads and its first image arrives; the image at
 // spp=4 equals the native CLI's PNG of the same scene and size within 1 code per channel on 99.9 %
 // of the pixels; a kd slider drag changes the diffuse term and not the specular one; an orbit drag
-// moves the image; a click picks the material under it; a broken scene file shows its positioned
+// moves the image; a light's marker dragged moves the light, a shift-drag pans, M shows all five; a click picks the material under it; a broken scene file shows its positioned
 // error and keeps the last good scene; served cross-origin isolated (as tools/dev.sh serve does),
 // the page starts its threaded module, renders on every core and gives the same bits as from
 // file:// on one thread. Exit 0 when every check passes.
@@ -121,6 +121,72 @@ let one_thread_image;
   const full_after = await image_at(page, 1);
   check(differing(full_before, full_after, 0) > 1000, 'an orbit drag moves the image');
   await page.screenshot({ path: path.join(out, 'after-drags.png') });
+  await page.close();
+}
+
+// 2b. A light's marker dragged moves the light in the view plane; a shift-drag pans; M shows the
+// five terms and the full image side by side.
+{
+  const page = await open('scene=lecture&size=320x180&spp=1');
+  const before = await image_at(page, 1);
+  const state = await page.evaluate(() => window.phonglab.state());
+  const l = state.markers.findIndex((m) => m);
+  check(l >= 0, `a point light's marker is drawn over the image, at its edge when out of it (${JSON.stringify(state.markers)})`);
+  const box = await (await page.$('#image')).boundingBox();
+  const [mx, my] = state.markers[Math.max(l, 0)];
+  const light_of = async () => JSON.parse(await page.evaluate(() => window.phonglab.view.sceneJson())).lights[Math.max(l, 0)].position;
+  const position_before = await light_of();
+  await page.mouse.move(box.x + mx, box.y + my);
+  await page.mouse.down();
+  await page.mouse.move(box.x + mx - 60, box.y + my + 40, { steps: 5 });
+  await page.mouse.up();
+  const after = await image_at(page, 1);
+  await page.screenshot({ path: path.join(out, 'light-drag.png') });
+  const moved = (await page.evaluate(() => window.phonglab.state())).markers[Math.max(l, 0)];
+  const position_after = await light_of();
+  check(moved && !moved[2] && Math.abs(moved[0] - mx + 60) < 1.5 && Math.abs(moved[1] - my - 40) < 1.5,
+        `dragging the marker moves the light under the pointer (${mx.toFixed(1)}, ${my.toFixed(1)} -> ${moved && moved.map((v) => +v).join(', ')})`);
+  check(JSON.stringify(position_before) !== JSON.stringify(position_after) && differing(before, after, 0) > 100,
+        `... the scene's light moves (${position_before} -> ${position_after}) and the shading with it`);
+  const camera = async () => JSON.parse(await page.evaluate(() => window.phonglab.view.sceneJson())).camera;
+  const c0 = await camera();
+  await page.keyboard.down('Shift');
+  await page.mouse.move(box.x + 160, box.y + 150);
+  await page.mouse.down();
+  await page.mouse.move(box.x + 200, box.y + 150, { steps: 5 });
+  await page.mouse.up();
+  await page.keyboard.up('Shift');
+  const c1 = await camera();
+  const offset = (c) => c.position.map((p, i) => p - c.look_at[i]);
+  const same_offset = offset(c0).every((v, i) => Math.abs(v - offset(c1)[i]) < 1e-9);
+  check(same_offset && JSON.stringify(c0.look_at) !== JSON.stringify(c1.look_at),
+        `a shift-drag pans: look_at moves, the view direction stays (${c0.look_at} -> ${c1.look_at})`);
+  // Two fingers (touch events through the DevTools protocol): moving together they pan, apart
+  // they dolly.
+  const cdp = await page.target().createCDPSession();
+  const touch = async (type, points) => cdp.send('Input.dispatchTouchEvent', {
+    type, touchPoints: points.map(([x, y], id) => ({ x: box.x + x, y: box.y + y, id })) });
+  const fingers = async (from, to) => {
+    await touch('touchStart', from);
+    for (let k = 1; k <= 5; ++k) {
+      await touch('touchMove', from.map(([x, y], i) => [x + (to[i][0] - x) * k / 5, y + (to[i][1] - y) * k / 5]));
+    }
+    await touch('touchEnd', []);
+  };
+  const distance = (c) => Math.hypot(...offset(c));
+  await fingers([[120, 90], [200, 90]], [[90, 90], [170, 90]]);
+  const c2 = await camera();
+  check(Math.abs(distance(c2) - distance(c1)) < 1e-6 && JSON.stringify(c1.look_at) !== JSON.stringify(c2.look_at),
+        'two fingers moving together pan (the distance to look_at stays)');
+  await fingers([[140, 90], [180, 90]], [[100, 90], [220, 90]]);
+  const c3 = await camera();
+  check(distance(c3) < distance(c2) - 1e-3, `two fingers moving apart dolly closer (${distance(c2).toFixed(3)} -> ${distance(c3).toFixed(3)})`);
+  await (await page.$('#image')).click({ offset: { x: 5, y: 5 } });
+  await page.keyboard.press('m');
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.multiples && s.current && s.divisor === 1; })()', { timeout: 60000 });
+  const grid = await page.evaluate(() => window.phonglab.state());
+  check(grid.width === 3 * Math.floor(320 / 3) && grid.height === 180, `M shows the five terms and the full image, 3 x 2 (${grid.width}x${grid.height})`);
+  await page.screenshot({ path: path.join(out, 'multiples.png') });
   await page.close();
 }
 
