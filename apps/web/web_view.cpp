@@ -67,29 +67,34 @@ void WebView::set_interacting(bool on) {
   if (live_shown_) {  // the hand stopped: the exact re-shade replaces the recombined image
     live_shown_ = false;
     next_ = FromTrees::kReshade;
+  } else if (level_ < 3 && accum_.samples > 0) {  // on to finer levels from the live one
+    ++level_;
+    accum_.samples = 0;
   }
 }
 
 bool WebView::step() {
   if (!prepared_) begin_generation();
   if (next_ != FromTrees::kTrace) return shade_from_trees();
-  const int finest = interacting_ ? 1 : 3;
-  if (level_ > finest) return false;
+  if (interacting_ && accum_.samples > 0) return false;  // the hand is on: one pass at the live level
   // A difference against a first-full A compares like with like: the live image stays at A's sample.
   const bool difference = view_.compare == CompareView::kDifference && !a_.empty();
   if (level_ == 3 && accum_.samples >= static_cast<std::uint32_t>(difference ? 1 : target_)) return false;
-  const int divisor = kDivisors[level_];
-  const int cells_x = view_.small_multiples ? kColumns : 1, cells_y = view_.small_multiples ? kRows : 1;
-  const int w = std::max(1, width_ / cells_x / divisor), h = std::max(1, height_ / cells_y / divisor);
-  if (accum_.width != w || accum_.height != h || accum_.samples == 0) accum_.reset(w, h, view_.small_multiples);
+  const ProgressiveLevel level = levels()[static_cast<std::size_t>(level_)];
+  if (accum_.width != level.width || accum_.height != level.height || accum_.samples == 0) {
+    accum_.reset(level.width, level.height, view_.small_multiples);
+  }
   RenderOptions options;
   options.term = pass_term();
   options.ambient = view_.ambient;
   options.shading_eye = eye_;
   options.threads = threads_;
-  render_pass(*prepared_, options, accum_);
+  const PassStats pass = render_pass(*prepared_, options, accum_);
+  if (probing_) level_times_.forget(level.divisor);  // the probe's pass is the level's time now
+  probing_ = false;
+  level_times_.note(level.divisor, pass.seconds * 1e3);
   encode();
-  if (level_ < finest) {
+  if (level_ < 3 && !interacting_) {
     ++level_;
     accum_.samples = 0;
   } else if (level_ == 3 && accum_.samples == 1 && !interacting_) {
@@ -97,6 +102,30 @@ bool WebView::step() {
   }
   update_lesson();
   return true;
+}
+
+// The page's levels: 1/8, 1/4, 1/2 and full resolution of the image (of one cell of the small
+// multiples' grid).
+std::vector<ProgressiveLevel> WebView::levels() const {
+  const int cells_x = view_.small_multiples ? kColumns : 1, cells_y = view_.small_multiples ? kRows : 1;
+  std::vector<ProgressiveLevel> out;
+  for (const int divisor : kDivisors) {
+    out.push_back({divisor, std::max(1, width_ / cells_x / divisor), std::max(1, height_ / cells_y / divisor)});
+  }
+  return out;
+}
+
+// Where a restart while the hand is on starts, by the desktop's rule (core/render/progressive.h):
+// the finest level whose measured pass fits a 24th of a second, one finer twice a second (a probe).
+int WebView::live_level() {
+  const double budget = live_budget_ms(ProgressiveSettings{});
+  const auto now = std::chrono::steady_clock::now();
+  const bool probe = now - last_probe_ >= std::chrono::milliseconds(500);
+  const std::size_t fits = live_start_level(levels(), level_times_, budget);
+  const std::size_t start = probe ? live_start_level(levels(), level_times_, budget, true) : fits;
+  probing_ = start != fits;
+  if (probing_) last_probe_ = now;
+  return static_cast<int>(start);
 }
 
 void WebView::begin_generation() {
@@ -270,7 +299,7 @@ void WebView::apply(const Edit& e) {
 void WebView::restart() {
   ++generation_;
   prepared_.reset();
-  level_ = interacting_ ? 1 : 0;
+  level_ = interacting_ ? live_level() : 0;
   accum_.samples = 0;
 }
 
@@ -340,7 +369,7 @@ void WebView::encode() {
     rgba_[4 * i + 3] = 255;
   }
   shown_spp_ = accum_.samples;
-  shown_divisor_ = kDivisors[level_];
+  shown_divisor_ = kDivisors[static_cast<std::size_t>(level_)];
   shown_generation_ = generation_;
 }
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,6 +19,7 @@
 #include <emscripten/val.h>
 
 #include "core/accel/prepared_scene.h"
+#include "core/render/progressive.h"
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
 #include "core/teaching/lesson.h"
@@ -39,7 +41,9 @@ class WebView {
   void set_target(int spp) { target_ = std::max(spp, 1); }
   void set_term(int term);            // 0..5: the full image, then the five terms
   void set_head_angle(double degrees);  // "move your head" (0: off)
-  void set_interacting(bool on);      // while the hand is on, the image stays at 1/4 resolution
+  // While the hand is on, each edit's image is one pass at the desktop's live level (the finest
+  // whose measured pass fits a 24th of a second); when it lets go, finer levels follow.
+  void set_interacting(bool on);
   // Threads a pass runs on: 1 in the page's one-thread module; in the threaded one, at most the
   // workers started with it (the page passes navigator.hardwareConcurrency).
   void set_threads(int threads) { threads_ = std::clamp(threads, 1, 64); }
@@ -105,6 +109,8 @@ class WebView {
   void apply(const Edit& e);
   void edited_by_hand();
   void restart();
+  std::vector<ProgressiveLevel> levels() const;
+  int live_level();
   void begin_generation();  // the view's scene prepared, and how its first sample is made
   bool trees_apply() const;
   Term pass_term() const { return view_.small_multiples ? Term::kFull : view_.term; }
@@ -127,6 +133,9 @@ class WebView {
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1;
   bool interacting_ = false;
+  LevelTimes level_times_;  // the passes' times at each level, for the live level
+  std::chrono::steady_clock::time_point last_probe_{};
+  bool probing_ = false;
   // The ray trees of the last traced full-resolution first sample, and how the next first sample
   // is made from them (kTrace: traced).
   enum class FromTrees { kTrace, kReshade, kLive };
