@@ -84,9 +84,11 @@ void WebView::apply_view(const StepView& view) {
   view_ = view;
   view_.compare = CompareView::kNone;  // on once A is taken (update_lesson)
   view_probe_.clear();
+  tree_pixel_.reset();
   if (view.probe) {
     const PreparedScene prepared(view_scene(session_.scene(), view));
     if (const auto pixel = probe_in(session_.scene(), session_.scene().camera, view, width_, height_)) {
+      if (view.ray_tree) tree_pixel_ = pixel;
       const std::optional<Vec3> eye = view_shading_eye(prepared, view, width_, height_);
       view_probe_ = probe_to_text(session_.scene(), probe_pixel(prepared, width_, height_, (*pixel)[0], (*pixel)[1], eye), 4);
     }
@@ -99,6 +101,7 @@ void WebView::apply_view(const StepView& view) {
 void WebView::update_lesson() {
   if (!a_wanted_ || shown_divisor_ != 1 || shown_generation_ != generation_ || view_.small_multiples) return;
   a_ = live_pixels();
+  a_samples_ = accum_.samples;
   a_wanted_ = false;
   if (const auto show = session_.lessons().a_taken()) {
     if (show->adopt_step) adopt_step(*show->adopt_step);

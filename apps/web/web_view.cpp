@@ -5,8 +5,11 @@
 #include <cmath>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/scene/display8.h"
 #include "core/teaching/compare.h"
+#include "core/teaching/ray_tree_view.h"
 #include "interaction/camera_control.h"
 #include "interaction/numbers.h"
 #include "io/probe_report.h"
@@ -34,6 +37,9 @@ Color scaled(const Color& c, double value) { return largest(c) > 0 ? c * (value 
 
 std::string WebView::open(const std::string& scene_arg) {
   if (!session_.open(scene_arg)) return session_.document().error_text();
+  tree_pixel_.reset();
+  a_.clear();
+  a_asked_ = false;
   close_lesson();
   restart();
   return "";
@@ -79,7 +85,9 @@ bool WebView::step() {
   if (interacting_ && accum_.samples > 0) return false;  // the hand is on: one pass at the live level
   // A difference against a first-full A compares like with like: the live image stays at A's sample.
   const bool difference = view_.compare == CompareView::kDifference && !a_.empty();
-  if (level_ == 3 && accum_.samples >= static_cast<std::uint32_t>(difference ? 1 : target_)) return false;
+  if (level_ == 3 && accum_.samples >= (difference ? a_samples_ : static_cast<std::uint32_t>(target_))) {
+    return false;
+  }
   const ProgressiveLevel level = levels()[static_cast<std::size_t>(level_)];
   if (accum_.width != level.width || accum_.height != level.height || accum_.samples == 0) {
     accum_.reset(level.width, level.height, view_.small_multiples);
@@ -94,6 +102,7 @@ bool WebView::step() {
   probing_ = false;
   level_times_.note(level.divisor, pass.seconds * 1e3);
   encode();
+  if (a_asked_ && finished()) take_a();
   if (level_ < 3 && !interacting_) {
     ++level_;
     accum_.samples = 0;
@@ -199,6 +208,7 @@ void WebView::pan(double dx_px, double dy_px) {
 std::string WebView::light_markers() const {
   const Scene& scene = session_.scene();
   std::string out = "[";
+  if (!view_.light_markers) return "[]";  // a lesson step that does not show where the lights are
   for (const Light& light : scene.lights) {
     const auto at = light.type == LightType::kPoint ? ui::project(scene.camera, light.position, width_, height_)
                                                     : std::nullopt;
@@ -230,12 +240,59 @@ void WebView::set_small_multiples(bool on) {
   restart();
 }
 
+bool WebView::finished() const {
+  return shown_generation_ == generation_ && shown_divisor_ == 1 && !live_shown_ &&
+         shown_spp_ >= static_cast<std::uint32_t>(target_) && !view_.small_multiples;
+}
+
+void WebView::take_a() {
+  a_asked_ = !finished();
+  if (a_asked_) return;
+  a_ = live_pixels();
+  a_samples_ = shown_spp_;
+  encode();
+}
+
+void WebView::set_compare(int mode, double wipe) {
+  view_.compare = static_cast<CompareView>(std::clamp(mode, 0, 2));
+  view_.wipe = std::clamp(wipe, 0.0, 1.0);
+  if (accum_.samples > 0) encode();  // the same live image, shown against A
+}
+
+void WebView::set_depth_cut(int cut) {
+  view_.depth_cut = cut > 0 ? std::optional<int>(cut) : std::nullopt;
+  edited_by_hand();
+  restart();
+}
+
+std::string WebView::ray_tree() const {
+  if (!tree_shown_ || !tree_pixel_ || view_.small_multiples) return "[]";
+  const std::shared_ptr<const PreparedScene> prepared =
+      prepared_ ? prepared_ : std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
+  const Scene& shown = prepared->scene();
+  const PixelProbe probe = probe_pixel(*prepared, width_, height_, (*tree_pixel_)[0], (*tree_pixel_)[1], eye_);
+  const CameraFrame frame = make_camera_frame(shown.camera, width_, height_);
+  const bool blinn = shown.specular_model == SpecularModel::kBlinn;
+  nlohmann::json out = nlohmann::json::array();
+  for (const ScreenSegment& s : project_ray_tree(frame, ray_tree_segments(shown, probe.root), ray_tree_near(shown, probe.root))) {
+    static constexpr const char* kKinds[] = {"primary", "seen", "blocked", "reflection", "refraction"};
+    const std::string kind = is_arrow(s.kind) ? arrow_letter(s.kind, blinn) : kKinds[static_cast<int>(s.kind)];
+    out.push_back({{"kind", kind}, {"depth", s.depth}, {"light", s.light}, {"escapes", s.escapes},
+                   {"from", {s.from.x, s.from.y}}, {"to", {s.to.x, s.to.y}}, {"end", s.to_visible}});
+  }
+  return out.dump();
+}
+
 int WebView::material_at(double u, double v) const {
   const PixelProbe probe = probe_at(u, v);
   return probe.root.hit ? probe.root.material : -1;
 }
 
-std::string WebView::probe(double u, double v) const { return probe_to_text(session_.scene(), probe_at(u, v), 4); }
+std::string WebView::probe(double u, double v) {
+  const PixelProbe probe = probe_at(u, v);
+  tree_pixel_ = std::array<int, 2>{probe.x, probe.y};
+  return probe_to_text(session_.scene(), probe, 4);
+}
 
 std::string WebView::material_name(int m) const {
   return m >= 0 && m < material_count() ? session_.scene().materials[static_cast<std::size_t>(m)].name : "";
@@ -371,6 +428,7 @@ void WebView::encode() {
   shown_spp_ = accum_.samples;
   shown_divisor_ = kDivisors[static_cast<std::size_t>(level_)];
   shown_generation_ = generation_;
+  ++images_;
 }
 
 }  // namespace phonglab

@@ -60,6 +60,7 @@ class WebView {
   int generation() const { return generation_; }             // restarts so far
   int shown_generation() const { return shown_generation_; }  // the one the image belongs to
   emscripten::val pixels() const;  // RGBA, image_width() x image_height()
+  int images() const { return images_; }  // images encoded so far: a new one to draw when it moves
 
   // Navigation, as on the desktop: a drag orbits about look_at, the wheel dollies, a shift-drag
   // (or the middle button) pans.
@@ -74,11 +75,29 @@ class WebView {
   void drag_light(int l, double x_px, double y_px, double depth);
   // The five terms and the full image side by side (the desktop's key M).
   void set_small_multiples(bool on);
+  // The A/B compare outside lessons, as on the desktop: A is the finished image on screen (asked
+  // before it is finished, taken when it is); the view then shows A left of `wipe` (mode 1) or
+  // |live - A| x 4 (mode 2, the live image kept at A's samples); mode 0 the live image. A stays
+  // across edits (that is the point) until another scene, size or lesson.
+  void take_a();
+  void set_compare(int mode, double wipe);
+  bool has_a() const { return !a_.empty(); }
+  bool a_asked() const { return a_asked_; }
+  // The image with recursion cut at depth `cut` (0: the scene's own max depth).
+  void set_depth_cut(int cut);
+  int max_depth() const { return session_.scene().max_depth; }
+  int depth_cut() const { return view_.depth_cut.value_or(0); }
+  // The ray tree of the probed pixel (a shift-click, or a lesson step's probe with its tree) over
+  // the image, as the desktop draws it (core/teaching/ray_tree_view.h): JSON [{kind, depth,
+  // light, escapes, from: [x, y], to: [x, y], end}, ...] in the image's pixels, kind one of
+  // primary, seen, blocked, reflection, refraction, N, L, R (H for Blinn-Phong), V; "[]": none.
+  std::string ray_tree() const;
+  void set_ray_tree(bool on) { tree_shown_ = on; }
 
   // The material under a point of the image (u, v in [0, 1) from the top-left), -1: none; the
   // equation's numbers there, as `phonglab-cli probe` prints them.
   int material_at(double u, double v) const;
-  std::string probe(double u, double v) const;
+  std::string probe(double u, double v);  // and its ray tree shown (ray_tree())
 
   int material_count() const { return static_cast<int>(session_.scene().materials.size()); }
   std::string material_name(int m) const;
@@ -123,6 +142,7 @@ class WebView {
   void adopt_step(int index);  // the document takes a lesson step's scene
   void apply_view(const StepView& view);
   void update_lesson();
+  bool finished() const;  // the image on screen is the view's, at full resolution and its target
 
   Session session_;
   std::shared_ptr<const PreparedScene> prepared_;
@@ -131,7 +151,7 @@ class WebView {
   int width_ = 640, height_ = 360, target_ = 16, level_ = 0, threads_ = 1;
   int shown_width_ = 0, shown_height_ = 0, shown_divisor_ = 8;
   std::uint32_t shown_spp_ = 0;
-  int generation_ = 0, shown_generation_ = -1;
+  int generation_ = 0, shown_generation_ = -1, images_ = 0;
   bool interacting_ = false;
   LevelTimes level_times_;  // the passes' times at each level, for the live level
   std::chrono::steady_clock::time_point last_probe_{};
@@ -144,9 +164,13 @@ class WebView {
   bool live_shown_ = false, reshaded_ = false;
   StepView view_;                      // what the image shows (the term keys, a lesson's step)
   std::optional<Vec3> eye_;            // "move your head"'s eye, from view_ at each restart
-  std::vector<glm::vec3> a_;           // snapshot A of a lesson's compare (empty: none)
+  std::vector<glm::vec3> a_;           // snapshot A of a compare (empty: none)
+  std::uint32_t a_samples_ = 0;        // its samples: a difference keeps the live image at them
+  bool a_asked_ = false;               // take_a() before the image was finished
   bool a_wanted_ = false;              // a compare's source view is shown: A is its first full image
   std::string view_probe_;
+  std::optional<std::array<int, 2>> tree_pixel_;  // the probed pixel of the image, for its ray tree
+  bool tree_shown_ = true;
 };
 
 }  // namespace phonglab

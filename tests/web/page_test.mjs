@@ -7,7 +7,9 @@
 // screenshots and images go. Checks: the page loads and its first image arrives; the image at
 // spp=4 equals the native CLI's PNG of the same scene and size within 1 code per channel on 99.9 %
 // of the pixels; a kd slider drag changes the diffuse term and not the specular one; an orbit drag
-// moves the image; a light's marker dragged moves the light, a shift-drag pans, M shows all five; a click picks the material under it; a broken scene file shows its positioned
+// moves the image; a light's marker dragged moves the light, a shift-drag pans, M shows all five;
+// a shift-click draws the pixel's ray tree, the depth cut gives the CLI's --max-depth image;
+// Take A and the wipe show A and the live image side by side, bit for bit; a click picks the material under it; a broken scene file shows its positioned
 // error and keeps the last good scene; served cross-origin isolated (as tools/dev.sh serve does),
 // the page starts its threaded module, renders on every core and gives the same bits as from
 // file:// on one thread. Exit 0 when every check passes.
@@ -47,6 +49,16 @@ async function image_at(page, spp) {
   await page.waitForFunction(`(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && s.spp >= ${spp}; })()`,
                              { timeout: 120000 });
   const rgba = await page.evaluate(() => Array.from(window.phonglab.view.pixels()));
+  const rgb = Buffer.alloc(rgba.length / 4 * 3);
+  for (let i = 0, j = 0; i < rgba.length; i += 4, j += 3) rgb[j] = rgba[i], rgb[j + 1] = rgba[i + 1], rgb[j + 2] = rgba[i + 2];
+  return rgb;
+}
+// The RGB bytes on the page's canvas: what the user sees.
+async function canvas_rgb(page) {
+  const rgba = await page.evaluate(() => {
+    const c = document.getElementById('image');
+    return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);
+  });
   const rgb = Buffer.alloc(rgba.length / 4 * 3);
   for (let i = 0, j = 0; i < rgba.length; i += 4, j += 3) rgb[j] = rgba[i], rgb[j + 1] = rgba[i + 1], rgb[j + 2] = rgba[i + 2];
   return rgb;
@@ -190,6 +202,70 @@ let one_thread_image;
   const grid = await page.evaluate(() => window.phonglab.state());
   check(grid.width === 3 * Math.floor(320 / 3) && grid.height === 180, `M shows the five terms and the full image, 3 x 2 (${grid.width}x${grid.height})`);
   await page.screenshot({ path: path.join(out, 'multiples.png') });
+  await page.close();
+}
+
+// 2c. The ray tree of a shift-clicked pixel over the image; the depth cut.
+{
+  const page = await open('scene=lecture&size=320x180&spp=1');
+  await image_at(page, 1);
+  const box = await (await page.$('#image')).boundingBox();
+  const tree_at = async (x, y) => {
+    await page.keyboard.down('Shift');
+    await page.mouse.click(box.x + x, box.y + y);
+    await page.keyboard.up('Shift');
+    return page.evaluate(() => window.phonglab.tree.map((s) => s.kind));
+  };
+  const mirror = await tree_at(235, 70), glass = await tree_at(190, 125);
+  check(mirror.includes('primary') && mirror.includes('reflection') && ['N', 'L', 'R', 'V'].every((k) => mirror.includes(k)),
+        `a shift-click on the mirror draws its ray tree: the primary ray, a reflection, N, L, R, V (${[...new Set(mirror)]})`);
+  check(glass.includes('refraction'), `... on the glass, a refracted ray (${[...new Set(glass)]})`);
+  const probe_text = await page.evaluate(() => document.getElementById('probe').textContent);
+  check(probe_text.length > 100, 'and the probe prints its numbers');
+  await page.screenshot({ path: path.join(out, 'ray-tree.png') });
+  await page.keyboard.press('t');
+  const hidden = await page.evaluate(() => window.phonglab.tree.length);
+  check(hidden === 0, 'T hides the ray tree');
+  const slider = await page.$('#cut');
+  await slider.focus();
+  await page.keyboard.press('ArrowRight');
+  const cut = await page.evaluate(() => window.phonglab.view.depthCut());
+  const web = await image_at(page, 1);
+  execFileSync(cli, ['render', 'lecture', '-o', path.join(out, 'cut1.png'), '--width', '320', '--height', '180', '--spp', '1',
+                     '--max-depth', '1']);
+  const off = differing(web, png_rgb(path.join(out, 'cut1.png')), 0);
+  check(cut === 1 && off === 0, `the depth cut at 1 has the bits of phonglab-cli render --max-depth 1 (${off} pixels differ)`);
+  await page.close();
+}
+
+// 2d. The A/B compare: A taken of the finished image, a kd edit, then the wipe shows A's columns
+// on the left and the live image's on the right, bit for bit; the difference is black where
+// nothing changed.
+{
+  const page = await open('scene=lecture&size=320x180&spp=2');
+  const a = await image_at(page, 2);
+  await (await page.$('#take-a')).click();
+  await page.waitForFunction('window.phonglab.view.hasA()', { timeout: 30000 });
+  const box = await (await page.$('#image')).boundingBox();
+  await page.mouse.click(box.x + box.width * 0.44, box.y + box.height * 0.6);  // the plastic sphere
+  const slider = await (await page.$('#slider-kd')).boundingBox();
+  await page.mouse.click(slider.x + slider.width * 0.15, slider.y + slider.height / 2);
+  const live = await image_at(page, 2);
+  const drawn = async () => { await image_at(page, 2); await page.waitForTimeout(200); return canvas_rgb(page); };
+  await page.select('#compare', '1');
+  const wiped = await drawn();
+  let wipe_off = 0;
+  for (let i = 0; i < wiped.length; i += 3) {
+    const x = (i / 3) % 320, source = x < 160 ? a : live;
+    if (wiped[i] !== source[i] || wiped[i + 1] !== source[i + 1] || wiped[i + 2] !== source[i + 2]) wipe_off++;
+  }
+  check(differing(a, live, 0) > 100 && wipe_off === 0,
+        `Take A, a kd edit, the wipe on the canvas: A's columns left of the middle, the live image's right of it (${wipe_off} pixels off)`);
+  await page.select('#compare', '2');
+  const difference = await drawn();
+  const black = difference[0] === 0 && difference[1] === 0 && difference[2] === 0;
+  check(black && difference.some((v) => v > 0), '|live - A| is black where nothing changed and bright where kd did');
+  await page.screenshot({ path: path.join(out, 'compare.png') });
   await page.close();
 }
 
