@@ -61,6 +61,8 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("takeA", &WebView::take_a)
       .function("setCompare", &WebView::set_compare)
       .function("hasA", &WebView::has_a)
+      .function("setHeatMap", &WebView::set_heat_map)
+      .function("heatMax", &WebView::heat_max)
       .function("images", &WebView::images)
       .function("aAsked", &WebView::a_asked)
       .function("setDepthCut", &WebView::set_depth_cut)

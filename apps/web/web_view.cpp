@@ -9,6 +9,7 @@
 
 #include "core/scene/display8.h"
 #include "core/teaching/compare.h"
+#include "core/teaching/heat_map.h"
 #include "core/teaching/ray_tree_view.h"
 #include "interaction/camera_control.h"
 #include "interaction/numbers.h"
@@ -55,6 +56,13 @@ void WebView::set_size(int width, int height) {
 
 void WebView::set_term(int term) {
   view_.term = static_cast<Term>(std::clamp(term, 0, 5));
+  view_.small_multiples = false;
+  edited_by_hand();
+  restart();
+}
+
+void WebView::set_heat_map(bool on) {
+  view_.term = on ? Term::kRays : Term::kFull;
   view_.small_multiples = false;
   edited_by_hand();
   restart();
@@ -414,6 +422,8 @@ std::string WebView::bench(int frames) const {
 // 8-bit sRGB of the image (what `phonglab-cli render -o x.png` writes), against A in a compare.
 void WebView::encode() {
   std::vector<glm::vec3> live = live_pixels();
+  heat_max_ = view_.term == Term::kRays ? phonglab::heat_max(live) : 0;
+  if (view_.term == Term::kRays) live = heat_map_pixels(live, heat_max_);
   shown_width_ = accum_.width * (view_.small_multiples ? kColumns : 1);
   shown_height_ = accum_.height * (view_.small_multiples ? kRows : 1);
   if (view_.compare != CompareView::kNone && a_.size() == live.size()) {

@@ -40,6 +40,10 @@ class WebView {
   void set_size(int width, int height);
   void set_target(int spp) { target_ = std::max(spp, 1); }
   void set_term(int term);            // 0..5: the full image, then the five terms
+  // The heat map: rays per pixel on the core's perceptual ramp, 0 to the image's maximum
+  // (heat_max(): the scale's top), what `phonglab-cli render --term rays` writes; off: the full image.
+  void set_heat_map(bool on);
+  double heat_max() const { return heat_max_; }
   void set_head_angle(double degrees);  // "move your head" (0: off)
   // While the hand is on, each edit's image is one pass at the desktop's live level (the finest
   // whose measured pass fits a 24th of a second); when it lets go, finer levels follow.
@@ -171,6 +175,7 @@ class WebView {
   std::string view_probe_;
   std::optional<std::array<int, 2>> tree_pixel_;  // the probed pixel of the image, for its ray tree
   bool tree_shown_ = true;
+  double heat_max_ = 0;
 };
 
 }  // namespace phonglab

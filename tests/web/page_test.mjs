@@ -223,6 +223,13 @@ let one_thread_image;
   const probe_text = await page.evaluate(() => document.getElementById('probe').textContent);
   check(probe_text.length > 100, 'and the probe prints its numbers');
   await page.screenshot({ path: path.join(out, 'ray-tree.png') });
+  await page.keyboard.press('h');
+  const heat = await image_at(page, 1);
+  execFileSync(cli, ['render', 'lecture', '-o', path.join(out, 'rays.png'), '--width', '320', '--height', '180', '--spp', '1',
+                     '--term', 'rays']);
+  const heat_off = differing(heat, png_rgb(path.join(out, 'rays.png')), 0);
+  check(heat_off === 0, `H shows the heat map, the bits of phonglab-cli render --term rays (${heat_off} pixels differ)`);
+  await page.keyboard.press('h');
   await page.keyboard.press('t');
   const hidden = await page.evaluate(() => window.phonglab.tree.length);
   check(hidden === 0, 'T hides the ray tree');
