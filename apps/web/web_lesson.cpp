@@ -39,7 +39,6 @@ bool WebView::lesson_show(int step) {
 void WebView::close_lesson() {
   session_.lessons().close();
   a_.clear();
-  a_wanted_ = false;
   view_ = StepView{};
   view_probe_.clear();
 }
@@ -59,7 +58,7 @@ std::string WebView::lesson_state() const {
                       {"question", step.question},
                       {"revealed", place.revealed},
                       {"exploring", presenter.exploring()},
-                      {"compare", !a_.empty() && view_.compare != CompareView::kNone}};
+                      {"compare", a_.has_image() && view_.compare != CompareView::kNone}};
   return j.dump();
 }
 
@@ -69,7 +68,7 @@ void WebView::present(const LessonPresenter::Show& show) {
   a_.clear();
   if (show.adopt_step) adopt_step(*show.adopt_step);
   apply_view(show.view);
-  a_wanted_ = session_.lessons().take_a_now();
+  if (session_.lessons().take_a_now()) a_.request(static_cast<std::uint64_t>(generation_), true);
 }
 
 void WebView::adopt_step(int index) {
@@ -99,15 +98,11 @@ void WebView::apply_view(const StepView& view) {
 // A compare: A is the source view's first full-resolution image; then the step's own view with
 // the compare on.
 void WebView::update_lesson() {
-  if (!a_wanted_ || shown_divisor_ != 1 || shown_generation_ != generation_ || view_.small_multiples) return;
-  a_ = live_pixels();
-  a_samples_ = accum_.samples;
-  a_wanted_ = false;
+  if (!a_.requested() || !a_.first_full() || view_.small_multiples) return;
+  if (!a_.take_when_ready(static_cast<std::uint64_t>(generation_), shown_, finished())) return;
   if (const auto show = session_.lessons().a_taken()) {
     if (show->adopt_step) adopt_step(*show->adopt_step);
-    std::vector<glm::vec3> a = std::move(a_);
     apply_view(show->view);
-    a_ = std::move(a);
     view_.compare = show->view.compare;
   }
 }
@@ -117,8 +112,8 @@ void WebView::edited_by_hand() {
   // way no longer names the image it was asked of.
   if (!session_.lessons().lesson()) return;
   session_.lessons().explored();
-  if (a_wanted_) {
-    a_wanted_ = false;
+  if (a_.requested() && a_.first_full()) {
+    a_.clear();
     session_.lessons().a_dropped();
   }
 }

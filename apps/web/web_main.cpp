@@ -64,7 +64,7 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("setHeatMap", &WebView::set_heat_map)
       .function("heatMax", &WebView::heat_max)
       .function("images", &WebView::images)
-      .function("aAsked", &WebView::a_asked)
+      .function("compareCaption", &WebView::compare_caption)
       .function("setDepthCut", &WebView::set_depth_cut)
       .function("maxDepth", &WebView::max_depth)
       .function("depthCut", &WebView::depth_cut)

@@ -40,7 +40,6 @@ std::string WebView::open(const std::string& scene_arg) {
   if (!session_.open(scene_arg)) return session_.document().error_text();
   tree_pixel_.reset();
   a_.clear();
-  a_asked_ = false;
   close_lesson();
   restart();
   return "";
@@ -92,10 +91,7 @@ bool WebView::step() {
   if (next_ != FromTrees::kTrace) return shade_from_trees();
   if (interacting_ && accum_.samples > 0) return false;  // the hand is on: one pass at the live level
   // A difference against a first-full A compares like with like: the live image stays at A's sample.
-  const bool difference = view_.compare == CompareView::kDifference && !a_.empty();
-  if (level_ == 3 && accum_.samples >= (difference ? a_samples_ : static_cast<std::uint32_t>(target_))) {
-    return false;
-  }
+  if (level_ == 3 && accum_.samples >= static_cast<std::uint32_t>(target_spp())) return false;
   const ProgressiveLevel level = levels()[static_cast<std::size_t>(level_)];
   if (accum_.width != level.width || accum_.height != level.height || accum_.samples == 0) {
     accum_.reset(level.width, level.height, view_.small_multiples);
@@ -110,7 +106,9 @@ bool WebView::step() {
   probing_ = false;
   level_times_.note(level.divisor, pass.seconds * 1e3);
   encode();
-  if (a_asked_ && finished()) take_a();
+  const bool a_taken = a_.requested() && !a_.first_full() &&
+                       a_.take_when_ready(static_cast<std::uint64_t>(generation_), shown_, finished());
+  if (a_taken) encode();  // shown against the new A
   if (level_ < 3 && !interacting_) {
     ++level_;
     accum_.samples = 0;
@@ -250,15 +248,20 @@ void WebView::set_small_multiples(bool on) {
 
 bool WebView::finished() const {
   return shown_generation_ == generation_ && shown_divisor_ == 1 && !live_shown_ &&
-         shown_spp_ >= static_cast<std::uint32_t>(target_) && !view_.small_multiples;
+         shown_spp_ >= static_cast<std::uint32_t>(target_spp()) && !view_.small_multiples;
+}
+
+int WebView::target_spp() const {
+  return a_.target_spp(target_, session_.lessons().lesson() != nullptr, view_.compare, constant_ambient());
 }
 
 void WebView::take_a() {
-  a_asked_ = !finished();
-  if (a_asked_) return;
-  a_ = live_pixels();
-  a_samples_ = shown_spp_;
-  encode();
+  a_.request(static_cast<std::uint64_t>(generation_), false);
+  if (a_.take_when_ready(static_cast<std::uint64_t>(generation_), shown_, finished())) encode();
+}
+
+std::string WebView::compare_caption() const {
+  return a_.caption(shown_, view_.compare, constant_ambient(), target_spp(), view_.difference_gain);
 }
 
 void WebView::set_compare(int mode, double wipe) {
@@ -421,13 +424,19 @@ std::string WebView::bench(int frames) const {
 
 // 8-bit sRGB of the image (what `phonglab-cli render -o x.png` writes), against A in a compare.
 void WebView::encode() {
-  std::vector<glm::vec3> live = live_pixels();
-  heat_max_ = view_.term == Term::kRays ? phonglab::heat_max(live) : 0;
-  if (view_.term == Term::kRays) live = heat_map_pixels(live, heat_max_);
   shown_width_ = accum_.width * (view_.small_multiples ? kColumns : 1);
   shown_height_ = accum_.height * (view_.small_multiples ? kRows : 1);
-  if (view_.compare != CompareView::kNone && a_.size() == live.size()) {
-    live = compare_pixels(live, a_, shown_width_, view_.compare, view_.wipe, view_.difference_gain);
+  shown_spp_ = accum_.samples;
+  shown_divisor_ = kDivisors[static_cast<std::size_t>(level_)];
+  shown_generation_ = generation_;
+  shown_.generation = static_cast<std::uint64_t>(generation_);
+  shown_.width = shown_width_, shown_.height = shown_height_, shown_.divisor = shown_divisor_, shown_.spp = shown_spp_;
+  shown_.pixels = live_pixels();
+  std::vector<glm::vec3> live = shown_.pixels;
+  heat_max_ = view_.term == Term::kRays ? phonglab::heat_max(live) : 0;
+  if (view_.term == Term::kRays) live = heat_map_pixels(live, heat_max_);
+  if (view_.compare != CompareView::kNone && a_.comparable(shown_, view_.compare, constant_ambient())) {
+    live = compare_pixels(live, a_.image().pixels, shown_width_, view_.compare, view_.wipe, view_.difference_gain);
   }
   const Display8Encoder& srgb = Display8Encoder::srgb();
   rgba_.resize(4 * live.size());
@@ -435,9 +444,6 @@ void WebView::encode() {
     rgba_[4 * i] = srgb(live[i].x), rgba_[4 * i + 1] = srgb(live[i].y), rgba_[4 * i + 2] = srgb(live[i].z);
     rgba_[4 * i + 3] = 255;
   }
-  shown_spp_ = accum_.samples;
-  shown_divisor_ = kDivisors[static_cast<std::size_t>(level_)];
-  shown_generation_ = generation_;
   ++images_;
 }
 

@@ -24,6 +24,7 @@
 #include "core/render/render.h"
 #include "core/teaching/lesson.h"
 #include "session/session.h"
+#include "session/snapshot_a.h"
 
 namespace phonglab {
 
@@ -79,14 +80,15 @@ class WebView {
   void drag_light(int l, double x_px, double y_px, double depth);
   // The five terms and the full image side by side (the desktop's key M).
   void set_small_multiples(bool on);
-  // The A/B compare outside lessons, as on the desktop: A is the finished image on screen (asked
-  // before it is finished, taken when it is); the view then shows A left of `wipe` (mode 1) or
-  // |live - A| x 4 (mode 2, the live image kept at A's samples); mode 0 the live image. A stays
-  // across edits (that is the point) until another scene, size or lesson.
+  // The A/B compare outside lessons, by the session's rules (SnapshotA, as on the desktop): A is
+  // the finished image on screen (asked before it is finished, taken when it is; an edit first
+  // drops the request); the view then shows A left of `wipe` (mode 1) or |live - A| x 4 (mode 2,
+  // once the live image has A's samples); mode 0 the live image. A stays across edits (that is
+  // the point) until another scene or lesson; compare_caption() says what is shown.
   void take_a();
   void set_compare(int mode, double wipe);
-  bool has_a() const { return !a_.empty(); }
-  bool a_asked() const { return a_asked_; }
+  bool has_a() const { return a_.has_image(); }
+  std::string compare_caption() const;
   // The image with recursion cut at depth `cut` (0: the scene's own max depth).
   void set_depth_cut(int cut);
   int max_depth() const { return session_.scene().max_depth; }
@@ -147,6 +149,8 @@ class WebView {
   void apply_view(const StepView& view);
   void update_lesson();
   bool finished() const;  // the image on screen is the view's, at full resolution and its target
+  int target_spp() const;  // the samples the image goes to (a lesson's difference: A's)
+  bool constant_ambient() const { return ambient_for(pass_term(), view_.ambient) != Ambient::kIndirect; }
 
   Session session_;
   std::shared_ptr<const PreparedScene> prepared_;
@@ -168,10 +172,8 @@ class WebView {
   bool live_shown_ = false, reshaded_ = false;
   StepView view_;                      // what the image shows (the term keys, a lesson's step)
   std::optional<Vec3> eye_;            // "move your head"'s eye, from view_ at each restart
-  std::vector<glm::vec3> a_;           // snapshot A of a compare (empty: none)
-  std::uint32_t a_samples_ = 0;        // its samples: a difference keeps the live image at them
-  bool a_asked_ = false;               // take_a() before the image was finished
-  bool a_wanted_ = false;              // a compare's source view is shown: A is its first full image
+  ProgressiveFrame shown_;              // the image on screen before a compare or the heat map
+  SnapshotA a_;                         // A of a compare (a lesson's: its first full image)
   std::string view_probe_;
   std::optional<std::array<int, 2>> tree_pixel_;  // the probed pixel of the image, for its ray tree
   bool tree_shown_ = true;
