@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <filesystem>
 #include <utility>
 
@@ -26,6 +27,13 @@ constexpr std::array<ImWchar, 11> kGlyphRanges = {0x0020, 0x00FF, 0x0370, 0x03FF
                                                   0x2190, 0x21FF, 0x2200, 0x22FF, 0};
 constexpr float kFontPixels = 15.0f;  // at scale 1
 constexpr float kCaptionScale = 2.2f;  // lesson captions: this many times the UI font
+
+// Software OpenGL (Mesa's llvmpipe: a machine or VM without a GPU) rasterises on as many threads
+// as there are cores by default, and those threads take the cores the ray tracer's threads need:
+// on 2 cores they took more than one core's time while a camera drag was traced. Drawing a blit
+// and the panels is light work, so llvmpipe draws on the UI thread alone; a user's own
+// LP_NUM_THREADS is kept. Drivers of real GPUs ignore the variable.
+void keep_software_gl_on_the_ui_thread() { setenv("LP_NUM_THREADS", "0", /*overwrite=*/0); }
 
 std::string glfw_error_text() {
   const char* description = nullptr;
@@ -126,6 +134,7 @@ void Platform::push_key_press(KeyPress press) { push_bounded(key_presses_, press
 
 std::unique_ptr<Platform> Platform::create(const PlatformOptions& options, std::string& error) {
   std::unique_ptr<Platform> p(new Platform());
+  keep_software_gl_on_the_ui_thread();
   if (glfwInit() != GLFW_TRUE) {
     error = "cannot initialise the window system (" + glfw_error_text() + ")";
     return nullptr;
