@@ -89,13 +89,14 @@ modal discard
 wait_frames 300
 fail the unsaved-changes dialog's Discard did not quit
 EOF
-  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" --stats-log "$dir/stats.log" \
+  env -u LP_NUM_THREADS "$BIN" lecture --size 1280x720 --script "$dir/script.txt" --stats-log "$dir/stats.log" \
     >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
   local pid=$!
   local win=""
   # Real X input: a left-drag in the viewport through the X server, then a click on the red
   # sphere to pick its material.
   if wait_for_file "$dir/xdotool_ready" 120 "$pid"; then
+    cat /proc/"$pid"/task/*/comm >"$dir/threads.txt" 2>/dev/null  # the process's threads by name
     win=$(xdotool search --sync --limit 1 --name '^phonglab' 2>/dev/null | head -n 1)
     xdotool mousemove --window "$win" 300 560
     sleep 0.2
@@ -129,6 +130,8 @@ check_view() {
   check "no NaN/Inf in the image" test "$(state "$dir/s01.txt" nan_count)" = 0
   check "a scripted orbit drag changed the camera" test "$(state "$dir/s03.txt" camera_position)" != "$(state "$dir/s01.txt" camera_position)"
   check "a scripted orbit drag changed the view" greater "$(rmse "$dir/02_half.png" "$dir/03_orbit.png" $SCENE_REGION)" 0.02
+  check "software GL draws on the UI thread: no llvmpipe thread among the $(wc -l <"$dir/threads.txt") threads" \
+    awk '/^llvmpipe/ { bad = 1 } END { exit bad || NR < 3 }' "$dir/threads.txt"
   check "a real xdotool drag changed the camera" test "$(state "$dir/s04.txt" camera_position)" != "$(state "$dir/s03.txt" camera_position)"
   check "a real xdotool drag changed the view" greater "$(rmse "$dir/03_orbit.png" "$dir/04_xdotool.png" $SCENE_REGION)" 0.02
   check "R resets the camera" test "$(state "$dir/s05.txt" camera_position)" = "$(state "$dir/s01.txt" camera_position)"
