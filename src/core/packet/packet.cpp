@@ -174,7 +174,8 @@ ObjectRef PacketTracer::Impl::object_of(std::int32_t id, std::int32_t prim) cons
   return {ObjectRef::Kind::kMesh, id - mesh_id, prim};
 }
 
-void PacketTracer::Impl::find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested) {
+void PacketTracer::Impl::find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested,
+                                   const packet::LooseTriangles* triangles) {
   lv.fit_lanes(rays.n);
   for (int i = 0; i < rays.n; ++i) {
     lv.t[at(i)] = kInf;
@@ -187,7 +188,7 @@ void PacketTracer::Impl::find_hits(Level& lv, const RayBatch& rays, const packet
     return;
   }
   if (scene.triangles.empty()) return;
-  packet::triangles_nearest(triangles_met(rays.view(), nullptr, rays.n, nullptr), rays.view(), rays.n,
+  packet::triangles_nearest(triangles ? *triangles : triangles_met(rays.view(), nullptr, rays.n, nullptr), rays.view(), rays.n,
                             {lv.t.data(), lv.id.data(), lv.prim.data(), lv.b1.data(), lv.b2.data()});
 }
 
@@ -234,13 +235,14 @@ packet::Spheres PacketTracer::Impl::primary_rays(const CameraFrame& frame, int x
     primary.oz[at(k)] = frame.origin.z;
     primary.weight[at(k)] = 1.0;
   }
+  primary_loose = primary_triangles(frame, x0, y0, x1, y1);
   return primary_spheres(frame, x0, y0, x1, y1);
 }
 
 void PacketTracer::Impl::trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts,
                  TraceRecorder::Child kind) {
   Level& lv = levels[at(depth)];
-  find_hits(lv, rays, tested);
+  find_hits(lv, rays, tested, depth == 0 ? &primary_loose : nullptr);
   const int lanes = rays.n;
   packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
                       padded(lanes), lv.records());
@@ -518,7 +520,7 @@ int PacketTracer::cast_primary(const CameraFrame& frame, int x0, int y0, int x1,
   Impl& im = *impl_;
   const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
   Level& lv = im.levels[0];
-  im.find_hits(lv, im.primary, tested);
+  im.find_hits(lv, im.primary, tested, &im.primary_loose);
   int hits = 0;
   for (int i = 0; i < im.primary.n; ++i) hits += lv.id[at(i)] >= 0;
   return hits;

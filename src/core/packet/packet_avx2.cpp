@@ -136,15 +136,7 @@ Packet shear_packet(const Rays& rays, int i, int live) {
   const V kz2 = and_not(either(kz0, kz1), _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
   const V d_kz = pick(kz0, p.d[0], pick(kz1, p.d[1], p.d[2]));
   const V swap = lt(d_kz, _mm256_setzero_pd());
-  p.kz_is0 = kz0, p.kz_is1 = kz1;
-  p.kx_is0 = pick(swap, kz1, kz2), p.kx_is1 = pick(swap, kz2, kz0);
-  p.ky_is0 = pick(swap, kz2, kz1), p.ky_is1 = pick(swap, kz0, kz2);
-  const auto select = [](V is0, V is1, const V* v) { return pick(is0, v[0], pick(is1, v[1], v[2])); };
-  p.okx = select(p.kx_is0, p.kx_is1, p.o), p.oky = select(p.ky_is0, p.ky_is1, p.o), p.okz = select(kz0, kz1, p.o);
-  p.sz = splat(1.0) / d_kz;
-  p.sx = select(p.kx_is0, p.kx_is1, p.d) * p.sz;
-  p.sy = select(p.ky_is0, p.ky_is1, p.d) * p.sz;
-  // One permutation for all live lanes: kz and the swap agree.
+  // One permutation for all live lanes (the usual case): kz and the swap agree.
   const int m0 = lanes_set(kz0) & live, m1 = lanes_set(kz1) & live, ms = lanes_set(swap) & live;
   p.uniform = (m0 == 0 || m0 == live) && (m1 == 0 || m1 == live) && (ms == 0 || ms == live);
   const int first = __builtin_ctz(static_cast<unsigned>(live));
@@ -152,6 +144,20 @@ Packet shear_packet(const Rays& rays, int i, int live) {
   const bool swapped = (ms >> first) & 1;
   p.kx = swapped ? (p.kz + 2) % 3 : (p.kz + 1) % 3;
   p.ky = swapped ? (p.kz + 1) % 3 : (p.kz + 2) % 3;
+  p.sz = splat(1.0) / d_kz;
+  if (p.uniform) {  // the same values as the blends below pick, by index
+    p.okx = p.o[p.kx], p.oky = p.o[p.ky], p.okz = p.o[p.kz];
+    p.sx = p.d[p.kx] * p.sz;
+    p.sy = p.d[p.ky] * p.sz;
+    return p;
+  }
+  p.kz_is0 = kz0, p.kz_is1 = kz1;
+  p.kx_is0 = pick(swap, kz1, kz2), p.kx_is1 = pick(swap, kz2, kz0);
+  p.ky_is0 = pick(swap, kz2, kz1), p.ky_is1 = pick(swap, kz0, kz2);
+  const auto select = [](V is0, V is1, const V* v) { return pick(is0, v[0], pick(is1, v[1], v[2])); };
+  p.okx = select(p.kx_is0, p.kx_is1, p.o), p.oky = select(p.ky_is0, p.ky_is1, p.o), p.okz = select(kz0, kz1, p.o);
+  p.sx = select(p.kx_is0, p.kx_is1, p.d) * p.sz;
+  p.sy = select(p.ky_is0, p.ky_is1, p.d) * p.sz;
   return p;
 }
 
@@ -223,10 +229,15 @@ inline TriangleHit triangle_hit(const Packet& p, const double* v0) {
   r.w = bx * ay - by * ax;
   const V negative = either(either(lt(r.u, zero), lt(r.v, zero)), lt(r.w, zero));
   const V positive = either(either(gt(r.u, zero), gt(r.v, zero)), gt(r.w, zero));
+  const V mixed = both(negative, positive);
+  if (lanes_set(mixed) == 0xF) {  // every lane passes outside an edge: no t to compute
+    r.valid = zero;
+    return r;
+  }
   r.det = (r.u + r.v) + r.w;
   const V t_scaled = (r.u * (p.sz * a_z) + r.v * (p.sz * b_z)) + r.w * (p.sz * c_z);
   r.t = t_scaled / r.det;
-  r.valid = and_not(both(negative, positive), both(ne(r.det, zero), both(gt(r.t, zero), lt(r.t, splat(kInf)))));
+  r.valid = and_not(mixed, both(ne(r.det, zero), both(gt(r.t, zero), lt(r.t, splat(kInf)))));
   return r;
 }
 
@@ -422,6 +433,7 @@ void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_ma
 }
 
 void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, const NearestHits& out) {
+  if (tris.tested_count == 0) return;
   for (int i = 0; i < live; i += 4) {
     const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;
     const Packet p = shear_packet(rays, i, lanes);

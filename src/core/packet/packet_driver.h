@@ -30,6 +30,8 @@ struct PacketTracer::Impl {
   std::vector<int> prim_material;  // by kernel id (spheres, then planes, then triangles)
   std::vector<std::int32_t> every_sphere, primary_tested, shadow_tested;
   std::vector<std::int32_t> every_triangle, triangles_tested;  // loose triangles, as the spheres'
+  std::vector<std::int32_t> primary_triangles_tested;
+  packet::LooseTriangles primary_loose{};  // the loose triangles the tile's primary rays can meet
   packet::Spheres spheres{};
   packet::Planes planes{};
   // With a SceneBvh: the spheres, loose triangles and meshes are found through it (planes are
@@ -80,6 +82,13 @@ struct PacketTracer::Impl {
   // The margin (1e-6 rad) is far beyond rounding, so culling never changes a hit.
   packet::Spheres primary_spheres(const CameraFrame& f, int x0, int y0, int x1, int y1);
 
+  // The loose triangles the primary rays of image region [x0, x1] x [y0, y1] can meet: the rays
+  // share the eye and their directions lie in the convex hull of the region's corner rays (before
+  // normalising), so a triangle is passed over when that hull lies strictly outside one of the
+  // planes through the eye and its edges, or when every corner leaves its plane. The margins
+  // dwarf rounding, so culling never changes a hit.
+  packet::LooseTriangles primary_triangles(const CameraFrame& f, int x0, int y0, int x1, int y1);
+
   // The spheres shadow rays from points within the ball (b, ball) towards `light` can meet:
   // the rays lie within `ball` of the segment from b to a point light (of the ray from b along
   // L for a directional one), so a sphere farther than its radius + `ball` from that segment
@@ -100,7 +109,10 @@ struct PacketTracer::Impl {
 
   // The nearest hit of every ray: spheres and planes in the kernel, then the scene's few loose
   // triangles, in intersect_all's order.
-  void find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested);
+  // `triangles`: the loose triangles the rays can meet when known (the primary rays'), else
+  // triangles_met finds them.
+  void find_hits(Level& lv, const RayBatch& rays, const packet::Spheres& tested,
+                 const packet::LooseTriangles* triangles = nullptr);
 
   // occluded() for the shadow rays of the lanes marked kTest (the others have t_max = 0).
   void test_shadows(Level& lv, int lanes, const packet::Spheres& tested, const Light& light);

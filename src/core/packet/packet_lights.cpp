@@ -46,6 +46,61 @@ packet::Spheres PacketTracer::Impl::primary_spheres(const CameraFrame& f, int x0
   return view;
 }
 
+namespace {
+
+// Whether no ray from the eye along a direction in the convex hull of `corner` meets the
+// triangle whose vertices, as seen from the eye, are v: the rays that meet it run inside the cone
+// of v[0], v[1], v[2], so a hull that lies strictly outside one of the three planes through the
+// eye and an edge holds none of them. Relative margins of 1e-9 stand far above the rounding of
+// these products and of the watertight test, which starts from the same differences v.
+bool tile_misses_triangle(const Vec3 v[3], const Vec3 corner[4]) {
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 &p = v[e], &q = v[(e + 1) % 3], &r = v[(e + 2) % 3];
+    const Vec3 m = glm::cross(p, q);
+    const double scale = glm::length(p) * glm::length(q);
+    const double inside = glm::dot(m, r);  // the same for every edge: the eye's side of the triangle
+    if (!(std::abs(inside) > 1e-9 * scale * glm::length(r))) return false;  // the eye (nearly) in its plane
+    int out = 0;
+    for (int c = 0; c < 4; ++c) {
+      out += std::copysign(1.0, inside) * glm::dot(m, corner[c]) < -1e-9 * scale * glm::length(corner[c]);
+    }
+    if (out == 4) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+packet::LooseTriangles PacketTracer::Impl::primary_triangles(const CameraFrame& f, int x0, int y0, int x1, int y1) {
+  packet::LooseTriangles view = loose;
+  if (walk_hierarchy || loose.count == 0) return view;
+  Vec3 corner[4];  // camera_ray's directions before normalising, at the region's corners
+  for (int c = 0; c < 4; ++c) {
+    const double sx = 2.0 * (c & 1 ? x1 : x0) / f.width - 1;
+    const double sy = 1 - 2.0 * (c & 2 ? y1 : y0) / f.height;
+    corner[c] = f.forward + sx * f.right + sy * f.up;
+  }
+  primary_triangles_tested.clear();
+  for (int k = 0; k < loose.count; ++k) {
+    const Triangle& t = scene.triangles[at(k)];
+    // Every ray leaves the triangle's plane: the eye strictly on one side and every corner
+    // direction pointing away from it (triangles_met's margins).
+    const Vec3& n = loose_normal[at(k)];
+    const double side = glm::dot(n, f.origin - t.v0);
+    const double margin = 0x1p-42 * std::max(loose_magnitude[at(k)], max_abs(f.origin));
+    int away = 0;
+    for (const Vec3& d : corner) {
+      const double cosine = glm::dot(n, d) / glm::length(d);
+      away += (side > margin && cosine > 1e-12) || (side < -margin && cosine < -1e-12);
+    }
+    const Vec3 v[3] = {t.v0 - f.origin, t.v1 - f.origin, t.v2 - f.origin};
+    if (away < 4 && !tile_misses_triangle(v, corner)) primary_triangles_tested.push_back(k);
+  }
+  view.tested = primary_triangles_tested.data();
+  view.tested_count = static_cast<int>(primary_triangles_tested.size());
+  return view;
+}
+
 packet::Spheres PacketTracer::Impl::shadow_spheres(const Vec3& b, double ball, const Light& light, const Vec3& l) {
   if (walk_hierarchy) return no_spheres();
   shadow_tested.clear();
