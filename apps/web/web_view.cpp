@@ -212,16 +212,16 @@ void WebView::pan(double dx_px, double dy_px) {
 }
 
 std::string WebView::light_markers() const {
+  // Each light's point on the canvas, or null (a directional light, or behind the eye).
+  nlohmann::json out = nlohmann::json::array();
+  if (!view_.light_markers) return out.dump();  // a lesson step that does not show where the lights are
   const Scene& scene = session_.scene();
-  std::string out = "[";
-  if (!view_.light_markers) return "[]";  // a lesson step that does not show where the lights are
   for (const Light& light : scene.lights) {
     const auto at = light.type == LightType::kPoint ? ui::project(scene.camera, light.position, width_, height_)
                                                     : std::nullopt;
-    if (out.size() > 1) out += ", ";
-    out += at ? "[" + std::to_string(at->x) + ", " + std::to_string(at->y) + "]" : "null";
+    out.push_back(at ? nlohmann::json::array({at->x, at->y}) : nlohmann::json(nullptr));
   }
-  return out + "]";
+  return out.dump();
 }
 
 double WebView::light_depth(int l) const {
