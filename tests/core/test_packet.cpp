@@ -293,6 +293,24 @@ TEST(PacketTracer, TermImagesAndAMovedEyeAreBitIdenticalToTheScalarRenderer) {
   }
 }
 
+// The culling tests' view: a scale of 10^-2 .. 10^3, sometimes far from the origin, and a camera
+// at (0, 1, 6) looking at (0, 0.5, 0) in those units with a random field of view.
+struct CullingView {
+  double scale;
+  Vec3 shift;
+  Scene scene;
+};
+CullingView culling_view(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  CullingView v;
+  v.scale = std::pow(10.0, std::uniform_int_distribution<int>(-2, 3)(rng));
+  v.shift = u(rng) < 0.3 ? Vec3(1e5, -3e4, 2e4) * v.scale : Vec3(0);
+  v.scene.camera.position = (Vec3(0, 1, 6) + v.shift / v.scale) * v.scale;
+  v.scene.camera.look_at = (Vec3(0, 0.5, 0) + v.shift / v.scale) * v.scale;
+  v.scene.camera.fov_y_deg = 10 + 80 * u(rng);
+  return v;
+}
+
 // The per-tile culling (the primary rays' cone, the shadow rays' capsule) must never drop a
 // sphere a ray meets: many small spheres whose outlines cross tile edges and shadow volumes,
 // at several scales and far from the origin, rendered over many tiles.
@@ -303,12 +321,10 @@ TEST(PacketTracer, CullingNeverDropsASphereARayMeets) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1), c(-2, 2);
-    const double scale = std::pow(10.0, std::uniform_int_distribution<int>(-2, 3)(rng));
-    const Vec3 shift = u(rng) < 0.3 ? Vec3(1e5, -3e4, 2e4) * scale : Vec3(0);
-    Scene s;
-    s.camera.position = (Vec3(0, 1, 6) + shift / scale) * scale;
-    s.camera.look_at = (Vec3(0, 0.5, 0) + shift / scale) * scale;
-    s.camera.fov_y_deg = 10 + 80 * u(rng);
+    const CullingView view = culling_view(rng);
+    const double scale = view.scale;
+    const Vec3 shift = view.shift;
+    Scene s = view.scene;
     Material m;
     m.ka = Color(0.1);
     m.kd = Color(0.7);
@@ -348,13 +364,11 @@ TEST(PacketTracer, PrimaryCullingNeverDropsATriangleARayMeets) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1), c(-2, 2);
-    const double scale = std::pow(10.0, std::uniform_int_distribution<int>(-2, 3)(rng));
-    const Vec3 shift = u(rng) < 0.3 ? Vec3(1e5, -3e4, 2e4) * scale : Vec3(0);
-    Scene s;
-    const Vec3 eye = Vec3(0, 1, 6) * scale + shift;
-    s.camera.position = eye;
-    s.camera.look_at = Vec3(0, 0.5, 0) * scale + shift;
-    s.camera.fov_y_deg = 10 + 80 * u(rng);
+    const CullingView view = culling_view(rng);
+    const double scale = view.scale;
+    const Vec3 shift = view.shift;
+    Scene s = view.scene;
+    const Vec3 eye = s.camera.position;
     for (int k = 0; k < 4; ++k) {
       Material m;
       m.kd = Color(0.2 + 0.2 * k, 0.7 - 0.15 * k, 0.3);
