@@ -7,7 +7,8 @@
 # Each tree is a checkout with its Release build in TREE/build. Each round runs
 # tests/gui/bench_previewer.sh of the old tree, then the new one, with the renderer on every core
 # and then on one (RENDER_THREADS=1); then prints, per run, each phase's levels on screen, edit →
-# full p50 / p95 and UI frame p50. Raw output in OUT (default /tmp/previewer-side-by-side).
+# full p50 / p95, UI frame p50 and the cores taken (UI thread, whole previewer; builds that log
+# them). Raw output in OUT (default /tmp/previewer-side-by-side).
 set -eu
 OLD=$(cd "${1:?usage: previewer-side-by-side.sh OLD_TREE NEW_TREE [ROUNDS]}" && pwd)
 NEW=$(cd "${2:?usage: previewer-side-by-side.sh OLD_TREE NEW_TREE [ROUNDS]}" && pwd)
@@ -29,6 +30,7 @@ for f in "$OUT"/*.txt; do
     levels=$(grep "^levels $phase " "$f" | cut -d' ' -f3-)
     full=$(grep "^summary $phase edit_to_full" "$f" | awk '{printf "%.0f / %.0f ms", $7, $9}')
     ui=$(grep "^summary $phase ui_frames" "$f" | awk '{printf "%.1f ms", $8}')
-    echo "  $phase: $levels; edit -> full p50 / p95 $full; UI frame p50 $ui"
+    cores=$(grep "^summary $phase cores" "$f" | awk '{printf "; cores: UI thread %.2f, all %.2f", $5, $7}')
+    echo "  $phase: $levels; edit -> full p50 / p95 $full; UI frame p50 $ui$cores"
   done
 done

@@ -116,10 +116,10 @@ Viewer::~Viewer() = default;
 
 std::string Viewer::init() {
   ImGui::GetIO().UserData = &item_locations_;
-  std::string error = image_view_.init();
+  std::string error = image_view_.init(glfwGetProcAddress);
   if (!error.empty()) return error;
   for (ImageView& view : terms_.views) {
-    error = view.init();
+    error = view.init(glfwGetProcAddress);
     if (!error.empty()) return error;
   }
   if (!doc_.open(options_.scene_arg)) {
@@ -402,10 +402,7 @@ void Viewer::apply_edits(double frame_start) {
   update_title();
 }
 
-void Viewer::draw_gl(int fb_width, int fb_height) {
-  glViewport(0, 0, fb_width, fb_height);
-  glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
+void Viewer::upload_images(int view_w, int view_h) {
   // The heat map's colours are final: exposure does not apply to them.
   const float exposure_ev = tools_.heat_shown() ? 0.0f : display_.exposure_ev;
   const bool has_frame = shown_.width > 0 && shown_.height > 0;
@@ -415,9 +412,12 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
     drawn_generation_ = shown_.generation;
     drawn_serial_ = shown_.stats.serial;
   }
-  // A new image, or new display settings for the one on screen: encoded and uploaded again.
+  // A new image, or new display settings for the one on screen: encoded and uploaded again. A
+  // coarse level filling the view is widened into its blocks: the blit is then a plain copy.
   if (has_frame && (upload_pending_ || !image_view_.shows(exposure_ev, display_.srgb))) {
-    image_view_.upload(shown_.width, shown_.height, tools_.display_pixels(), exposure_ev, display_.srgb);
+    DisplayBlocks blocks;
+    if (!instruments_.small_multiples && shown_.divisor > 1) blocks = {shown_.divisor, view_w, view_h};
+    image_view_.upload(shown_.width, shown_.height, tools_.display_pixels(), exposure_ev, display_.srgb, blocks);
   }
   // The small multiples' cells: the five term images of the same samples, when it has them.
   for (std::size_t i = 0; i < terms_.views.size(); ++i) {
@@ -427,11 +427,23 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
     }
   }
   upload_pending_ = false;
+}
+
+void Viewer::draw_gl(int fb_width, int fb_height) {
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
   const int view_w = static_cast<int>(std::lround(viewport_.width * scale.x));
   const int view_h = static_cast<int>(std::lround(viewport_.height * scale.y));
   const int view_x = static_cast<int>(std::lround(viewport_.x * scale.x));
   const int view_y = fb_height - view_h - static_cast<int>(std::lround(viewport_.y * scale.y));  // GL counts from the bottom
+  upload_images(view_w, view_h);
+  glViewport(0, 0, fb_width, fb_height);
+  // The image copied over the whole window leaves nothing to clear.
+  const bool covered = !instruments_.small_multiples && view_x == 0 && view_y == 0 && view_w == fb_width &&
+                       view_h == fb_height && image_view_.width() == view_w && image_view_.height() == view_h;
+  if (!covered) {
+    glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
   if (instruments_.small_multiples) {
     // 3 x 2 cells, top row first; GL rows count from the bottom.
     const int cell_w = view_w / kMultiplesColumns;
@@ -450,7 +462,7 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
     }
   } else {
     // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
-    const bool nearest = shown_.divisor > 1 || shown_.width == view_w;
+    const bool nearest = shown_.divisor > 1 || image_view_.width() == view_w;
     image_view_.draw(view_x, view_y, view_w, view_h, nearest);
   }
   glViewport(0, 0, fb_width, fb_height);
@@ -518,6 +530,14 @@ void Viewer::write_stats_summary(const std::string& label) {
   };
   stats_.log << "levels " << label << " full=" << frames_at(1) << " half=" << frames_at(2) << " quarter=" << frames_at(4)
              << " eighth=" << frames_at(8) << "\n";
+  // Cores taken since the reset: the UI thread's (drawing included, llvmpipe being on it) and
+  // the whole previewer's.
+  const CpuClock cpu = CpuClock::now();
+  const double wall = cpu.wall - stats_.cpu_mark.wall;
+  if (stats_.cpu_mark.wall > 0 && wall > 0) {
+    stats_.log << "summary " << label << " cores ui " << (cpu.thread - stats_.cpu_mark.thread) / wall << " all "
+               << (cpu.process - stats_.cpu_mark.process) / wall << "\n";
+  }
   stats_.log << "summary " << label << " edit_to_full n " << stats_.edit_to_full_ms.size() << " p50_ms "
              << percentile(stats_.edit_to_full_ms, 0.5) << " p95_ms " << percentile(stats_.edit_to_full_ms, 0.95) << "\n";
   // The passes' ray rates by level, each as a share of the full-resolution median (issue 14's

@@ -106,6 +106,8 @@ class Viewer {
   void handle_keys();                      // this frame's key presses (GLFW events, none lost)
   void shortcut(int key, bool shift);      // what a plain (or shifted) key does over the view
   void apply_edits(double frame_start);    // at most one restart for everything this frame changed
+  // Encodes and uploads a new image (or the one on screen under new display settings).
+  void upload_images(int view_w, int view_h);
   void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
   void after_swap();                       // edit-to-image latency of a first image just shown
 
@@ -240,6 +242,7 @@ class Viewer {
     std::map<int, int> frames_at_level;                 // UI frames by the level divisor of the image on screen (same)
     std::deque<std::pair<std::uint64_t, double>> full_pending;  // edits (generation, time) not yet seen at full resolution
     std::vector<double> edit_to_full_ms;                // edit to the first full-resolution image of it or a later one (same)
+    CpuClock cpu_mark;                                  // the clocks at the last reset: the cores the UI and all took since
     std::ofstream log;
   };
   FrameStats stats_;

@@ -13,6 +13,15 @@ struct ImFont;
 
 namespace phonglab {
 
+// Wall time and the CPU time of the calling thread and of the whole process, seconds: the
+// stats log's share of a core the UI thread took, and of the machine the previewer took.
+struct CpuClock {
+  double wall = 0;
+  double thread = 0;
+  double process = 0;
+  static CpuClock now();
+};
+
 // A key press as GLFW reported it (repeats included), kept until the frame takes it.
 struct KeyPress {
   int key = 0;   // GLFW_KEY_*

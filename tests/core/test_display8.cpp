@@ -74,3 +74,34 @@ TEST(Display8, PixelsAreScaledThenWrittenBlueFirst) {
                                                linear_to_srgb8(0.25), linear_to_srgb8(4.0), 0, 255};
   EXPECT_EQ(bgra, expected);
 }
+
+// A coarse level widened into its blocks: every screen pixel holds the code of the image pixel
+// whose block covers it (the last blocks cut at the view's edges), rows from the top or from the
+// bottom, and a size that does not fit the view is refused.
+TEST(Display8, BlocksRepeatEachPixelOverItsBlock) {
+  const Display8Encoder& encoder = Display8Encoder::srgb();
+  for (const DisplayBlocks blocks : {DisplayBlocks{1, 5, 3}, DisplayBlocks{2, 7, 5}, DisplayBlocks{4, 13, 9}, DisplayBlocks{8, 16, 8}}) {
+    const int width = (blocks.width + blocks.block - 1) / blocks.block;
+    const int height = (blocks.height + blocks.block - 1) / blocks.block;
+    std::vector<glm::vec3> image(static_cast<std::size_t>(width * height));
+    for (std::size_t i = 0; i < image.size(); ++i) image[i] = glm::vec3(0.01f * static_cast<float>(i), 0.5f, 1.0f - 0.013f * static_cast<float>(i));
+    for (const bool bottom_up : {false, true}) {
+      std::vector<unsigned char> out(static_cast<std::size_t>(blocks.width * blocks.height * 4), 7);
+      ASSERT_TRUE(encoder.encode_bgra_blocks(image.data(), width, height, 2.0f, blocks, bottom_up, out.data()));
+      for (int y = 0; y < blocks.height; ++y) {
+        const int row = bottom_up ? blocks.height - 1 - y : y;
+        for (int x = 0; x < blocks.width; ++x) {
+          const glm::vec3 c = image[static_cast<std::size_t>((y / blocks.block) * width + x / blocks.block)] * 2.0f;
+          const unsigned char* p = &out[static_cast<std::size_t>((row * blocks.width + x) * 4)];
+          ASSERT_EQ(p[0], encoder(c.z)) << "block " << blocks.block << " x " << x << " y " << y << " bottom_up " << bottom_up;
+          ASSERT_EQ(p[1], encoder(c.y));
+          ASSERT_EQ(p[2], encoder(c.x)) << "block " << blocks.block << " x " << x << " y " << y;
+          ASSERT_EQ(p[3], 255);
+        }
+      }
+    }
+    std::vector<unsigned char> out(static_cast<std::size_t>(blocks.width * blocks.height * 4));
+    EXPECT_FALSE(encoder.encode_bgra_blocks(image.data(), width + 1, height, 1.0f, blocks, false, out.data()));
+    EXPECT_FALSE(encoder.encode_bgra_blocks(image.data(), width, height + 1, 1.0f, blocks, false, out.data()));
+  }
+}

@@ -132,6 +132,8 @@ check_view() {
   check "a scripted orbit drag changed the view" greater "$(rmse "$dir/02_half.png" "$dir/03_orbit.png" $SCENE_REGION)" 0.02
   check "software GL draws on the UI thread: no llvmpipe thread among the $(wc -l <"$dir/threads.txt") threads" \
     awk '/^llvmpipe/ { bad = 1 } END { exit bad || NR < 3 }' "$dir/threads.txt"
+  check "the image's framebuffer runs from the top like the window's (flip-y): Mesa copies its rows" \
+    test "$(state "$dir/s01.txt" image_rows_from_top)" = 1
   check "a real xdotool drag changed the camera" test "$(state "$dir/s04.txt" camera_position)" != "$(state "$dir/s03.txt" camera_position)"
   check "a real xdotool drag changed the view" greater "$(rmse "$dir/03_orbit.png" "$dir/04_xdotool.png" $SCENE_REGION)" 0.02
   check "R resets the camera" test "$(state "$dir/s05.txt" camera_position)" = "$(state "$dir/s01.txt" camera_position)"

@@ -1,5 +1,6 @@
 #include "core/scene/display8.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -65,6 +66,30 @@ void Display8Encoder::encode_bgra(const glm::vec3* pixels, std::size_t n, float 
     bgra[2] = (*this)(c.x);
     bgra[3] = 255;
   }
+}
+
+bool Display8Encoder::encode_bgra_blocks(const glm::vec3* pixels, int width, int height, float scale,
+                                         const DisplayBlocks& blocks, bool bottom_up, unsigned char* out) const {
+  const int block = blocks.block;
+  if (block < 1 || width < 1 || height < 1 || (blocks.width + block - 1) / block != width ||
+      (blocks.height + block - 1) / block != height) {
+    return false;
+  }
+  const auto out_row = static_cast<std::size_t>(blocks.width) * 4;
+  const auto row_of = [&](int y) { return out + out_row * static_cast<std::size_t>(bottom_up ? blocks.height - 1 - y : y); };
+  std::vector<unsigned char> codes(static_cast<std::size_t>(width) * 4);
+  for (int y = 0; y < height; ++y) {
+    encode_bgra(pixels + static_cast<std::size_t>(y) * static_cast<std::size_t>(width), static_cast<std::size_t>(width), scale,
+                codes.data());
+    const int first = y * block;
+    unsigned char* const target = row_of(first);
+    for (int x = 0; x < width; ++x) {
+      const int end = std::min((x + 1) * block, blocks.width);
+      for (int wide = x * block; wide < end; ++wide) std::memcpy(target + static_cast<std::size_t>(wide) * 4, &codes[static_cast<std::size_t>(x) * 4], 4);
+    }
+    for (int copy = first + 1; copy < std::min(first + block, blocks.height); ++copy) std::memcpy(row_of(copy), target, out_row);
+  }
+  return true;
 }
 
 const Display8Encoder& Display8Encoder::srgb() {

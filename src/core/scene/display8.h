@@ -22,6 +22,14 @@ unsigned char linear_to_unorm8(double linear);
 // channel): the floats in [0, 1] are split into buckets of 2^13 consecutive values, each of
 // which holds at most one of the 255 thresholds where the code steps up (checked when built);
 // a code is its bucket's code, plus one past that threshold.
+// A coarse image's pixel stands for a block of block x block pixels of a view of
+// width x height (the last blocks cut at the view's edges); block 1: the image as it is.
+struct DisplayBlocks {
+  int block = 1;
+  int width = 0;
+  int height = 0;
+};
+
 class Display8Encoder {
  public:
   explicit Display8Encoder(bool srgb);
@@ -38,6 +46,14 @@ class Display8Encoder {
   // n pixels times `scale` (a float product, the display's exposure) into n x 4 bytes of
   // B, G, R, A (255) each: the order software GL copies to an X window without converting.
   void encode_bgra(const glm::vec3* pixels, std::size_t n, float scale, unsigned char* bgra) const;
+
+  // A width x height image (rows from the top) times `scale` into the B, G, R, A codes of the
+  // view `blocks` describes, each pixel repeated over its block; rows from the top, or from
+  // the bottom (GL's order) when `bottom_up`. `out` holds blocks.width x blocks.height x 4
+  // bytes, and the image must have ceil(blocks.width / block) x ceil(blocks.height / block)
+  // pixels (returns false, writing nothing, otherwise).
+  bool encode_bgra_blocks(const glm::vec3* pixels, int width, int height, float scale, const DisplayBlocks& blocks,
+                          bool bottom_up, unsigned char* out) const;
 
   static const Display8Encoder& srgb();
   static const Display8Encoder& linear();
