@@ -616,6 +616,7 @@ std::optional<bool> ScriptDriver::script_other_command(ScriptStep& step) {
     v_.stats_.full_pending.clear();
     v_.stats_.edit_to_full_ms.clear();
     v_.stats_.cpu_mark = CpuClock::now();
+    v_.stats_.frames_drawn = 0;
     return true;
   }
   if (name == "stats_summary") {

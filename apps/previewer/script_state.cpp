@@ -77,6 +77,7 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "window=" << window_w << "x" << window_h << "\n"
       << "framebuffer=" << fb_w << "x" << fb_h << "\n"
       << "image_rows_from_top=" << (v_.image_view_.rows_from_top() ? 1 : 0) << "\n"
+      << "frames_drawn=" << v_.stats_.frames_drawn << "\n"
       << "nan_count=" << v_.shown_.stats.nan_count << "\n"
       << "status=" << v_.files_.file_state().status << "\n"
       << "changed_on_disk=" << (v_.files_.file_state().changed_on_disk ? 1 : 0) << "\n"

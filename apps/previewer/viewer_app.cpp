@@ -208,8 +208,14 @@ int Viewer::run() {
     lesson_shell_.update_lesson();
     session_.recovery().autosave(doc_, frame_start);
     ImGui::Render();
-    draw_gl(fb_width, fb_height);
-    glfwSwapBuffers(window);
+    // A frame that would draw the same pixels as the one on screen is not drawn: software GL
+    // spends the UI thread's time (and the machine's memory traffic) on every copy and swap.
+    const std::string shot = client_ ? client_->screenshot_wanted() : "";
+    if (frame_changed(fb_width, fb_height) || !shot.empty()) {
+      draw_gl(fb_width, fb_height, shot);
+      glfwSwapBuffers(window);
+      ++stats_.frames_drawn;
+    }
     after_swap();
   }
   write_stats_summary("session");
@@ -429,7 +435,30 @@ void Viewer::upload_images(int view_w, int view_h) {
   upload_pending_ = false;
 }
 
-void Viewer::draw_gl(int fb_width, int fb_height) {
+bool Viewer::images_stale() const {
+  // The heat map's colours are final: exposure does not apply to them.
+  const float exposure_ev = tools_.heat_shown() ? 0.0f : display_.exposure_ev;
+  if (upload_pending_ || (shown_.width > 0 && !image_view_.shows(exposure_ev, display_.srgb))) return true;
+  for (std::size_t i = 0; i < terms_.views.size(); ++i) {
+    if (!shown_.terms[i].empty() && !terms_.views[i].shows(display_.exposure_ev, display_.srgb)) return true;
+  }
+  return false;
+}
+
+bool Viewer::frame_changed(int fb_width, int fb_height) {
+  // What decides the pixels besides the image: ImGui's draw data, the window and the view.
+  serialize_draw_data(*ImGui::GetDrawData(), frame_bytes_);
+  const std::array<float, 7> layout{static_cast<float>(fb_width), static_cast<float>(fb_height), viewport_.x, viewport_.y,
+                                    viewport_.width, viewport_.height, instruments_.small_multiples ? 1.0f : 0.0f};
+  const auto* bytes = reinterpret_cast<const unsigned char*>(layout.data());
+  frame_bytes_.insert(frame_bytes_.end(), bytes, bytes + sizeof layout);
+  const bool refresh = platform_.take_refresh();
+  const bool changed = refresh || images_stale() || frame_bytes_ != drawn_bytes_;
+  std::swap(frame_bytes_, drawn_bytes_);
+  return changed;
+}
+
+void Viewer::draw_gl(int fb_width, int fb_height, const std::string& screenshot) {
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
   const int view_w = static_cast<int>(std::lround(viewport_.width * scale.x));
   const int view_h = static_cast<int>(std::lround(viewport_.height * scale.y));
@@ -467,8 +496,8 @@ void Viewer::draw_gl(int fb_width, int fb_height) {
   }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (const std::string shot = client_ ? client_->screenshot_wanted() : ""; !shot.empty()) {
-    files_.save_window_screenshot(shot, fb_width, fb_height);
+  if (!screenshot.empty()) {
+    files_.save_window_screenshot(screenshot, fb_width, fb_height);
   }
 }
 
@@ -536,7 +565,7 @@ void Viewer::write_stats_summary(const std::string& label) {
   const double wall = cpu.wall - stats_.cpu_mark.wall;
   if (stats_.cpu_mark.wall > 0 && wall > 0) {
     stats_.log << "summary " << label << " cores ui " << (cpu.thread - stats_.cpu_mark.thread) / wall << " all "
-               << (cpu.process - stats_.cpu_mark.process) / wall << "\n";
+               << (cpu.process - stats_.cpu_mark.process) / wall << " drawn_frames " << stats_.frames_drawn << "\n";
   }
   stats_.log << "summary " << label << " edit_to_full n " << stats_.edit_to_full_ms.size() << " p50_ms "
              << percentile(stats_.edit_to_full_ms, 0.5) << " p95_ms " << percentile(stats_.edit_to_full_ms, 0.95) << "\n";

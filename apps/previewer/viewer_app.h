@@ -108,7 +108,12 @@ class Viewer {
   void apply_edits(double frame_start);    // at most one restart for everything this frame changed
   // Encodes and uploads a new image (or the one on screen under new display settings).
   void upload_images(int view_w, int view_h);
-  void draw_gl(int fb_width, int fb_height);  // upload, image, ImGui, scripted screenshot
+  void draw_gl(int fb_width, int fb_height, const std::string& screenshot);  // upload, image, ImGui, the screenshot wanted
+  // Whether the image on screen (or a term image) must be encoded and uploaded again.
+  bool images_stale() const;
+  // Whether this frame draws other pixels than the last one drawn (or the window asked for
+  // them again); keeps this frame's draw data for the next call.
+  bool frame_changed(int fb_width, int fb_height);
   void after_swap();                       // edit-to-image latency of a first image just shown
 
   // The viewport's cells: one, or the small multiples' 3 x 2 (the full image last).
@@ -156,6 +161,8 @@ class Viewer {
   ProgressiveRenderer renderer_;
   RenderSchedule schedule_;                     // what each frame sends it: snapshot, size, settings (src/session)
   ImageView image_view_;
+  std::vector<unsigned char> drawn_bytes_;  // the last drawn frame's draw data and layout (frame_changed)
+  std::vector<unsigned char> frame_bytes_;  // this frame's, kept to avoid an allocation a frame
 
   // The image on screen: the newest frame taken from the renderer.
   ProgressiveFrame shown_;
@@ -243,6 +250,7 @@ class Viewer {
     std::deque<std::pair<std::uint64_t, double>> full_pending;  // edits (generation, time) not yet seen at full resolution
     std::vector<double> edit_to_full_ms;                // edit to the first full-resolution image of it or a later one (same)
     CpuClock cpu_mark;                                  // the clocks at the last reset: the cores the UI and all took since
+    int frames_drawn = 0;                               // frames drawn and swapped since then (the others changed nothing)
     std::ofstream log;
   };
   FrameStats stats_;

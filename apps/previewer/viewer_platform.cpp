@@ -96,6 +96,12 @@ void record_mouse_press(GLFWwindow* window, int button, int action) {
 
 namespace {
 
+// A window event after which its contents must be drawn again.
+void refresh(GLFWwindow* win) {
+  note(win);
+  if (auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win))) p->want_refresh();
+}
+
 void install_activity_callbacks(Platform* platform) {
   GLFWwindow* w = platform->window();
   glfwSetWindowUserPointer(w, platform);
@@ -121,18 +127,44 @@ void install_activity_callbacks(Platform* platform) {
     auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win));
     for (int i = 0; p != nullptr && i < count; ++i) p->push_drop(paths[i]);
   });
-  glfwSetWindowSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
-  glfwSetFramebufferSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
-  glfwSetWindowRefreshCallback(w, [](GLFWwindow* win) { note(win); });
+  glfwSetWindowSizeCallback(w, [](GLFWwindow* win, int, int) { refresh(win); });
+  glfwSetFramebufferSizeCallback(w, [](GLFWwindow* win, int, int) { refresh(win); });
+  glfwSetWindowRefreshCallback(w, [](GLFWwindow* win) { refresh(win); });
   glfwSetWindowFocusCallback(w, [](GLFWwindow* win, int) { note(win); });
   glfwSetCursorEnterCallback(w, [](GLFWwindow* win, int) { note(win); });
-  glfwSetWindowIconifyCallback(w, [](GLFWwindow* win, int) { note(win); });
-  glfwSetWindowContentScaleCallback(w, [](GLFWwindow* win, float, float) { note(win); });
+  glfwSetWindowIconifyCallback(w, [](GLFWwindow* win, int) { refresh(win); });
+  glfwSetWindowContentScaleCallback(w, [](GLFWwindow* win, float, float) { refresh(win); });
 }
 
 }  // namespace
 
 void Platform::note_event() { last_event_time_ = glfwGetTime(); }
+
+bool Platform::take_refresh() { return std::exchange(refresh_, false); }
+
+void serialize_draw_data(const ImDrawData& data, std::vector<unsigned char>& out) {
+  out.clear();
+  const auto put = [&out](const void* bytes, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    out.insert(out.end(), p, p + n);
+  };
+  put(&data.DisplayPos, sizeof data.DisplayPos);
+  put(&data.DisplaySize, sizeof data.DisplaySize);
+  put(&data.FramebufferScale, sizeof data.FramebufferScale);
+  for (int i = 0; i < data.CmdListsCount; ++i) {
+    const ImDrawList& list = *data.CmdLists[i];
+    put(list.VtxBuffer.Data, static_cast<std::size_t>(list.VtxBuffer.Size) * sizeof(ImDrawVert));
+    put(list.IdxBuffer.Data, static_cast<std::size_t>(list.IdxBuffer.Size) * sizeof(ImDrawIdx));
+    for (const ImDrawCmd& cmd : list.CmdBuffer) {
+      put(&cmd.ClipRect, sizeof cmd.ClipRect);
+      put(&cmd.TextureId, sizeof cmd.TextureId);
+      put(&cmd.VtxOffset, sizeof cmd.VtxOffset);
+      put(&cmd.IdxOffset, sizeof cmd.IdxOffset);
+      put(&cmd.ElemCount, sizeof cmd.ElemCount);
+      put(&cmd.UserCallback, sizeof cmd.UserCallback);
+    }
+  }
+}
 
 std::vector<KeyPress> Platform::take_key_presses() { return std::exchange(key_presses_, {}); }
 

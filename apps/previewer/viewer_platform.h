@@ -10,8 +10,13 @@
 #include <GLFW/glfw3.h>
 
 struct ImFont;
+struct ImDrawData;
 
 namespace phonglab {
+
+// ImGui's draw data as bytes (every vertex, index and command, the display's size and scale):
+// two frames with the same bytes draw the same pixels over the image.
+void serialize_draw_data(const ImDrawData& data, std::vector<unsigned char>& out);
 
 // Wall time and the CPU time of the calling thread and of the whole process, seconds: the
 // stats log's share of a core the UI thread took, and of the machine the previewer took.
@@ -80,6 +85,9 @@ class Platform {
   // Files dropped on the window since the last call (the drop callback), in order.
   void push_drop(std::string path) { drops_.push_back(std::move(path)); }
   std::vector<std::string> take_drops();
+  // Whether the window asked to be drawn again (exposed, resized, restored) since the last call.
+  bool take_refresh();
+  void want_refresh() { refresh_ = true; }
 
  private:
   Platform() = default;
@@ -98,6 +106,7 @@ class Platform {
   std::vector<KeyPress> key_presses_;  // from the key callback, taken once per frame
   std::vector<MousePress> mouse_presses_;  // from the mouse button callback, likewise
   std::vector<std::string> drops_;         // from the drop callback, likewise
+  bool refresh_ = true;                    // the window's contents may be gone: draw the next frame
 
   double cursor_x_ = 0;  // the cursor as the last cursor event left it, window coordinates
   double cursor_y_ = 0;
