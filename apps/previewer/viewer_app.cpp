@@ -408,9 +408,13 @@ void Viewer::apply_edits(double frame_start) {
   update_title();
 }
 
-void Viewer::upload_images(int view_w, int view_h) {
+float Viewer::image_exposure_ev() const {
   // The heat map's colours are final: exposure does not apply to them.
-  const float exposure_ev = tools_.heat_shown() ? 0.0f : display_.exposure_ev;
+  return tools_.heat_shown() ? 0.0f : display_.exposure_ev;
+}
+
+void Viewer::upload_images(int view_w, int view_h) {
+  const float exposure_ev = image_exposure_ev();
   const bool has_frame = shown_.width > 0 && shown_.height > 0;
   if (upload_pending_) {
     heat_max_ = tools_.heat_shown() ? heat_max(shown_.pixels) : 0;
@@ -436,9 +440,7 @@ void Viewer::upload_images(int view_w, int view_h) {
 }
 
 bool Viewer::images_stale() const {
-  // The heat map's colours are final: exposure does not apply to them.
-  const float exposure_ev = tools_.heat_shown() ? 0.0f : display_.exposure_ev;
-  if (upload_pending_ || (shown_.width > 0 && !image_view_.shows(exposure_ev, display_.srgb))) return true;
+  if (upload_pending_ || (shown_.width > 0 && !image_view_.shows(image_exposure_ev(), display_.srgb))) return true;
   for (std::size_t i = 0; i < terms_.views.size(); ++i) {
     if (!shown_.terms[i].empty() && !terms_.views[i].shows(display_.exposure_ev, display_.srgb)) return true;
   }

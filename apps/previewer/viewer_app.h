@@ -109,6 +109,8 @@ class Viewer {
   // Encodes and uploads a new image (or the one on screen under new display settings).
   void upload_images(int view_w, int view_h);
   void draw_gl(int fb_width, int fb_height, const std::string& screenshot);  // upload, image, ImGui, the screenshot wanted
+  // The exposure the image on screen is encoded with (none for the heat map's final colours).
+  float image_exposure_ev() const;
   // Whether the image on screen (or a term image) must be encoded and uploaded again.
   bool images_stale() const;
   // Whether this frame draws other pixels than the last one drawn (or the window asked for

@@ -56,8 +56,7 @@ void ImageView::upload(int width, int height, const std::vector<glm::vec3>& pixe
                        DisplayBlocks blocks) {
   const std::size_t n = static_cast<std::size_t>(width > 0 ? width : 0) * static_cast<std::size_t>(height > 0 ? height : 0);
   if (n == 0 || pixels.size() < n) return;
-  if (blocks.block <= 1 || (blocks.width + blocks.block - 1) / blocks.block != width ||
-      (blocks.height + blocks.block - 1) / blocks.block != height) {
+  if (blocks.block <= 1 || !blocks.fit(width, height)) {
     blocks = DisplayBlocks{1, width, height};  // the image as it is (also a coarse one of another view)
   }
   staging_.resize(static_cast<std::size_t>(blocks.width) * static_cast<std::size_t>(blocks.height) * 4);

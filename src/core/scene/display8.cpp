@@ -71,10 +71,7 @@ void Display8Encoder::encode_bgra(const glm::vec3* pixels, std::size_t n, float 
 bool Display8Encoder::encode_bgra_blocks(const glm::vec3* pixels, int width, int height, float scale,
                                          const DisplayBlocks& blocks, bool bottom_up, unsigned char* out) const {
   const int block = blocks.block;
-  if (block < 1 || width < 1 || height < 1 || (blocks.width + block - 1) / block != width ||
-      (blocks.height + block - 1) / block != height) {
-    return false;
-  }
+  if (width < 1 || height < 1 || !blocks.fit(width, height)) return false;
   const auto out_row = static_cast<std::size_t>(blocks.width) * 4;
   const auto row_of = [&](int y) { return out + out_row * static_cast<std::size_t>(bottom_up ? blocks.height - 1 - y : y); };
   std::vector<unsigned char> codes(static_cast<std::size_t>(width) * 4);

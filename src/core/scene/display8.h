@@ -28,6 +28,10 @@ struct DisplayBlocks {
   int block = 1;
   int width = 0;
   int height = 0;
+  // Whether an image of width x height is this view's coarse level: ceil(view / block) each way.
+  bool fit(int image_width, int image_height) const {
+    return block >= 1 && (width + block - 1) / block == image_width && (height + block - 1) / block == image_height;
+  }
 };
 
 class Display8Encoder {
