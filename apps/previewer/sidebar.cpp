@@ -68,9 +68,12 @@ void Sidebar::draw_sidebar() {
   if (width < 1 || io.DisplaySize.y < 1) return;
   ImGui::SetNextWindowPos(ImVec2(v_.viewport_.width, 0));
   ImGui::SetNextWindowSize(ImVec2(width, io.DisplaySize.y));
+  // No background of its own: Viewer::draw_gl clears the panel's rectangle to the colour it
+  // would have (software GL blends a full-height background at a cost of milliseconds a frame).
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                  ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoSavedSettings |
-                                 ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoFocusOnAppearing;
+                                 ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoBackground;
   v_.item_locations_.rects.clear();  // what this frame draws
   if (ImGui::Begin("##sidebar", nullptr, flags)) {
     // Text wraps at the panel's edge at any UI size; labels sit right of the widgets.

@@ -28,6 +28,8 @@ namespace phonglab {
 
 namespace {
 
+constexpr float kClear[3] = {0.10f, 0.10f, 0.11f};  // the window where neither the image nor a panel is
+
 constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
 constexpr double kEarlyFrameGap = 0.004;    // a new edit's first image may go up this soon after a frame
 // A live image is waited for in its edit's own frame up to this long (when the last one was as quick):
@@ -468,12 +470,23 @@ void Viewer::draw_gl(int fb_width, int fb_height, const std::string& screenshot)
   const int view_y = fb_height - view_h - static_cast<int>(std::lround(viewport_.y * scale.y));  // GL counts from the bottom
   upload_images(view_w, view_h);
   glViewport(0, 0, fb_width, fb_height);
-  // The image copied over the whole window leaves nothing to clear.
-  const bool covered = !instruments_.small_multiples && view_x == 0 && view_y == 0 && view_w == fb_width &&
-                       view_h == fb_height && image_view_.width() == view_w && image_view_.height() == view_h;
-  if (!covered) {
-    glClearColor(0.10f, 0.10f, 0.11f, 1.0f);
+  // The image copied over the whole view leaves nothing to clear there.
+  const bool covered = !instruments_.small_multiples && view_x == 0 && view_y == 0 && view_h == fb_height &&
+                       image_view_.width() == view_w && image_view_.height() == view_h;
+  const int panel_x = static_cast<int>(std::lround(viewport_.width * scale.x));  // where Sidebar draws, when shown
+  if (!covered || (panel_x < fb_width && !sidebar_visible_)) {
+    glClearColor(kClear[0], kClear[1], kClear[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
+  }
+  if (sidebar_visible_ && panel_x < fb_width) {
+    // The panel's background as ImGui would blend it over the clear colour (Sidebar draws none).
+    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(panel_x, 0, fb_width - panel_x, fb_height);
+    glClearColor(bg.x * bg.w + kClear[0] * (1 - bg.w), bg.y * bg.w + kClear[1] * (1 - bg.w),
+                 bg.z * bg.w + kClear[2] * (1 - bg.w), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
   }
   if (instruments_.small_multiples) {
     // 3 x 2 cells, top row first; GL rows count from the bottom.

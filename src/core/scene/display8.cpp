@@ -74,10 +74,14 @@ bool Display8Encoder::encode_bgra_blocks(const glm::vec3* pixels, int width, int
   if (width < 1 || height < 1 || !blocks.fit(width, height)) return false;
   const auto out_row = static_cast<std::size_t>(blocks.width) * 4;
   const auto row_of = [&](int y) { return out + out_row * static_cast<std::size_t>(bottom_up ? blocks.height - 1 - y : y); };
+  const auto image_row = [&](int y) { return pixels + static_cast<std::size_t>(y) * static_cast<std::size_t>(width); };
+  if (block == 1) {  // the image as it is: each row straight into its place
+    for (int y = 0; y < height; ++y) encode_bgra(image_row(y), static_cast<std::size_t>(width), scale, row_of(y));
+    return true;
+  }
   std::vector<unsigned char> codes(static_cast<std::size_t>(width) * 4);
   for (int y = 0; y < height; ++y) {
-    encode_bgra(pixels + static_cast<std::size_t>(y) * static_cast<std::size_t>(width), static_cast<std::size_t>(width), scale,
-                codes.data());
+    encode_bgra(image_row(y), static_cast<std::size_t>(width), scale, codes.data());
     const int first = y * block;
     unsigned char* const target = row_of(first);
     for (int x = 0; x < width; ++x) {
