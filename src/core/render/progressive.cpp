@@ -261,12 +261,10 @@ void ProgressiveRenderer::run() {
       job.reshade = job.accum_stale = true;
     }
     if (job.accum_stale) {
+      // A live recombination, a re-shade or a traced first pass writes every pixel: no need to
+      // clear them first (22 MB at 1280x720).
       const ProgressiveLevel& lv = job.levels[job.level];
-      if (job.live && job.interacting) {
-        job.accum.reset(lv.width, lv.height, job.settings.term_images);
-      } else {  // a re-shade or a traced first pass writes every pixel: no need to clear them first
-        job.accum.reset_for_first_pass(lv.width, lv.height, job.settings.term_images);
-      }
+      job.accum.reset_for_first_pass(lv.width, lv.height, job.settings.term_images);
       job.accum_stale = false;
     }
     PassStats pass;
@@ -308,8 +306,10 @@ void ProgressiveRenderer::run() {
       // A first pass overtaken by the next restart took at least this long: while interacting
       // the next restart starts below it, or nothing would ever show.
       if (!job.published_any && divisor_ms > job.level_times.at(divisor)) job.level_times.note(divisor, divisor_ms);
-      // Cancelled midway: a restart is pending and the accumulator is partly updated.
-      job.accum.reset(job.levels[job.level].width, job.levels[job.level].height, job.settings.term_images);
+      // Cancelled midway: a restart is pending and the accumulator is partly updated; the next
+      // pass is a first one again, which writes every pixel.
+      job.accum.reset_for_first_pass(job.levels[job.level].width, job.levels[job.level].height,
+                                     job.settings.term_images);
       job.accum_live = false;
       continue;
     }
