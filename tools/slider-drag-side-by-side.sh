@@ -4,6 +4,7 @@
 #
 #   tools/slider-drag-side-by-side.sh OLD_PHONGLAB NEW_PHONGLAB [ROUNDS]
 #   PERF=1 tools/slider-drag-side-by-side.sh ...   # also `perf record` each run (OUT/NAME.perf)
+#   RENDER_THREADS=1 tools/slider-drag-side-by-side.sh ...   # the renderer on one thread
 #
 # Prints each run's edit-to-image latency and cores (the stats log's summary lines); logs go to
 # OUT (default /tmp/slider-drag). `lecture`, view 1280x720 beside a 400-pixel sidebar.
@@ -13,8 +14,11 @@ NEW=${2:?usage: slider-drag-side-by-side.sh OLD_PHONGLAB NEW_PHONGLAB [ROUNDS]}
 ROUNDS=${3:-3}
 OUT=${OUT:-/tmp/slider-drag}
 mkdir -p "$OUT"
-cat >"$OUT/script.txt" <<'SCRIPT'
+THREADS=
+if [ -n "${RENDER_THREADS:-}" ]; then THREADS="set render threads $RENDER_THREADS"; fi
+cat >"$OUT/script.txt" <<SCRIPT
 log slider drag
+$THREADS
 wait_image 60
 resize 1680 720
 wait_image 60
@@ -26,7 +30,7 @@ wait_frames 30
 stats_summary slider
 quit
 SCRIPT
-echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg), render threads ${RENDER_THREADS:-all}"
 for round in $(seq "$ROUNDS"); do
   for name in old new; do
     bin=$OLD
