@@ -470,15 +470,18 @@ void Viewer::draw_gl(int fb_width, int fb_height, const std::string& screenshot)
   const int view_y = fb_height - view_h - static_cast<int>(std::lround(viewport_.y * scale.y));  // GL counts from the bottom
   upload_images(view_w, view_h);
   glViewport(0, 0, fb_width, fb_height);
-  // The image copied over the whole view leaves nothing to clear there.
+  // The sidebar, when shown, runs from the view's right edge to the window's (Sidebar::draw_sidebar).
+  const int panel_x = static_cast<int>(std::lround(viewport_.width * scale.x));
+  const bool panel = sidebar_visible_ && panel_x < fb_width;
+  // The image copied over the whole view, up to the panel or the window's edge, leaves nothing to clear.
   const bool covered = !instruments_.small_multiples && view_x == 0 && view_y == 0 && view_h == fb_height &&
-                       image_view_.width() == view_w && image_view_.height() == view_h;
-  const int panel_x = static_cast<int>(std::lround(viewport_.width * scale.x));  // where Sidebar draws, when shown
-  if (!covered || (panel_x < fb_width && !sidebar_visible_)) {
+                       view_w == (panel ? panel_x : fb_width) && image_view_.width() == view_w &&
+                       image_view_.height() == view_h;
+  if (!covered) {
     glClearColor(kClear[0], kClear[1], kClear[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
   }
-  if (sidebar_visible_ && panel_x < fb_width) {
+  if (panel) {
     // The panel's background as ImGui would blend it over the clear colour (Sidebar draws none).
     const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
     glEnable(GL_SCISSOR_TEST);
