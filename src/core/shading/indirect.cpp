@@ -59,6 +59,12 @@ void IndirectSampler::next_point(double& u1, double& u2) {
   u2 = unit(owen_scramble(sobol1(i), hash32(d ^ 0x967a889bU)));
 }
 
+double IndirectSampler::next_choice() {
+  const std::uint32_t d = hash32(key_ ^ hash32(~choice_++));
+  const std::uint32_t i = owen_scramble(sample_, hash32(d ^ 0x3c6ef372U));
+  return unit(owen_scramble(sobol0(i), hash32(d ^ 0xa54ff53aU)));
+}
+
 Vec3 cosine_direction(const Vec3& n, double u1, double u2) {
   // An orthonormal basis about n without a branch on a chosen axis (Duff et al., JCGT 2017).
   const double sign = std::copysign(1.0, n.z);

@@ -29,6 +29,9 @@ class IndirectSampler {
   int bounces_left() const { return bounces_left_; }
   // The next gather's point in [0,1)².
   void next_point(double& u1, double& u2);
+  // The next choice of a gather's path (which one way on it takes at a hit), in [0,1): its own
+  // sequence of dimensions, stratified over the sample indices as the points are.
+  double next_choice();
   // Around one gather's trace: its hits have one bounce fewer.
   void descend() { --bounces_left_; }
   void ascend() { ++bounces_left_; }
@@ -38,6 +41,7 @@ class IndirectSampler {
   std::uint32_t key_;
   std::uint32_t sample_;
   std::uint32_t dimension_ = 0;  // gathers taken so far in this sample's tree
+  std::uint32_t choice_ = 0;     // choices taken so far in this sample's tree
 };
 
 std::uint32_t indirect_pixel_key(int x, int y, std::uint32_t seed);

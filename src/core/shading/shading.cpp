@@ -2,6 +2,8 @@
 
 #include "core/shading/experiment.h"
 
+#include <array>
+
 namespace phonglab {
 
 double fresnel_exact(double cos_i, double eta) {
@@ -75,7 +77,7 @@ class Equation {
     const Vec3 v = view_direction(hit.p, ray.dir, shading_eye);
     const double offset = offset_of(hit);
     Terms terms;
-    terms.ambient = indirect_ ? gather(m, hit.p, side, offset) : m.ka * scene_.ambient;
+    terms.ambient = indirect_ ? tree_gather(m, hit.p, side, offset) : m.ka * scene_.ambient;
     if (probe) record_hit(*probe, hit, side, v);
     if (recorder_) recorder_->begin_hit(ray, hit, side, offset, depth);
     // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0); a recorder of ray
@@ -99,14 +101,113 @@ class Equation {
     indirect_->next_point(u1, u2);
     const Vec3 dir = cosine_direction(side.n, u1, u2);
     ++counts_.indirect;
-    // What a camera at P looking along the direction sees: a primary ray's tree, one bounce fewer.
+    // What a camera at P looking along the direction sees: a primary ray's radiance, one bounce
+    // fewer, estimated along one path (trace_path).
     indirect_->descend();
-    const Color in = trace(make_ray(offset_origin(p, side.ng, dir, offset), dir), 0, 1.0, nullptr, nullptr);
+    const Color in = trace_path(make_ray(offset_origin(p, side.ng, dir, offset), dir), 0, 1.0);
     indirect_->ascend();
     return m.kd * in;
   }
 
+  // An unbiased estimate of trace()'s radiance with the indirect term in ka·Ia's place, along one
+  // path: at each hit the direct light (the lights' diffuse and specular terms, every shadow ray)
+  // and at most one of the ways on: a gather (kd ⊙ E, while bounces are left), the reflected or
+  // the refracted child (kr', kt', where trace() would trace them: the same depth and path-weight
+  // limits), chosen by pick_way and divided by its chance. The full tree would follow every way
+  // at every hit, and gathers at its hits again: work growing as (ways at a hit)^(bounces x
+  // depth) on a scene with a mirror and glass; one way a hit keeps a gather's cost its path's.
+  Color trace_path(const Ray& ray, int depth, double weight) {
+    const std::optional<Hit> hit = intersect(prepared_, ray);
+    if (!hit) return scene_.background;
+    const Material& m = scene_.materials[hit->material];
+    const HitSide side = hit_side(*hit, ray.dir);
+    const double offset = offset_of(*hit);
+    Terms terms;
+    if (is_lit(m)) light_terms(m, *hit, side, view_direction(hit->p, ray.dir, nullptr), offset, nullptr, terms);
+    Color result = terms.diffuse + terms.specular;
+
+    std::array<Way, 3> ways{};
+    std::size_t count = 0;
+    if (indirect_->bounces_left() > 0 && !is_zero(m.kd)) ways[count++] = Way{WayKind::kGather, m.kd, 1.0};
+    Bounce bn;
+    if (depth < limits_.max_depth && has_children(m)) {
+      bn = bounce(m, ray.dir, side.n, side.entering, false,
+                  [this](double cos_i, double eta) { return fresnel(cos_i, eta); });
+      if (const std::optional<double> w = child_weight(bn.kr, weight, limits_.min_weight)) {
+        ways[count++] = Way{WayKind::kReflection, bn.kr, *w};
+      }
+      if (const std::optional<double> w = child_weight(bn.kt, weight, limits_.min_weight)) {
+        ways[count++] = Way{WayKind::kRefraction, bn.kt, *w};
+      }
+    }
+    double chance = 0;
+    const Way* way = pick_way(ways.data(), count, chance);
+    if (way == nullptr) return result;
+    switch (way->kind) {
+      case WayKind::kGather:
+        result += gather(m, hit->p, side, offset) / chance;
+        break;
+      case WayKind::kReflection:
+        ++counts_.reflection;
+        result += bn.kr * trace_path(make_ray(offset_origin(hit->p, side.ng, bn.mirror, offset), bn.mirror),
+                                     depth + 1, way->weight) / chance;
+        break;
+      case WayKind::kRefraction:
+        ++counts_.refraction;
+        result += bn.kt * trace_path(make_ray(offset_origin(hit->p, side.ng, bn.refracted, offset), bn.refracted),
+                                     depth + 1, way->weight) / chance;
+        break;
+    }
+    return result;
+  }
+
+  // The indirect term at a hit of the Whitted tree: a gather, taken with chance q (pick_way's
+  // rule for one way) and divided by q; a dim kd (a mirror's or glass's few per cent) rarely
+  // pays for a whole path.
+  Color tree_gather(const Material& m, const Vec3& p, const HitSide& side, double offset) {
+    if (indirect_->bounces_left() <= 0 || is_zero(m.kd)) return Color(0);
+    const Way way{WayKind::kGather, m.kd, 1.0};
+    double chance = 0;
+    if (pick_way(&way, 1, chance) == nullptr) return Color(0);
+    return gather(m, p, side, offset) / chance;
+  }
+
  private:
+  enum class WayKind : std::uint8_t { kGather, kReflection, kRefraction };
+  struct Way {
+    WayKind kind;
+    Color k;        // its coefficient: kd, kr' or kt'
+    double weight;  // a child's path weight
+  };
+
+  // Which way on a path takes (Russian roulette over its ways): way i with chance
+  // max_channel(k_i) / max(S, kRoulette), S the sum over the ways, and none with what is left
+  // (1 - S / kRoulette when S < kRoulette). Every k_i / chance stays at most max(S, kRoulette)
+  // per channel, so no sample is wild; ways as bright as a Cornell box's walls (S >= 0.25)
+  // always go on, and alone they take no random number at all.
+  static constexpr double kRoulette = 0.25;
+  const Way* pick_way(const Way* ways, std::size_t count, double& chance) {
+    if (count == 0) return nullptr;
+    double sum = 0;
+    for (std::size_t i = 0; i < count; ++i) sum += max_channel(ways[i].k);
+    const double scale = std::max(sum, kRoulette);
+    if (count == 1 && sum >= kRoulette) {
+      chance = 1;
+      return ways;
+    }
+    const double u = indirect_->next_choice() * scale;
+    double below = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const double share = max_channel(ways[i].k);
+      below += share;
+      if (u < below) {
+        chance = share / scale;
+        return ways + i;
+      }
+    }
+    return nullptr;  // u in [S, scale): the path ends here
+  }
+
   // The hooks: production rules, or the experiment's.
   double fresnel(double cos_i, double eta) const {
     if constexpr (kExperiment) return prepared_.experiment()->fresnel(cos_i, eta);
@@ -284,9 +385,9 @@ Color trace(const PreparedScene& prepared, const TraceLimits& limits, const Ray&
 Color indirect_estimate(const PreparedScene& prepared, const TraceLimits& limits, const Material& m, const Vec3& p,
                         const HitSide& side, double offset, RayCounts& counts, IndirectSampler& indirect) {
   if (prepared.experiment()) [[unlikely]] {
-    return Equation<true>(prepared, limits, counts, nullptr, &indirect).gather(m, p, side, offset);
+    return Equation<true>(prepared, limits, counts, nullptr, &indirect).tree_gather(m, p, side, offset);
   }
-  return Equation<false>(prepared, limits, counts, nullptr, &indirect).gather(m, p, side, offset);
+  return Equation<false>(prepared, limits, counts, nullptr, &indirect).tree_gather(m, p, side, offset);
 }
 
 Color trace_recorded(const PreparedScene& prepared, const TraceLimits& limits, const Ray& ray, RayCounts& counts,
