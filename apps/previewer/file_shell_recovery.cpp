@@ -23,13 +23,6 @@ namespace {
 
 std::atomic<int> g_signal{0};
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 void start_signal_watcher() {
@@ -105,17 +98,16 @@ void FileShell::restore_recovery(const ui::RecoveryEntry& entry) {
       return;
     }
   }
-  const std::string text = read_all(entry.scene_path);
-  const std::string dir = std::filesystem::path(entry.scene_path).parent_path().string();
-  LoadResult r = load_scene_text(text, entry.scene_path, dir, entry.embedded);
-  if (!r.ok()) {
-    file_state_.error_text = r.error_text();
+  const RecoveryKeeper::Restored r = v_.session_.recovery().restore(v_.doc_, entry);
+  if (!r.error.empty()) {
+    file_state_.error_text = r.error;
     return;
   }
-  v_.doc_.scene() = std::move(*r.scene);
-  v_.doc_.update_dirty();
-  v_.session_.recovery().adopt(entry);  // this document's now: removed once saved, rewritten on edits
   file_state_.status = "restored the unsaved edits kept in " + entry.scene_path;
+  if (r.changed_on_disk) {
+    file_state_.status += "; " + entry.source +
+                          " changed on disk since they were made: Save asks before it overwrites that change";
+  }
   v_.edits_.replaced = true;
 }
 

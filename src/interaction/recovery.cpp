@@ -41,9 +41,23 @@ std::string recovery_key(const std::string& source, bool embedded) {
   return std::string("file-") + hex;
 }
 
+std::string file_identity(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) return "";
+  const std::string text = bytes.str();
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(text)));
+  return std::to_string(text.size()) + ":" + hex;
+}
+
 std::string recovery_source_text(const RecoveryEntry& entry) {
-  return std::string(kHeader) + "\n" + (entry.embedded ? "embedded " : "file ") + entry.source + "\nsaved " +
-         std::to_string(entry.saved) + "\n";
+  std::string text = std::string(kHeader) + "\n" + (entry.embedded ? "embedded " : "file ") + entry.source +
+                     "\nsaved " + std::to_string(entry.saved) + "\n";
+  if (!entry.base.empty()) text += "base " + entry.base + "\n";
+  return text;
 }
 
 std::optional<RecoveryEntry> parse_recovery_source(const std::string& text, const std::string& json_path) {
@@ -66,6 +80,10 @@ std::optional<RecoveryEntry> parse_recovery_source(const std::string& text, cons
   char* end = nullptr;
   e.saved = std::strtoll(saved.c_str() + 6, &end, 10);
   if (end == saved.c_str() + 6 || *end != '\0') return std::nullopt;
+  if (std::string base; std::getline(in, base)) {
+    if (base.rfind("base ", 0) != 0) return std::nullopt;
+    e.base = base.substr(5);
+  }
   return e;
 }
 

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "interaction/recovery.h"
 #include "io/embedded_scenes.h"
 #include "io/scene/scene_io.h"
 
@@ -44,6 +45,8 @@ void SceneDocument::adopt(const Scene& scene, const std::string& source) {
   embedded_name_.clear();
   source_ = source;
   mtime_.reset();
+  base_.clear();
+  outside_change_ = false;
   mark_saved();
   loaded_ = true;
   error_text_.clear();
@@ -68,6 +71,8 @@ bool SceneDocument::open(const std::string& scene_arg) {
     source_ = scene_arg;
   }
   mtime_ = current_mtime();
+  base_ = file_path_.empty() ? std::string() : ui::file_identity(file_path_);
+  outside_change_ = false;
   mark_saved();
   loaded_ = true;
   error_text_.clear();
@@ -86,6 +91,8 @@ bool SceneDocument::reload(bool keep_view) {
   // rather than re-read twice a second.
   mtime_ = current_mtime();
   LoadResult result = load_scene_file(file_path_);
+  base_ = ui::file_identity(file_path_);
+  outside_change_ = false;
   if (!result.ok()) {
     error_text_ = result.error_text();
     return false;
@@ -127,6 +134,8 @@ SceneDocument::SaveResult SceneDocument::save(bool overwrite_outside_change) {
   if (!write(file_path_)) return SaveResult::kFailed;
   loaded_camera_ = scene_.camera;
   mtime_ = current_mtime();  // our own write is not a change on disk
+  base_ = ui::file_identity(file_path_);
+  outside_change_ = false;
   return SaveResult::kSaved;
 }
 
@@ -145,12 +154,21 @@ bool SceneDocument::save_as(const std::string& path) {
   source_ = path;
   loaded_camera_ = scene_.camera;
   mtime_ = current_mtime();
+  base_ = ui::file_identity(file_path_);
+  outside_change_ = false;
   return true;
 }
 
 bool SceneDocument::changed_on_disk() const {
   if (file_path_.empty()) return false;
-  return current_mtime() != mtime_;
+  return outside_change_ || current_mtime() != mtime_;
+}
+
+bool SceneDocument::edits_made_over(const std::string& base) {
+  if (file_path_.empty()) return false;
+  if (base.empty() || base != ui::file_identity(file_path_)) outside_change_ = true;
+  if (!base.empty()) base_ = base;
+  return outside_change_;
 }
 
 }  // namespace phonglab

@@ -37,8 +37,17 @@ class SceneDocument {
   bool save_as(const std::string& path);
   // True when the document is an OBJ opened on its own (Save must not write JSON over it).
   bool opened_mesh() const;
-  // True when the file's modification time differs from the one last loaded or saved.
+  // True when the file's modification time differs from the one last loaded or saved, or the
+  // scene is edits restored over the file as it was before another program changed it.
   bool changed_on_disk() const;
+  // The file's identity (ui::file_identity) when last read or written here: what the edits are
+  // made over. Empty with no file behind the document.
+  const std::string& base_identity() const { return base_; }
+  // The scene now holds edits that were made over the file as it was at `base` (a recovery's):
+  // when the file holds something else now, or `base` is unknown (empty), it counts as changed
+  // on disk until it is read again or saved over with consent, so Save asks before it
+  // overwrites. Returns whether it counts as changed.
+  bool edits_made_over(const std::string& base);
 
   Scene& scene() { return scene_; }
   const Scene& scene() const { return scene_; }
@@ -80,6 +89,8 @@ class SceneDocument {
   std::string status_;
   std::string saved_content_;  // content() of the scene when last loaded or saved
   std::optional<std::filesystem::file_time_type> mtime_;  // of file_path_ when last read or written
+  std::string base_;             // file_identity(file_path_) when last read or written
+  bool outside_change_ = false;  // edits_made_over found the file changed since the edits' base
 };
 
 }  // namespace phonglab

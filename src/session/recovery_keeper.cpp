@@ -2,7 +2,9 @@
 
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <system_error>
 
 #include "io/scene/scene_io.h"
@@ -46,6 +48,7 @@ std::string RecoveryKeeper::write(const SceneDocument& doc) {
   entry.source = source->first;
   entry.embedded = source->second;
   entry.saved = static_cast<std::int64_t>(std::time(nullptr));
+  entry.base = doc.base_identity();  // what the edits are made over
   std::string error = write_file_atomically(json, text);
   if (error.empty()) error = write_file_atomically(folder_ + "/" + key + ".source", ui::recovery_source_text(entry));
   if (!error.empty()) {
@@ -75,6 +78,21 @@ std::optional<ui::RecoveryEntry> RecoveryKeeper::find(const SceneDocument& doc, 
     if (any_source || (source && e.source == source->first && e.embedded == source->second)) return e;
   }
   return std::nullopt;
+}
+
+RecoveryKeeper::Restored RecoveryKeeper::restore(SceneDocument& doc, const ui::RecoveryEntry& entry) {
+  std::ifstream in(entry.scene_path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string dir = std::filesystem::path(entry.scene_path).parent_path().string();
+  LoadResult r = load_scene_text(text.str(), entry.scene_path, dir, entry.embedded);
+  if (!r.ok()) return Restored{r.error_text(), false};
+  doc.scene() = std::move(*r.scene);
+  doc.update_dirty();
+  Restored out;
+  if (!entry.embedded) out.changed_on_disk = doc.edits_made_over(entry.base);
+  adopt(entry);
+  return out;
 }
 
 void RecoveryKeeper::adopt(const ui::RecoveryEntry& entry) {

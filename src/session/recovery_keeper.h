@@ -39,9 +39,16 @@ class RecoveryKeeper {
   // A recovery to offer at start: the newest of `doc`'s source, or with `any_source` the newest
   // of any scene.
   std::optional<ui::RecoveryEntry> find(const SceneDocument& doc, bool any_source) const;
-  // `entry` was restored into the document: its file is this document's now (rewritten on the
-  // next edits, removed once saved), and holds what is shown.
-  void adopt(const ui::RecoveryEntry& entry);
+  // Restores `entry` into `doc`, which must already hold its source (the scene or file it was
+  // edited from): the kept scene replaces the document's, carrying the file's identity of the
+  // edits' time (SceneDocument::edits_made_over: Save asks when another program changed the file
+  // since), and the recovery file becomes this document's (rewritten on the next edits, removed
+  // once saved). The diagnostics when the kept scene does not load (the document is unchanged).
+  struct Restored {
+    std::string error;           // empty on success
+    bool changed_on_disk = false;  // the file changed since the edits were made
+  };
+  Restored restore(SceneDocument& doc, const ui::RecoveryEntry& entry);
 
   const std::string& written() const { return written_; }
   const std::string& error() const { return error_; }
@@ -54,6 +61,8 @@ class RecoveryKeeper {
   double last_edit_ = 0;      // when the scene was last edited
   double written_for_ = -1;   // the last_edit_ the file holds
   std::string error_;         // why the last write failed
+
+  void adopt(const ui::RecoveryEntry& entry);
 };
 
 }  // namespace phonglab

@@ -1079,6 +1079,40 @@ EOF
   XDG_STATE_HOME="$dir/state" "$BIN" lecture --size 1280x720 --script "$dir/restore.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
   echo "$?" >"$dir/exit_code"
   if [[ -e "$dir/state/phonglab/recovery/embedded-lecture.json" ]]; then echo kept; else echo gone; fi >"$dir/after_save"
+  # A file's edits restored after another program changed the file: Save asks, never overwrites.
+  local pid
+  write_scene "$dir/mine.json" "[0.8, 0.1, 0.1]" 0.8
+  printf 'set render target_spp 1\nwait_idle 120\nset material red n 200\nwait_idle 120\ntouch %s\nwait_file %s 120\n' \
+    "$dir/file.ready" "$dir/never" >"$dir/file.txt"
+  XDG_STATE_HOME="$dir/state" "$BIN" "$dir/mine.json" --size 1280x720 --script "$dir/file.txt" >"$dir/file.out" 2>"$dir/file.err" &
+  pid=$!
+  if wait_for_file "$dir/file.ready" 120 "$pid"; then
+    sed 's/"n": 20/"n": 50/' "$dir/mine.json" >"$dir/mine.json.new" && mv "$dir/mine.json.new" "$dir/mine.json"
+    kill -TERM "$pid"
+  fi
+  wait "$pid"
+  echo "$?" >"$dir/file.exit"
+  cp "$dir/mine.json" "$dir/outside.json"
+  cat >"$dir/file_restore.txt" <<EOF
+set render target_spp 1
+wait_frames 5
+dump_state $dir/f1.txt
+modal restore
+wait_frames 3
+wait_idle 120
+dump_state $dir/f2.txt
+save
+wait_frames 3
+dump_state $dir/f3.txt
+screenshot $dir/f3_save_asks.png
+modal cancel
+wait_frames 3
+dump_state $dir/f4.txt
+quit
+EOF
+  XDG_STATE_HOME="$dir/state" "$BIN" "$dir/mine.json" --size 1280x720 --script "$dir/file_restore.txt" \
+    >"$dir/file_restore.out" 2>"$dir/file_restore.err"
+  echo "$?" >"$dir/file_restore.exit"
   # Autosave: a few seconds after an edit the file is there, and a crash (SIGKILL) leaves it.
   run_until_killed "$dir" crash KILL "set render target_spp 2
 wait_idle 120
@@ -1106,6 +1140,15 @@ check_recovery() {
     test "$d" = 0 -a "$(state "$dir/r2.txt" dirty)" = 1
   check "a clean save removes the recovery file ($(cat "$dir/after_save"))" \
     test -z "$(state "$dir/r3.txt" recovery_file)" -a "$(cat "$dir/after_save")" = gone -a "$(state "$dir/r3.txt" dirty)" = 0
+  check "a file edited, changed outside, SIGTERM: the next start offers its edits (exit $(cat "$dir/file.exit"), offer $(state "$dir/f1.txt" recovery_offer))" \
+    test "$(cat "$dir/file.exit")" = 143 -a -n "$(state "$dir/f1.txt" recovery_offer)"
+  check "... restored, it says the file changed since ($(state "$dir/f2.txt" status))" \
+    grep -q '^status=.*changed on disk since they were made' "$dir/f2.txt"
+  check "... Save asks (the changed-on-disk dialog) instead of writing ($(state "$dir/f3.txt" conflict))" \
+    test "$(state "$dir/f3.txt" conflict)" = 1 -a "$(state "$dir/f2.txt" dirty)" = 1
+  check "... and the other program's change is still on disk (n 50, not 200)" \
+    cmp -s "$dir/outside.json" "$dir/mine.json"
+  check "... the restoring session ran to the end (exit $(cat "$dir/file_restore.exit"))" test "$(cat "$dir/file_restore.exit")" = 0
   check "autosave: the file appears a few seconds after an edit, and SIGKILL leaves it (exit $(cat "$dir/crash.exit"))" \
     test "$(cat "$dir/crash.exit")" = 137 -a -s "$dir/state/phonglab/recovery/embedded-lecture.json"
   check "... holding that edit" grep -q '"kd": \[0.9, 0.1, 0.9\]' "$dir/state/phonglab/recovery/embedded-lecture.json"
@@ -1389,6 +1432,11 @@ PART1_SESSIONS="session_view session_files session_instruments session_rays sess
 PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display"
 PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient"
 PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient"
+# GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
+if [[ -n "${GUI_ONLY:-}" ]]; then
+  run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"
+  exit $?
+fi
 case "${GUI_PART:-}" in
   1) run_gui_script "GUI tests (part 1)" 1280x720x24 "$PART1_SESSIONS" "$PART1_CHECKS" ;;
   2) run_gui_script "GUI tests (part 2)" 1280x720x24 "$PART2_SESSIONS" "$PART2_CHECKS" ;;

@@ -27,8 +27,13 @@ TEST(Recovery, SourceTextRoundTripsAndRefusesOtherText) {
   RecoveryEntry e;
   e.source = "/tmp/my scene.json";
   e.saved = 1796193569;
+  e.base = "1234:00ff00ff00ff00ff";
   const auto back = parse_recovery_source(recovery_source_text(e), "/x/file-1.json");
   ASSERT_TRUE(back);
+  EXPECT_EQ(back->base, e.base);
+  EXPECT_TRUE(parse_recovery_source("phonglab recovery 1\nfile /a\nsaved 1\n", "j")->base.empty())
+      << "an older file, with no identity";
+  EXPECT_FALSE(parse_recovery_source("phonglab recovery 1\nfile /a\nsaved 1\nbose 2:ab\n", "j"));
   EXPECT_EQ(back->source, e.source);
   EXPECT_FALSE(back->embedded);
   EXPECT_EQ(back->saved, e.saved);

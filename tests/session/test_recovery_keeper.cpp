@@ -137,5 +137,77 @@ TEST_F(RecoveryFiles, AFileOnDiskIsKeptUnderItsAbsolutePath) {
   EXPECT_EQ(fs::path(kept).filename().string(), ui::recovery_key(source->first, false) + ".json");
 }
 
+
+// The rehearsal's loss: a file opened and edited, changed on disk by another program, the
+// previewer killed; the next start opens the file as it is now and restores the kept edits. The
+// recovery carries the file's identity of the edits' time, so Save asks (kChangedOnDisk) rather
+// than overwrite the other program's change; with no outside change it saves as usual.
+TEST_F(RecoveryFiles, ARestoredSessionAsksBeforeItOverwritesAnOutsideChange) {
+  fs::create_directories(dir / "scenes");
+  const std::string file = (dir / "scenes" / "mine.json").string();
+  ASSERT_TRUE(doc.save_as(file));
+  for (const bool outside_change : {true, false}) {
+    SceneDocument first;
+    ASSERT_TRUE(first.open(file));
+    RecoveryKeeper keeper((dir / "recovery").string());
+    first.scene().materials.at(0).kd = Color(0.125);
+    first.update_dirty();
+    ASSERT_FALSE(keeper.write(first).empty());  // what a signal's write keeps
+    if (outside_change) {
+      Scene theirs = first.scene();
+      theirs.materials.at(0).kd = Color(0.875);
+      std::ofstream(file) << scene_to_json(theirs, (dir / "scenes").string());
+    }
+    const std::string on_disk = read(file);
+
+    SceneDocument next;  // the next start, on the file
+    ASSERT_TRUE(next.open(file));
+    RecoveryKeeper next_keeper((dir / "recovery").string());
+    const auto entry = next_keeper.find(next, false);
+    ASSERT_TRUE(entry);
+    EXPECT_FALSE(entry->base.empty());
+    const RecoveryKeeper::Restored restored = next_keeper.restore(next, *entry);
+    ASSERT_TRUE(restored.error.empty()) << restored.error;
+    EXPECT_EQ(next.scene().materials.at(0).kd, Color(0.125));
+    EXPECT_EQ(restored.changed_on_disk, outside_change);
+    EXPECT_EQ(next.changed_on_disk(), outside_change);
+    if (outside_change) {
+      EXPECT_EQ(next.save(), SceneDocument::SaveResult::kChangedOnDisk);
+      EXPECT_EQ(read(file), on_disk) << "the other program's change is still there";
+      // The restored edits, rewritten, still carry the identity they were made over.
+      next.scene().materials.at(0).ks = Color(0.25);
+      next.update_dirty();
+      ASSERT_FALSE(next_keeper.write(next).empty());
+      SceneDocument third;
+      ASSERT_TRUE(third.open(file));
+      const auto again = RecoveryKeeper((dir / "recovery").string()).find(third, false);
+      ASSERT_TRUE(again);
+      EXPECT_EQ(again->base, entry->base);
+      // Saved over with consent, the file is the document's again.
+      EXPECT_EQ(next.save(true), SceneDocument::SaveResult::kSaved);
+      EXPECT_FALSE(next.changed_on_disk());
+    } else {
+      EXPECT_EQ(next.save(), SceneDocument::SaveResult::kSaved);
+    }
+    next_keeper.autosave(next, 100);  // clean now: the recovery goes
+  }
+}
+
+// A recovery written by an older version has no identity: the file may have changed, so Save
+// asks.
+TEST_F(RecoveryFiles, AnUnknownIdentityCountsAsChanged) {
+  fs::create_directories(dir / "scenes");
+  const std::string file = (dir / "scenes" / "mine.json").string();
+  ASSERT_TRUE(doc.save_as(file));
+  SceneDocument reopened;
+  ASSERT_TRUE(reopened.open(file));
+  EXPECT_FALSE(reopened.changed_on_disk());
+  EXPECT_TRUE(reopened.edits_made_over(""));
+  EXPECT_TRUE(reopened.changed_on_disk());
+  EXPECT_EQ(reopened.save(), SceneDocument::SaveResult::kChangedOnDisk);
+  ASSERT_TRUE(reopened.reload(false));
+  EXPECT_FALSE(reopened.changed_on_disk()) << "read again: the document is the file's";
+}
+
 }  // namespace
 }  // namespace phonglab
