@@ -101,8 +101,11 @@ void Viewer::handle_viewport_input() {
           selected_light_ = hovered_light_;
         } else if (button == ImGuiMouseButton_Left && wipe_hovered) {
           drag_.mode = DragMode::kWipe;  // the split line follows the pointer
-        } else if (button == ImGuiMouseButton_Left && !io.KeyShift && grab_object(mouse, object_under(mouse))) {
-          // The selected object, grabbed by its marker or its surface: moved over the floor.
+        } else if (button == ImGuiMouseButton_Left && !io.KeyShift && !io.KeyCtrl &&
+                   grab_object(mouse, io.KeyAlt ? object_under(mouse) : std::nullopt)) {
+          // The selected object, grabbed by its handle, or by its surface with Alt held: moved
+          // over the floor. A plain drag on its surface orbits (a selected room is still the
+          // room one orbits in), and Ctrl+click probes it.
         } else if (button == ImGuiMouseButton_Left) {
           drag_.mode = io.KeyShift ? DragMode::kPan : DragMode::kOrbit;
         } else {

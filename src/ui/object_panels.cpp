@@ -125,7 +125,7 @@ void objects_panel(const Scene& scene, int& selected, std::string& mesh_path, co
   if (button("+ mesh (OBJ)", "objects.add_mesh")) actions.add = Kind::kMesh;
   if (!notice.text.empty()) ImGui::TextColored(notice.refused ? kErrorColor : kWarningColor, "%s", notice.text.c_str());
   if (selected >= 0) {
-    ImGui::TextDisabled("Drag it in the view: over the floor (hold V: up and down; X, Y or Z: one axis), or type its numbers:");
+    ImGui::TextDisabled("Drag its handle in the view, or its surface with Alt held: over the floor (hold V: up and down; X, Y or Z: one axis), or type its numbers:");
     selected_fields(scene, selected, actions);
   } else {
     ImGui::TextDisabled("Click an object in the view or the list to select it.");

@@ -1426,12 +1426,52 @@ check_ambient() {
   check "the difference view differs from the beside view" greater "$(rmse "$dir/a2_beside.png" "$dir/a3_difference.png" 1280x600+0+60)" 0.02
 }
 
+# --- The second rehearsal: a selected room is still probed and orbited ----------------------
+session_select() {
+  local dir=$OUT/select
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+click 300 360
+wait_frames 3
+wait_idle 120
+dump_state $dir/s1.txt
+ctrl_click 300 360
+wait_frames 3
+wait_idle 120
+dump_state $dir/s2.txt
+drag left 300 360 360 380 12
+wait_frames 3
+wait_idle 120
+dump_state $dir/s3.txt
+screenshot $dir/s3_orbited.png
+quit
+EOF
+  "$BIN" cornell --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_select() {
+  local dir=$OUT/select
+  echo "session: a selected room (the Cornell box, one mesh) is still probed and orbited"
+  check_exit "$dir" "the script ran to the end"
+  check "a click on a wall selects the room ($(state "$dir/s1.txt" selected_object))" \
+    test "$(state "$dir/s1.txt" selected_object)" = 0
+  check "Ctrl+click on the selected room probes it (pixel $(state "$dir/s2.txt" probe_pixel), hit $(state "$dir/s2.txt" probe_hit))" \
+    test -n "$(state "$dir/s2.txt" probe_pixel)" -a "$(state "$dir/s2.txt" probe_hit)" = 1
+  check "a plain drag starting on the selected room orbits ($(state "$dir/s2.txt" camera_position) -> $(state "$dir/s3.txt" camera_position))" \
+    test "$(state "$dir/s2.txt" camera_position)" != "$(state "$dir/s3.txt" camera_position)"
+  check "... and leaves the room where it was ($(state "$dir/s3.txt" object0_anchor)), nothing unsaved" \
+    test "$(state "$dir/s2.txt" object0_anchor)" = "$(state "$dir/s3.txt" object0_anchor)" -a "$(state "$dir/s3.txt" dirty)" = 0
+}
+
 # GUI_PART=1 or 2 runs one half of the sessions (about the same time each; CTest runs the halves
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
 PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture"
 PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display"
-PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient"
-PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient"
+PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select"
+PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
 if [[ -n "${GUI_ONLY:-}" ]]; then
   run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"
