@@ -1466,12 +1466,58 @@ check_select() {
     test "$(state "$dir/s2.txt" object0_anchor)" = "$(state "$dir/s3.txt" object0_anchor)" -a "$(state "$dir/s3.txt" dirty)" = 0
 }
 
+# --- The second rehearsal: the indirect view of a mirror and glass, orbited and ended --------
+session_mirrors() {
+  local dir=$OUT/mirrors pid start
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render resolution_scale 0.125
+set render target_spp 1
+wait_idle 120
+key I
+wait_idle 120
+touch $dir/t0
+drag left 300 360 380 360 12
+wait_frames 2
+wait_idle 120
+touch $dir/t1
+dump_state $dir/m1.txt
+screenshot $dir/m1_indirect_orbited.png
+quit
+EOF
+  "$BIN" cornell-sphere --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+  # SIGTERM while full-resolution indirect passes run: the program ends within 1.5 s.
+  printf 'set render target_spp 4096\nkey I\nwait_frames 30\ntouch %s\nwait_file %s 120\n' "$dir/busy" "$dir/never" >"$dir/term.txt"
+  "$BIN" cornell-sphere --size 1280x720 --script "$dir/term.txt" >"$dir/term.out" 2>"$dir/term.err" &
+  pid=$!
+  if wait_for_file "$dir/busy" 120 "$pid"; then
+    sleep 0.5
+    start=$(date +%s%N)
+    kill -TERM "$pid"
+  fi
+  wait "$pid"
+  echo "$?" >"$dir/term.exit"
+  echo $((($(date +%s%N) - start) / 1000000)) >"$dir/term.ms"
+}
+
+check_mirrors() {
+  local dir=$OUT/mirrors ms
+  echo "session: the indirect view of cornell-sphere (a mirror and glass)"
+  check_exit "$dir" "the script ran to the end"
+  ms=$(python3 -c "import os,sys; print(int((os.stat(sys.argv[2]).st_mtime_ns - os.stat(sys.argv[1]).st_mtime_ns) / 1e6))" "$dir/t0" "$dir/t1" 2>/dev/null)
+  check "an orbit in the indirect view at 1/8 resolution reaches its exact image within 4 s (${ms} ms)" \
+    test -n "$ms" -a "${ms:-99999}" -lt 4000 -a "$(state "$dir/m1.txt" spp)" = 1
+  check "SIGTERM during full-resolution indirect passes ends it within 1.5 s ($(cat "$dir/term.ms") ms, exit $(cat "$dir/term.exit"))" \
+    test "$(cat "$dir/term.exit")" = 143 -a "$(cat "$dir/term.ms")" -lt 1500
+}
+
 # GUI_PART=1 or 2 runs one half of the sessions (about the same time each; CTest runs the halves
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
 PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture"
 PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display"
-PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select"
-PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select"
+PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors"
+PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
 if [[ -n "${GUI_ONLY:-}" ]]; then
   run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"
