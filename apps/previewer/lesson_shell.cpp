@@ -182,50 +182,76 @@ void LessonShell::sidebar_lessons() {
   if (actions.close) close_lesson();
 }
 
-void LessonShell::draw_lesson_caption() {
-  if (!v_.lessons_.lesson() || v_.viewport_.width < 1) return;
+float LessonShell::caption_pad() const { return 10 * v_.platform_.ui_scale(); }
+
+std::vector<LessonShell::CaptionLine> LessonShell::caption_lines(int step_index, bool revealed) const {
   const Lesson& lesson = *v_.lessons_.lesson();
-  const LessonPlace place = v_.lessons_.place();
-  const LessonStep& step = lesson.steps[static_cast<std::size_t>(place.step)];
-  ImFont* font = v_.platform_.caption_font();
+  const LessonStep& step = lesson.steps[static_cast<std::size_t>(step_index)];
+  const ImFont* font = v_.platform_.caption_font();
   if (font == nullptr) font = ImGui::GetFont();
-  const float scale = v_.platform_.ui_scale();
   // Large in presenter mode (read from the back of a hall), the panel's size beside the panels.
   const float size = state_.presenting ? font->FontSize : font->FontSize * 0.6f;
   const float small = size * 0.7f;
-  const float pad = 10 * scale;
-  const float wrap = std::max(v_.viewport_.width - 4 * pad, 50.0f);
   char head[512];
-  std::snprintf(head, sizeof head, "%d/%zu  %s%s", place.step + 1, lesson.steps.size(), step.title.c_str(),
+  std::snprintf(head, sizeof head, "%d/%zu  %s%s", step_index + 1, lesson.steps.size(), step.title.c_str(),
                 v_.lessons_.exploring() ? "   (exploring)" : "");
-  struct Line {
-    std::string text;
-    float size;
-    ImU32 colour;
-  };
-  std::vector<Line> lines = {{head, size, IM_COL32(255, 255, 255, 255)}, {step.caption, small, IM_COL32(225, 225, 225, 255)}};
+  std::vector<CaptionLine> lines = {{head, size, IM_COL32(255, 255, 255, 255)},
+                                    {step.caption, small, IM_COL32(225, 225, 225, 255)}};
   if (step.has_question()) lines.push_back({"Q: " + step.question, small, IM_COL32(255, 200, 70, 255)});
-  if (step.has_question() && place.revealed) lines.push_back({"A: " + step.answer, small, IM_COL32(140, 235, 140, 255)});
-  const bool posed = step.has_question() && !place.revealed;
+  if (step.has_question() && revealed) lines.push_back({"A: " + step.answer, small, IM_COL32(140, 235, 140, 255)});
+  const bool posed = step.has_question() && !revealed;
+  const LessonPlace place{step_index, revealed};
   const bool last = lesson_next(lesson, place) == place;
   const char* hint = posed ? "\xE2\x86\x92 / space: the answer"
                      : last ? "the end of the lesson   \xE2\x86\x90: back"
                             : "\xE2\x86\x92 / space: next   \xE2\x86\x90: back";
   lines.push_back({std::string(hint) + (state_.presenting ? "   F11 / Esc: leave presenter mode" : "   F11: presenter mode"),
                    small * 0.75f, IM_COL32(170, 170, 170, 255)});
+  return lines;
+}
+
+float LessonShell::caption_lines_height(const std::vector<CaptionLine>& lines, float width) const {
+  const ImFont* font = v_.platform_.caption_font();
+  if (font == nullptr) font = ImGui::GetFont();
+  const float pad = caption_pad();
+  const float wrap = std::max(width - 4 * pad, 50.0f);
   float height = pad;
-  for (const Line& l : lines) height += font->CalcTextSizeA(l.size, FLT_MAX, wrap, l.text.c_str()).y + pad * 0.4f;
-  height += pad * 0.6f;
-  const float top = v_.viewport_.y + v_.viewport_.height - height;  // the bottom boxes move above it (draw_overlays)
+  for (const CaptionLine& l : lines) {
+    height += font->CalcTextSizeA(l.size, FLT_MAX, wrap, l.text.c_str()).y + pad * 0.4f;
+  }
+  return height + pad * 0.6f;
+}
+
+float LessonShell::caption_strip_height(float width, float window_height) const {
+  const Lesson* lesson = v_.lessons_.lesson();
+  if (lesson == nullptr || width < 1) return 0;
+  float tallest = 0;
+  for (int i = 0; i < static_cast<int>(lesson->steps.size()); ++i) {
+    tallest = std::max(tallest, caption_lines_height(caption_lines(i, lesson->steps[static_cast<std::size_t>(i)].has_question()), width));
+  }
+  return std::min(tallest, kCaptionShare * window_height);
+}
+
+void LessonShell::draw_lesson_caption() {
+  if (!v_.lessons_.lesson() || v_.viewport_.width < 1) return;
+  const LessonPlace place = v_.lessons_.place();
+  ImFont* font = v_.platform_.caption_font();
+  if (font == nullptr) font = ImGui::GetFont();
+  const float pad = caption_pad();
+  const float wrap = std::max(v_.viewport_.width - 4 * pad, 50.0f);
+  const std::vector<CaptionLine> lines = caption_lines(place.step, place.revealed);
+  // Below the image, in the strip the layout left for it (Viewer::layout); a caption taller
+  // than the strip's cap grows up over the image's bottom.
+  const float bottom = ImGui::GetIO().DisplaySize.y;
+  const float top = std::min(v_.viewport_.y + v_.viewport_.height, bottom - caption_lines_height(lines, v_.viewport_.width));
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  draw->AddRectFilled(ImVec2(v_.viewport_.x, top), ImVec2(v_.viewport_.x + v_.viewport_.width, v_.viewport_.y + v_.viewport_.height),
-                      IM_COL32(0, 0, 0, 190));
+  draw->AddRectFilled(ImVec2(v_.viewport_.x, top), ImVec2(v_.viewport_.x + v_.viewport_.width, bottom), IM_COL32(0, 0, 0, 190));
   float y = top + pad;
-  for (const Line& l : lines) {
+  for (const CaptionLine& l : lines) {
     draw->AddText(font, l.size, ImVec2(v_.viewport_.x + 2 * pad, y), l.colour, l.text.c_str(), nullptr, wrap);
     y += font->CalcTextSizeA(l.size, FLT_MAX, wrap, l.text.c_str()).y + pad * 0.4f;
   }
-  v_.overlay_rects_["##lesson_caption"] = ui::ScreenRect{ImVec2(v_.viewport_.x, top), ImVec2(v_.viewport_.x + v_.viewport_.width, v_.viewport_.y + v_.viewport_.height)};
+  v_.overlay_rects_["##lesson_caption"] = ui::ScreenRect{ImVec2(v_.viewport_.x, top), ImVec2(v_.viewport_.x + v_.viewport_.width, bottom)};
 }
 
 std::optional<std::string> LessonShell::script_lesson_command(const std::vector<std::string>& w) {

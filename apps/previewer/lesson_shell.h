@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -45,7 +46,13 @@ class LessonShell {
   bool lesson_key(int key);                      // next, previous, presenter mode; true when taken
   void set_presenting(bool on);                  // full screen, panels hidden, caption large
   void sidebar_lessons();
-  void draw_lesson_caption();                    // the step's caption across the bottom of the view
+  void draw_lesson_caption();                    // the step's caption in the strip below the image
+  // The strip below the image that the captions take, for a view `width` wide: the tallest of
+  // the lesson's steps with its answer shown, so the image keeps its size through a lesson (no
+  // new render when an answer or a step's longer text appears), at most kCaptionShare of
+  // `window_height`; 0 with no lesson open.
+  float caption_strip_height(float width, float window_height) const;
+  static constexpr float kCaptionShare = 0.4f;
   std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
   void write_lesson_state(std::ostream& out) const;
 
@@ -53,6 +60,14 @@ class LessonShell {
   void present(const LessonPresenter::Show& show);  // what the presenter answers: A cleared, scene, view
   void adopt_step_scene(int step);               // the step's scene becomes the document
   void apply_step_view(const StepView& view);    // the term, instruments, probe, head and depth cut of a view
+  struct CaptionLine {
+    std::string text;
+    float size;
+    std::uint32_t colour;  // ImU32
+  };
+  std::vector<CaptionLine> caption_lines(int step, bool revealed) const;  // the caption of a step
+  float caption_lines_height(const std::vector<CaptionLine>& lines, float width) const;
+  float caption_pad() const;
 
   Viewer& v_;
   LessonState state_;

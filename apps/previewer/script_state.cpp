@@ -75,6 +75,7 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "image=" << v_.shown_.width << "x" << v_.shown_.height << "\n"
       << "render=" << v_.schedule_.width() << "x" << v_.schedule_.height() << "\n"
       << "window=" << window_w << "x" << window_h << "\n"
+      << "view=" << v_.viewport_.x << " " << v_.viewport_.y << " " << v_.viewport_.width << " " << v_.viewport_.height << "\n"
       << "framebuffer=" << fb_w << "x" << fb_h << "\n"
       << "image_rows_from_top=" << (v_.image_view_.rows_from_top() ? 1 : 0) << "\n"
       << "frames_drawn=" << v_.stats_.frames_drawn << "\n"

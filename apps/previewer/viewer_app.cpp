@@ -282,6 +282,8 @@ void Viewer::layout() {
   const ImGuiIO& io = ImGui::GetIO();
   const float sidebar = sidebar_visible_ ? std::min(kSidebarWidth * platform_.ui_scale(), io.DisplaySize.x * 0.5f) : 0;
   viewport_ = ViewportRect{0, 0, std::max(io.DisplaySize.x - sidebar, 0.0f), io.DisplaySize.y};
+  // A lesson's caption lies below the image, never over it: the image leaves it its strip.
+  viewport_.height = std::max(viewport_.height - lesson_shell_.caption_strip_height(viewport_.width, io.DisplaySize.y), 0.0f);
 }
 
 Viewer::Cells Viewer::cells() const {

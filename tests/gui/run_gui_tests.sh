@@ -1255,7 +1255,7 @@ check_lessons() {
     -a "$(state "$dir/n03.txt" term)" = specular
   # Below the horizon every pixel is an object's: with the lights muted the full image is the ambient term.
   local d
-  d=$(rmse "$dir/n10_no_light.png" "$dir/n10_ambient.png" 860x150+10+440)
+  d=$(rmse "$dir/n10_no_light.png" "$dir/n10_ambient.png" 860x120+10+440)
   check "the lights muted: the image is the ambient term below the horizon (RMSE $d)" less "${d:-1}" 0.004
   check "a term key while on a step is exploring; Back shows the step as written" \
     test "$(state "$dir/n10e.txt" lesson_exploring)" = 1 -a "$(state "$dir/n10e.txt" term)" = ambient \

@@ -218,6 +218,59 @@ check_presenter() {
   check "... dark but for the highlights (mean grey $mean)" less "$mean" 0.06
 }
 
+# Captions beside the picture: the small-multiples steps (5, 11) and the last step's answer in
+# presenter mode leave the image (or its grid) whole: a caption covers at most a sixth of it.
+session_captions() {
+  local dir=$OUT/captions
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_frames 5
+lesson_goto 5
+wait_frames 3
+wait_idle 120
+dump_state $dir/c05.txt
+screenshot $dir/c05.png
+lesson_goto 11
+wait_frames 3
+wait_idle 120
+dump_state $dir/c11.txt
+screenshot $dir/c11.png
+key F11
+wait_frames 10
+lesson_goto 13
+wait_frames 3
+lesson_next
+wait_frames 3
+wait_idle 120
+dump_state $dir/c13.txt
+screenshot $dir/c13_answer_presenting.png
+quit
+EOF
+  "$BIN" --lesson shading --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+# covered FILE: the share of the view's height the lesson caption covers (0: none).
+covered() {
+  awk -v v="$(state "$1" view)" -v c="$(state "$1" overlay_lesson_caption)" 'BEGIN {
+    if (split(v, a, " ") != 4 || split(c, b, " ") != 4 || a[4] <= 0) { print 1; exit }
+    over = a[2] + a[4] - b[2]; if (over < 0) over = 0; print over / a[4] }'
+}
+
+check_captions() {
+  local dir=$OUT/captions f
+  echo "session: captions beside the picture, not over it"
+  check_exit "$dir" "the captions session ran to the end"
+  for f in c05 c11 c13; do
+    check "$f ($(state "$dir/$f.txt" lesson_title), presenting $(state "$dir/$f.txt" lesson_presenting)): the caption covers $(covered "$dir/$f.txt") of the image's height (at most 1/6)" \
+      less "$(covered "$dir/$f.txt")" 0.1667
+  done
+  check "... the small-multiples steps show the grid" test "$(state "$dir/c05.txt" small_multiples)" = 1 -a "$(state "$dir/c11.txt" small_multiples)" = 1
+  check "... the last step's answer is shown in presenter mode" \
+    test "$(state "$dir/c13.txt" lesson_revealed)" = 1 -a "$(state "$dir/c13.txt" lesson_presenting)" = 1
+}
+
 session_building() {
   local dir=$OUT/building
   mkdir -p "$dir"
@@ -291,5 +344,5 @@ check_building() {
     test -n "$(state "$dir/s5.txt" objects_notice | grep 'gold: ka scaled by 0.2 for this scene')" -a -z "$(grep -i gold "$dir/stderr.txt")"
 }
 
-run_gui_script "hall tests" 1920x1080x24 "session_instruments session_lessons session_presenter session_building" \
-  "check_instruments check_lessons check_presenter check_building"
+run_gui_script "hall tests" 1920x1080x24 "session_instruments session_lessons session_presenter session_building session_captions" \
+  "check_instruments check_lessons check_presenter check_building check_captions"
