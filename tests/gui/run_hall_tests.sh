@@ -266,7 +266,7 @@ check_captions() {
     check "$f ($(state "$dir/$f.txt" lesson_title), presenting $(state "$dir/$f.txt" lesson_presenting)): the caption covers $(covered "$dir/$f.txt") of the image's height (at most 1/6)" \
       less "$(covered "$dir/$f.txt")" 0.1667
   done
-  check "... the small-multiples steps show the grid" test "$(state "$dir/c05.txt" small_multiples)" = 1 -a "$(state "$dir/c11.txt" small_multiples)" = 1
+  check "... the small-multiples steps show the grid" test "$(state "$dir/c05.txt" multiples)" = 1 -a "$(state "$dir/c11.txt" multiples)" = 1
   check "... the last step's answer is shown in presenter mode" \
     test "$(state "$dir/c13.txt" lesson_revealed)" = 1 -a "$(state "$dir/c13.txt" lesson_presenting)" = 1
 }
