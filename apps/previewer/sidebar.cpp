@@ -255,7 +255,16 @@ void Sidebar::sidebar_probe() {
       }
     }
     const bool digits_before = v_.tools_.probe().every_digit;
+    const int key[3] = {v_.tools_.probe().x, v_.tools_.probe().y, view.probe != nullptr ? 1 : 0};
+    if (key[0] != probe_key_[0] || key[1] != probe_key_[1] || key[2] != probe_key_[2]) {
+      probe_height_ = 0;
+      std::copy(key, key + 3, probe_key_);
+    }
+    const float top = ImGui::GetCursorPosY();
     ui::probe_panel(view, v_.tools_.probe().every_digit);
+    const float height = ImGui::GetCursorPosY() - top;
+    if (height < probe_height_) ImGui::Dummy(ImVec2(1, std::max(probe_height_ - height - ImGui::GetStyle().ItemSpacing.y, 0.0f)));
+    probe_height_ = std::max(probe_height_, height);
     if (v_.tools_.probe().every_digit != digits_before) v_.tools_.refresh_probe();
   }
 }

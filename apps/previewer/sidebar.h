@@ -31,6 +31,11 @@ class Sidebar {
   void sidebar_render();
 
   Viewer& v_;
+  // The probe panel's tallest height for the pixel probed now: the panel keeps it while the same
+  // pixel stays probed, so the widgets below never jump under the pointer when its text shortens
+  // (a depth cut, fewer digits); a new pixel starts again.
+  float probe_height_ = 0;
+  int probe_key_[3] = {-1, -1, 0};  // x, y and whether a tree is shown
 };
 
 }  // namespace phonglab

@@ -37,4 +37,44 @@ double shown_value(double value, const char* format) {
   return std::sscanf(start, "%lf", &parsed) == 1 && std::isfinite(parsed) ? parsed : value;
 }
 
+std::string probe_number(double value, int digits) {
+  if (value != 0 && std::abs(value) < kProbeZero) return "\xE2\x89\x88 0";
+  std::array<char, 48> text{};
+  std::snprintf(text.data(), text.size(), "%.*g", digits, value);
+  return text.data();
+}
+
+std::string wrap_at_spaces(std::string_view text, float width, const std::function<float(std::string_view)>& measure) {
+  std::string out;
+  for (bool first_line = true; first_line || !text.empty(); first_line = false) {
+    const std::size_t end = text.find('\n');
+    const std::string_view line = text.substr(0, end);
+    text = end == std::string_view::npos ? std::string_view() : text.substr(end + 1);
+    std::string current;  // the output line being filled
+    bool has_word = false;
+    std::size_t i = 0;
+    while (i < line.size()) {
+      // The next word and the spaces before it: [i, j) spaces, [j, k) the word.
+      std::size_t j = i;
+      while (j < line.size() && line[j] == ' ') ++j;
+      std::size_t k = j;
+      while (k < line.size() && line[k] != ' ') ++k;
+      std::string candidate = current;
+      candidate.append(line.substr(i, k - i));
+      if (has_word && j < k && measure(candidate) > width) {
+        out += current + "\n";
+        current = "  ";
+        current.append(line.substr(j, k - j));
+      } else {
+        current = std::move(candidate);
+      }
+      has_word = has_word || j < k;
+      i = k;
+    }
+    out += current;
+    if (end != std::string_view::npos) out += "\n";
+  }
+  return out;
+}
+
 }  // namespace phonglab::ui

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "interaction/numbers.h"
 #include "ui/panels.h"
 #include "ui/widgets.h"
 
@@ -13,20 +14,30 @@ namespace phonglab::ui {
 namespace {
 
 // Probe numbers: `digits` significant digits (4 by default, 17 with "all digits").
+// Where the values' column starts: past the widest label ("max(0,R·V)^n"), so no value
+// overlaps its label.
+float value_column() {
+  return std::max(ImGui::GetFontSize() * 6.0f,
+                  ImGui::CalcTextSize("max(0,R\xC2\xB7V)^n").x + ImGui::GetStyle().ItemSpacing.x * 2);
+}
+
 void rgb_text(const char* label, const Color& c, int digits) {
   // The label, then the values in a column of their own (a proportional font does not pad).
   ImGui::TextUnformatted(label);
-  ImGui::SameLine(ImGui::GetFontSize() * 6.0f);
-  ImGui::Text("(%.*g, %.*g, %.*g)", digits, c.x, digits, c.y, digits, c.z);
+  ImGui::SameLine(value_column());
+  ImGui::Text("(%s, %s, %s)", probe_number(c.x, digits).c_str(), probe_number(c.y, digits).c_str(),
+              probe_number(c.z, digits).c_str());
 }
 
 void vec_text(const char* label, const Vec3& v, int digits) { rgb_text(label, v, digits); }
 
 // One number in the values' column.
-void number_row(const char* label, double value, int digits) {
+void number_row(const char* label, double value, int digits, const char* name = nullptr) {
   ImGui::TextUnformatted(label);
-  ImGui::SameLine(ImGui::GetFontSize() * 6.0f);
-  ImGui::Text("%.*g", digits, value);
+  if (name != nullptr) locate(std::string(name) + "_label");
+  ImGui::SameLine(value_column());
+  ImGui::TextUnformatted(probe_number(value, digits).c_str());
+  if (name != nullptr) locate(name);
 }
 
 // What ambient stands in for at the pixel: ka·Ia, the indirect term's estimate with its standard
@@ -133,7 +144,7 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
   ImGui::Checkbox("all digits", &all_digits);
   rgb_text("linear", root.total, d);
   ImGui::TextUnformatted("displayed");
-  ImGui::SameLine(ImGui::GetFontSize() * 6.0f);
+  ImGui::SameLine(value_column());
   ImGui::Text("(%d, %d, %d) at %+.1f EV", view.srgb[0], view.srgb[1], view.srgb[2], static_cast<double>(view.exposure_ev));
   if (!root.hit) {
     ImGui::TextDisabled("The ray misses: the pixel is the background.");
@@ -170,15 +181,19 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
     // One cosine a row: each fits the panel's width at any number of digits.
     number_row("N\xC2\xB7L", light.n_dot_l, d);
     number_row(blinn ? "N\xC2\xB7H" : "R\xC2\xB7V", light.r_dot_v, d);
-    number_row(blinn ? "(N\xC2\xB7H)^n" : "max(0,R\xC2\xB7V)^n", light.spec_factor, d);
+    number_row(blinn ? "(N\xC2\xB7H)^n" : "max(0,R\xC2\xB7V)^n", light.spec_factor, d, "probe.spec_factor");
     rgb_text("diffuse", light.diffuse, d);
     rgb_text("specular", light.specular, d);
     ImGui::PopID();
   }
   ImGui::Separator();
   if (ImGui::TreeNodeEx("The equation with the numbers (and the children)", ImGuiTreeNodeFlags_DefaultOpen)) {
-    // Wrapped at the panel's edge: long lines continue below instead of off to the side.
-    ImGui::TextWrapped("%s", view.report.c_str());
+    // Wrapped at the panel's edge, at spaces only: long lines continue below instead of off to
+    // the side, and a number is never split at its point (ImGui's own wrap breaks after a '.').
+    const std::string wrapped = wrap_at_spaces(view.report, ImGui::GetContentRegionAvail().x, [](std::string_view t) {
+      return ImGui::CalcTextSize(t.data(), t.data() + t.size()).x;
+    });
+    ImGui::TextUnformatted(wrapped.c_str());
     ImGui::TreePop();
   }
 }

@@ -145,6 +145,7 @@ bool rays_panel(RayTreeSettings& s, const RayTreeSummary& summary) {
   }
   ImGui::Separator();
   edited |= ImGui::Checkbox("cut recursion at depth", &s.depth_cut);
+  locate("rays.depth_cut");
   help_marker("Shows the image with max depth = min(the scene's, this): 0 is local shading only, 1 adds one "
               "bounce, ... A way of looking, not an edit: no undo step, nothing to save.");
   // The cut goes from 0 (local shading) to the scene's own depth; a scene of depth 0 has nothing to cut.

@@ -1512,12 +1512,56 @@ check_mirrors() {
     test "$(cat "$dir/term.exit")" = 143 -a "$(cat "$dir/term.ms")" -lt 1500
 }
 
+# --- The second rehearsal: the probe panel's text, and the sidebar under the pointer ----------
+session_probe_text() {
+  local dir=$OUT/probe_text
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render target_spp 1
+wait_idle 120
+probe 520 440
+wait_frames 3
+wait_idle 120
+click_item panel.Rays
+wait_frames 3
+show_item rays.depth_cut
+wait_frames 3
+dump_state $dir/p1.txt
+screenshot $dir/p1.png
+click_item rays.depth_cut
+wait_frames 3
+wait_idle 120
+wait_frames 3
+dump_state $dir/p2.txt
+screenshot $dir/p2_cut.png
+show_item probe.spec_factor
+wait_frames 3
+dump_state $dir/p3.txt
+screenshot $dir/p3_probe_rows.png
+quit
+EOF
+  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
+  echo "$?" >"$dir/exit_code"
+}
+
+check_probe_text() {
+  local dir=$OUT/probe_text y1 y2
+  echo "session: the probe panel's text and the sidebar under the pointer"
+  check_exit "$dir" "the script ran to the end"
+  y1=$(state "$dir/p1.txt" item_rays.depth_cut | cut -d' ' -f2)
+  y2=$(state "$dir/p2.txt" item_rays.depth_cut | cut -d' ' -f2)
+  check "ticking 'cut recursion at depth' with a deep probe leaves the checkbox where it was (y $y1 -> $y2; cut $(state "$dir/p2.txt" depth_cut))" \
+    test -n "$y1" -a "$y1" = "$y2" -a "$(state "$dir/p2.txt" depth_cut)" != -1
+  check "the specular factor's value stands apart from its label ($(state "$dir/p3.txt" item_probe.spec_factor_label) | $(state "$dir/p3.txt" item_probe.spec_factor))" \
+    apart "$dir/p3.txt" item_probe.spec_factor_label item_probe.spec_factor
+}
+
 # GUI_PART=1 or 2 runs one half of the sessions (about the same time each; CTest runs the halves
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
 PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture"
 PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display"
-PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors"
-PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors"
+PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text"
+PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
 if [[ -n "${GUI_ONLY:-}" ]]; then
   run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"

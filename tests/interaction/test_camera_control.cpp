@@ -155,3 +155,39 @@ TEST(PanelNumbers, ASliderKeepsTheValueItsTextShows) {
 
 }  // namespace
 }  // namespace phonglab
+
+// The probe panel's numbers: "≈ 0" for a value under 1e-12 that is not zero, %g otherwise.
+TEST(ProbeNumbers, TinyValuesReadAsAboutZero) {
+  EXPECT_EQ(phonglab::ui::probe_number(9.039e-22, 4), "\xE2\x89\x88 0");
+  EXPECT_EQ(phonglab::ui::probe_number(-3e-13, 4), "\xE2\x89\x88 0");
+  EXPECT_EQ(phonglab::ui::probe_number(0.0, 4), "0");
+  EXPECT_EQ(phonglab::ui::probe_number(1e-12, 4), "1e-12");
+  EXPECT_EQ(phonglab::ui::probe_number(-0.18571234, 4), "-0.1857");
+}
+
+// The equation box's text wraps at spaces only: a number is never split at its point, every
+// line fits (but a word wider than a line), and nothing but the breaks and indents is added.
+TEST(ProbeNumbers, WrapsAtSpacesOnly) {
+  const auto measure = [](std::string_view s) { return static_cast<float>(s.size()); };  // one unit a character
+  const std::string text = "N.L = -0.1857 and R.V = 0.5 so max(0,R.V)^n = 0.03125\nnext line  kept";
+  const std::string wrapped = phonglab::ui::wrap_at_spaces(text, 16, measure);
+  std::string joined;
+  std::size_t start = 0;
+  while (start <= wrapped.size()) {
+    const std::size_t end = std::min(wrapped.find('\n', start), wrapped.size());
+    const std::string line = wrapped.substr(start, end - start);
+    EXPECT_TRUE(line.size() <= 16 || line.find(' ', 2) == std::string::npos) << "'" << line << "'";
+    EXPECT_EQ(line.find("-0.\n"), std::string::npos);
+    start = end + 1;
+  }
+  EXPECT_NE(wrapped.find("-0.1857"), std::string::npos);
+  EXPECT_NE(wrapped.find("max(0,R.V)^n"), std::string::npos);
+  EXPECT_NE(wrapped.find("\nnext line  kept"), std::string::npos) << "the text's own break and spaces stay";
+  std::string squeezed;
+  for (const char c : wrapped) if (c != '\n' && c != ' ') squeezed += c;
+  std::string expected;
+  for (const char c : text) if (c != '\n' && c != ' ') expected += c;
+  EXPECT_EQ(squeezed, expected);
+  EXPECT_EQ(phonglab::ui::wrap_at_spaces("short", 16, measure), "short");
+  EXPECT_EQ(phonglab::ui::wrap_at_spaces("", 16, measure), "");
+}
