@@ -86,8 +86,9 @@ void Instruments::take_a_when_final() {
 CompareView Instruments::compare_view() const { return static_cast<CompareView>(v_.instruments_.compare); }
 
 int Instruments::target_spp() const {
-  return a_.target_spp(v_.render_settings_.target_spp, v_.lessons_.lesson() && !v_.lessons_.exploring(), compare_view(),
-                       !shows_indirect());
+  // Exploring a compare step (a term key on it) keeps live at A's samples: the difference
+  // follows the view instead of waiting for a sample count it will never have.
+  return a_.target_spp(v_.render_settings_.target_spp, v_.lessons_.lesson() != nullptr, compare_view(), !shows_indirect());
 }
 
 bool Instruments::a_comparable() const { return a_.comparable(v_.shown_, compare_view(), !shows_indirect()); }

@@ -231,6 +231,19 @@ wait_frames 3
 wait_idle 120
 dump_state $dir/c05.txt
 screenshot $dir/c05.png
+set render target_spp 64
+lesson_goto 6
+wait_frames 3
+wait_idle 120
+lesson_next
+wait_frames 3
+wait_idle 120
+key 3
+wait_frames 3
+wait_idle 120
+dump_state $dir/c06.txt
+screenshot $dir/c06_explored.png
+set render target_spp 1
 lesson_goto 11
 wait_frames 3
 wait_idle 120
@@ -266,6 +279,9 @@ check_captions() {
     check "$f ($(state "$dir/$f.txt" lesson_title), presenting $(state "$dir/$f.txt" lesson_presenting)): the caption covers $(covered "$dir/$f.txt") of the image's height (at most 1/6)" \
       less "$(covered "$dir/$f.txt")" 0.1667
   done
+  check "exploring step 6's compare (its answer, then 3): the difference follows ($(state "$dir/c06.txt" compare_caption); exploring $(state "$dir/c06.txt" lesson_exploring))" \
+    test "$(state "$dir/c06.txt" lesson_exploring)" = 1 -a "$(state "$dir/c06.txt" compare)" = 2 -a "$(state "$dir/c06.txt" term)" = diffuse \
+    -a -n "$(state "$dir/c06.txt" compare_caption | grep 'spp each')"
   check "... the small-multiples steps show the grid" test "$(state "$dir/c05.txt" multiples)" = 1 -a "$(state "$dir/c11.txt" multiples)" = 1
   check "... the last step's answer is shown in presenter mode" \
     test "$(state "$dir/c13.txt" lesson_revealed)" = 1 -a "$(state "$dir/c13.txt" lesson_presenting)" = 1
