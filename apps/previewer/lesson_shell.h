@@ -42,6 +42,7 @@ class LessonShell {
   void start_lesson();                           // the waiting lesson becomes the lesson, at its first step
   void close_lesson();
   void show_place(LessonPlace place);            // shows a step (or its answer) as written
+  void present(const LessonPresenter::Show& show);  // what the presenter answers: A cleared, scene, view
   void update_lesson();                          // after apply_edits: the step's probe, its A, exploring
   bool lesson_key(int key);                      // next, previous, presenter mode; true when taken
   void set_presenting(bool on);                  // full screen, panels hidden, caption large
@@ -57,7 +58,6 @@ class LessonShell {
   void write_lesson_state(std::ostream& out) const;
 
  private:
-  void present(const LessonPresenter::Show& show);  // what the presenter answers: A cleared, scene, view
   void adopt_step_scene(int step);               // the step's scene becomes the document
   void apply_step_view(const StepView& view);    // the term, instruments, probe, head and depth cut of a view
   struct CaptionLine {

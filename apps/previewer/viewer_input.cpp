@@ -240,7 +240,15 @@ void Viewer::shortcut(int key, bool shift) {
         apply_edit({edit::SetScene{std::move(soloed)}});
       }
     } else if (digit < static_cast<int>(kShortcutTerms.size())) {
-      // 1 the full image, 2..6 its terms in the order of the equation.
+      // 1 the full image, 2..6 its terms in the order of the equation. On a lesson's compare
+      // step the step is shown again with that term, A too: the difference follows the view.
+      const Term term = kShortcutTerms[static_cast<std::size_t>(digit)];
+      if (lessons_.lesson() && !lessons_.awaiting_a() && term != render_settings_.term) {
+        if (const std::optional<LessonPresenter::Show> show = lessons_.show_term(term)) {
+          lesson_shell_.present(*show);
+          return;
+        }
+      }
       if (render_settings_.term != kShortcutTerms[static_cast<std::size_t>(digit)]) {
         render_settings_.term = kShortcutTerms[static_cast<std::size_t>(digit)];
         edits_.settings = true;

@@ -20,7 +20,24 @@ void LessonPresenter::close() {
   exploring_ = false;
 }
 
-LessonPresenter::Show LessonPresenter::show(LessonPlace place) {
+LessonPresenter::Show LessonPresenter::show(LessonPlace place) { return show_place(place, std::nullopt); }
+
+StepView LessonPresenter::with_term(StepView view) const {
+  if (term_) view.term = *term_;
+  return view;
+}
+
+std::optional<LessonPresenter::Show> LessonPresenter::show_term(Term term) {
+  if (!lesson_) return std::nullopt;
+  const StepView& view = view_at(lesson_->steps[static_cast<std::size_t>(place_.step)], place_.revealed);
+  if (view.compare == CompareView::kNone || view.small_multiples) return std::nullopt;
+  Show out = show_place(place_, term);
+  exploring_ = true;
+  return out;
+}
+
+LessonPresenter::Show LessonPresenter::show_place(LessonPlace place, std::optional<Term> term) {
+  term_ = term;
   Show out;
   if (!lesson_) return out;
   const Lesson& lesson = *lesson_;
@@ -37,7 +54,7 @@ LessonPresenter::Show LessonPresenter::show(LessonPlace place) {
     out.adopt_step = scene_step;
     scene_step_ = scene_step;
   }
-  out.view = view_ = compare ? source.view : view;
+  out.view = view_ = with_term(compare ? source.view : view);
   stage_ = compare ? Stage::kRequestA : Stage::kNone;
   exploring_ = false;
   return out;
@@ -71,7 +88,7 @@ std::optional<LessonPresenter::Show> LessonPresenter::a_taken() {
     out.adopt_step = place_.step;
     scene_step_ = place_.step;
   }
-  out.view = view_ = view_at(lesson_->steps[static_cast<std::size_t>(place_.step)], place_.revealed);
+  out.view = view_ = with_term(view_at(lesson_->steps[static_cast<std::size_t>(place_.step)], place_.revealed));
   out.compare = true;
   return out;
 }

@@ -42,6 +42,10 @@ class LessonPresenter {
   std::optional<Show> prev();
   // Anything changed by hand while a step is shown (not by the lesson itself).
   void explored() { exploring_ = true; }
+  // A term key on a step whose view compares against A: the step shown again with that term in
+  // its view and its compare's source (A taken anew of the same term), so the difference follows
+  // what is shown; the step counts as explored. Nothing when the step shows no compare.
+  std::optional<Show> show_term(Term term);
 
   // A compare's A: wanted once a compare's source is shown (take_a_now() answers true once),
   // then taken (a_taken(): the step's own view with the compare on) or dropped (something
@@ -53,12 +57,15 @@ class LessonPresenter {
 
  private:
   enum class Stage : std::uint8_t { kNone, kRequestA, kTakingA };
+  Show show_place(LessonPlace place, std::optional<Term> term);
+  StepView with_term(StepView view) const;
   std::optional<Lesson> lesson_, waiting_;
   LessonPlace place_;
   StepView view_;
   int scene_step_ = -1;
   bool exploring_ = false;
   Stage stage_ = Stage::kNone;
+  std::optional<Term> term_;  // show_term's term, in the views shown until the next show()
 };
 
 }  // namespace phonglab

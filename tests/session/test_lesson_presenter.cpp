@@ -144,5 +144,33 @@ TEST(LessonPresenter, CloseEndsTheLesson) {
   EXPECT_FALSE(p.next().has_value());
 }
 
+
+// A term key on a compare step (shading step 6's answer: move your head, |live - A|): the step is
+// shown again with that term in its compare's source and in its own view, A taken anew, and the
+// step counts as explored; "back" shows it as written. A step without a compare is left alone.
+TEST(LessonPresenter, ATermKeyOnACompareStepShowsItAgainWithThatTerm) {
+  LessonPresenter p = started();
+  EXPECT_FALSE(p.show_term(Term::kDiffuse).has_value()) << "step 1 compares nothing";
+  p.show({5, true});
+  ASSERT_TRUE(p.awaiting_a());
+  ASSERT_TRUE(p.take_a_now());
+  ASSERT_TRUE(p.a_taken());
+  const std::optional<LessonPresenter::Show> source = p.show_term(Term::kDiffuse);
+  ASSERT_TRUE(source);
+  EXPECT_EQ(source->view.term, Term::kDiffuse);
+  EXPECT_FALSE(source->view.head_angle_deg.has_value()) << "A's view: the head not moved";
+  EXPECT_TRUE(p.exploring());
+  ASSERT_TRUE(p.take_a_now());
+  const std::optional<LessonPresenter::Show> own = p.a_taken();
+  ASSERT_TRUE(own);
+  EXPECT_TRUE(own->compare);
+  EXPECT_EQ(own->view.term, Term::kDiffuse);
+  EXPECT_TRUE(own->view.head_angle_deg.has_value());
+  EXPECT_EQ(p.place(), (LessonPlace{5, true}));
+  const LessonPresenter::Show written = p.show(p.place());
+  EXPECT_EQ(written.view.term, Term::kFull) << "the step as written again";
+  EXPECT_FALSE(p.exploring());
+}
+
 }  // namespace
 }  // namespace phonglab
