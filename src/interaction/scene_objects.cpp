@@ -291,6 +291,14 @@ std::optional<Floor> find_floor(const Scene& s, const Camera& camera, int except
 
 double height_above(const Floor& f, const Vec3& p) { return glm::dot(p - f.point, f.normal); }
 
+double floor_clearance(const Scene& s, int object) {
+  if (object_at(s, object).kind != Kind::kMesh) return 0;
+  const Aabb box = object_bounds(s, object);
+  if (box.empty()) return 0;
+  const Vec3 sides = box.hi - box.lo;
+  return kMeshClearance * std::max({sides.x, sides.y, sides.z});
+}
+
 double lowest_above(const Scene& s, int object, const Floor& f) {
   const ObjectRef r = object_at(s, object);
   const auto i = static_cast<std::size_t>(r.index);
@@ -383,7 +391,7 @@ std::string place_new_object(Scene& s, const Camera& camera, double aspect, int 
       for (const Triangle& t : g.triangles) {
         for (const Vec3& v : {t.v0, t.v1, t.v2}) low = std::min(low, glm::dot(v - mesh_middle, n));
       }
-      lift = std::isfinite(low) ? -k * low : 0;
+      lift = std::isfinite(low) ? -k * low + kMeshClearance * 2 * radius : 0;  // floor_clearance
     }
   }
   if (!floor) lift = 0;
@@ -543,7 +551,7 @@ Vec3 keep_above_floor(const Scene& s, int object, const Floor& floor, const Vec3
   const double low_now = lowest_above(s, object, floor);
   if (!std::isfinite(low_now)) return anchor;  // a plane
   const double below_anchor = low_now - height_above(floor, object_anchor(s, object));
-  const double allowed = std::min(0.0, height_above(floor, anchor_start) + below_anchor);
+  const double allowed = std::min(floor_clearance(s, object), height_above(floor, anchor_start) + below_anchor);
   const double low = height_above(floor, anchor) + below_anchor;
   return low < allowed ? anchor + (allowed - low) * floor.normal : anchor;
 }

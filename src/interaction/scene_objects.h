@@ -66,6 +66,12 @@ double height_above(const Floor& floor, const Vec3& p);
 // The object's lowest point's height above the floor (a sphere's centre's height less its radius,
 // a triangle's lowest corner, a mesh's lowest vertex); -infinity for a plane.
 double lowest_above(const Scene& scene, int object, const Floor& floor);
+// How far above the floor an object's lowest point rests: 0 for a sphere or a triangle (they
+// touch it at a point or an edge), and for a mesh a hair, kMeshClearance of its largest side: a
+// mesh's own flat bottom (a room's floor) must not lie in the floor's plane, where two coplanar
+// surfaces would take turns at the nearest hit and speckle.
+inline constexpr double kMeshClearance = 1e-3;
+double floor_clearance(const Scene& scene, int object);
 // The size of the scene's objects: the median sphere diameter; with no spheres, the largest side
 // of the finite objects' bounds / 4; with none, a fifth of the eye's distance to the look-at
 // point. Two significant digits (0.6, 1.4), objects[`except`] left out.
@@ -74,7 +80,7 @@ double typical_size(const Scene& scene, const Camera& camera, int except = -1);
 // Gives the object just appended (objects[`object`], a sphere, a triangle or a loaded mesh) the
 // scene's typical size and its place beside the others (docs/previewer.md, "Building a scene"):
 // resting on the floor when there is one (a sphere's centre a radius above it, a triangle standing
-// on its base edge facing the eye, a mesh's lowest vertex on it), at the free spot nearest to the
+// on its base edge facing the eye, a mesh's lowest vertex floor_clearance above it), at the free spot nearest to the
 // point of the floor under the camera's look-at point, the right before the left at equal
 // distance, searched on a grid along the floor in the view's right direction and towards the eye,
 // spaced by half the new object's radius. Free: its bounds apart from every other finite
