@@ -138,15 +138,8 @@ std::optional<std::vector<glm::vec3>> Instruments::ambient_view_pixels() const {
   const std::vector<glm::vec3>& ambient = v_.shown_.terms[0];
   const bool beside = ambient_view_pixels_shown(ui::AmbientView::kBeside);
   if (!beside && !ambient_view_pixels_shown(ui::AmbientView::kDifference)) return std::nullopt;
-  if (beside) {
-    return compare_pixels(v_.shown_.pixels, ambient, v_.shown_.width, CompareView::kWipe, static_cast<double>(v_.instruments_.wipe), 1);
-  }
-  std::vector<glm::vec3> gap(v_.shown_.pixels.size());
-  for (std::size_t i = 0; i < gap.size(); ++i) {
-    const glm::vec3 d = glm::abs(v_.shown_.pixels[i] - ambient[i]);
-    gap[i] = glm::vec3(std::max({d.x, d.y, d.z}));
-  }
-  return heat_map_pixels(gap, heat_max(gap));
+  return ambient_shown_pixels(beside ? AmbientShown::kBeside : AmbientShown::kDifference, v_.shown_.pixels, ambient,
+                              v_.shown_.width, static_cast<double>(v_.instruments_.wipe));
 }
 
 Vec3 Instruments::head_pivot() const {

@@ -62,7 +62,10 @@ void LessonShell::adopt_step_scene(int step) {
 
 void LessonShell::apply_step_view(const StepView& view) {
   v_.render_settings_.term = view.term;
-  v_.render_settings_.ambient_view = view.ambient == Ambient::kIndirect ? ui::AmbientView::kIndirect : ui::AmbientView::kConstant;
+  v_.render_settings_.ambient_view = view.ambient != Ambient::kIndirect                 ? ui::AmbientView::kConstant
+                                     : view.ambient_shown == AmbientShown::kBeside     ? ui::AmbientView::kBeside
+                                     : view.ambient_shown == AmbientShown::kDifference ? ui::AmbientView::kDifference
+                                                                                       : ui::AmbientView::kIndirect;
   v_.rays_.heat_map = false;
   v_.instruments_.small_multiples = view.small_multiples;
   v_.instruments_.move_head = view.head_angle_deg.has_value();

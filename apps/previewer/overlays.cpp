@@ -17,6 +17,7 @@
 
 #include "core/scene/camera.h"
 #include "io/figure.h"
+#include "core/teaching/heat_map.h"
 #include "core/teaching/ray_tree_view.h"
 #include "interaction/camera_control.h"
 
@@ -131,6 +132,9 @@ void Overlays::draw_overlays() {
   if (v_.tools_.heat_shown() && v_.heat_max_ > 0) {
     taken.push_back(overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), taken, last, v_.overlay_rects_,
                                    [&] { ui::heat_legend(v_.heat_max_, 220 * scale); }));
+  } else if (v_.tools_.ambient_view_pixels_shown(ui::AmbientView::kDifference)) {
+    taken.push_back(overlay_window("##gap_legend", bottom_right, ImVec2(1, 1), taken, last, v_.overlay_rects_,
+                                   [&] { ui::ambient_gap_legend(kAmbientGapScale, 220 * scale); }));
   }
 
   // Captions at the top centre, each below whatever box it would overlap.

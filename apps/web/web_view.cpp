@@ -94,7 +94,7 @@ bool WebView::step() {
   if (level_ == 3 && accum_.samples >= static_cast<std::uint32_t>(target_spp())) return false;
   const ProgressiveLevel level = levels()[static_cast<std::size_t>(level_)];
   if (accum_.width != level.width || accum_.height != level.height || accum_.samples == 0) {
-    accum_.reset(level.width, level.height, view_.small_multiples);
+    accum_.reset(level.width, level.height, view_.small_multiples || ambient_pair());
   }
   RenderOptions options;
   options.term = pass_term();
@@ -435,6 +435,12 @@ void WebView::encode() {
   std::vector<glm::vec3> live = shown_.pixels;
   heat_max_ = view_.term == Term::kRays ? phonglab::heat_max(live) : 0;
   if (view_.term == Term::kRays) live = heat_map_pixels(live, heat_max_);
+  if (ambient_pair() && accum_.has_terms()) {
+    std::vector<glm::vec3> ambient(live.size());
+    const double inv = 1.0 / static_cast<double>(std::max(accum_.samples, 1u));
+    for (std::size_t i = 0; i < ambient.size(); ++i) ambient[i] = glm::vec3(accum_.terms[i].ambient * inv);
+    live = ambient_shown_pixels(view_.ambient_shown, live, ambient, shown_width_, view_.wipe);
+  }
   if (view_.compare != CompareView::kNone && a_.comparable(shown_, view_.compare, constant_ambient())) {
     live = compare_pixels(live, a_.image().pixels, shown_width_, view_.compare, view_.wipe, view_.difference_gain);
   }

@@ -138,7 +138,11 @@ class WebView {
   int live_level();
   void begin_generation();  // the view's scene prepared, and how its first sample is made
   bool trees_apply() const;
-  Term pass_term() const { return view_.small_multiples ? Term::kFull : view_.term; }
+  // The indirect light beside ka·Ia, or their gap: the indirect term traced with the term images.
+  bool ambient_pair() const {
+    return !view_.small_multiples && view_.ambient == Ambient::kIndirect && view_.ambient_shown != AmbientShown::kImage;
+  }
+  Term pass_term() const { return view_.small_multiples ? Term::kFull : ambient_pair() ? Term::kIndirect : view_.term; }
   bool shade_from_trees();  // the first sample from the stored trees
   void record_trees();
   PixelProbe probe_at(double u, double v) const;

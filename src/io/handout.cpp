@@ -259,18 +259,28 @@ Image render_plain(const PreparedScene& prepared, const StepView& view, const st
     figure.shading_eye = eye;
     return make_figure(prepared, figure);
   }
+  // The indirect light beside ka·Ia, or their gap: one image of the indirect term with the term
+  // images (the ambient one is ka·Ia), as the previewer shows it.
+  const bool pair = view.ambient == Ambient::kIndirect && view.ambient_shown != AmbientShown::kImage;
   RenderOptions render;
-  render.term = view.term;
+  render.term = pair ? Term::kIndirect : view.term;
   render.ambient = view.ambient;
   render.threads = options.threads;
   render.shading_eye = eye;
   Accumulator accum;
-  accum.reset(width, height);
+  accum.reset(width, height, pair);
   // The indirect light is a Monte Carlo estimate: a printed page gets at least kIndirectSpp samples
   // a pixel, or its noise would hide what it shows.
   const int spp = view.ambient == Ambient::kIndirect ? std::max(options.spp, kIndirectSpp) : options.spp;
   render_passes(prepared, render, accum, std::max(1, spp));
-  return mean_image(accum);
+  Image image = mean_image(accum);
+  if (pair) {
+    std::vector<glm::vec3> ambient(image.pixels.size());
+    const double inv = 1.0 / static_cast<double>(std::max(accum.samples, 1u));
+    for (std::size_t i = 0; i < ambient.size(); ++i) ambient[i] = glm::vec3(accum.terms[i].ambient * inv);
+    image.pixels = ambient_shown_pixels(view.ambient_shown, image.pixels, ambient, width, view.wipe);
+  }
+  return image;
 }
 
 void draw_probe(Image& image, const PreparedScene& prepared, const StepView& view, const std::optional<Vec3>& eye) {

@@ -31,7 +31,7 @@ constexpr std::array<std::string_view, 11> kShowKeys = {"term", "small_multiples
                                                         "solo"};
 constexpr std::array<std::string_view, 9> kAnswerShowKeys = {"term", "small_multiples", "probe", "ray_tree", "depth_cut",
                                                              "head_angle_deg", "light_markers", "compare", "ambient"};
-constexpr std::array<std::string_view, 2> kAmbientChoices = {"constant", "indirect"};
+constexpr std::array<std::string_view, 4> kAmbientChoices = {"constant", "indirect", "beside", "difference"};
 constexpr std::array<std::string_view, 2> kAnswerKeys = {"caption", "show"};
 constexpr std::array<std::string_view, 4> kCompareKeys = {"against", "view", "wipe", "gain"};
 constexpr std::array<std::string_view, 2> kCompareViews = {"difference", "wipe"};
@@ -211,7 +211,11 @@ class LessonReader : private SceneMembers {
     if (const Val* x = f.find("compare")) compare(*x, out, step);
     if (const Val* x = f.find("ambient")) {
       if (auto name = read_choice(*x, kAmbientChoices, "ambient")) {
-        out.ambient = *name == "indirect" ? Ambient::kIndirect : Ambient::kConstant;
+        // "beside" and "difference": the indirect light beside ka·Ia, or their signed gap.
+        out.ambient = *name == "constant" ? Ambient::kConstant : Ambient::kIndirect;
+        out.ambient_shown = *name == "beside"       ? AmbientShown::kBeside
+                            : *name == "difference" ? AmbientShown::kDifference
+                                                    : AmbientShown::kImage;
       }
     }
     if (const Val* x = f.find("mute")) mute(*x, scene);
@@ -250,6 +254,11 @@ class LessonReader : private SceneMembers {
   }
 
   void compare(const Val& v, StepView& out, std::size_t step) {
+    // "none": no compare (an answer that drops its question's).
+    if (v.json->is_string() && v.json->get<std::string>() == "none") {
+      out.compare = CompareView::kNone;
+      return;
+    }
     if (!expect_object(v)) return;
     const Fields f = fields(v, kCompareKeys);
     if (!require(v, f, {"against"})) return;

@@ -4,6 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/teaching/heat_map.h"
 #include "ui/widgets.h"
@@ -279,37 +282,66 @@ void ray_tree_legend(std::span<const ScreenSegment> segments, bool blinn) {
   }
 }
 
-void heat_legend(double max, float width) {
-  ImGui::TextUnformatted("rays per pixel");
+namespace {
+
+// A colour ramp as a bar `width` wide, `color(t)` for t in [lo, hi], ticks at `ticks` (their
+// labels already formatted), under `title`.
+template <typename Ramp>
+void ramp_bar(const char* title, float width, double lo, double hi, Ramp color,
+              const std::vector<std::pair<double, std::string>>& ticks) {
+  ImGui::TextUnformatted(title);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 at = ImGui::GetCursorScreenPos();
   const float h = ImGui::GetTextLineHeight();
-  constexpr int kSteps = 64;  // enough that the piecewise-linear ramp looks continuous
+  constexpr int kSteps = 64;  // enough that a piecewise-linear ramp looks continuous
+  const auto code = [&](double t) {
+    const Color c = color(t);
+    return IM_COL32(static_cast<int>(std::lround(c.x * 255)), static_cast<int>(std::lround(c.y * 255)),
+                    static_cast<int>(std::lround(c.z * 255)), 255);
+  };
   for (int i = 0; i < kSteps; ++i) {
-    const auto color = [](double t) {
-      const Color c = heat_ramp_srgb(t);
-      return IM_COL32(static_cast<int>(std::lround(c.x * 255)), static_cast<int>(std::lround(c.y * 255)),
-                      static_cast<int>(std::lround(c.z * 255)), 255);
-    };
     const float x0 = at.x + width * static_cast<float>(i) / kSteps;
     const float x1 = at.x + width * static_cast<float>(i + 1) / kSteps;
-    const ImU32 left = color(static_cast<double>(i) / kSteps), right = color(static_cast<double>(i + 1) / kSteps);
+    const ImU32 left = code(lo + (hi - lo) * i / kSteps), right = code(lo + (hi - lo) * (i + 1) / kSteps);
     draw->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), left, right, right, left);
   }
   draw->AddRect(at, ImVec2(at.x + width, at.y + h), IM_COL32(255, 255, 255, 120));
   ImGui::Dummy(ImVec2(width, h));
-  // Ticks at 0, half and the maximum.
-  char text[32];
   const ImVec2 labels = ImGui::GetCursorScreenPos();
-  for (int k = 0; k <= 2; ++k) {
-    std::snprintf(text, sizeof text, "%.3g", max * k / 2);
-    const float x = labels.x + width * static_cast<float>(k) / 2;
-    const float w = ImGui::CalcTextSize(text).x;
+  for (const auto& [t, text] : ticks) {
+    const float x = labels.x + width * static_cast<float>((t - lo) / (hi - lo));
+    const float w = ImGui::CalcTextSize(text.c_str()).x;
     const float left = std::clamp(x - w / 2, labels.x, labels.x + width - w);
     draw->AddLine(ImVec2(x, labels.y - 3), ImVec2(x, labels.y), IM_COL32(255, 255, 255, 200));
-    draw->AddText(ImVec2(left, labels.y), IM_COL32(255, 255, 255, 230), text);
+    draw->AddText(ImVec2(left, labels.y), IM_COL32(255, 255, 255, 230), text.c_str());
   }
   ImGui::Dummy(ImVec2(width, h));
+}
+
+std::string tick_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.3g", v);
+  return v == 0 ? std::string("0") : std::string(text);
+}
+
+}  // namespace
+
+void heat_legend(double max, float width) {
+  // Ticks at 0, half and the maximum.
+  std::vector<std::pair<double, std::string>> ticks;
+  for (int k = 0; k <= 2; ++k) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", max * k / 2);
+    ticks.emplace_back(k / 2.0, text);
+  }
+  ramp_bar("rays per pixel", width, 0, 1, [](double t) { return heat_ramp_srgb(t); }, ticks);
+}
+
+void ambient_gap_legend(double scale, float width) {
+  ramp_bar("indirect - ka\xC2\xB7I\xE2\x82\x90 (mean of R, G, B)", width, -1, 1, [](double t) { return ambient_gap_srgb(t); },
+           {{-1, tick_text(-scale)}, {0, "0"}, {1, tick_text(scale)}});
+  ImGui::TextUnformatted("orange: more light arrives than ka\xC2\xB7I\xE2\x82\x90 says");
+  ImGui::TextUnformatted("blue: less; black: ka\xC2\xB7I\xE2\x82\x90 is right");
 }
 
 }  // namespace phonglab::ui

@@ -69,5 +69,8 @@ void ray_tree_legend(std::span<const ScreenSegment> segments, bool blinn);
 // The heat map's scale: the ramp from 0 to `max` rays per pixel, `width` pixels wide (into the
 // current window).
 void heat_legend(double max, float width);
+// The signed gap's ramp (AmbientView::kDifference): -scale blue, 0 black, +scale orange, and what
+// the colours say.
+void ambient_gap_legend(double scale, float width);
 
 }  // namespace phonglab::ui

@@ -43,7 +43,7 @@ std::string ambient_view_caption(AmbientView view) {
     case AmbientView::kConstant: return "";
     case AmbientView::kIndirect: return "with indirect light: ka" + dot + i_a() + " replaced by kd" + dot + "E at every hit";
     case AmbientView::kBeside: return "left: ka" + dot + i_a() + "   |   right: the indirect light kd" + dot + "E it stands in for";
-    case AmbientView::kDifference: return "|indirect - ka" + dot + i_a() + "| as heat: where the constant is most wrong";
+    case AmbientView::kDifference: return "indirect - ka" + dot + i_a() + ": where the constant is most wrong, and which way";
   }
   return "";
 }
@@ -72,7 +72,7 @@ void show_panel(Term& term, bool& small_multiples, AmbientView& ambient_view, bo
   ImGui::Checkbox("all five and their sum side by side (M)", &small_multiples);
   int ambient = static_cast<int>(ambient_view);
   const std::string items = std::string("ka") + (font_has(0x00B7) ? "\xC2\xB7" : "*") + "Ia, the lecture" + '\0' +
-                            "indirect light" + '\0' + "indirect | ambient" + '\0' + "|indirect - ambient|" + '\0';
+                            "indirect light" + '\0' + "indirect | ambient" + '\0' + "indirect - ambient (signed)" + '\0';
   if (ImGui::Combo("ambient (I)", &ambient, items.c_str())) {
     ambient_view = static_cast<AmbientView>(ambient);
     if (ambient_view == AmbientView::kBeside || ambient_view == AmbientView::kDifference) small_multiples = false;

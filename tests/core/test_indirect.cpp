@@ -10,6 +10,7 @@
 
 #include "core/render/indirect_probe.h"
 #include "core/render/render.h"
+#include "core/teaching/heat_map.h"
 
 using namespace phonglab;
 
@@ -416,4 +417,28 @@ TEST(Indirect, AGathersWorkIsItsPath) {
             whitted.rays.reflection + whitted.rays.refraction +
                 gathered.rays.indirect * static_cast<std::uint64_t>(limits.max_depth));
   EXPECT_EQ(gathered.nan_count, 0u);
+}
+
+// The signed gap's ramp: black where ka·Ia is right, orange (red over blue) where more light
+// arrives, blue where less, brighter with the gap on either side, clamped past the scale.
+TEST(Indirect, TheGapRampShowsTheSign) {
+  EXPECT_EQ(ambient_gap_srgb(0), Color(0));
+  for (const double t : {0.1, 0.5, 0.9, 1.0}) {
+    const Color up = ambient_gap_srgb(t), down = ambient_gap_srgb(-t);
+    EXPECT_GT(up.x, up.z) << t;
+    EXPECT_GT(down.z, down.x) << t;
+  }
+  const auto luma = [](const Color& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
+  for (double t = 0.05; t <= 1.0; t += 0.05) {
+    EXPECT_GT(luma(ambient_gap_srgb(t)), luma(ambient_gap_srgb(t - 0.05)));
+    EXPECT_GT(luma(ambient_gap_srgb(-t)), luma(ambient_gap_srgb(-t + 0.05)));
+  }
+  EXPECT_EQ(ambient_gap_srgb(3), ambient_gap_srgb(1));
+  const std::vector<glm::vec3> indirect = {glm::vec3(0.3f), glm::vec3(0.1f), glm::vec3(0.2f)};
+  const std::vector<glm::vec3> ambient = {glm::vec3(0.1f), glm::vec3(0.3f), glm::vec3(0.2f)};
+  const std::vector<glm::vec3> gap = ambient_gap_pixels(indirect, ambient);
+  ASSERT_EQ(gap.size(), 3u);
+  EXPECT_GT(gap[0].x, gap[0].z);
+  EXPECT_GT(gap[1].z, gap[1].x);
+  EXPECT_EQ(gap[2], glm::vec3(0));
 }

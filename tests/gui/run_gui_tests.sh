@@ -1373,7 +1373,7 @@ quit
 EOF
   "$BIN" cornell --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
   local code=$?
-  # The shading lesson's last step: ka·Ia wiped against the indirect light, its answer the difference.
+  # The shading lesson's last step: ka·Ia wiped against the indirect light, its answer their signed gap.
   # (Half the resolution here and above: the indirect light is traced ray by ray, slow under ASan.)
   cat >"$dir/lesson.txt" <<EOF
 set render target_spp 2
@@ -1419,8 +1419,9 @@ check_ambient() {
     awk -v a="$before" -v b="$after" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] > p[1] && q[1] < 10) }'
   check "the lesson's last step shows the indirect light wiped against ka*Ia ($(state "$dir/l13.txt" compare_caption))" \
     test "$(state "$dir/l13.txt" lesson_step)/$(state "$dir/l13.txt" ambient_view)/$(state "$dir/l13.txt" compare)" = 13/indirect/1
-  check "... and its answer their difference ($(state "$dir/l13a.txt" compare_caption))" \
-    test "$(state "$dir/l13a.txt" lesson_revealed)/$(state "$dir/l13a.txt" ambient_view)/$(state "$dir/l13a.txt" compare)" = 1/indirect/2
+  check "... and its answer their signed gap with its legend ($(state "$dir/l13a.txt" ambient_view), legend $(state "$dir/l13a.txt" overlay_gap_legend))" \
+    test "$(state "$dir/l13a.txt" lesson_revealed)/$(state "$dir/l13a.txt" ambient_view)/$(state "$dir/l13a.txt" compare)" = 1/difference/0 \
+    -a -n "$(state "$dir/l13a.txt" overlay_gap_legend)"
   check "the indirect image differs from ka*Ia's" greater "$(rmse "$dir/a0_constant.png" "$dir/a1_indirect.png" 1280x600+0+60)" 0.02
   check "the beside view differs from the indirect image" greater "$(rmse "$dir/a1_indirect.png" "$dir/a2_beside.png" 1280x600+0+60)" 0.02
   check "the difference view differs from the beside view" greater "$(rmse "$dir/a2_beside.png" "$dir/a3_difference.png" 1280x600+0+60)" 0.02

@@ -548,6 +548,24 @@ TEST(LessonFile, AStepShowsTheIndirectLightWithAmbientIndirect) {
 
 // The shading lesson ends on what ambient stands in for: the Cornell box with ka·Ia left of the
 // wipe (the previous step's image, bit for bit) and the indirect light right of it.
+// The last answer's picture is indirect - ka·Ia on the signed ramp: the ceiling (lit only by the
+// other surfaces) is orange, more light than ka·Ia says, on average over its pixels.
+TEST(EmbeddedLessons, TheLastAnswerShowsTheCeilingAboveTheConstant) {
+  const Lesson lesson = embedded("shading");
+  const int last = static_cast<int>(lesson.steps.size()) - 1;
+  const Image gap = render_step_view(lesson, LessonPlace{last, true}, small());
+  double red = 0, blue = 0;
+  for (int y = 0; y < kH / 10; ++y) {  // the top tenth: the ceiling
+    for (int x = kW / 3; x < 2 * kW / 3; ++x) {
+      const glm::vec3 p = gap.pixels[static_cast<std::size_t>(y) * kW + static_cast<std::size_t>(x)];
+      red += p.x;
+      blue += p.z;
+    }
+  }
+  EXPECT_GT(red, 2 * blue) << "orange: the indirect light is above ka·Ia there";
+  EXPECT_GT(red, 0);
+}
+
 TEST(EmbeddedLessons, TheLastStepWipesFromTheConstantToTheIndirectLight) {
   const Lesson lesson = embedded("shading");
   const int last = static_cast<int>(lesson.steps.size()) - 1;
@@ -555,7 +573,9 @@ TEST(EmbeddedLessons, TheLastStepWipesFromTheConstantToTheIndirectLight) {
   ASSERT_EQ(view.ambient, Ambient::kIndirect);
   ASSERT_EQ(view.compare, CompareView::kWipe);
   ASSERT_EQ(view.compare_against, last - 1);
-  ASSERT_EQ(lesson.steps.back().answer_view.compare, CompareView::kDifference);
+  // The answer: indirect - ka·Ia on the signed ramp, from one image (no A to wait for).
+  ASSERT_EQ(lesson.steps.back().answer_view.compare, CompareView::kNone);
+  ASSERT_EQ(lesson.steps.back().answer_view.ambient_shown, AmbientShown::kDifference);
   const Image constant = render_step_view(lesson, LessonPlace{last - 1, false}, small());
   const Image wiped = render_step_view(lesson, LessonPlace{last, false}, small());
   ASSERT_EQ(constant.pixels.size(), wiped.pixels.size());

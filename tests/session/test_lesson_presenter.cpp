@@ -68,10 +68,15 @@ TEST(LessonPresenter, AtTheEndsNothingMovesUnlessSomethingWasExplored) {
   EXPECT_EQ(back->adopt_step, 0);
   EXPECT_FALSE(p.exploring());
   const int last = static_cast<int>(p.lesson()->steps.size()) - 1;
-  p.show({last, true});
+  p.show({last, false});
   ASSERT_TRUE(p.awaiting_a());
   EXPECT_TRUE(p.take_a_now());
   ASSERT_TRUE(p.a_taken());
+  const auto answer = p.next();
+  ASSERT_TRUE(answer);
+  EXPECT_EQ(p.place(), (LessonPlace{last, true}));
+  EXPECT_FALSE(p.awaiting_a()) << "the last answer compares nothing: it shows the signed gap";
+  EXPECT_EQ(answer->view.ambient_shown, AmbientShown::kDifference);
   EXPECT_FALSE(p.next().has_value()) << "the last answer stays";
 }
 

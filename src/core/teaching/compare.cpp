@@ -3,6 +3,9 @@
 #include <cmath>
 #include <cstddef>
 
+#include "core/teaching/heat_map.h"
+#include "core/teaching/lesson.h"
+
 namespace phonglab {
 
 std::vector<glm::vec3> compare_pixels(const std::vector<glm::vec3>& live, const std::vector<glm::vec3>& a, int width,
@@ -17,6 +20,16 @@ std::vector<glm::vec3> compare_pixels(const std::vector<glm::vec3>& live, const 
     else out[i] = glm::abs(live[i] - a[i]) * g;
   }
   return out;
+}
+
+std::vector<glm::vec3> ambient_shown_pixels(AmbientShown shown, const std::vector<glm::vec3>& indirect,
+                                            const std::vector<glm::vec3>& ambient, int width, double wipe) {
+  switch (shown) {
+    case AmbientShown::kBeside: return compare_pixels(indirect, ambient, width, CompareView::kWipe, wipe, 1);
+    case AmbientShown::kDifference: return ambient_gap_pixels(indirect, ambient);
+    case AmbientShown::kImage: break;
+  }
+  return indirect;
 }
 
 }  // namespace phonglab

@@ -17,4 +17,12 @@ enum class CompareView : std::uint8_t { kNone, kWipe, kDifference };
 std::vector<glm::vec3> compare_pixels(const std::vector<glm::vec3>& live, const std::vector<glm::vec3>& a, int width,
                                       CompareView view, double wipe, double gain);
 
+// An ambient view's pixels (AmbientShown) from one image of Term::kIndirect with its term
+// images: `indirect` the indirect term, `ambient` ka·Iₐ (the ambient term image), width-wide.
+// kBeside: ka·Iₐ left of round(wipe * width), the indirect term right; kDifference: the signed
+// gap's heat map (ambient_gap_pixels); kImage: `indirect`.
+enum class AmbientShown : std::uint8_t;
+std::vector<glm::vec3> ambient_shown_pixels(AmbientShown shown, const std::vector<glm::vec3>& indirect,
+                                            const std::vector<glm::vec3>& ambient, int width, double wipe);
+
 }  // namespace phonglab

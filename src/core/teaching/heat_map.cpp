@@ -57,4 +57,27 @@ std::vector<glm::vec3> heat_map_pixels(const std::vector<glm::vec3>& rays, doubl
   return out;
 }
 
+Color ambient_gap_srgb(double t) {
+  if (!(t == t)) t = 0;  // NaN: no gap shown
+  t = std::clamp(t, -1.0, 1.0);
+  // Black, then the colour at |t| = 0.75, then a paler one at 1: luminance rises with |t| on
+  // either side, the sign is the hue.
+  const Color warm(0.98, 0.55, 0.04), warm_top(1.0, 0.93, 0.55), cool(0.16, 0.45, 1.0), cool_top(0.7, 0.88, 1.0);
+  const double a = std::abs(t);
+  const Color mid = t > 0 ? warm : cool, top = t > 0 ? warm_top : cool_top;
+  return a <= 0.75 ? mid * (a / 0.75) : mid + (top - mid) * ((a - 0.75) / 0.25);
+}
+
+std::vector<glm::vec3> ambient_gap_pixels(const std::vector<glm::vec3>& indirect, const std::vector<glm::vec3>& ambient,
+                                          double scale) {
+  std::vector<glm::vec3> out(std::min(indirect.size(), ambient.size()));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const glm::vec3 d = indirect[i] - ambient[i];
+    const double gap = (static_cast<double>(d.x) + d.y + d.z) / 3;
+    const Color srgb = ambient_gap_srgb(scale > 0 ? gap / scale : 0);
+    out[i] = glm::vec3(Color(srgb_to_linear(srgb.x), srgb_to_linear(srgb.y), srgb_to_linear(srgb.z)));
+  }
+  return out;
+}
+
 }  // namespace phonglab

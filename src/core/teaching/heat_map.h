@@ -25,4 +25,17 @@ double heat_max(const std::vector<glm::vec3>& rays);
 // the top of the ramp.
 std::vector<glm::vec3> heat_map_pixels(const std::vector<glm::vec3>& rays, double max);
 
+// The ambient gap: indirect − ka·Iₐ at a pixel (the mean of its three channels), on a diverging
+// ramp at a fixed scale, so its colours do not change as the estimate's noise settles: black
+// where ka·Iₐ is right, orange to pale yellow where more light arrives than ka·Iₐ says (at +scale
+// and beyond), blue to pale blue where less does (at -scale and beyond). The display colour
+// (sRGB-encoded) for t = gap / scale in [-1, 1], clamped.
+Color ambient_gap_srgb(double t);
+// The fixed scale of the previewer, the page and the handouts (linear units of radiance).
+inline constexpr double kAmbientGapScale = 0.25;
+// The gap image: linear RGB whose sRGB encoding is ambient_gap_srgb((mean(indirect) -
+// mean(ambient)) / scale) per pixel; `indirect` and `ambient` of one size.
+std::vector<glm::vec3> ambient_gap_pixels(const std::vector<glm::vec3>& indirect, const std::vector<glm::vec3>& ambient,
+                                          double scale = kAmbientGapScale);
+
 }  // namespace phonglab

@@ -17,6 +17,10 @@
 namespace phonglab {
 
 // What a step shows of its scene.
+// What a view under the indirect light shows: the image itself, the indirect term beside ka·Iₐ
+// (a wipe, A = ka·Iₐ), or their signed gap on a diverging heat map (ambient_gap_pixels).
+enum class AmbientShown : std::uint8_t { kImage, kBeside, kDifference };
+
 struct StepView {
   Term term = Term::kFull;                  // the full image or one term of the equation
   bool small_multiples = false;             // the five terms and their sum side by side
@@ -30,6 +34,7 @@ struct StepView {
   double wipe = 0.5;                        // kWipe: the fraction of the width showing A
   double difference_gain = 4;               // kDifference: |live - A| is scaled by this
   Ambient ambient = Ambient::kConstant;     // ka·Ia, or the indirect light it stands in for
+  AmbientShown ambient_shown = AmbientShown::kImage;  // with kIndirect: the image, beside ka·Ia, or the gap
   bool operator==(const StepView&) const = default;
 };
 
