@@ -279,6 +279,17 @@ int cmd_figure(Args& args) {
 int cmd_validate(Args& args) {
   const auto scene_arg = args.take_positional();
   if (!scene_arg) throw UsageError{"validate needs SCENE"};
+  // A lesson file is checked as a lesson (every step's scene with it), and said to be one.
+  if (is_lesson_file(*scene_arg)) {
+    const LessonLoad lesson = load_lesson_arg(*scene_arg);
+    if (!lesson.ok()) {
+      std::cerr << *scene_arg << " is a lesson file (it has \"steps\"):\n" << lesson.error_text() << "\n";
+      return kExitBadInput;
+    }
+    std::cout << *scene_arg << ": ok, a lesson (" << counted(lesson.lesson->steps.size(), "step") << ": \""
+              << lesson.lesson->title << "\"; open it with phonglab --lesson " << *scene_arg << ")\n";
+    return kExitOk;
+  }
   std::optional<Scene> scene = load_or_report(*scene_arg);
   if (!scene) return kExitBadInput;
   std::cout << *scene_arg << ": ok (" << counted(scene->spheres.size(), "sphere") << ", "

@@ -15,6 +15,7 @@
 #include "interaction/material_presets.h"
 #include "interaction/numbers.h"
 #include "interaction/scene_objects.h"
+#include "io/lesson_io.h"
 #include "io/scene/scene_io.h"
 
 namespace phonglab {
@@ -161,10 +162,18 @@ std::string SceneBuilder::drop_file(const std::string& path) {
   if (is_obj_path(path)) return add_object(ObjectRef::Kind::kMesh, path);
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".json" || ext == ".JSON") {
+    if (is_lesson_file(path)) {
+      v_.lesson_shell_.open_lesson(path);  // a lesson: opened as one (unsaved edits guarded as for Open)
+      return {};
+    }
     v_.files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
     return {};
   }
-  return refuse("dropped '" + path + "': neither a scene (.json) nor a mesh (.obj)");
+  // Said where one looks (the overlay's error line and the Scene file panel), not only in the
+  // Objects panel, which may be folded.
+  const std::string why = refuse("dropped '" + path + "': not a scene or a lesson (.json), nor a mesh (.obj)");
+  v_.files_.file_state().error_text = why;
+  return why;
 }
 
 std::optional<ImVec2> SceneBuilder::object_screen_point(int object) const {

@@ -63,6 +63,7 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "selected_light=" << v_.selected_light_ << "\n"
       << "hovered_light=" << v_.hovered_light_ << "\n"
       << "lights=" << scene.lights.size() << "\n"
+      << "scene_ambient=" << vec(scene.ambient) << "\n"
       << "camera_position=" << vec(scene.camera.position) << "\n"
       << "camera_look_at=" << vec(scene.camera.look_at) << "\n"
       << "camera_up=" << vec(scene.camera.up) << "\n"

@@ -180,24 +180,50 @@ void Sidebar::sidebar_ambient_fit() {
   const int m = v_.selected_material_;
   if (m < 0 || m >= static_cast<int>(scene.materials.size()) || !v_.schedule_.snapshot()) return;
   const auto index = static_cast<std::size_t>(m);
-  if (ImGui::Button("best constant ambient for this view")) {
-    v_.tools_.ambient_fit() = fit_ambient(*v_.schedule_.snapshot(), std::max(1, v_.schedule_.width() / 4), std::max(1, v_.schedule_.height() / 4), 4,
-                               v_.render_settings_.threads);
+  const auto fit_now = [&] {
+    v_.tools_.ambient_fit() = fit_ambient(*v_.schedule_.snapshot(), std::max(1, v_.schedule_.width() / 4),
+                                          std::max(1, v_.schedule_.height() / 4), 4, v_.render_settings_.threads);
     v_.tools_.ambient_fit_material() = scene.materials[index].name;
+  };
+  // The lecture's "ambient intensity of the scene": one Iₐ, ka as the materials give it.
+  if (ImGui::Button("best I\xE2\x82\x90 for this view")) {
+    fit_now();
+    Scene whole = scene;
+    whole.ambient = v_.tools_.ambient_fit()->fitted_ia;
+    for (int c = 0; c < 3; ++c) whole.ambient[c] = ui::tidy_float(whole.ambient[c]);
+    v_.apply_edit({edit::SetScene{std::move(whole)}, false});
+  }
+  ui::locate("scene.fit_ia");
+  ui::help_marker("Sets the scene's ambient intensity I\xE2\x82\x90 so that ka*I\xE2\x82\x90 (each material's own ka) is as "
+                  "near as one colour can be to the indirect light arriving at every visible point. Show 'indirect - ambient' "
+                  "to see what is left.");
+  ImGui::SameLine();
+  if (ImGui::Button("best ka")) {
+    fit_now();
     if (v_.tools_.ambient_fit()->hits[index] > 0) {
       Material fitted = scene.materials[index];
       fitted.ka = v_.tools_.ambient_fit()->fitted_ka[index];
+      for (int c = 0; c < 3; ++c) fitted.ka[c] = ui::tidy_float(fitted.ka[c]);
       v_.apply_edit({edit::SetMaterial{m, fitted}, false});
     }
   }
   ui::locate("materials.fit_ka");
-  ui::help_marker("Sets ka so that ka*Ia equals the indirect light this material receives, averaged over its hits in "
-                  "this view: the constant that stands in for it best. Show 'indirect | ambient' to see what is left.");
-  if (v_.tools_.ambient_fit() && v_.tools_.ambient_fit_material() == scene.materials[index].name && index < v_.tools_.ambient_fit()->hits.size()) {
-    const Color ka = v_.tools_.ambient_fit()->fitted_ka[index];
-    if (v_.tools_.ambient_fit()->hits[index] == 0) ImGui::TextDisabled("not seen in this view: ka kept");
-    else ImGui::TextDisabled("fitted ka (%.3g, %.3g, %.3g) over %llu hits", ka.x, ka.y, ka.z,
-                             static_cast<unsigned long long>(v_.tools_.ambient_fit()->hits[index]));
+  ui::help_marker("Sets this material's ka (within 0..1, what a surface can reflect) so that ka*I\xE2\x82\x90 equals the indirect "
+                  "light it receives, averaged over its hits in this view.");
+  const auto& fit = v_.tools_.ambient_fit();
+  if (fit && v_.tools_.ambient_fit_material() == scene.materials[index].name && index < fit->hits.size()) {
+    ImGui::TextDisabled("fitted I\xE2\x82\x90 (%.3g, %.3g, %.3g) over the view", fit->fitted_ia.x, fit->fitted_ia.y, fit->fitted_ia.z);
+    const Color ka = fit->fitted_ka[index], wanted = fit->wanted_ka[index];
+    if (fit->hits[index] == 0) {
+      ImGui::TextDisabled("%s is not seen in this view: its ka is kept", scene.materials[index].name.c_str());
+    } else if (ka_over_one(wanted)) {
+      ImGui::TextColored(ui::kWarningColor, "ka wanted (%.3g, %.3g, %.3g) is over 1, more than a surface reflects: "
+                         "ka set to (%.3g, %.3g, %.3g); raise I\xE2\x82\x90 instead", wanted.x, wanted.y, wanted.z, ka.x, ka.y, ka.z);
+      ui::locate("materials.fit_ka_over");
+    } else {
+      ImGui::TextDisabled("fitted ka (%.3g, %.3g, %.3g) over %llu hits", ka.x, ka.y, ka.z,
+                          static_cast<unsigned long long>(fit->hits[index]));
+    }
   }
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "interaction/numbers.h"
+
 namespace phonglab::ui {
 
 namespace {
@@ -75,7 +77,8 @@ Color apply_preset(Material& m, const MaterialPreset& p, SpecularModel model, co
   for (int c = 0; c < 3; ++c) {
     if (ambient[c] > 0 && std::isfinite(ambient[c])) scale[c] = p.assumed_ambient / ambient[c];
   }
-  m.ka = p.ka * scale;
+  // Scaled, to six significant digits: a saved file reads 0.0399, not 0.039900000000000005.
+  for (int c = 0; c < 3; ++c) m.ka[c] = scale[c] == 1 ? p.ka[c] : significant(p.ka[c] * scale[c], 6);
   m.kd = p.kd;
   m.ks = p.ks;
   m.n = preset_exponent(p, model);

@@ -28,6 +28,14 @@ double tidy_float(double value) {
 #endif
 }
 
+double significant(double v, int digits) {
+  if (!(v > 0) || !std::isfinite(v)) return v;
+  const int e = static_cast<int>(std::floor(std::log10(v))) - (digits - 1);
+  const double rounded = e < 0 ? std::round(v * std::pow(10.0, -e)) / std::pow(10.0, -e)
+                               : std::round(v / std::pow(10.0, e)) * std::pow(10.0, e);
+  return tidy_float(rounded);
+}
+
 double shown_value(double value, const char* format) {
   std::array<char, 64> shown{};
   std::snprintf(shown.data(), shown.size(), format, value);

@@ -12,6 +12,10 @@ namespace phonglab::ui {
 // slider or colour picker meant (0.366, not 0.3659999966621399).
 double tidy_float(double value);
 
+// `v` (positive) to `digits` significant digits (at most 7), as the double nearest that decimal
+// (0.6, not 0.60000000000000009); other values unchanged.
+double significant(double v, int digits);
+
 // The number a slider's text shows for `value` with its printf `format` ("%.3f", "x%.1f"): the
 // first number in the formatted text, or `value` itself when the text holds none.
 double shown_value(double value, const char* format);

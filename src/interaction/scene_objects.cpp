@@ -243,16 +243,6 @@ Aabb object_bounds(const Scene& s, int object) {
   return box;
 }
 
-// `v` to `digits` significant digits, as the double nearest that decimal (0.6, not
-// 0.60000000000000009).
-double significant(double v, int digits) {
-  if (!(v > 0) || !std::isfinite(v)) return v;
-  const int e = static_cast<int>(std::floor(std::log10(v))) - (digits - 1);
-  const double rounded = e < 0 ? std::round(v * std::pow(10.0, -e)) / std::pow(10.0, -e)
-                               : std::round(v / std::pow(10.0, e)) * std::pow(10.0, e);
-  return tidy_float(rounded);
-}
-
 Vec3 unit_or(const Vec3& v, const Vec3& otherwise) {
   const double length = glm::length(v);
   return length > 1e-12 && std::isfinite(length) ? v / length : otherwise;

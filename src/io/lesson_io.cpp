@@ -6,9 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <new>
+#include <sstream>
 #include <string_view>
+
+#include <nlohmann/json.hpp>
 
 #include "io/embedded_scenes.h"
 #include "io/scene/scene_io.h"
@@ -380,6 +384,19 @@ LessonLoad load_lesson_arg(const std::string& lesson_arg) {
   }
   const std::string dir = std::filesystem::path(lesson_arg).parent_path().string();
   return load_lesson_text(*text, lesson_arg, dir.empty() ? "." : dir);
+}
+
+bool looks_like_lesson(const std::string& text) {
+  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+  return json.is_object() && json.contains("steps");
+}
+
+bool is_lesson_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return looks_like_lesson(text.str());
 }
 
 }  // namespace phonglab

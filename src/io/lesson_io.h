@@ -26,4 +26,9 @@ LessonLoad load_lesson_text(const std::string& text, const std::string& file_nam
 // LESSON as the CLI and the previewer take it: an embedded lesson's name, else a file path.
 LessonLoad load_lesson_arg(const std::string& lesson_arg);
 
+// Whether a file's text is a lesson rather than a scene: a JSON object with "steps" (what only
+// a lesson has). A file that does not parse is not one (it is then reported as a scene).
+bool looks_like_lesson(const std::string& text);
+bool is_lesson_file(const std::string& path);
+
 }  // namespace phonglab

@@ -211,7 +211,15 @@ void stats_overlay(const StatsView& stats) {
   } else {
     ImGui::TextDisabled("waiting for the first image");
   }
-  if (!stats.scene_error.empty()) ImGui::TextColored(kErrorColor, "scene file error: see the Scene panel");
+  if (!stats.scene_error.empty()) {
+    // Where one looks: the error's first line itself (file:line:col: path: message), the rest
+    // in the Scene file panel.
+    const std::string first = stats.scene_error.substr(0, stats.scene_error.find('\n'));
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);
+    ImGui::TextColored(kErrorColor, "%s", first.c_str());
+    ImGui::PopTextWrapPos();
+    if (first.size() < stats.scene_error.size()) ImGui::TextDisabled("(more in the Scene file panel)");
+  }
   if (stats.frame.nan_count > 0) ImGui::TextColored(kErrorColor, "%" PRIu64 " NaN/Inf samples", stats.frame.nan_count);
   if (!stats.details) return;
   ImGui::Separator();

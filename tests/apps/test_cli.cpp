@@ -146,6 +146,24 @@ TEST_F(CliTest, ValidateCountsOneInTheSingular) {
   EXPECT_NE(lecture.out.find(" spheres, 1 plane, 0 triangles, 2 lights, "), std::string::npos) << lecture.out;
 }
 
+// A lesson file given to validate is checked as a lesson and said to be one (not "title: unknown
+// key" as a scene); a broken lesson gives the lesson's diagnostics, exit 1.
+TEST_F(CliTest, ValidateRecognisesALessonFile) {
+  const std::string lesson = write("my-lesson.json", R"({
+  "title": "One step",
+  "steps": [{"title": "Ambient", "caption": "ka only.", "scene": "lecture", "show": {"term": "ambient"}}]
+})");
+  const RunResult r = run_cli("validate " + lesson);
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find(": ok, a lesson (1 step"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("unknown key"), std::string::npos) << r.out;
+  const std::string broken = write("broken-lesson.json", R"({"title": "x", "steps": [{"title": "a", "scene": "nowhere"}]})");
+  const RunResult bad = run_cli("validate " + broken);
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.out.find("is a lesson file"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("broken-lesson.json:"), std::string::npos) << bad.out;
+}
+
 TEST_F(CliTest, BenchUsageNamesItself) {
   const RunResult help = run_cli("bench --help");
   EXPECT_EQ(help.exit_code, 0);

@@ -311,6 +311,19 @@ TEST(Indirect, FittedAmbientIsTheMeanIndirectTermOverAMaterialsHits) {
   const Color expected = Color(0.7, 0.4, 0.2) * Color(0.5, 0.8, 1.2) / Color(0.5, 1, 2);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(fit.fitted_ka[0][c], expected[c], 1e-12);
   EXPECT_EQ(fit.fitted_ka[1], Color(0.3));
+  // The scene's Iₐ with the materials' ka (0.3 here): ka·Iₐ = kd ⊙ B exactly, the unseen
+  // material not counted.
+  const Color sky_light = Color(0.7, 0.4, 0.2) * Color(0.5, 0.8, 1.2);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(fit.fitted_ia[c], sky_light[c] / 0.3, 1e-12);
+
+  // A dim Iₐ: the ka a material would need is over 1; it is offered clamped, the wish kept.
+  s.ambient = Color(0.1);
+  const AmbientFit dim = fit_ambient(PreparedScene(s), 24, 16, 3, 2);
+  EXPECT_TRUE(ka_over_one(dim.wanted_ka[0]));
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(dim.wanted_ka[0][c], sky_light[c] / 0.1, 1e-12);
+    EXPECT_EQ(dim.fitted_ka[0][c], std::min(sky_light[c] / 0.1, 1.0));
+  }
 
   const PreparedScene busy = room();
   const AmbientFit one = fit_ambient(busy, 20, 15, 2, 1);

@@ -452,6 +452,19 @@ TEST(MaterialPresets, KaIsScaledFromTheAmbientThePresetAssumesToTheScenes) {
   Color scale = apply_preset(m, gold, SpecularModel::kPhong, Color(1));
   EXPECT_EQ(scale, Color(0.2));
   for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(m.ka[c], 0.2 * gold.ka[c]);
+  // Written as the table's decimals scaled, to six significant digits: no float noise in a file.
+  for (int c = 0; c < 3; ++c) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", m.ka[c]);
+    char six[32];
+    std::snprintf(six, sizeof six, "%.6g", 0.2 * gold.ka[c]);
+    EXPECT_EQ(m.ka[c], std::strtod(six, nullptr)) << text;
+  }
+  Scene scene;
+  scene.materials = {m};
+  const std::string file = scene_to_json(scene, ".");
+  EXPECT_EQ(file.find("000000"), std::string::npos) << file;
+  EXPECT_EQ(file.find("99999"), std::string::npos) << file;
   EXPECT_EQ(preset_applied_text(gold, scale, Color(1)),
             "gold: ka scaled by 0.2 for this scene's I\u2090 = 1 (the preset assumes I\u2090 = 0.2)");
   scale = apply_preset(m, gold, SpecularModel::kPhong, Color(0.2));

@@ -98,10 +98,18 @@ AmbientFit fit_ambient(const PreparedScene& prepared, int width, int height, int
       fit.hits[m] += row.hits[m];
     }
   }
+  Color ka_indirect(0), ka_squared(0);  // Σ hits ka mean, Σ hits ka², per channel
   for (std::size_t m = 0; m < materials; ++m) {
     if (fit.hits[m] > 0) fit.mean_indirect[m] /= static_cast<double>(fit.hits[m]);
-    fit.fitted_ka.push_back(fit.hits[m] > 0 ? fitted_ambient(fit.mean_indirect[m], scene.ambient) : scene.materials[m].ka);
+    const Color wanted = fit.hits[m] > 0 ? fitted_ambient(fit.mean_indirect[m], scene.ambient) : scene.materials[m].ka;
+    fit.wanted_ka.push_back(wanted);
+    fit.fitted_ka.push_back(glm::clamp(wanted, Color(0), Color(1)));
+    const auto n = static_cast<double>(fit.hits[m]);
+    const Color& ka = scene.materials[m].ka;
+    ka_indirect += n * ka * fit.mean_indirect[m];
+    ka_squared += n * ka * ka;
   }
+  for (int c = 0; c < 3; ++c) fit.fitted_ia[c] = ka_squared[c] > 0 ? std::max(ka_indirect[c] / ka_squared[c], 0.0) : scene.ambient[c];
   return fit;
 }
 

@@ -30,14 +30,23 @@ Color fitted_ambient(const Color& target, const Color& ia);
 
 // "The best constant ambient for this view": per material, the mean of the indirect term over its
 // primary hits in a width x height image (`samples` per pixel, the render's sample positions and
-// gathers), and the ka whose ka·Ia equals that mean. The same numbers for any thread count.
+// gathers); the scene's Iₐ that makes ka·Iₐ (ka as the materials give it) nearest to the indirect
+// term over all those hits; and per material the ka whose ka·Ia equals its mean, as wanted and
+// as a material can have it (in [0, 1]). The same numbers for any thread count.
 struct AmbientFit {
   std::vector<Color> mean_indirect;  // by material; 0 where it has no hit
   std::vector<std::uint64_t> hits;   // primary hits counted, by material
-  std::vector<Color> fitted_ka;      // by material; its ka where it has no hit
+  std::vector<Color> wanted_ka;      // by material: mean / Ia per channel; its ka where it has no hit
+  std::vector<Color> fitted_ka;      // wanted_ka clamped to [0, 1]
+  // Per channel, the Iₐ minimising the sum over the hits of (ka·Iₐ − indirect)²:
+  // Σ_m hits_m ka_m mean_m / Σ_m hits_m ka_m² (materials with ka = 0 do not count); the scene's
+  // Iₐ where no hit has a ka in that channel.
+  Color fitted_ia{0};
   int samples = 0;
   int bounces = 0;
 };
+// Whether a wanted ka is over what a material can have (a channel over 1).
+inline bool ka_over_one(const Color& ka) { return ka.x > 1 || ka.y > 1 || ka.z > 1; }
 AmbientFit fit_ambient(const PreparedScene& prepared, int width, int height, int samples, int threads = 0);
 
 }  // namespace phonglab
