@@ -8,10 +8,14 @@
 #include <csignal>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -984,3 +988,29 @@ TEST(SceneLoader, IndirectBouncesOutsideOneToSixtyFourAreRefusedWithTheirPlace) 
 
 }  // namespace
 }  // namespace phonglab
+
+// The page's numbers (printf only) are the desktop's (std::to_chars, shortest round trip, plain
+// on a tie): 40, not 4e+01; 0.04, not 4e-02; 1e-05. Seeded, across magnitudes and signs.
+TEST(SceneWrite, ThePortableShortestNumberIsToCharsText) {
+  const auto to_chars_text = [](double x) {
+    std::array<char, 40> buf{};
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), x);
+    return std::string(buf.data(), r.ptr);
+  };
+  EXPECT_EQ(phonglab::shortest_number_text(40), "40");
+  EXPECT_EQ(phonglab::shortest_number_text(50), "50");
+  EXPECT_EQ(phonglab::shortest_number_text(0.04), "0.04");
+  EXPECT_EQ(phonglab::shortest_number_text(1e-05), "1e-05");
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> mantissa(-10, 10);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  for (int i = 0; i < 50000; ++i) {
+    double x = mantissa(rng) * std::pow(10.0, exponent(rng));
+    if (i % 3 == 0) x = std::round(x * 1000) / 1000;  // short decimals, as typed
+    if (i % 5 == 0) x = static_cast<double>(static_cast<float>(x));  // float-tidy values
+    ASSERT_EQ(phonglab::shortest_number_text(x), to_chars_text(x)) << i;
+  }
+  for (const double x : {0.0, 1.0, -1.0, 100.0, 1e15, 1e16, 1e21, 123456789012345680.0, 0.1 + 0.2, 5e-324, 1.7976931348623157e308}) {
+    EXPECT_EQ(phonglab::shortest_number_text(x), to_chars_text(x)) << x;
+  }
+}

@@ -57,4 +57,10 @@ std::string scene_to_json(const Scene& scene, const std::string& save_dir = "");
 // half-written file. Returns an empty string on success, else the error.
 std::string write_file_atomically(const std::string& path, const std::string& text);
 
+// A number as scene files write it: the shortest decimal that reads back to the same double, in
+// plain or exponent notation, whichever is shorter (plain on a tie): 40, 0.04, 1e-05, as
+// std::to_chars writes it. Computed with printf alone, so WebAssembly (whose libc++ has no
+// floating-point to_chars) writes the same text as the desktop; not for inf or NaN.
+std::string shortest_number_text(double x);
+
 }  // namespace phonglab

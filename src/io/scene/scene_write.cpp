@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <new>
@@ -35,6 +37,21 @@ namespace phonglab {
 
 using namespace scene_load;
 
+std::string shortest_number_text(double x) {
+  std::array<char, 40> sci{}, plain{};
+  int digits = 1;  // the fewest significant digits that read back
+  for (; digits < 17; ++digits) {
+    std::snprintf(sci.data(), sci.size(), "%.*e", digits - 1, x);
+    if (std::strtod(sci.data(), nullptr) == x) break;
+  }
+  std::snprintf(sci.data(), sci.size(), "%.*e", digits - 1, x);
+  // The exponent of the leading digit, as the exponent form has it (after its rounding).
+  const int exponent = std::atoi(std::strchr(sci.data(), 'e') + 1);
+  std::snprintf(plain.data(), plain.size(), "%.*f", std::max(0, digits - 1 - exponent), x);
+  const std::string a(plain.data()), b(sci.data());
+  return a.size() <= b.size() ? a : b;
+}
+
 namespace {
 
 // Shortest text that reads back to the same double; JSON has no inf/NaN, so those become null
@@ -42,14 +59,10 @@ namespace {
 std::string number_text(double x) {
   if (!std::isfinite(x)) return "null";
   if (x == 0 && std::signbit(x)) return "-0.0";  // "-0" would be read as the integer 0
-  std::array<char, 32> buf;
 #if defined(__EMSCRIPTEN__)
-  // Emscripten's libc++ has no floating-point to_chars: the fewest %g digits that read back.
-  for (int digits = 1;; ++digits) {
-    std::snprintf(buf.data(), buf.size(), "%.*g", digits, x);
-    if (digits == 17 || std::strtod(buf.data(), nullptr) == x) return buf.data();
-  }
+  return shortest_number_text(x);  // Emscripten's libc++ has no floating-point to_chars
 #else
+  std::array<char, 32> buf;
   const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), x);
   return std::string(buf.data(), r.ptr);
 #endif
