@@ -49,7 +49,9 @@ void FileBrowser::open(bool save, const std::string& document_path) {
   save_ = save;
   const std::string folder = listing_.folder.empty() ? ui::start_folder(document_path) : listing_.folder;
   listing_ = ui::list_folder(folder, browser_filter(save));
-  name_ = save ? (document_path.empty() ? std::string("scene.json")
+  // Save as offers the scene file type's own ending (*.phonglab.json, which the desktop opens
+  // with the previewer); an existing file keeps its name.
+  name_ = save ? (document_path.empty() ? std::string("scene.phonglab.json")
                                         : std::filesystem::path(document_path).filename().string())
                : std::string();
   error_.clear();

@@ -204,6 +204,8 @@ void Viewer::handle_keys() {
       if (press.key == GLFW_KEY_Z) shift ? redo() : undo();
       if (press.key == GLFW_KEY_Y) redo();
       if (press.key == GLFW_KEY_O) files_.browser().open(false, doc_.file_path());
+      // Ctrl+Q quits as the window's close button does: unsaved edits are asked about first.
+      if (press.key == GLFW_KEY_Q) files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kQuit, {}});
       if (press.key == GLFW_KEY_S) {
         // Ctrl+S saves the document's file; with none to save to (an embedded scene, an OBJ), or
         // with Shift, it asks where.
@@ -260,6 +262,7 @@ void Viewer::shortcut(int key, bool shift) {
     case GLFW_KEY_F: edits_.frame_requested = true; break;
     case GLFW_KEY_R: edits_.reset_requested = true; break;
     case GLFW_KEY_H: sidebar_visible_ = !sidebar_visible_; ++sidebar_toggles_; break;
+    case GLFW_KEY_L: display_.light_markers = !display_.light_markers; break;  // the lights' markers
     case GLFW_KEY_M:
       instruments_.small_multiples = !instruments_.small_multiples;
       edits_.settings = true;

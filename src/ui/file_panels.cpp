@@ -179,6 +179,7 @@ bool file_browser_dialog(bool open_now, const FileBrowserView& view, FileBrowser
   ImGui::SetNextWindowSize(ImVec2(viewport->Size.x * 0.6f, viewport->Size.y * 0.7f), ImGuiCond_Appearing);
   if (open_now) ImGui::OpenPopup(title);
   ImGui::SetNextWindowPos(viewport->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(1.0f);  // opaque: the image behind it must not show through the list
   if (!ImGui::BeginPopupModal(title, nullptr)) return false;
   const FolderListing& listing = *view.listing;
   ImGui::TextWrapped("%s", listing.folder.c_str());

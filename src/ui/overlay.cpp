@@ -150,12 +150,12 @@ std::string term_caption(Term term, bool blinn) {
 }
 
 void keys_help() {
-  static constexpr std::array<std::array<const char*, 2>, 25> kRows = {{
+  static constexpr std::array<std::array<const char*, 2>, 27> kRows = {{
       {"left-drag", "orbit: the scene follows the hand"},
       {"right-drag, wheel", "dolly"},
       {"middle-drag, Shift+left-drag", "pan"},
       {"click", "select the clicked object and its material"},
-      {"drag the selected object", "slide it on the floor (V: up, down; X, Y, Z: one axis)"},
+      {"drag the selected object's handle", "slide it on the floor (Alt: by its surface; V: up, down; X, Y, Z: one axis)"},
       {"Ctrl+click", "probe the pixel (its equation, its ray tree)"},
       {"drag a light marker or arrow", "move that light"},
       {"1", "the full image"},
@@ -166,10 +166,12 @@ void keys_help() {
       {"F", "frame the scene"},
       {"R", "reset the camera to the file's"},
       {"H", "hide or show the panels"},
+      {"L", "hide or show the lights' markers"},
       {"Ctrl+Z", "undo"},
       {"Ctrl+Shift+Z, Ctrl+Y", "redo"},
       {"Ctrl+O", "open a scene or a mesh (the file browser)"},
       {"Ctrl+S, Ctrl+Shift+S", "save, save as"},
+      {"Ctrl+Q", "quit (unsaved edits are asked about)"},
       {"drop a .json / .obj", "open it / add it as a mesh object"},
       {"Right, Page Down, Space", "lesson: the answer, then the next step"},
       {"Left, Page Up", "lesson: back"},

@@ -1588,7 +1588,17 @@ material_preset matte gold
 wait_frames 3
 save_as $dir/preset.json
 wait_frames 3
-quit
+key L
+wait_frames 3
+dump_state $dir/d3.txt
+set material matte kd 0.5 0.5 0.5
+wait_frames 3
+key Q ctrl
+wait_frames 3
+dump_state $dir/d4.txt
+modal discard
+wait_frames 300
+fail Ctrl+Q and Discard did not quit
 EOF
   "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
   echo "$?" >"$dir/exit_code"
@@ -1602,6 +1612,8 @@ check_drops() {
     test -n "$(state "$dir/d1.txt" error | grep 'notes.txt')"
   check "a lesson .json dropped opens as a lesson ($(state "$dir/d2.txt" lesson), step $(state "$dir/d2.txt" lesson_step)), no scene error" \
     test "$(state "$dir/d2.txt" lesson)" = my-lesson -a "$(state "$dir/d2.txt" lesson_step)" = 1 -a -z "$(state "$dir/d2.txt" error)"
+  check "L hides the lights' markers ($(state "$dir/d3.txt" light_markers))" test "$(state "$dir/d3.txt" light_markers)" = 0
+  check "Ctrl+Q with unsaved edits asks first (modal $(state "$dir/d4.txt" modal)), and Discard quits" test "$(state "$dir/d4.txt" modal)" = 1
   check "a preset scaled to the scene's Ia is saved without float noise ($(grep -o '"ka": \[[^]]*\]' "$dir/preset.json" | head -n 3 | tr '\n' ' '))" \
     test -s "$dir/preset.json" -a -z "$(grep -E '[0-9]{9,}' "$dir/preset.json")"
 }
