@@ -64,11 +64,13 @@ commands:
          --term indirect: that term alone at the primary hit. B: its bounces,
          1..64 (default: the scene's "indirect": {"bounces"}, else 4).
       --stats: the times, rays by kind and Mrays/s as JSON (default: none).
-  probe [SCENE] --pixel X,Y [--json] [--width W] [--height H]
+  probe [SCENE] --pixel X,Y [--json] [--width W] [--height H] [--fov-y DEG]
         [--ambient indirect [--bounces B] [--spp N]]
       The illumination equation of that pixel's centre ray, term by term, as
       text (--json: as JSON). W x H: the image the pixel is in (default: the
-      scene's image size). --ambient indirect adds ka*Ia beside the indirect
+      scene's image size); with the previewer's view size and its dump_state
+      camera_fov as --fov-y, the pixel the previewer probed. --ambient
+      indirect adds ka*Ia beside the indirect
       term's estimate at the hit, its standard error over N samples (default
       1024) and the ka that would match it.
   figure [SCENE] -o OUT.png [--width W] [--height H] [--spp N] [--threads N]
@@ -225,6 +227,7 @@ int cmd_probe(Args& args) {
   const bool as_json = args.take_flag("--json");
   const auto width = args.take_int("--width", 1, 16384);
   const auto height = args.take_int("--height", 1, 16384);
+  const auto fov_y = args.take_open_range("--fov-y", 0, 180);
   const AmbientArgs ambient = take_ambient(args);
   const auto samples = args.take_int("--spp", 1, 1 << 24);
   const std::string scene_arg = args.take_positional().value_or(default_scene_name());
@@ -239,6 +242,7 @@ int cmd_probe(Args& args) {
   if (!scene) return kExitBadInput;
   if (width) scene->width = *width;
   if (height) scene->height = *height;
+  if (fov_y) scene->camera.fov_y_deg = *fov_y;
   if (x < 0 || y < 0 || x >= scene->width || y >= scene->height) {
     throw UsageError{"--pixel " + *pixel + " is outside the " + std::to_string(scene->width) + "x" +
                      std::to_string(scene->height) + " image"};

@@ -98,6 +98,21 @@ std::string Instruments::compare_caption() const {
                     static_cast<double>(v_.instruments_.difference_gain));
 }
 
+std::string Instruments::probe_cli_command() const {
+  const std::string name = !v_.doc_.embedded_name().empty() ? v_.doc_.embedded_name() : v_.doc_.file_path();
+  const Scene* scene = v_.schedule_.snapshot() ? &v_.schedule_.snapshot()->scene() : nullptr;
+  if (!probed_.tree || scene == nullptr || name.empty()) return "";
+  const Camera& loaded = v_.doc_.loaded_camera();
+  if (v_.doc_.dirty() || scene->camera.position != loaded.position || scene->camera.look_at != loaded.look_at ||
+      scene->camera.up != loaded.up) {
+    return "(the view or the scene changed since it was read: save it for the same pixel in phonglab-cli)";
+  }
+  char command[1024];
+  std::snprintf(command, sizeof command, "phonglab-cli probe %s --pixel %d,%d --width %d --height %d --fov-y %.17g",
+                name.c_str(), probed_.x, probed_.y, v_.schedule_.width(), v_.schedule_.height(), scene->camera.fov_y_deg);
+  return command;
+}
+
 bool Instruments::heat_shown() const {
   return v_.render_settings_.term == Term::kRays && v_.instruments_.compare == 0 && !v_.instruments_.small_multiples;
 }

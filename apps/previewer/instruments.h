@@ -60,7 +60,10 @@ class Instruments {
   bool heat_shown() const;                       // the rays view is on screen as a heat map
   bool shows_indirect() const;                   // an ambient view other than ka·Ia is chosen
   void set_heat_map(bool on);                    // switches the rays view on (remembering the term) or back
-  std::string compare_caption() const;           // what the compare view shows, or why it cannot
+  std::string compare_caption() const;
+  // The probed pixel as `phonglab-cli probe` takes it (the scene's name, the view's size and field
+  // of view), or why it cannot be had; "" with no probe or no name to give.
+  std::string probe_cli_command() const;           // what the compare view shows, or why it cannot
   // The render pixel under a window point, and the viewport cell (small multiples) it lies in.
   std::optional<std::array<int, 2>> render_pixel_at(ImVec2 mouse) const;
 

@@ -184,6 +184,7 @@ void ScriptDriver::write_probe_state(std::ostream& out) const {
   if (!v_.tools_.probe().tree) return;
   const Color total = v_.tools_.probe().tree->root.total;
   const ImVec2 on_screen = v_.overlays_.probe_point_in_cell(v_.cells().count() - 1);
+  out << "probe_cli=" << v_.tools_.probe_cli_command() << "\n";
   out << "probe_pixel=" << v_.tools_.probe().x << " " << v_.tools_.probe().y << "\n"
       << "probe_screen=" << on_screen.x << " " << on_screen.y << "\n"
       << "probe_hit=" << (v_.tools_.probe().tree->root.hit ? 1 : 0) << "\n"

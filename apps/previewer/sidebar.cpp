@@ -273,6 +273,7 @@ void Sidebar::sidebar_probe() {
     view.occluders = v_.tools_.probe().occluders;
     view.indirect = v_.tools_.probe().tree ? &v_.tools_.probe().indirect : nullptr;
     view.exposure_ev = v_.display_.exposure_ev;
+    view.cli_command = v_.tools_.probe_cli_command();
     if (v_.tools_.probe().tree) {
       const double gain = std::exp2(static_cast<double>(v_.display_.exposure_ev));
       for (int c = 0; c < 3; ++c) {

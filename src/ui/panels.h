@@ -150,6 +150,7 @@ struct ProbeView {
   unsigned char srgb[3] = {};       // the displayed 8-bit value (exposure and curve applied)
   float exposure_ev = 0;
   const IndirectProbe* indirect = nullptr;  // what ambient stands in for at the pixel
+  std::string cli_command;          // the same pixel in phonglab-cli probe ("" when the scene has no name to give)
 };
 // The probed pixel: P, N, V, per light L, R (or H), N.L, R.V (or N.H), the powered factor,
 // visibility, each term's RGB, the children and the totals, to four significant digits (every

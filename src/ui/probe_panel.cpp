@@ -140,6 +140,13 @@ void probe_panel(const ProbeView& view, bool& all_digits) {
   const ProbeNode& root = probe.root;
   const bool blinn = view.scene->specular_model == SpecularModel::kBlinn;
   ImGui::Text("pixel (%d, %d) of %dx%d, centre ray", probe.x, probe.y, view.image_width, view.image_height);
+  if (!view.cli_command.empty()) {
+    // The same pixel from the command line (the saved scene's): a student's own numbers to diff.
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s", view.cli_command.c_str());
+    ImGui::PopTextWrapPos();
+    locate("probe.cli_command");
+  }
   ImGui::SameLine();
   ImGui::Checkbox("all digits", &all_digits);
   rgb_text("linear", root.total, d);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -162,6 +164,49 @@ TEST_F(CliTest, ValidateRecognisesALessonFile) {
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.out.find("is a lesson file"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("broken-lesson.json:"), std::string::npos) << bad.out;
+}
+
+// The man page says what --help says: every option --help names is in the man page and every
+// option the man page names is in --help (bench's own options are bench --help's), and its
+// probe example hits a pixel some light reaches.
+TEST_F(CliTest, TheManPageNamesTheOptionsHelpNames) {
+  const auto options = [](const std::string& text, const std::string& dash) {
+    std::set<std::string> out;
+    for (std::size_t at = text.find(dash); at != std::string::npos; at = text.find(dash, at + 1)) {
+      std::size_t end = at + dash.size();
+      std::string name = "--";
+      while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '-' ||
+                                   text.compare(end, 2, "\\-") == 0)) {
+        if (text.compare(end, 2, "\\-") == 0) {
+          name += '-';
+          end += 2;
+        } else {
+          name += text[end++];
+        }
+      }
+      if (name.size() > 2) out.insert(name);
+    }
+    return out;
+  };
+  std::ifstream in(std::string(PHONGLAB_SOURCE_DIR) + "/docs/man/phonglab-cli.1");
+  std::stringstream man;
+  man << in.rdbuf();
+  std::set<std::string> in_man = options(man.str(), "\\-\\-");
+  in_man.erase("--install");  // "cmake --install", where the page says how it was installed
+  const std::set<std::string> in_help = options(run_cli("--help").out, "--");
+  const std::set<std::string> in_bench = options(run_cli("bench --help").out, "--");
+  for (const std::string& o : in_help) EXPECT_TRUE(in_man.count(o)) << o << " is in --help, not in the man page";
+  for (const std::string& o : in_man) EXPECT_TRUE(in_help.count(o) || in_bench.count(o)) << o << " is in the man page, not in --help";
+  EXPECT_GT(in_help.size(), 10u);
+  const std::size_t example = man.str().find("phonglab-cli probe lecture \\-\\-pixel ");
+  ASSERT_NE(example, std::string::npos);
+  const std::string pixel = man.str().substr(example + 37, man.str().find('\n', example) - example - 37);
+  const RunResult probe = run_cli("probe lecture --pixel " + pixel + " --json");
+  ASSERT_EQ(probe.exit_code, 0) << probe.out;
+  const nlohmann::json j = nlohmann::json::parse(probe.out);
+  double lit = 0;
+  for (const auto& light : j["lights"]) lit += light.value("visible", false) && light.value("n_dot_l", 0.0) > 0 ? 1 : 0;
+  EXPECT_GT(lit, 0) << "the example's pixel (" << pixel << ") is lit: " << probe.out.substr(0, 400);
 }
 
 TEST_F(CliTest, BenchUsageNamesItself) {

@@ -1561,6 +1561,13 @@ check_probe_text() {
   y2=$(state "$dir/p2.txt" item_rays.depth_cut | cut -d' ' -f2)
   check "ticking 'cut recursion at depth' with a deep probe leaves the checkbox where it was (y $y1 -> $y2; cut $(state "$dir/p2.txt" depth_cut))" \
     test -n "$y1" -a "$y1" = "$y2" -a "$(state "$dir/p2.txt" depth_cut)" != -1
+  check "the probe names the same pixel for phonglab-cli ($(state "$dir/p1.txt" probe_cli))" \
+    test -n "$(state "$dir/p1.txt" probe_cli | grep '^phonglab-cli probe lecture --pixel 520,440 ')"
+  local cli_total
+  cli_total=$($CLI $(state "$dir/p1.txt" probe_cli | cut -d' ' -f2-) --json 2>/dev/null |
+    python3 -c 'import json, sys; print(" ".join("%g" % v for v in json.load(sys.stdin)["total"]))')
+  check "... and the CLI's total there is the previewer's ($cli_total against $(state "$dir/p1.txt" probe_total))" \
+    test -n "$cli_total" -a "$cli_total" = "$(state "$dir/p1.txt" probe_total)"
   check "the specular factor's value stands apart from its label ($(state "$dir/p3.txt" item_probe.spec_factor_label) | $(state "$dir/p3.txt" item_probe.spec_factor))" \
     apart "$dir/p3.txt" item_probe.spec_factor_label item_probe.spec_factor
 }
