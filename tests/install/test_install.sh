@@ -21,7 +21,8 @@ check "cmake --install succeeds" test $? = 0
 for f in bin/phonglab bin/phonglab-cli bin/phonglab-bench share/man/man1/phonglab.1 share/man/man1/phonglab-cli.1 \
          share/applications/phonglab.desktop share/icons/hicolor/scalable/apps/phonglab.svg \
          share/mime/packages/phonglab.xml share/doc/phonglab/README.md share/doc/phonglab/docs/previewer.md \
-         share/doc/phonglab/docs/scene-format.md; do
+         share/doc/phonglab/docs/scene-format.md share/doc/phonglab/docs/images/web-page.png \
+         share/doc/phonglab/docs/images/previewer.png; do
   check "installs $f" test -s "$prefix/$f"
 done
 check "the installed phonglab-cli renders" "$prefix/bin/phonglab-cli" render lecture --width 64 --height 36 -o "$work/x.png"
