@@ -77,6 +77,7 @@ void WebView::adopt_step(int index) {
   char source[512];
   std::snprintf(source, sizeof source, "lesson '%s', step %d: %s", lesson.name.c_str(), index + 1, step.scene.c_str());
   session_.adopt(step.prepared_scene, source);
+  step_scene_ = step.scene;
 }
 
 void WebView::apply_view(const StepView& view) {

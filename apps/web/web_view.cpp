@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -38,6 +39,7 @@ Color scaled(const Color& c, double value) { return largest(c) > 0 ? c * (value 
 
 std::string WebView::open(const std::string& scene_arg) {
   if (!session_.open(scene_arg)) return session_.document().error_text();
+  step_scene_.clear();
   tree_pixel_.reset();
   a_.clear();
   close_lesson();
@@ -46,6 +48,20 @@ std::string WebView::open(const std::string& scene_arg) {
 }
 
 std::string WebView::scene_json() const { return scene_to_json(session_.scene()); }
+
+std::string WebView::scene_label() const {
+  const SceneDocument& document = session_.document();
+  if (!document.embedded_name().empty()) return document.embedded_name();
+  if (!document.file_path().empty()) return std::filesystem::path(document.file_path()).filename().string();
+  return step_scene_.empty() ? document.source() : step_scene_;
+}
+
+int WebView::view_term() const {
+  if (view_.small_multiples) return -2;
+  if (view_.term == Term::kRays) return -3;
+  const int term = static_cast<int>(view_.term);
+  return term <= static_cast<int>(Term::kRefraction) ? term : -1;
+}
 
 void WebView::set_size(int width, int height) {
   width_ = std::max(width, 1);
@@ -119,6 +135,9 @@ bool WebView::step() {
   return true;
 }
 
+int WebView::trace_width() const { return view_.small_multiples ? std::max(1, width_ / kColumns) : width_; }
+int WebView::trace_height() const { return view_.small_multiples ? std::max(1, height_ / kRows) : height_; }
+
 // The page's levels: 1/8, 1/4, 1/2 and full resolution of the image (of one cell of the small
 // multiples' grid).
 std::vector<ProgressiveLevel> WebView::levels() const {
@@ -148,8 +167,13 @@ void WebView::begin_generation() {
   eye_ = view_shading_eye(*prepared_, view_, width_, height_);
   next_ = FromTrees::kTrace;
   live_shown_ = reshaded_ = false;
-  if (!trees_ || !trees_apply() || trees_->scope_for(*prepared_, width_, height_, eye_) == EditScope::kRetrace) return;
-  const bool linear = trees_->recombines(*prepared_, width_, height_, pass_term(), eye_, view_.small_multiples);
+  // The trees are of the traced image's size: one cell of the grid in the small multiples, so a
+  // switch between the grid and one image traces anew (re-shading trees of the other size into
+  // this one's pixels drew stripes and stray discs).
+  if (!trees_ || !trees_apply() || trees_->scope_for(*prepared_, trace_width(), trace_height(), eye_) == EditScope::kRetrace) {
+    return;
+  }
+  const bool linear = trees_->recombines(*prepared_, trace_width(), trace_height(), pass_term(), eye_, view_.small_multiples);
   next_ = interacting_ && linear ? FromTrees::kLive : FromTrees::kReshade;
   level_ = 3;
 }
@@ -161,8 +185,7 @@ bool WebView::trees_apply() const {
 }
 
 bool WebView::shade_from_trees() {
-  const int w = view_.small_multiples ? std::max(1, width_ / kColumns) : width_;
-  const int h = view_.small_multiples ? std::max(1, height_ / kRows) : height_;
+  const int w = trace_width(), h = trace_height();
   if (next_ == FromTrees::kLive) {
     accum_.reset(w, h, false);
     live_shown_ = trees_->recombine(*prepared_, pass_term(), threads_, accum_).completed;
@@ -184,9 +207,7 @@ bool WebView::shade_from_trees() {
 void WebView::record_trees() {
   if (!trees_apply() || reshaded_) return;
   constexpr std::size_t kBudget = std::size_t{256} << 20;
-  trees_ = RayTrees::record(prepared_, width_ / (view_.small_multiples ? kColumns : 1),
-                            height_ / (view_.small_multiples ? kRows : 1), eye_, threads_, kBudget, nullptr, true,
-                            std::move(trees_));
+  trees_ = RayTrees::record(prepared_, trace_width(), trace_height(), eye_, threads_, kBudget, nullptr, true, std::move(trees_));
 }
 
 emscripten::val WebView::pixels() const {

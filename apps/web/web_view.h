@@ -37,8 +37,16 @@ class WebView {
   std::string open(const std::string& scene_arg);
   std::string scene_json() const;
   std::string source() const { return session_.document().source(); }
+  // What the scene list shows for the document: an embedded scene's name, a file's name, or the
+  // scene a lesson's step showed (also after the lesson is left).
+  std::string scene_label() const;
+  // What the image shows, for the panel's buttons: 0..5 the full image or a term, -2 the small
+  // multiples, -3 the heat map, -1 another view (a lesson's indirect term).
+  int view_term() const;
 
   void set_size(int width, int height);
+  int width() const { return width_; }
+  int height() const { return height_; }
   void set_target(int spp) { target_ = std::max(spp, 1); }
   void set_term(int term);            // 0..5: the full image, then the five terms
   // The heat map: rays per pixel on the core's perceptual ramp, 0 to the image's maximum
@@ -135,6 +143,8 @@ class WebView {
   void edited_by_hand();
   void restart();
   std::vector<ProgressiveLevel> levels() const;
+  int trace_width() const;   // the traced image's size at full resolution: one cell in the small multiples
+  int trace_height() const;
   int live_level();
   void begin_generation();  // the view's scene prepared, and how its first sample is made
   bool trees_apply() const;
@@ -175,6 +185,7 @@ class WebView {
   FromTrees next_ = FromTrees::kTrace;
   bool live_shown_ = false, reshaded_ = false;
   StepView view_;                      // what the image shows (the term keys, a lesson's step)
+  std::string step_scene_;             // the scene a lesson's step adopted (scene_label), "" for a file or an embedded scene
   std::optional<Vec3> eye_;            // "move your head"'s eye, from view_ at each restart
   ProgressiveFrame shown_;              // the image on screen before a compare or the heat map
   SnapshotA a_;                         // A of a compare (a lesson's: its first full image)

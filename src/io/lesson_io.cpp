@@ -9,7 +9,6 @@
 #include <fstream>
 #include <map>
 #include <new>
-#include <sstream>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
@@ -386,17 +385,54 @@ LessonLoad load_lesson_arg(const std::string& lesson_arg) {
   return load_lesson_text(*text, lesson_arg, dir.empty() ? "." : dir);
 }
 
+namespace {
+
+// Looks for the key "steps" in the top-level object without building the document: a SAX pass
+// that keeps nothing but its depth and stops at the answer, so a scene file of any size is told
+// from a lesson in constant memory (the scene loader's memory budget then sees the file alone).
+struct LessonKeyScan final : nlohmann::json_sax<nlohmann::json> {
+  int depth = 0;
+  bool object_at_top = false;
+  bool found = false;
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override {
+    if (depth == 0) object_at_top = true;
+    ++depth;
+    return true;
+  }
+  bool end_object() override { return --depth > 0; }
+  bool start_array(std::size_t) override { return ++depth > 1; }  // a top-level array is no lesson
+  bool end_array() override { --depth; return true; }
+  bool key(string_t& k) override {
+    if (depth == 1 && k == "steps") {
+      found = true;
+      return false;  // the answer: stop reading
+    }
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+};
+
+}  // namespace
+
 bool looks_like_lesson(const std::string& text) {
-  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
-  return json.is_object() && json.contains("steps");
+  LessonKeyScan scan;
+  nlohmann::json::sax_parse(text, &scan, nlohmann::json::input_format_t::json, false);
+  return scan.object_at_top && scan.found;
 }
 
 bool is_lesson_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
-  std::ostringstream text;
-  text << in.rdbuf();
-  return looks_like_lesson(text.str());
+  LessonKeyScan scan;
+  nlohmann::json::sax_parse(in, &scan, nlohmann::json::input_format_t::json, false);
+  return scan.object_at_top && scan.found;
 }
 
 }  // namespace phonglab

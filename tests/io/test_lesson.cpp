@@ -613,3 +613,18 @@ TEST(Handout, EachStepLinksToTheLivePage) {
 
 }  // namespace
 }  // namespace phonglab
+
+// A lesson file is told from a scene by a top-level "steps", read without building the document.
+TEST(LessonFiles, ALessonIsToldFromASceneByItsTopLevelSteps) {
+  using phonglab::is_lesson_file;
+  using phonglab::looks_like_lesson;
+  EXPECT_TRUE(looks_like_lesson(R"({"title": "x", "steps": []})"));
+  EXPECT_TRUE(looks_like_lesson(R"({"title": {"a": [1, {"b": 2}]}, "steps": [{"title": "a"}]})"));
+  EXPECT_FALSE(looks_like_lesson(R"({"camera": {"fov_y": 40}, "objects": []})"));
+  EXPECT_FALSE(looks_like_lesson(R"({"materials": {"steps": {"kd": 0.5}}})")) << "a material named steps";
+  EXPECT_FALSE(looks_like_lesson(R"([{"steps": []}])"));
+  EXPECT_TRUE(looks_like_lesson(R"({"title": "x", "steps")")) << "found before the error: a broken lesson";
+  EXPECT_FALSE(looks_like_lesson(R"({"title": "x", "step)"));
+  EXPECT_FALSE(looks_like_lesson(""));
+  EXPECT_FALSE(is_lesson_file("/no/such/file.json"));
+}
