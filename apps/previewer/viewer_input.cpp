@@ -147,7 +147,7 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
   switch (drag_.mode) {
     case DragMode::kOrbit:
       // The scene follows the hand: drag right, it turns right; drag down, it is seen from higher up.
-      ui::orbit(camera, -delta.x * per_px, delta.y * per_px);
+      ui::orbit_in(scene, camera, -delta.x * per_px, delta.y * per_px);  // never under the floor
       move_camera(camera);
       break;
     case DragMode::kPan: {

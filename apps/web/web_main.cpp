@@ -56,6 +56,7 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("shownGeneration", &WebView::shown_generation)
       .function("pixels", &WebView::pixels)
       .function("orbit", &WebView::orbit)
+      .function("resetCamera", &WebView::reset_camera)
       .function("dolly", &WebView::dolly)
       .function("pan", &WebView::pan)
       .function("lightMarkers", &WebView::light_markers)

@@ -216,9 +216,11 @@ emscripten::val WebView::pixels() const {
 
 void WebView::orbit(double dx_px, double dy_px) {
   Camera camera = session_.scene().camera;
-  ui::orbit(camera, -dx_px * 0.01, dy_px * 0.01);
+  ui::orbit_in(session_.scene(), camera, -dx_px * 0.01, dy_px * 0.01);  // never under the floor
   apply({edit::SetCamera{camera}, false});
 }
+
+void WebView::reset_camera() { apply({edit::SetCamera{session_.document().loaded_camera()}, false}); }
 
 void WebView::dolly(double steps) {
   Camera camera = session_.scene().camera;

@@ -77,7 +77,8 @@ class WebView {
 
   // Navigation, as on the desktop: a drag orbits about look_at, the wheel dollies, a shift-drag
   // (or the middle button) pans.
-  void orbit(double dx_px, double dy_px);
+  void orbit(double dx_px, double dy_px);  // never under the scene's floor (ui::orbit_in)
+  void reset_camera();                      // the camera the document was read with (the key R)
   void dolly(double steps);
   void pan(double dx_px, double dy_px);
   // The point lights' markers: JSON [[x, y] or null (behind the camera or not a point light), ...]

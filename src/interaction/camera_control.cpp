@@ -10,6 +10,7 @@
 #include "core/accel/accel.h"
 #include "core/scene/camera.h"
 #include "core/teaching/ray_tree_view.h"
+#include "interaction/scene_objects.h"
 
 namespace phonglab::ui {
 
@@ -75,6 +76,29 @@ void orbit(Camera& camera, double yaw_rad, double pitch_rad) {
   Camera moved = camera;
   moved.position = camera.look_at + offset;
   if (camera_is_valid(moved)) camera = moved;
+}
+
+void orbit_above(Camera& camera, double yaw_rad, double pitch_rad, const Vec3& floor_point, const Vec3& floor_normal) {
+  const auto height = [&](const Camera& c) { return glm::dot(c.position - floor_point, floor_normal); };
+  const double before = height(camera);
+  Camera moved = camera;
+  orbit(moved, yaw_rad, pitch_rad);
+  // A hair above the floor at least (its scale: the eye's distance to look_at), or no lower than
+  // it was when it was already that low.
+  const double margin = 1e-3 * glm::length(camera.position - camera.look_at);
+  if (before > 0 && height(moved) < std::min(margin, before)) {
+    moved = camera;
+    orbit(moved, yaw_rad, 0);
+  }
+  camera = moved;
+}
+
+void orbit_in(const Scene& scene, Camera& camera, double yaw_rad, double pitch_rad) {
+  if (const std::optional<Floor> floor = find_floor(scene, camera)) {
+    orbit_above(camera, yaw_rad, pitch_rad, floor->point, floor->normal);
+  } else {
+    orbit(camera, yaw_rad, pitch_rad);
+  }
 }
 
 void dolly(Camera& camera, double factor, double max_distance) {

@@ -21,6 +21,13 @@ std::string camera_problem(const Camera& camera);
 // Turns the camera about look_at: `yaw_rad` about the up vector, `pitch_rad` towards up
 // (positive looks more from above); stops short of the poles so up never aligns with the view.
 void orbit(Camera& camera, double yaw_rad, double pitch_rad);
+// orbit, but an eye above the floor (the plane through `floor_point` with normal
+// `floor_normal`) is never taken under it: a pitch that would is dropped, the yaw kept. A student's
+// drag must not leave the room through its floor (an eye under it sees the floor's back: nothing).
+void orbit_above(Camera& camera, double yaw_rad, double pitch_rad, const Vec3& floor_point, const Vec3& floor_normal);
+// The hand's orbit in a scene: orbit_above its floor (find_floor), plain orbit without one. The
+// desktop's drag and the page's.
+void orbit_in(const Scene& scene, Camera& camera, double yaw_rad, double pitch_rad);
 
 // Scales the distance from look_at by `factor` (< 1 moves closer), never reaching look_at and
 // never beyond `max_distance` (a camera already beyond it may only come closer).

@@ -10,8 +10,10 @@
 #include "core/teaching/ray_tree_view.h"
 #include "interaction/camera_control.h"
 #include "interaction/numbers.h"
+#include "interaction/scene_objects.h"
 #include "io/embedded_scenes.h"
 #include "io/scene/scene_io.h"
+#include "tests/support/test_support.h"
 
 namespace phonglab {
 namespace {
@@ -190,4 +192,28 @@ TEST(ProbeNumbers, WrapsAtSpacesOnly) {
   EXPECT_EQ(squeezed, expected);
   EXPECT_EQ(phonglab::ui::wrap_at_spaces("short", 16, measure), "short");
   EXPECT_EQ(phonglab::ui::wrap_at_spaces("", 16, measure), "");
+}
+
+// The hand's orbit never takes the eye under the scene's floor (a student's 30-pixel drag up took
+// it there): the pitch that would is dropped, the yaw kept; without a floor it turns freely.
+TEST(CameraControl, TheHandsOrbitStaysAboveTheFloor) {
+  using namespace phonglab;
+  Scene s = load_scene_or_fail("lecture");
+  const ui::Floor floor = *ui::find_floor(s, s.camera);
+  Camera c = s.camera;
+  for (int i = 0; i < 200; ++i) {
+    ui::orbit_in(s, c, 0.01, -0.05);  // downwards, turning a little
+    ASSERT_GT(glm::dot(c.position - floor.point, floor.normal), 0) << i;
+  }
+  const Vec3 before = c.position;
+  ui::orbit_in(s, c, 0.2, -0.5);
+  EXPECT_NE(c.position, before) << "the yaw is kept";
+  ui::orbit_in(s, c, 0, 0.3);
+  EXPECT_GT(glm::dot(c.position - floor.point, floor.normal), glm::dot(before - floor.point, floor.normal))
+      << "upwards it goes as before";
+  Scene open_sky = s;
+  open_sky.planes.clear();
+  Camera free = open_sky.camera;
+  for (int i = 0; i < 60; ++i) ui::orbit_in(open_sky, free, 0, -0.05);
+  EXPECT_LT(glm::dot(free.position - floor.point, floor.normal), 0) << "no floor: nothing to stay above";
 }
