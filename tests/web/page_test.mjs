@@ -312,6 +312,134 @@ let one_thread_image;
   await page.close();
 }
 
+// 6. The page as a student meets it (each shown sharp once with the bug put back).
+// 6a. M: every cell is the CLI's term image of the same view (cells a third of the width, two
+// rows), bit for bit; the cells are labelled.
+{
+  const page = await open('scene=lecture&size=480x270&spp=1');
+  await image_at(page, 1);
+  await (await page.$('#image')).click({ offset: { x: 5, y: 5 } });
+  await page.keyboard.press('3');  // the single view's trees recorded first: the grid must not re-shade them
+  await image_at(page, 1);
+  await page.keyboard.press('m');
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.multiples && s.current && s.divisor === 1; })()', { timeout: 60000 });
+  const grid = await image_at(page, 1);
+  const state = await page.evaluate(() => window.phonglab.state());
+  const cw = 160, ch = 135;
+  const names = ['ambient', 'diffuse', 'specular', 'reflection', 'refraction', 'full'];
+  let worst = 0;
+  const offs = [];
+  for (let cell = 0; cell < 6; ++cell) {
+    const file = path.join(out, `cell-${names[cell]}.png`);
+    execFileSync(cli, ['render', 'lecture', '-o', file, '--width', String(cw), '--height', String(ch), '--spp', '1', '--term', names[cell]]);
+    const ref = png_rgb(file);
+    let off = 0;
+    for (let y = 0; y < ch; ++y) {
+      for (let x = 0; x < cw; ++x) {
+        const g = ((Math.floor(cell / 3) * ch + y) * state.width + (cell % 3) * cw + x) * 3, r = (y * cw + x) * 3;
+        if (grid[g] !== ref[r] || grid[g + 1] !== ref[r + 1] || grid[g + 2] !== ref[r + 2]) off++;
+      }
+    }
+    offs.push(off);
+    worst = Math.max(worst, off);
+  }
+  check(state.width === 480 && state.height === 270 && worst === 0,
+        `M's six cells equal phonglab-cli render --term of the same view, bit for bit (${offs.join(', ')} pixels differ)`);
+  const labels = await page.evaluate(() => {
+    const g = document.getElementById('markers').getContext('2d');
+    const d = g.getImageData(0, 0, g.canvas.width, g.canvas.height).data;
+    let drawn = 0;
+    for (let i = 3; i < d.length; i += 4) drawn += d[i] > 0 ? 1 : 0;
+    return drawn;
+  });
+  check(labels > 500, `... and its cells are labelled (${labels} label pixels over the grid)`);
+  await page.screenshot({ path: path.join(out, 'multiples-labelled.png') });
+  await page.close();
+}
+
+// 6b. A scene file loaded: the Lights panel is its lights'; the scene list names the file; a
+// lesson under way ends (its caption goes, the address forgets it).
+{
+  const page = await open('size=320x180&spp=1#lesson=shading&step=3');
+  await page.waitForFunction('window.phonglab.lesson && window.phonglab.lesson.step === 2', { timeout: 30000 });
+  const listed = await page.evaluate(() => document.getElementById('scene').value);
+  const one_light = path.join(out, 'one-light.json');
+  writeFileSync(one_light, JSON.stringify({
+    camera: { position: [0, 1, 5], look_at: [0, 0.5, 0], fov_y: 40 },
+    lights: [{ type: 'point', position: [2, 4, 3], intensity: 1 }],
+    materials: { red: { ka: 0.1, kd: [0.8, 0.1, 0.1], ks: 0.3, n: 20 } },
+    objects: [{ type: 'sphere', center: [0, 0.5, 0], radius: 0.5, material: 'red' }] }));
+  await (await page.$('#file')).uploadFile(one_light);
+  await page.waitForFunction('window.phonglab.view.lightCount() === 1', { timeout: 30000 });
+  await page.waitForTimeout(200);
+  const panel = await page.evaluate(() => ({
+    sliders: document.querySelectorAll('#lights input').length,
+    value: Number(document.querySelector('#lights input').value),
+    scene: document.getElementById('scene').value,
+    caption: getComputedStyle(document.getElementById('caption')).display,
+    hash: location.hash, lesson: window.phonglab.lesson }));
+  check(listed === 'lecture', `during a lesson the scene list names the step's scene (${listed})`);
+  check(panel.sliders === 1 && panel.value === 1, `a one-light file's Lights panel shows its one light at its intensity (${panel.sliders} sliders, ${panel.value})`);
+  check(panel.scene === 'one-light.json', `... the scene list names the file (${panel.scene})`);
+  check(panel.caption === 'none' && panel.hash === '' && !panel.lesson,
+        `... and the lesson ends: no caption over it, the address forgets it (${panel.caption}, '${panel.hash}')`);
+  await page.close();
+}
+
+// 6c. Leave lesson (the button, and Esc) ends a lesson and clears the address; a reload does not
+// bring it back; the term buttons follow a lesson's step.
+{
+  const page = await open('size=320x180&spp=1#lesson=raytracing&step=8');
+  await page.waitForFunction('window.phonglab.lesson && window.phonglab.lesson.step === 7', { timeout: 30000 });
+  await page.goto(url('size=320x180&spp=1#lesson=shading&step=3'));
+  await page.waitForFunction('window.phonglab.ready && window.phonglab.lesson && window.phonglab.lesson.step === 2', { timeout: 30000 });
+  const on = await page.evaluate(() => [...document.querySelectorAll('#terms button')].filter((b) => b.classList.contains('on')).map((b) => b.textContent));
+  check(on.length === 1 && on[0] === '4 specular', `a lesson step's term lights its button, and only it (${on})`);
+  await (await page.$('#leave-lesson')).click();
+  const left = await page.evaluate(() => ({ lesson: window.phonglab.lesson, hash: location.hash,
+                                            caption: getComputedStyle(document.getElementById('caption')).display }));
+  check(!left.lesson && left.hash === '' && left.caption === 'none', `Leave lesson ends it and clears the address ('${left.hash}')`);
+  await page.reload();
+  await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
+  await page.waitForTimeout(300);
+  check(!(await page.evaluate(() => window.phonglab.lesson)), '... a reload does not bring it back');
+  await page.goto(url('size=320x180&spp=1#lesson=shading&step=2'));
+  await page.waitForFunction('window.phonglab.ready && window.phonglab.lesson && window.phonglab.lesson.step === 1', { timeout: 30000 });
+  await (await page.$('#image')).click({ offset: { x: 5, y: 5 } });
+  await page.keyboard.press('Escape');
+  check(!(await page.evaluate(() => window.phonglab.lesson)), 'Esc ends a lesson too');
+  await page.close();
+}
+
+// 6d. Orbiting upwards never takes the eye under the floor; R brings the file's camera back.
+{
+  const page = await open('scene=lecture&size=320x180&spp=1');
+  await image_at(page, 1);
+  const box = await (await page.$('#image')).boundingBox();
+  const camera = async () => JSON.parse(await page.evaluate(() => window.phonglab.view.sceneJson())).camera;
+  const c0 = await camera();
+  for (let k = 0; k < 3; ++k) {
+    await page.mouse.move(box.x + 160, box.y + 150);
+    await page.mouse.down();
+    await page.mouse.move(box.x + 160, box.y + 20, { steps: 8 });
+    await page.mouse.up();
+  }
+  const c1 = await camera();
+  check(c1.position[1] > 0, `three upward drags leave the eye above the floor (y ${c0.position[1]} -> ${c1.position[1].toFixed(3)})`);
+  await page.keyboard.press('r');
+  const c2 = await camera();
+  check(JSON.stringify(c2.position) === JSON.stringify(c0.position), `R brings the file's camera back (${c2.position})`);
+  await page.close();
+}
+
+// 6e. A downloaded scene's numbers read as a person writes them: 40, not 4e+01.
+{
+  const page = await open('scene=lecture&size=160x90&spp=1');
+  const text = await page.evaluate(() => window.phonglab.view.sceneJson());
+  check(!/\de[+-]\d/.test(text) && /"fov_y": 40\b/.test(text), `the downloaded scene has no exponents (${(text.match(/"fov_y": [^,\n]*/) || [''])[0]})`);
+  await page.close();
+}
+
 // 5. Served with COOP/COEP (what tools/dev.sh serve sends): the threaded module on every core,
 // the same bits as the one-thread image of section 1.
 {
@@ -333,6 +461,51 @@ let one_thread_image;
   await page.screenshot({ path: path.join(out, 'threads.png') });
   await page.close();
   server.close();
+}
+
+// 7. An ordinary static host (no isolation headers): the page's own service worker (phonglab-sw.js
+// beside it) makes it cross-origin isolated after one reload, so it renders on every core with the
+// same bits; with the host gone, the page still opens from the worker's copy.
+{
+  const dir = path.dirname(path.resolve(page_path));
+  const types = { '.html': 'text/html', '.js': 'text/javascript', '.webmanifest': 'application/manifest+json', '.svg': 'image/svg+xml' };
+  const server = http.createServer((request, response) => {
+    const name = path.basename(new URL(request.url, 'http://host').pathname) || 'phonglab.html';
+    let body;
+    try { body = readFileSync(path.join(dir, name)); } catch { response.writeHead(404); response.end(); return; }
+    response.writeHead(200, { 'Content-Type': types[path.extname(name)] || 'application/octet-stream' });
+    response.end(body);
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const address = `http://127.0.0.1:${server.address().port}/phonglab.html?scene=lecture&size=320x180&spp=4`;
+  const context = await browser.createIncognitoBrowserContext();
+  const page = await context.newPage();
+  page.on('pageerror', (e) => console.log('  page error: ' + e.message));
+  await page.setViewport({ width: 1280, height: 720 });
+  await page.goto(address);
+  const settled = async (want) => {
+    for (let t = 0; t < 240; ++t) {
+      await new Promise((resolve) => setTimeout(resolve, 250));
+      try {
+        const s = await page.evaluate(() => (window.phonglab && window.phonglab.ready ? window.phonglab.state() : null));
+        if (s && want(s)) return s;
+      } catch { /* the page reloading */ }
+    }
+    return null;
+  };
+  const state = await settled((s) => s.isolated);
+  const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+  check(state && state.isolated && state.threads === cores && cores > 1,
+        `from a static host with no headers, the service worker isolates the page: ${state ? state.threads : 0} threads of ${cores}`);
+  const threaded = await image_at(page, 4);
+  check(threaded.equals(one_thread_image), `... the same bits as on one thread (${differing(threaded, one_thread_image, 0)} pixels differ)`);
+  await new Promise((resolve) => server.close(resolve));
+  server.closeAllConnections?.();
+  await page.reload();
+  const offline = await settled((s) => s.width > 0);
+  check(offline !== null, '... and with the host gone, the page opens again from the worker\'s copy');
+  await page.screenshot({ path: path.join(out, 'static-host.png') });
+  await context.close();
 }
 
 await browser.close();
