@@ -85,9 +85,11 @@ void WebView::apply_view(const StepView& view) {
   view_.compare = CompareView::kNone;  // on once A is taken (update_lesson)
   view_probe_.clear();
   tree_pixel_.reset();
+  probe_pixel_.reset();
   if (view.probe) {
     const PreparedScene prepared(view_scene(session_.scene(), view));
     if (const auto pixel = probe_in(session_.scene(), session_.scene().camera, view, width_, height_)) {
+      probe_pixel_ = pixel;  // marked while the question is asked too
       if (view.ray_tree) tree_pixel_ = pixel;
       const std::optional<Vec3> eye = view_shading_eye(prepared, view, width_, height_);
       view_probe_ = probe_to_text(session_.scene(), probe_pixel(prepared, width_, height_, (*pixel)[0], (*pixel)[1], eye), 4);

@@ -74,6 +74,7 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("maxDepth", &WebView::max_depth)
       .function("depthCut", &WebView::depth_cut)
       .function("rayTree", &WebView::ray_tree)
+      .function("probedPixel", &WebView::probed_pixel)
       .function("setRayTree", &WebView::set_ray_tree)
       .function("materialAt", &WebView::material_at)
       .function("probe", &WebView::probe)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -41,6 +42,7 @@ std::string WebView::open(const std::string& scene_arg) {
   if (!session_.open(scene_arg)) return session_.document().error_text();
   step_scene_.clear();
   tree_pixel_.reset();
+  probe_pixel_.reset();
   a_.clear();
   close_lesson();
   restart();
@@ -299,6 +301,11 @@ void WebView::set_depth_cut(int cut) {
   restart();
 }
 
+std::string WebView::probed_pixel() const {
+  if (!probe_pixel_ || view_.small_multiples) return "null";
+  return nlohmann::json::array({(*probe_pixel_)[0], (*probe_pixel_)[1]}).dump();
+}
+
 std::string WebView::ray_tree() const {
   if (!tree_shown_ || !tree_pixel_ || view_.small_multiples) return "[]";
   const std::shared_ptr<const PreparedScene> prepared =
@@ -311,7 +318,11 @@ std::string WebView::ray_tree() const {
   for (const ScreenSegment& s : project_ray_tree(frame, ray_tree_segments(shown, probe.root), ray_tree_near(shown, probe.root))) {
     static constexpr const char* kKinds[] = {"primary", "seen", "blocked", "reflection", "refraction"};
     const std::string kind = is_arrow(s.kind) ? arrow_letter(s.kind, blinn) : kKinds[static_cast<int>(s.kind)];
+    const std::array<std::uint8_t, 3> c = segment_srgb8(s.kind, s.depth, s.blocked);  // the one palette
+    char colour[8];
+    std::snprintf(colour, sizeof colour, "#%02x%02x%02x", c[0], c[1], c[2]);
     out.push_back({{"kind", kind}, {"depth", s.depth}, {"light", s.light}, {"escapes", s.escapes},
+                   {"blocked", s.blocked}, {"colour", colour},
                    {"from", {s.from.x, s.from.y}}, {"to", {s.to.x, s.to.y}}, {"end", s.to_visible}});
   }
   return out.dump();
@@ -325,6 +336,7 @@ int WebView::material_at(double u, double v) const {
 std::string WebView::probe(double u, double v) {
   const PixelProbe probe = probe_at(u, v);
   tree_pixel_ = std::array<int, 2>{probe.x, probe.y};
+  probe_pixel_ = tree_pixel_;
   return probe_to_text(session_.scene(), probe, 4);
 }
 

@@ -104,10 +104,14 @@ class WebView {
   int depth_cut() const { return view_.depth_cut.value_or(0); }
   // The ray tree of the probed pixel (a shift-click, or a lesson step's probe with its tree) over
   // the image, as the desktop draws it (core/teaching/ray_tree_view.h): JSON [{kind, depth,
-  // light, escapes, from: [x, y], to: [x, y], end}, ...] in the image's pixels, kind one of
-  // primary, seen, blocked, reflection, refraction, N, L, R (H for Blinn-Phong), V; "[]": none.
+  // light, escapes, blocked, colour, from: [x, y], to: [x, y], end}, ...] in the image's pixels,
+  // kind one of primary, seen, blocked, reflection, refraction, N, L, R (H for Blinn-Phong), V;
+  // colour the one palette's (segment_srgb8: an L or R towards a blocked light is red); "[]": none.
   std::string ray_tree() const;
   void set_ray_tree(bool on) { tree_shown_ = on; }
+  // The probed pixel (a shift-click's, or a lesson step's while its question is asked too), for the
+  // ring that marks it: JSON [x, y] in the image's pixels, or null.
+  std::string probed_pixel() const;
 
   // The material under a point of the image (u, v in [0, 1) from the top-left), -1: none; the
   // equation's numbers there, as `phonglab-cli probe` prints them.
@@ -192,6 +196,7 @@ class WebView {
   SnapshotA a_;                         // A of a compare (a lesson's: its first full image)
   std::string view_probe_;
   std::optional<std::array<int, 2>> tree_pixel_;  // the probed pixel of the image, for its ray tree
+  std::optional<std::array<int, 2>> probe_pixel_;  // the probed pixel (a shift-click, a lesson step's), for its ring
   bool tree_shown_ = true;
   double heat_max_ = 0;
 };

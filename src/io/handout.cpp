@@ -30,23 +30,10 @@ glm::vec3 srgb(int r, int g, int b) {
   return {lin(r), lin(g), lin(b)};
 }
 
-// The overlay's colours (src/ui/ray_tree_overlay.cpp, segment_color): bounces by depth 1..4+.
-glm::vec3 segment_color(TreeSegmentKind kind, int depth) {
-  const int bounce = std::clamp(depth, 1, 4) - 1;
-  static const glm::vec3 kReflection[4] = {srgb(0, 230, 255), srgb(60, 140, 255), srgb(140, 100, 255), srgb(210, 90, 255)};
-  static const glm::vec3 kRefraction[4] = {srgb(70, 255, 110), srgb(190, 255, 50), srgb(0, 185, 110), srgb(150, 210, 140)};
-  switch (kind) {
-    case TreeSegmentKind::kPrimary: return srgb(245, 245, 245);
-    case TreeSegmentKind::kShadowVisible: return srgb(255, 220, 40);
-    case TreeSegmentKind::kShadowBlocked: return srgb(255, 55, 45);
-    case TreeSegmentKind::kReflection: return kReflection[bounce];
-    case TreeSegmentKind::kRefraction: return kRefraction[bounce];
-    case TreeSegmentKind::kArrowN: return srgb(255, 255, 255);
-    case TreeSegmentKind::kArrowL: return srgb(255, 220, 40);
-    case TreeSegmentKind::kArrowR: return srgb(255, 80, 220);
-    case TreeSegmentKind::kArrowV: return srgb(255, 150, 40);
-  }
-  return {1.0f, 1.0f, 1.0f};
+// The ray tree's one palette (core/teaching/ray_tree_view.h), as the image's linear values.
+glm::vec3 segment_color(TreeSegmentKind kind, int depth, bool blocked = false) {
+  const std::array<std::uint8_t, 3> c = segment_srgb8(kind, depth, blocked);
+  return srgb(c[0], c[1], c[2]);
 }
 
 void plot(Image& image, int x, int y, glm::vec3 color) {
@@ -135,7 +122,7 @@ void draw_ray_tree(Image& image, const std::vector<ScreenSegment>& segments, boo
   for (int pass = 0; pass < 3; ++pass) {
     for (const ScreenSegment& s : segments) {
       if (is_arrow(s.kind) != (pass != 1)) continue;
-      const glm::vec3 color = segment_color(s.kind, s.depth);
+      const glm::vec3 color = segment_color(s.kind, s.depth, s.blocked);
       const ImagePoint a = s.from, b = s.to;
       if (pass < 2) draw_outlined(image, a, b, color);
       if (pass == 0 || !s.to_visible) continue;

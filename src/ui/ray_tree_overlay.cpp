@@ -16,10 +16,6 @@ namespace phonglab::ui {
 namespace {
 
 // Bounce colours by depth 1, 2, 3, 4+: reflections cool (cyan to violet), refractions green.
-constexpr std::array<ImU32, 4> kReflectionColors = {IM_COL32(0, 230, 255, 255), IM_COL32(60, 140, 255, 255),
-                                                    IM_COL32(140, 100, 255, 255), IM_COL32(210, 90, 255, 255)};
-constexpr std::array<ImU32, 4> kRefractionColors = {IM_COL32(70, 255, 110, 255), IM_COL32(190, 255, 50, 255),
-                                                    IM_COL32(0, 185, 110, 255), IM_COL32(150, 210, 140, 255)};
 constexpr ImU32 kOutline = IM_COL32(0, 0, 0, 170);  // under every line, so it reads on any image
 
 // The tree's make-up, walked from the probe (not from the segments, which may be filtered).
@@ -96,20 +92,9 @@ void depth_row(TreeSegmentKind kind, const char* text, int deepest) {
 
 }  // namespace
 
-ImU32 segment_color(TreeSegmentKind kind, int depth) {
-  const auto bounce = static_cast<std::size_t>(std::clamp(depth, 1, 4) - 1);
-  switch (kind) {
-    case TreeSegmentKind::kPrimary: return IM_COL32(245, 245, 245, 255);
-    case TreeSegmentKind::kShadowVisible: return IM_COL32(255, 220, 40, 255);
-    case TreeSegmentKind::kShadowBlocked: return IM_COL32(255, 55, 45, 255);
-    case TreeSegmentKind::kReflection: return kReflectionColors[bounce];
-    case TreeSegmentKind::kRefraction: return kRefractionColors[bounce];
-    case TreeSegmentKind::kArrowN: return IM_COL32(255, 255, 255, 255);
-    case TreeSegmentKind::kArrowL: return IM_COL32(255, 220, 40, 255);
-    case TreeSegmentKind::kArrowR: return IM_COL32(255, 80, 220, 255);
-    case TreeSegmentKind::kArrowV: return IM_COL32(255, 150, 40, 255);
-  }
-  return IM_COL32(255, 255, 255, 255);
+ImU32 segment_color(TreeSegmentKind kind, int depth, bool blocked) {
+  const std::array<std::uint8_t, 3> c = segment_srgb8(kind, depth, blocked);  // the one palette (core)
+  return IM_COL32(c[0], c[1], c[2], 255);
 }
 
 std::string depth_cut_format(int scene_max_depth) {
@@ -178,7 +163,7 @@ void draw_ray_tree(ImDrawList* draw, std::span<const ScreenSegment> segments, co
       if (is_arrow(s.kind) != (pass != 1)) continue;
       const ImVec2 a = to_screen(rect, s.from);
       const ImVec2 b = to_screen(rect, s.to);
-      const ImU32 color = segment_color(s.kind, s.depth);
+      const ImU32 color = segment_color(s.kind, s.depth, s.blocked);
       if (pass < 2) {
         draw->AddLine(a, b, kOutline, thick + 2.5f * ui_scale);
         draw->AddLine(a, b, color, thick);

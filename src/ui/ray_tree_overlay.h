@@ -47,7 +47,7 @@ std::string depth_cut_format(int scene_max_depth);
 bool rays_panel(RayTreeSettings& settings, const RayTreeSummary& summary);
 
 // Display colour of a segment kind (reflection and refraction by depth).
-ImU32 segment_color(TreeSegmentKind kind, int depth);
+ImU32 segment_color(TreeSegmentKind kind, int depth, bool blocked = false);
 
 // Where the image lies on screen: pixel (x, y) of the render covers
 // [origin + (x, y) * scale, origin + (x + 1, y + 1) * scale).

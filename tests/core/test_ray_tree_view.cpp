@@ -426,5 +426,39 @@ TEST(HeatMap, ScaleTopIsTheLargestRayCountOfTheImage) {
   }
 }
 
+// The raytracing lesson's shadow step: a floor point behind the red sphere sees neither light.
+// Its L (and R) arrows are drawn in the blocked red, not the yellow of "light seen" (a student
+// read yellow L arrows through the sphere as "lit"); at a lit point they stay yellow.
+TEST(RayTreeSegments, ArrowsTowardsABlockedLightAreTheBlockedRed) {
+  const PreparedScene prepared = load_prepared("lecture");
+  const Scene& scene = prepared.scene();
+  const auto arrows_at = [&](int x, int y, bool& any_blocked, bool& any_seen) {
+    const PixelProbe probe = probe_pixel(prepared, scene.width, scene.height, x, y);
+    any_blocked = any_seen = false;
+    for (const TreeSegment& s : ray_tree_segments(scene, probe.root)) {
+      if (s.kind != TreeSegmentKind::kArrowL && s.kind != TreeSegmentKind::kArrowR) continue;
+      for (const ProbeLight& pl : probe.root.lights) {
+        if (pl.index != s.light) continue;
+        EXPECT_EQ(s.blocked, !pl.visible);
+        const auto c = segment_srgb8(s);
+        if (!pl.visible) {
+          EXPECT_EQ(c, segment_srgb8(TreeSegmentKind::kShadowBlocked, 0));
+          any_blocked = true;
+        } else {
+          EXPECT_NE(c, segment_srgb8(TreeSegmentKind::kShadowBlocked, 0));
+          any_seen = true;
+        }
+      }
+    }
+  };
+  bool blocked = false, seen = false;
+  arrows_at(300, 360, blocked, seen);  // the lesson's probed pixel: the floor in the red sphere's shadow
+  EXPECT_TRUE(blocked);
+  arrows_at(390, 270, blocked, seen);  // the red sphere's lit top
+  EXPECT_TRUE(seen);
+  EXPECT_EQ(segment_srgb8(TreeSegmentKind::kArrowL, 0), segment_srgb8(TreeSegmentKind::kShadowVisible, 0));
+}
+
 }  // namespace
 }  // namespace phonglab
+

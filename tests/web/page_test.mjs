@@ -432,6 +432,24 @@ let one_thread_image;
   await page.close();
 }
 
+// 6d'. raytracing step 3, "Is this point lit?": the point is ringed while the question is asked;
+// in the answer its L arrows are the blocked red, not the yellow of "light seen".
+{
+  const page = await open('size=480x270&spp=1#lesson=raytracing&step=3');
+  await page.waitForFunction('window.phonglab.lesson && window.phonglab.lesson.step === 2', { timeout: 30000 });
+  await image_at(page, 1);
+  const asked = await page.evaluate(() => ({ probed: window.phonglab.probed, revealed: window.phonglab.lesson.revealed }));
+  check(asked.probed && !asked.revealed, `the question's point is marked while it is asked (${JSON.stringify(asked.probed)})`);
+  await (await page.$('#image')).click({ offset: { x: 5, y: 5 } });
+  await page.keyboard.press('ArrowRight');
+  await page.waitForFunction('window.phonglab.lesson.revealed && window.phonglab.tree.length > 0', { timeout: 30000 });
+  const arrows = await page.evaluate(() => window.phonglab.tree.filter((s) => s.kind === 'L'));
+  check(arrows.length > 0 && arrows.every((s) => s.blocked && s.colour === '#ff372d'),
+        `the answer's L arrows towards the blocked lights are red (${arrows.map((s) => s.colour)})`);
+  await page.screenshot({ path: path.join(out, 'shadow-step.png') });
+  await page.close();
+}
+
 // 6e. A downloaded scene's numbers read as a person writes them: 40, not 4e+01.
 {
   const page = await open('scene=lecture&size=160x90&spp=1');

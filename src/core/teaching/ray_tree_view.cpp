@@ -62,8 +62,12 @@ struct Builder {
     for (const ProbeLight& pl : root.lights) {
       if (!pl.lit_side) continue;  // R (and the light's part of the equation) only where N.L > 0
       add(TreeSegmentKind::kArrowL, 0, root.p, root.p + pl.l * length, false, pl.index);
+      out.back().blocked = !pl.visible;
       const double r_length = glm::length(pl.r);
-      if (r_length > 0) add(TreeSegmentKind::kArrowR, 0, root.p, root.p + pl.r / r_length * length, false, pl.index);
+      if (r_length > 0) {
+        add(TreeSegmentKind::kArrowR, 0, root.p, root.p + pl.r / r_length * length, false, pl.index);
+        out.back().blocked = !pl.visible;
+      }
     }
   }
 };
@@ -137,6 +141,7 @@ std::vector<ScreenSegment> project_ray_tree(const CameraFrame& frame, const std:
     screen.depth = s.depth;
     screen.light = s.light;
     screen.escapes = s.escapes;
+    screen.blocked = s.blocked;
     screen.from = (*ends)[0];
     screen.to = (*ends)[1];
     // The real end is on screen when it lies in front of the near plane and inside the image
@@ -157,5 +162,25 @@ int cut_max_depth(int scene_max_depth, std::optional<int> cut) {
 }
 
 void apply_depth_cut(Scene& scene, std::optional<int> cut) { scene.max_depth = cut_max_depth(scene.max_depth, cut); }
+
+std::array<std::uint8_t, 3> segment_srgb8(TreeSegmentKind kind, int depth, bool blocked) {
+  using Rgb = std::array<std::uint8_t, 3>;
+  static constexpr std::array<Rgb, 4> kReflection = {Rgb{0, 230, 255}, Rgb{60, 140, 255}, Rgb{140, 100, 255}, Rgb{210, 90, 255}};
+  static constexpr std::array<Rgb, 4> kRefraction = {Rgb{70, 255, 110}, Rgb{190, 255, 50}, Rgb{0, 185, 110}, Rgb{150, 210, 140}};
+  static constexpr Rgb kBlocked{255, 55, 45};
+  const auto bounce = static_cast<std::size_t>(std::clamp(depth, 1, 4) - 1);
+  switch (kind) {
+    case TreeSegmentKind::kPrimary: return {245, 245, 245};
+    case TreeSegmentKind::kShadowVisible: return {255, 220, 40};
+    case TreeSegmentKind::kShadowBlocked: return kBlocked;
+    case TreeSegmentKind::kReflection: return kReflection[bounce];
+    case TreeSegmentKind::kRefraction: return kRefraction[bounce];
+    case TreeSegmentKind::kArrowN: return {255, 255, 255};
+    case TreeSegmentKind::kArrowL: return blocked ? kBlocked : Rgb{255, 220, 40};
+    case TreeSegmentKind::kArrowR: return blocked ? kBlocked : Rgb{255, 80, 220};
+    case TreeSegmentKind::kArrowV: return {255, 150, 40};
+  }
+  return {255, 255, 255};
+}
 
 }  // namespace phonglab

@@ -48,7 +48,16 @@ struct TreeSegment {
   Vec3 from{0}, to{0};   // world units
   bool escapes = false;  // the ray missed everything: `to` is a far point along it
   int light = -1;        // shadow rays and L, R arrows: index into Scene::lights
+  bool blocked = false;  // L and R arrows: that light's shadow ray met something (vis = 0)
 };
+
+// The one palette of a ray tree, sRGB 8-bit, for the previewer, the page and the handouts: the
+// primary ray white, shadow rays yellow (light seen) or red (blocked), reflections cyan to violet
+// and refractions green by bounce (depth 1..4+), N white, L yellow, R (H) magenta, V orange; an L
+// or R arrow towards a light its shadow ray found blocked is drawn in the blocked red (yellow
+// would read "lit").
+std::array<std::uint8_t, 3> segment_srgb8(TreeSegmentKind kind, int depth, bool blocked = false);
+inline std::array<std::uint8_t, 3> segment_srgb8(const TreeSegment& s) { return segment_srgb8(s.kind, s.depth, s.blocked); }
 
 // Which parts to build and how long the open-ended ones are.
 struct RayTreeViewOptions {
@@ -92,6 +101,7 @@ struct ScreenSegment {
   int depth = 0;
   int light = -1;
   bool escapes = false;
+  bool blocked = false;  // as TreeSegment's
   ImagePoint from, to;   // clipped to the image
   bool to_visible = true;  // `to` is the segment's real end (not cut by the near plane or the image edge)
 };
