@@ -106,7 +106,7 @@ class WebView {
   // the image, as the desktop draws it (core/teaching/ray_tree_view.h): JSON [{kind, depth,
   // light, escapes, blocked, colour, from: [x, y], to: [x, y], end}, ...] in the image's pixels,
   // kind one of primary, seen, blocked, reflection, refraction, N, L, R (H for Blinn-Phong), V;
-  // colour the one palette's (segment_srgb8: an L or R towards a blocked light is red); "[]": none.
+  // colour the one palette's (segment_srgb8: an L or R towards a blocked light is grey); "[]": none.
   std::string ray_tree() const;
   void set_ray_tree(bool on) { tree_shown_ = on; }
   // The probed pixel (a shift-click's, or a lesson step's while its question is asked too), for the

@@ -238,9 +238,11 @@ void draw_ray_tree(ImDrawList* draw, std::span<const ScreenSegment> segments, co
 
 void ray_tree_legend(std::span<const ScreenSegment> segments, bool blinn) {
   bool present[9] = {};
+  bool unlit_arrow = false;
   int reflection_depth = 0, refraction_depth = 0;
   for (const ScreenSegment& s : segments) {
     present[static_cast<int>(s.kind)] = true;
+    unlit_arrow = unlit_arrow || (is_arrow(s.kind) && s.blocked);
     if (s.kind == TreeSegmentKind::kReflection) reflection_depth = std::max(reflection_depth, s.depth);
     if (s.kind == TreeSegmentKind::kRefraction) refraction_depth = std::max(refraction_depth, s.depth);
   }
@@ -264,6 +266,10 @@ void ray_tree_legend(std::span<const ScreenSegment> segments, bool blinn) {
     letter(TreeSegmentKind::kArrowR, blinn ? "H half vector" : "R mirrored L");
     ImGui::SameLine();
     letter(TreeSegmentKind::kArrowV, " V to eye");
+    if (unlit_arrow) {
+      ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(segment_color(TreeSegmentKind::kArrowL, 0, true)),
+                         "grey L, R: towards a light that is blocked");
+    }
   }
 }
 

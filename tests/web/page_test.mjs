@@ -433,7 +433,7 @@ let one_thread_image;
 }
 
 // 6d'. raytracing step 3, "Is this point lit?": the point is ringed while the question is asked;
-// in the answer its L arrows are the blocked red, not the yellow of "light seen".
+// in the answer its L arrows are grey, not the yellow of "light seen".
 {
   const page = await open('size=480x270&spp=1#lesson=raytracing&step=3');
   await page.waitForFunction('window.phonglab.lesson && window.phonglab.lesson.step === 2', { timeout: 30000 });
@@ -444,8 +444,8 @@ let one_thread_image;
   await page.keyboard.press('ArrowRight');
   await page.waitForFunction('window.phonglab.lesson.revealed && window.phonglab.tree.length > 0', { timeout: 30000 });
   const arrows = await page.evaluate(() => window.phonglab.tree.filter((s) => s.kind === 'L'));
-  check(arrows.length > 0 && arrows.every((s) => s.blocked && s.colour === '#ff372d'),
-        `the answer's L arrows towards the blocked lights are red (${arrows.map((s) => s.colour)})`);
+  check(arrows.length > 0 && arrows.every((s) => s.blocked && s.colour === '#969696'),
+        `the answer's L arrows towards the blocked lights are grey, not yellow (${arrows.map((s) => s.colour)})`);
   await page.screenshot({ path: path.join(out, 'shadow-step.png') });
   await page.close();
 }

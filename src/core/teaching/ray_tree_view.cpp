@@ -168,6 +168,7 @@ std::array<std::uint8_t, 3> segment_srgb8(TreeSegmentKind kind, int depth, bool 
   static constexpr std::array<Rgb, 4> kReflection = {Rgb{0, 230, 255}, Rgb{60, 140, 255}, Rgb{140, 100, 255}, Rgb{210, 90, 255}};
   static constexpr std::array<Rgb, 4> kRefraction = {Rgb{70, 255, 110}, Rgb{190, 255, 50}, Rgb{0, 185, 110}, Rgb{150, 210, 140}};
   static constexpr Rgb kBlocked{255, 55, 45};
+  static constexpr Rgb kUnlit{150, 150, 150};  // L, R towards a light that does not reach the point
   const auto bounce = static_cast<std::size_t>(std::clamp(depth, 1, 4) - 1);
   switch (kind) {
     case TreeSegmentKind::kPrimary: return {245, 245, 245};
@@ -176,8 +177,8 @@ std::array<std::uint8_t, 3> segment_srgb8(TreeSegmentKind kind, int depth, bool 
     case TreeSegmentKind::kReflection: return kReflection[bounce];
     case TreeSegmentKind::kRefraction: return kRefraction[bounce];
     case TreeSegmentKind::kArrowN: return {255, 255, 255};
-    case TreeSegmentKind::kArrowL: return blocked ? kBlocked : Rgb{255, 220, 40};
-    case TreeSegmentKind::kArrowR: return blocked ? kBlocked : Rgb{255, 80, 220};
+    case TreeSegmentKind::kArrowL: return blocked ? kUnlit : Rgb{255, 220, 40};
+    case TreeSegmentKind::kArrowR: return blocked ? kUnlit : Rgb{255, 80, 220};
     case TreeSegmentKind::kArrowV: return {255, 150, 40};
   }
   return {255, 255, 255};

@@ -54,8 +54,8 @@ struct TreeSegment {
 // The one palette of a ray tree, sRGB 8-bit, for the previewer, the page and the handouts: the
 // primary ray white, shadow rays yellow (light seen) or red (blocked), reflections cyan to violet
 // and refractions green by bounce (depth 1..4+), N white, L yellow, R (H) magenta, V orange; an L
-// or R arrow towards a light its shadow ray found blocked is drawn in the blocked red (yellow
-// would read "lit").
+// or R arrow towards a light its shadow ray found blocked is grey (yellow would read "lit"; the
+// blocked red is the shadow ray's, which stops at the occluder while the arrow goes on).
 std::array<std::uint8_t, 3> segment_srgb8(TreeSegmentKind kind, int depth, bool blocked = false);
 inline std::array<std::uint8_t, 3> segment_srgb8(const TreeSegment& s) { return segment_srgb8(s.kind, s.depth, s.blocked); }
 
