@@ -40,6 +40,7 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("height", &WebView::height)
       .function("setSize", &WebView::set_size)
       .function("setTarget", &WebView::set_target)
+      .function("target", &WebView::target)
       .function("setTerm", &WebView::set_term)
       .function("setHeadAngle", &WebView::set_head_angle)
       .function("setInteracting", &WebView::set_interacting)

@@ -65,6 +65,12 @@ int WebView::view_term() const {
   return term <= static_cast<int>(Term::kRefraction) ? term : -1;
 }
 
+void WebView::set_target(int spp) {
+  const int before = target_;
+  target_ = std::max(spp, 1);
+  if (target_ < before && accum_.samples > static_cast<std::uint32_t>(target_)) restart();
+}
+
 void WebView::set_size(int width, int height) {
   width_ = std::max(width, 1);
   height_ = std::max(height, 1);

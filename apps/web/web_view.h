@@ -47,7 +47,10 @@ class WebView {
   void set_size(int width, int height);
   int width() const { return width_; }
   int height() const { return height_; }
-  void set_target(int spp) { target_ = std::max(spp, 1); }
+  // The samples the image goes to; fewer than it has already: the image starts again (the 1 spp
+  // switch shows the pixel centres, what a student's own tracer computes first).
+  void set_target(int spp);
+  int target() const { return target_; }
   void set_term(int term);            // 0..5: the full image, then the five terms
   // The heat map: rays per pixel on the core's perceptual ramp, 0 to the image's maximum
   // (heat_max(): the scale's top), what `phonglab-cli render --term rays` writes; off: the full image.

@@ -14,7 +14,7 @@
 // the page starts its threaded module, renders on every core and gives the same bits as from
 // file:// on one thread. Exit 0 when every check passes.
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
@@ -447,6 +447,66 @@ let one_thread_image;
   check(arrows.length > 0 && arrows.every((s) => s.blocked && s.colour === '#969696'),
         `the answer's L arrows towards the blocked lights are grey, not yellow (${arrows.map((s) => s.colour)})`);
   await page.screenshot({ path: path.join(out, 'shadow-step.png') });
+  await page.close();
+}
+
+// 6f. Save image: the image as shown, as PNG, has the bits of the CLI's PNG of the downloaded
+// scene at its size and samples; the 1 spp switch shows the pixel centres.
+{
+  const page = await open('scene=lecture&size=320x180&spp=3');
+  await image_at(page, 3);
+  await (await page.$('#one-spp')).click();
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && s.spp === 1; })()', { timeout: 60000 });
+  await page.waitForTimeout(300);
+  const downloads = path.join(out, 'downloads');
+  mkdirSync(downloads, { recursive: true });
+  const cdp = await page.target().createCDPSession();
+  await cdp.send('Page.setDownloadBehavior', { behavior: 'allow', downloadPath: downloads });
+  await (await page.$('#save-image')).click();
+  const saved = path.join(downloads, 'lecture-320x180-1spp.png');
+  for (let t = 0; t < 100 && !existsSync(saved); ++t) await new Promise((resolve) => setTimeout(resolve, 100));
+  writeFileSync(path.join(out, 'saved-scene.json'), await page.evaluate(() => window.phonglab.view.sceneJson()));
+  execFileSync(cli, ['render', path.join(out, 'saved-scene.json'), '-o', path.join(out, 'saved-cli.png'), '--width', '320',
+                     '--height', '180', '--spp', '1']);
+  const off = existsSync(saved) ? differing(png_rgb(saved), png_rgb(path.join(out, 'saved-cli.png')), 0) : -1;
+  check(off === 0, `Save image at the 1 spp switch: the PNG has the bits of phonglab-cli render --spp 1 of the downloaded scene (${off} pixels differ)`);
+  await page.close();
+}
+
+// 6g. A phone (390x844, touch): the page is no wider than the screen, the panel below the image;
+// one finger orbits, two pinch.
+{
+  const page = await browser.newPage();
+  page.on('pageerror', (e) => console.log('  page error: ' + e.message));
+  await page.setViewport({ width: 390, height: 844, deviceScaleFactor: 3, isMobile: true, hasTouch: true });
+  await page.goto(url('scene=lecture&spp=1'));
+  await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
+  await image_at(page, 1);
+  const fit = await page.evaluate(() => {
+    const image = document.getElementById('image').getBoundingClientRect(), panel = document.getElementById('panel').getBoundingClientRect();
+    return { page: document.documentElement.scrollWidth, image: [image.width, image.bottom], panel_top: panel.top };
+  });
+  check(fit.page <= 390 && fit.image[0] <= 390 && fit.panel_top >= fit.image[1],
+        `on a phone the page fits its width and the panel is below the image (page ${fit.page} px, image ${fit.image[0]} px wide)`);
+  const box = await (await page.$('#image')).boundingBox();
+  const camera = async () => JSON.parse(await page.evaluate(() => window.phonglab.view.sceneJson())).camera;
+  const cdp = await page.target().createCDPSession();
+  const touch = async (type, points) => cdp.send('Input.dispatchTouchEvent', {
+    type, touchPoints: points.map(([x, y], id) => ({ x: box.x + x, y: box.y + y, id })) });
+  const c0 = await camera();
+  await touch('touchStart', [[150, 100]]);
+  for (let k = 1; k <= 6; ++k) await touch('touchMove', [[150 + 10 * k, 100]]);
+  await touch('touchEnd', []);
+  const c1 = await camera();
+  check(JSON.stringify(c0.position) !== JSON.stringify(c1.position) && JSON.stringify(c0.look_at) === JSON.stringify(c1.look_at),
+        'one finger orbits about look_at');
+  const distance = (c) => Math.hypot(...c.position.map((p, i) => p - c.look_at[i]));
+  await touch('touchStart', [[170, 100], [210, 100]]);
+  for (let k = 1; k <= 5; ++k) await touch('touchMove', [[170 - 8 * k, 100], [210 + 8 * k, 100]]);
+  await touch('touchEnd', []);
+  const c2 = await camera();
+  check(distance(c2) < distance(c1) - 1e-3, `two fingers apart dolly closer (${distance(c1).toFixed(3)} -> ${distance(c2).toFixed(3)})`);
+  await page.screenshot({ path: path.join(out, 'phone.png') });
   await page.close();
 }
 
