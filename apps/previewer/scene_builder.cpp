@@ -80,12 +80,17 @@ std::string SceneBuilder::add_object(ObjectRef::Kind kind, const std::string& ob
     }, true);
   } else {
     error = edit_scene([&](Scene& s) {
+      // A material of its own, the selected one's copy (so it looks the same until edited): an
+      // edit of the new object's material must not change the others'.
       int material = v_.selected_material_;
+      std::string failed;
       if (s.materials.empty()) {
-        std::string failed = ui::new_material(s, "default", material);
-        if (!failed.empty()) return failed;
+        failed = ui::new_material(s, "default", material);
+      } else {
+        const int source = std::clamp(material, 0, static_cast<int>(s.materials.size()) - 1);
+        failed = ui::duplicate_material(s, source, material);
       }
-      material = std::clamp(material, 0, static_cast<int>(s.materials.size()) - 1);
+      if (!failed.empty()) return failed;
       added = ui::add_primitive(s, kind, ui::placement_in_front_of(v_.view_camera()), material);
       if (added < 0) return std::string("only a sphere, a plane, a triangle or a mesh can be added");
       return ui::place_new_object(s, v_.view_camera(), v_.view_aspect(), added);

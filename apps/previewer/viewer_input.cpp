@@ -114,7 +114,9 @@ void Viewer::handle_viewport_input() {
         break;
       }
       if (io.MouseWheel != 0) {
-        ui::dolly(camera, std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel)), dolly_limit_);
+        const double factor = std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel));
+        if (schedule_.snapshot()) ui::dolly_in(*schedule_.snapshot(), camera, factor, dolly_limit_);  // never inside an object
+        else ui::dolly(camera, factor, dolly_limit_);
         edits_.camera = true;
       }
     }
@@ -159,7 +161,8 @@ void Viewer::drag_viewport(ImVec2 mouse, ImVec2 delta, const Camera& view, int v
       break;
     }
     case DragMode::kDolly:
-      ui::dolly(camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
+      if (schedule_.snapshot()) ui::dolly_in(*schedule_.snapshot(), camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
+      else ui::dolly(camera, std::exp(delta.y * kDollyPerPixel / platform_.ui_scale()), dolly_limit_);
       move_camera(camera);
       break;
     case DragMode::kLight:

@@ -33,8 +33,14 @@ Color* colour(Material& m, const std::string& name) {
   return nullptr;
 }
 double largest(const Color& c) { return std::max({c.x, c.y, c.z}); }
-// A colour to `value` at its largest channel, keeping its hue (black becomes grey).
-Color scaled(const Color& c, double value) { return largest(c) > 0 ? c * (value / largest(c)) : Color(value); }
+// A colour to `value` at its largest channel, keeping its hue (black becomes grey), each channel
+// to float precision as the desktop's panels keep it: a saved file reads 0.008, not
+// 0.008000000000000002.
+Color scaled(const Color& c, double value) {
+  Color out = largest(c) > 0 ? c * (value / largest(c)) : Color(value);
+  for (int k = 0; k < 3; ++k) out[k] = ui::tidy_float(out[k]);
+  return out;
+}
 
 }  // namespace
 
@@ -232,7 +238,8 @@ void WebView::reset_camera() { apply({edit::SetCamera{session_.document().loaded
 
 void WebView::dolly(double steps) {
   Camera camera = session_.scene().camera;
-  ui::dolly(camera, std::pow(0.9, steps));
+  if (prepared_) ui::dolly_in(*prepared_, camera, std::pow(0.9, steps));  // never inside an object
+  else ui::dolly(camera, std::pow(0.9, steps));
   apply({edit::SetCamera{camera}, false});
 }
 

@@ -113,6 +113,24 @@ void dolly(Camera& camera, double factor, double max_distance) {
   if (camera_is_valid(moved)) camera = moved;
 }
 
+void dolly_in(const PreparedScene& prepared, Camera& camera, double factor, double max_distance) {
+  Camera moved = camera;
+  dolly(moved, factor, max_distance);
+  const double before = glm::length(camera.position - camera.look_at);
+  const double step = before - glm::length(moved.position - camera.look_at);
+  if (step > 0) {
+    const Ray towards = make_ray(camera.position, glm::normalize(camera.look_at - camera.position));
+    if (const std::optional<Hit> hit = intersect(prepared, towards, step + 0.01 * before)) {
+      const double allowed = std::max(hit->t - 0.01 * before, 0.0);  // a hundredth short of the surface
+      if (allowed < step) {
+        moved = camera;
+        moved.position = camera.position + towards.dir * allowed;
+      }
+    }
+  }
+  camera = moved;
+}
+
 void pan(Camera& camera, double dx_px, double dy_px, double viewport_height_px) {
   if (!(viewport_height_px > 0)) return;
   const Vec3 forward = glm::normalize(camera.look_at - camera.position);

@@ -3,6 +3,8 @@
 // the scene's Camera; no ImGui, no GL.
 #pragma once
 
+#include "core/accel/prepared_scene.h"
+
 #include <limits>
 #include <optional>
 #include <string>
@@ -32,6 +34,11 @@ void orbit_in(const Scene& scene, Camera& camera, double yaw_rad, double pitch_r
 // Scales the distance from look_at by `factor` (< 1 moves closer), never reaching look_at and
 // never beyond `max_distance` (a camera already beyond it may only come closer).
 void dolly(Camera& camera, double factor, double max_distance = std::numeric_limits<double>::infinity());
+// The hand's dolly in a scene: dolly, but coming closer the eye stops short of the first surface
+// between it and look_at (by a hundredth of its distance to it), so the wheel never takes the eye
+// inside an object (where a sphere's inside is all one sees).
+void dolly_in(const PreparedScene& prepared, Camera& camera, double factor,
+              double max_distance = std::numeric_limits<double>::infinity());
 
 // The dolly's far limit for a scene: 20 times the larger of its finite objects' bounding radius and
 // the distance of the camera it was loaded with.

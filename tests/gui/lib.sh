@@ -68,6 +68,12 @@ apart() {
 quiet() { "$@" >/dev/null 2>&1; }
 greater() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 > b + 0) }'; }
 less() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 < b + 0) }'; }
+# run_script DIR SCENE: the previewer on SCENE at 1280x720 runs DIR/script.txt; its output and
+# exit status stay in DIR (stdout.txt, stderr.txt, exit_code), as check_exit reads them.
+run_script() {
+  "$BIN" "$2" --size 1280x720 --script "$1/script.txt" >"$1/stdout.txt" 2>"$1/stderr.txt"
+  echo "$?" >"$1/exit_code"
+}
 finish() {  # finish DIR PID: waits for the session's program and keeps its exit status
   wait "$2"
   echo "$?" >"$1/exit_code"

@@ -1457,8 +1457,7 @@ dump_state $dir/s3.txt
 screenshot $dir/s3_orbited.png
 quit
 EOF
-  "$BIN" cornell --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
-  echo "$?" >"$dir/exit_code"
+  run_script "$dir" cornell
 }
 
 check_select() {
@@ -1494,8 +1493,7 @@ dump_state $dir/m1.txt
 screenshot $dir/m1_indirect_orbited.png
 quit
 EOF
-  "$BIN" cornell-sphere --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
-  echo "$?" >"$dir/exit_code"
+  run_script "$dir" cornell-sphere
   # SIGTERM while full-resolution indirect passes run: the program ends within 1.5 s.
   printf 'set render target_spp 4096\nkey I\nwait_frames 30\ntouch %s\nwait_file %s 120\n' "$dir/busy" "$dir/never" >"$dir/term.txt"
   "$BIN" cornell-sphere --size 1280x720 --script "$dir/term.txt" >"$dir/term.out" 2>"$dir/term.err" &
@@ -1549,8 +1547,7 @@ dump_state $dir/p3.txt
 screenshot $dir/p3_probe_rows.png
 quit
 EOF
-  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
-  echo "$?" >"$dir/exit_code"
+  run_script "$dir" lecture
 }
 
 check_probe_text() {
@@ -1607,8 +1604,7 @@ modal discard
 wait_frames 300
 fail Ctrl+Q and Discard did not quit
 EOF
-  "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
-  echo "$?" >"$dir/exit_code"
+  run_script "$dir" lecture
 }
 
 check_drops() {

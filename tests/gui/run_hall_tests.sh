@@ -342,6 +342,8 @@ check_building() {
   check "a new sphere rests on the floor: its centre's height is its radius ($a, radius $(state "$dir/s1.txt" "object${n}_radius"))" \
     awk -v a="$a" -v r="$(state "$dir/s1.txt" "object${n}_radius")" 'BEGIN { split(a, p, " "); exit !(r > 0 && p[2] == r) }'
   check "... beside the others, not inside them (no two spheres intersect)" apart_spheres "$dir/s1.txt"
+  check "... with a material of its own ($(state "$dir/s1.txt" "object${n}_material"); materials $(state "$dir/s0.txt" materials) -> $(state "$dir/s1.txt" materials))" \
+    test "$(state "$dir/s1.txt" materials)" = $(($(state "$dir/s0.txt" materials) + 1))
   at=$(state "$dir/s1.txt" "object${n}_screen")
   check "... and in view ($at in the 880x720 view)" \
     awk -v a="$at" 'BEGIN { split(a, p, " "); exit !(p[1] > 40 && p[1] < 840 && p[2] > 40 && p[2] < 680) }'

@@ -217,3 +217,26 @@ TEST(CameraControl, TheHandsOrbitStaysAboveTheFloor) {
   for (int i = 0; i < 60; ++i) ui::orbit_in(open_sky, free, 0, -0.05);
   EXPECT_LT(glm::dot(free.position - floor.point, floor.normal), 0) << "no floor: nothing to stay above";
 }
+
+// The wheel stops before the eye enters an object between it and look_at (a sphere centred on
+// look_at here); plain dolly would go in. Going out is as before.
+TEST(CameraControl, TheWheelStopsBeforeItEntersAnObject) {
+  using namespace phonglab;
+  Scene s;
+  s.camera.position = Vec3(0, 0, 5);
+  s.camera.look_at = Vec3(0, 0, 0);
+  s.materials = {Material{}};
+  s.spheres = {Sphere{{0, 0, 0}, 1, 0}};
+  const PreparedScene prepared(s);
+  Camera wheel = s.camera, plain = s.camera;
+  for (int i = 0; i < 30; ++i) {
+    ui::dolly_in(prepared, wheel, 0.7);
+    ui::dolly(plain, 0.7);
+    ASSERT_GT(glm::length(wheel.position), 1.0) << i;
+  }
+  EXPECT_LT(glm::length(plain.position), 1.0) << "plain dolly goes inside";
+  EXPECT_LT(glm::length(wheel.position), 1.1) << "it comes close to the surface";
+  const Vec3 close = wheel.position;
+  ui::dolly_in(prepared, wheel, 2.0);
+  EXPECT_GT(glm::length(wheel.position), glm::length(close) * 1.9) << "out, as before";
+}

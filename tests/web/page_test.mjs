@@ -510,6 +510,28 @@ let one_thread_image;
   await page.close();
 }
 
+// 6e'. "Play with n": n on a logarithmic slider and a box for any value (0 too); a coefficient
+// slider's value is saved as shown (0.04, no float noise from keeping a colour's hue).
+{
+  const page = await open('scene=lecture&size=160x90&spp=1');
+  const box = await (await page.$('#image')).boundingBox();
+  await page.mouse.click(box.x + box.width * 0.44, box.y + box.height * 0.6);  // the plastic sphere
+  const material = await page.evaluate(() => window.phonglab.state().material);
+  const n_of = () => page.evaluate((m) => window.phonglab.view.coefficient(m, 'n'), material);
+  await page.$eval('#slider-n', (e) => { e.value = '1.5'; e.dispatchEvent(new Event('input')); e.dispatchEvent(new Event('change')); });
+  const middle = await n_of();
+  await page.click('#n-typed', { clickCount: 3 });
+  await page.keyboard.type('0');
+  await page.keyboard.press('Enter');
+  await page.waitForTimeout(100);
+  const zero = await n_of();
+  check(Math.abs(middle - 31.6) < 1e-9 && zero === 0, `n's slider is logarithmic (its middle: n = ${middle}) and n = 0 can be typed (${zero})`);
+  await page.$eval('#slider-ka', (e) => { e.value = '0.04'; e.dispatchEvent(new Event('input')); e.dispatchEvent(new Event('change')); });
+  const text = await page.evaluate(() => window.phonglab.view.sceneJson());
+  check(!/\d{9,}/.test(text), `the saved file holds the slider's numbers, no float noise (${(text.match(/"plastic": \{[^}]*"ka": [^\]]*\]/) || [''])[0]})`);
+  await page.close();
+}
+
 // 6e. A downloaded scene's numbers read as a person writes them: 40, not 4e+01.
 {
   const page = await open('scene=lecture&size=160x90&spp=1');
