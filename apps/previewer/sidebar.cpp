@@ -189,8 +189,7 @@ void Sidebar::sidebar_ambient_fit() {
   if (ImGui::Button("best I\xE2\x82\x90 for this view")) {
     fit_now();
     Scene whole = scene;
-    whole.ambient = v_.tools_.ambient_fit()->fitted_ia;
-    for (int c = 0; c < 3; ++c) whole.ambient[c] = ui::tidy_float(whole.ambient[c]);
+    whole.ambient = ui::tidy_color(v_.tools_.ambient_fit()->fitted_ia);
     v_.apply_edit({edit::SetScene{std::move(whole)}, false});
   }
   ui::locate("scene.fit_ia");
@@ -202,8 +201,7 @@ void Sidebar::sidebar_ambient_fit() {
     fit_now();
     if (v_.tools_.ambient_fit()->hits[index] > 0) {
       Material fitted = scene.materials[index];
-      fitted.ka = v_.tools_.ambient_fit()->fitted_ka[index];
-      for (int c = 0; c < 3; ++c) fitted.ka[c] = ui::tidy_float(fitted.ka[c]);
+      fitted.ka = ui::tidy_color(v_.tools_.ambient_fit()->fitted_ka[index]);
       v_.apply_edit({edit::SetMaterial{m, fitted}, false});
     }
   }

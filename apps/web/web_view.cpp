@@ -36,11 +36,7 @@ double largest(const Color& c) { return std::max({c.x, c.y, c.z}); }
 // A colour to `value` at its largest channel, keeping its hue (black becomes grey), each channel
 // to float precision as the desktop's panels keep it: a saved file reads 0.008, not
 // 0.008000000000000002.
-Color scaled(const Color& c, double value) {
-  Color out = largest(c) > 0 ? c * (value / largest(c)) : Color(value);
-  for (int k = 0; k < 3; ++k) out[k] = ui::tidy_float(out[k]);
-  return out;
-}
+Color scaled(const Color& c, double value) { return ui::tidy_color(largest(c) > 0 ? c * (value / largest(c)) : Color(value)); }
 
 }  // namespace
 

@@ -36,6 +36,8 @@ double significant(double v, int digits) {
   return tidy_float(rounded);
 }
 
+Color tidy_color(const Color& c) { return Color(tidy_float(c.x), tidy_float(c.y), tidy_float(c.z)); }
+
 double shown_value(double value, const char* format) {
   std::array<char, 64> shown{};
   std::snprintf(shown.data(), shown.size(), format, value);

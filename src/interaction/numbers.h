@@ -6,11 +6,15 @@
 #include <string>
 #include <string_view>
 
+#include "core/scene/math.h"
+
 namespace phonglab::ui {
 
 // The double nearest to the shortest decimal that reads back as `value` in float: what a float
 // slider or colour picker meant (0.366, not 0.3659999966621399).
 double tidy_float(double value);
+// tidy_float of each channel: a colour as a float panel shows it.
+Color tidy_color(const Color& c);
 
 // `v` (positive) to `digits` significant digits (at most 7), as the double nearest that decimal
 // (0.6, not 0.60000000000000009); other values unchanged.

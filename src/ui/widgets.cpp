@@ -32,8 +32,6 @@ void locate(const std::string& name) {
 
 namespace {
 
-Color tidy(const Color& c) { return Color(tidy_float(c.x), tidy_float(c.y), tidy_float(c.z)); }
-
 // Ctrl+click turns a slider or drag field into a text field, and ImGui's filter then drops every
 // character that cannot be part of a number without a word. The widget `key` was such a field
 // last frame (remember_typing): name the dropped characters in `refused` before the widget
@@ -89,7 +87,7 @@ bool color_strength_edit(const char* label, Color& color, float max_strength) {
   float hue_rgb[3] = {static_cast<float>(hue.x), static_cast<float>(hue.y), static_cast<float>(hue.z)};
   if (ImGui::ColorEdit3("##hue", hue_rgb, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel |
                                                ImGuiColorEditFlags_Float)) {
-    color = tidy(Color(hue_rgb[0], hue_rgb[1], hue_rgb[2]) * strength);
+    color = tidy_color(Color(hue_rgb[0], hue_rgb[1], hue_rgb[2]) * strength);
     edited = true;
   }
   if (ImGui::IsItemHovered()) {
@@ -102,7 +100,7 @@ bool color_strength_edit(const char* label, Color& color, float max_strength) {
   if (ImGui::SliderFloat(label, &new_strength, 0.0f, max_strength, kStrengthFormat)) {
     // The largest channel becomes exactly what the slider shows; the others keep their ratio to it.
     const double target = shown_value(std::max(static_cast<double>(new_strength), 0.0), kStrengthFormat);
-    color = strength > 0 ? tidy(color * (target / strength)) : Color(target);
+    color = strength > 0 ? tidy_color(color * (target / strength)) : Color(target);
     for (int c = 0; c < 3; ++c) {
       if (strength > 0 && color[c] != 0 && hue[c] == 1) color[c] = target;
     }
