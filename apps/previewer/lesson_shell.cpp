@@ -225,14 +225,19 @@ float LessonShell::caption_lines_height(const std::vector<CaptionLine>& lines, f
   return height + pad * 0.6f;
 }
 
-float LessonShell::caption_strip_height(float width, float window_height) const {
+float LessonShell::caption_strip_height(float width, float window_height) {
   const Lesson* lesson = v_.lessons_.lesson();
   if (lesson == nullptr || width < 1) return 0;
+  const StripKey key{lesson->name + '\n' + lesson->title, width, window_height, v_.platform_.ui_scale(),
+                       state_.presenting, v_.lessons_.exploring()};
+  if (key == strip_key_) return strip_height_;
   float tallest = 0;
   for (int i = 0; i < static_cast<int>(lesson->steps.size()); ++i) {
     tallest = std::max(tallest, caption_lines_height(caption_lines(i, lesson->steps[static_cast<std::size_t>(i)].has_question()), width));
   }
-  return std::min(tallest, kCaptionShare * window_height);
+  strip_key_ = key;
+  strip_height_ = std::min(tallest, kCaptionShare * window_height);
+  return strip_height_;
 }
 
 void LessonShell::draw_lesson_caption() {

@@ -52,7 +52,8 @@ class LessonShell {
   // the lesson's steps with its answer shown, so the image keeps its size through a lesson (no
   // new render when an answer or a step's longer text appears), at most kCaptionShare of
   // `window_height`; 0 with no lesson open.
-  float caption_strip_height(float width, float window_height) const;
+  // Measured once per lesson, width, window and caption size, not every frame.
+  float caption_strip_height(float width, float window_height);
   static constexpr float kCaptionShare = 0.4f;
   std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
   void write_lesson_state(std::ostream& out) const;
@@ -71,6 +72,14 @@ class LessonShell {
 
   Viewer& v_;
   LessonState state_;
+  struct StripKey {
+    std::string lesson;  // its name and title: another lesson may take the same storage
+    float width = 0, window_height = 0, ui_scale = 0;
+    bool presenting = false, exploring = false;
+    bool operator==(const StripKey&) const = default;
+  };
+  StripKey strip_key_;       // what strip_height_ was measured for
+  float strip_height_ = 0;
 };
 
 }  // namespace phonglab
