@@ -5,18 +5,19 @@
 # reached without linking (an inline helper, a type) that the link lines cannot see.
 set(_rules
   "src/core|core/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"
-  "src/io|core/ io/|imgui GL/ glad GLFW embree3"
+  "src/io|core/ check/ io/|imgui GL/ glad GLFW embree3"
+  "src/check|core/ check/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"
   "src/experiments|core/ experiments/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"
   "src/interaction|core/ interaction/|imgui GL/ glad GLFW embree3"
-  "src/session|core/ io/ interaction/ session/|imgui GL/ glad GLFW embree3"
-  "src/ui|core/ io/ interaction/ ui/|GL/ glad GLFW embree3"
-  "apps/common|core/ io/ apps/common/|imgui GL/ glad GLFW embree3"
-  "apps/cli|core/ io/ apps/common/ apps/cli/|imgui GL/ glad GLFW embree3"
-  "apps/previewer|core/ io/ interaction/ session/ ui/ apps/common/ apps/previewer/|embree3"
-  "apps/bench|core/ io/ experiments/ apps/common/ apps/bench/|imgui GL/ glad GLFW"
-  "apps/web|core/ io/ interaction/ session/ apps/web/|imgui GL/ glad GLFW embree3"
+  "src/session|core/ io/ check/ interaction/ session/|imgui GL/ glad GLFW embree3"
+  "src/ui|core/ io/ check/ interaction/ ui/|GL/ glad GLFW embree3"
+  "apps/common|core/ io/ check/ apps/common/|imgui GL/ glad GLFW embree3"
+  "apps/cli|core/ io/ check/ apps/common/ apps/cli/|imgui GL/ glad GLFW embree3"
+  "apps/previewer|core/ io/ check/ interaction/ session/ ui/ apps/common/ apps/previewer/|embree3"
+  "apps/bench|core/ io/ check/ experiments/ apps/common/ apps/bench/|imgui GL/ glad GLFW"
+  "apps/web|core/ io/ check/ interaction/ session/ apps/web/|imgui GL/ glad GLFW embree3"
 )
-set(_project_prefixes core/ io/ experiments/ interaction/ session/ ui/ apps/)
+set(_project_prefixes core/ io/ check/ experiments/ interaction/ session/ ui/ apps/)
 set(_errors 0)
 foreach(rule IN LISTS _rules)
   string(REPLACE "|" ";" parts "${rule}")

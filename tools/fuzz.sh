@@ -1,19 +1,22 @@
 #!/usr/bin/env bash
 # Runs the fuzzers (libFuzzer with ASan and UBSan, built by tools/dev.sh test in build-asan):
 #
-#   tools/fuzz.sh SECONDS [TARGET...]    TARGET: scene, obj, lesson (default: all three, side by side)
+#   tools/fuzz.sh SECONDS [TARGET...]    TARGET: scene, obj, lesson, formula, image (default: all five,
+#                                        side by side)
 #
 # Each starts from its seed corpus (scene: assets/scenes; obj: tests/fuzz/corpus/obj; lesson:
-# tests/fuzz/corpus/lesson and assets/lessons) in a fresh temporary folder and prints libFuzzer's
-# final statistics (stat::number_of_executed_units is the executions). Any crash, hang (-timeout),
-# sanitizer report or NaN (the targets abort on one) fails the run; the input is kept in
-# BUILD/fuzz-crashes/. BUILD defaults to build-asan (FUZZ_BUILD=...).
+# tests/fuzz/corpus/lesson and assets/lessons; formula: tests/fuzz/corpus/formula; image:
+# tests/fuzz/corpus/image) in a fresh temporary folder and prints libFuzzer's final statistics
+# (stat::number_of_executed_units is the executions). Any crash, hang (-timeout), sanitizer report,
+# NaN in a render (the file targets abort on one; a formula's own NaN is the student's, as is a
+# PFM's), disagreement of a formula's evaluations or an image value outside its kind's range fails
+# the run; the input is kept in BUILD/fuzz-crashes/. BUILD defaults to build-asan (FUZZ_BUILD=...).
 set -uo pipefail
 cd "$(dirname "$0")/.."
-SECONDS_EACH=${1:?usage: tools/fuzz.sh SECONDS [scene|obj|lesson ...]}
+SECONDS_EACH=${1:?usage: tools/fuzz.sh SECONDS [scene|obj|lesson|formula|image ...]}
 shift
 TARGETS=("$@")
-((${#TARGETS[@]})) || TARGETS=(scene obj lesson)
+((${#TARGETS[@]})) || TARGETS=(scene obj lesson formula image)
 BUILD=${FUZZ_BUILD:-build-asan}
 mkdir -p "$BUILD/fuzz-crashes"
 pids=()
@@ -23,6 +26,8 @@ for t in "${TARGETS[@]}"; do
     scene) cp assets/scenes/*.json "$corpus"/; max_len=4096 ;;
     obj) cp tests/fuzz/corpus/obj/* "$corpus"/; max_len=8192 ;;
     lesson) cp tests/fuzz/corpus/lesson/* assets/lessons/*.json "$corpus"/; max_len=8192 ;;
+    formula) cp tests/fuzz/corpus/formula/* "$corpus"/; max_len=8192 ;;
+    image) cp tests/fuzz/corpus/image/* "$corpus"/; max_len=4096 ;;
     *) echo "tools/fuzz.sh: unknown target $t" >&2; exit 2 ;;
   esac
   (

@@ -16,6 +16,7 @@
 #include "apps/bench/bench_common.h"
 #include "apps/bench/bench_report.h"
 #include "apps/common/args.h"
+#include "apps/common/formula_args.h"
 #include "core/packet/packet.h"
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
@@ -32,6 +33,7 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
                       [--only accel|indirect]
        phonglab-bench SCENE [--frames N] [--width W] [--height H] [--threads N]
                       [--scalar] [--edited] [--reshade shading|light|head]
+                      [--formula SLOT=TEXT|@FILE ...]
   (also run as `phonglab-cli bench ...`, which executes phonglab-bench)
 
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
@@ -49,6 +51,8 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
   "move your head" angle (head) against render_pass of the same scene,
   checking the images are bit-identical; then the live path of a kd or a
   light-intensity slider (within 1e-12 of render_pass; default: plain frames).
+  --formula: a term by a formula of your own (docs/formulas.md): the image
+  with the formulas timed against the built-in re-shade of a kd edit.
   --threads N: worker threads (default 0: all hardware threads).
   SCENE is a scene file (JSON) or an embedded scene's name.
   Exit codes: 0 success, 1 bad input, 2 bad usage.
@@ -176,6 +180,48 @@ int time_reshading(const std::string& scene_arg, const std::string& kind, int fr
   return identical && live ? kExitOk : kExitBadInput;
 }
 
+// A formula edit against the built-in re-shade (docs/formulas.md): the trees of the first sample
+// recorded once; each frame, alternating, a kd edit re-shaded from them (what a built-in
+// coefficient's edit costs) and the image with the formulas (what a keystroke in the Formula
+// panel costs: formulas are traced through the experiment hook, not re-shaded from the trees).
+int time_formula(const std::string& scene_arg, const LocalRules& formulas, int frames, int width, int height,
+                 int threads) {
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  if (scene->materials.empty()) {
+    std::fprintf(stderr, "phonglab-bench: --formula needs a material\n");
+    return kExitBadInput;
+  }
+  auto prepared = std::make_shared<const PreparedScene>(*scene);
+  std::unique_ptr<RayTrees> trees = RayTrees::record(prepared, width, height, std::nullopt, threads, std::size_t{4} << 30);
+  if (!trees) {
+    std::fprintf(stderr, "phonglab-bench: the trees do not fit in 4 GiB\n");
+    return kExitBadInput;
+  }
+  RenderOptions options;
+  options.threads = threads;
+  std::vector<double> reshade_ms, formula_ms;
+  std::optional<Vec3> eye;
+  Scene edited = *scene;
+  for (int f = 0; f < frames; ++f) {
+    edit_for_frame(edited, "shading", f, eye);
+    const auto reshaded_scene = std::make_shared<const PreparedScene>(edited);
+    Accumulator reshaded, traced;
+    reshaded.reset(width, height);
+    traced.reset(width, height);
+    reshade_ms.push_back(trees->reshade(reshaded_scene, Term::kFull, std::nullopt, threads, reshaded).seconds * 1e3);
+    const PreparedScene with_formulas = prepare_with_rules(*scene, *prepared, formulas);
+    formula_ms.push_back(render_pass(with_formulas, options, traced).seconds * 1e3);
+  }
+  const std::string thread_count = counted(static_cast<std::size_t>(resolve_thread_count(threads)), "thread");
+  std::printf("scene %s, %dx%d, %s, %s\n", scene_arg.c_str(), width, height, thread_count.c_str(),
+              counted(static_cast<std::size_t>(frames), "frame").c_str());
+  std::printf("formula render %.2f ms (%.1fx the built-in re-shade of %.2f ms; a formula is traced, not yet re-shaded "
+              "from the ray trees)\n",
+              median(formula_ms), median(formula_ms) / median(reshade_ms), median(reshade_ms));
+  return kExitOk;
+}
+
 // Frames of one scene, timed.
 int time_frames(const std::string& scene_arg, int frames, int width, int height, int threads, bool scalar,
                 bool edited) {
@@ -226,7 +272,10 @@ int run(Args& args) {
   const bool scalar = args.take_flag("--scalar");
   const bool edited = args.take_flag("--edited");
   const auto reshade = args.take_value("--reshade");
+  bool with_formulas = false;
+  const std::optional<LocalRules> formulas = take_formulas(args, with_formulas);
   const auto positional = args.take_positional();
+  if (!formulas) return kExitBadInput;
   if (only) {
     if ((*only != "accel" && *only != "indirect") || positional) {
       throw UsageError{"--only takes 'accel' or 'indirect' and no SCENE"};
@@ -240,6 +289,10 @@ int run(Args& args) {
     report.quick = quick;
     report.threads = threads.value_or(0);
     return run_bench_report(report);
+  }
+  if (with_formulas) {
+    return time_formula(*positional, *formulas, frames.value_or(15), width.value_or(1280), height.value_or(720),
+                        threads.value_or(0));
   }
   if (reshade) {
     if (*reshade != "shading" && *reshade != "light" && *reshade != "head") {

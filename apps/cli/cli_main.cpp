@@ -3,11 +3,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -17,6 +19,9 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common/args.h"
+#include "apps/common/formula_args.h"
+#include "check/check.h"
+#include "check/formula.h"
 #include "core/accel/accel.h"
 #include "io/diagnostic.h"
 #include "io/embedded_scenes.h"
@@ -25,6 +30,7 @@
 #include "io/lesson_io.h"
 #include "core/teaching/heat_map.h"
 #include "io/image_io.h"
+#include "io/image_read.h"
 #include "core/packet/packet.h"
 #include "io/probe_report.h"
 #include "core/render/render.h"
@@ -48,6 +54,7 @@ commands:
   render [SCENE] -o OUT [--width W] [--height H] [--spp N] [--term T]
          [--max-depth D] [--fov-y DEG] [--threads N] [--stats FILE.json]
          [--ambient constant|indirect] [--bounces B]
+         [--formula SLOT=TEXT|@FILE ...]
       Render to OUT (.pfm: linear float32, unclamped; .png: 8-bit sRGB).
       W x H: the image's size (default: the scene's image size, 960 x 540 in a
          file without one). N: samples per pixel (default 16, anti-aliased;
@@ -64,6 +71,21 @@ commands:
          --term indirect: that term alone at the primary hit. B: its bounces,
          1..64 (default: the scene's "indirect": {"bounces"}, else 4).
       --stats: the times, rays by kind and Mrays/s as JSON (default: none).
+      --formula: a term (ambient, diffuse or specular) by your own formula
+         (docs/formulas.md); a NaN or infinite value is written as 0.
+  check SCENE IMAGE [--spp N] [--json] [--diff OUT.png] [--threads N]
+  check [SCENE] --formula SLOT=TEXT|@FILE ... [--width W] [--height H]
+        [--spp N] [--json] [--diff OUT.png] [--threads N]
+      A student's work against the exact image. IMAGE: what your own ray
+      tracer rendered of SCENE, at its own size (PNG 8-bit sRGB; PPM P6/P3,
+      maxval 255 as sRGB, other maxvals linear; PFM linear). --formula: your
+      formula for the ambient, diffuse or specular term (docs/formulas.md),
+      rendered in its place. Prints match or differs, the differing pixels,
+      the largest difference and the nearest known mistake (docs/checking.md);
+      --json: the same as one JSON object; --diff: the reference dimmed with
+      the differing pixels marked (orange: yours brighter, blue: darker,
+      magenta: NaN). N: samples per pixel of the reference (default 1: the
+      pixel centres). Exit 0 match, 3 differs, 1 bad input.
   probe [SCENE] --pixel X,Y [--json] [--width W] [--height H] [--fov-y DEG]
         [--ambient indirect [--bounces B] [--spp N]]
       The illumination equation of that pixel's centre ray, term by term, as
@@ -77,6 +99,14 @@ commands:
       The five term images and their sum in a labelled 3x2 grid, each W x H
       (default 320 x 180) at N samples per pixel (default 16).
   validate SCENE       Parse and check a scene only.
+  scene [SCENE] [--plain] [-o OUT.json]
+      The scene as phonglab reads it, every default written out: the camera,
+      image, ambient, background, max_depth, min_weight, specular_model,
+      every light's keys and every material's ka kd ks n kr kt ior fresnel
+      (docs/your-ray-tracer.md). --plain: every number in plain decimal
+      (0.000001, never 1e-06), for your own ray tracer's parser (default:
+      the shortest text). Mesh objects stay as their OBJ file. Printed, or
+      written to OUT.json (default: printed).
   scenes               List the embedded scenes.
   lessons              List the embedded lessons.
   lesson LESSON -o DIR [--width W] [--height H] [--spp N] [--threads N]
@@ -93,7 +123,7 @@ commands:
       alone (accel.md, accel.csv, yardsticks.csv; default: every section);
       --only indirect: the indirect light's convergence and speed.
   bench SCENE [--frames N] [--width W] [--height H] [--threads N] [--scalar]
-              [--edited] [--reshade shading|light|head]
+              [--edited] [--reshade shading|light|head] [--formula SLOT=TEXT]
       Time N Whitted frames (default 15; 1 spp each) of one scene at W x H
       (default 1280 x 720, whatever the scene's size) and print the median.
       --scalar: without the packet tracer (the same image, traced ray by ray).
@@ -102,6 +132,8 @@ commands:
       head (head) from the first sample's ray trees, timed against a fresh
       render, then the live path of a kd or light-intensity slider (default:
       plain frames).
+      --formula SLOT=TEXT: the image with your formula timed against the
+      built-in re-shade of a kd edit.
       This is phonglab-bench, installed beside phonglab-cli.
 
 --threads N: worker threads (default 0: all hardware threads); the images are
@@ -109,8 +141,12 @@ the same for every thread count.
 SCENE is a scene file (JSON) or an embedded scene's name; default: lecture.
 LESSON is a lesson file (JSON) or an embedded lesson's name.
 Options: --help, --version.
-Exit codes: 0 success, 1 bad input, 2 bad usage.
+Exit codes: 0 success, 1 bad input, 2 bad usage (check: 3 differs).
 )";
+
+constexpr int kExitDiffers = 3;
+
+
 
 // --ambient and --bounces, shared by render and probe.
 struct AmbientArgs {
@@ -145,8 +181,14 @@ int cmd_render(Args& args) {
   const auto term_arg = args.take_value("--term");
   const auto stats_path = args.take_value("--stats");
   const AmbientArgs ambient = take_ambient(args);
+  bool with_formulas = false;
+  const std::optional<LocalRules> formulas = take_formulas(args, with_formulas);
   const std::string scene_arg = args.take_positional().value_or(default_scene_name());
   if (!out) throw UsageError{"render needs -o OUT (.pfm or .png)"};
+  if (!formulas) return kExitBadInput;
+  if (with_formulas && ambient.ambient == Ambient::kIndirect) {
+    throw UsageError{"--formula replaces the lecture's local terms: it takes --ambient constant"};
+  }
   const std::string ext = out->size() >= 4 ? out->substr(out->size() - 4) : "";
   if (ext != ".pfm" && ext != ".png") throw UsageError{"-o " + *out + ": the extension must be .pfm or .png"};
   RenderOptions options;
@@ -175,7 +217,9 @@ int cmd_render(Args& args) {
   if (max_depth) scene->max_depth = *max_depth;
   if (fov_y) scene->camera.fov_y_deg = *fov_y;
   if (ambient.bounces) scene->indirect_bounces = *ambient.bounces;
-  const PreparedScene prepared(*scene);
+  const PreparedScene built(*scene);
+  // With formulas, the same geometry traced by the equation with its hooks (src/check/rules.h).
+  const PreparedScene prepared = with_formulas ? prepare_with_rules(*scene, built, *formulas) : built;
   const double build_ms = ms_since(t_build);
 
   Accumulator accum;
@@ -220,6 +264,97 @@ int cmd_render(Args& args) {
     }
   }
   return kExitOk;
+}
+
+// The verdict as JSON (docs/checking.md): the text report's figures under fixed keys.
+nlohmann::json check_json(const CheckResult& r) {
+  const auto number = [](double v) -> nlohmann::json {
+    if (std::isfinite(v)) return v;
+    return nullptr;
+  };
+  const auto colour = [&](const Color& c) { return nlohmann::json::array({number(c.x), number(c.y), number(c.z)}); };
+  nlohmann::json mistakes = nlohmann::json::array();
+  for (const Mistake m : r.mistakes) mistakes.push_back(std::string(mistake_info(m).name));
+  return {{"verdict", r.match ? "match" : "differs"},
+          {"pixels", r.pixels},
+          {"differing", r.differing},
+          {"max_difference", number(r.max_difference)},
+          {"worst_pixel", {r.worst_x, r.worst_y}},
+          {"yours", colour(r.worst_yours)},
+          {"reference", colour(r.worst_reference)},
+          {"units", r.codes8 ? "8-bit codes" : "linear"},
+          {"nan", r.nan},
+          {"mistake", r.mistake.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.mistake)},
+          {"mistakes", mistakes},
+          {"explained", r.mistake.empty() ? 0.0 : r.explained},
+          {"summary", check_summary(r)}};
+}
+
+int cmd_check(Args& args) {
+  const bool as_json = args.take_flag("--json");
+  const auto diff_path = args.take_value("--diff");
+  const auto spp = args.take_int("--spp", 1, 1 << 16);
+  const auto threads = args.take_int("--threads", 0, 1024);
+  const auto width = args.take_int("--width", 1, 16384);
+  const auto height = args.take_int("--height", 1, 16384);
+  bool with_formulas = false;
+  const std::optional<LocalRules> formulas = take_formulas(args, with_formulas);
+  if (!formulas) return kExitBadInput;  // a formula's error, or its file's, is printed
+  std::vector<std::string> positional;
+  while (const auto word = args.take_positional_word()) positional.push_back(*word);
+  if (diff_path && (diff_path->size() < 4 || diff_path->substr(diff_path->size() - 4) != ".png")) {
+    throw UsageError{"--diff " + *diff_path + ": the extension must be .png"};
+  }
+  if (with_formulas) {
+    if (positional.size() > 1) throw UsageError{"check --formula takes SCENE only (got '" + positional[1] + "' too)"};
+  } else {
+    if (positional.size() != 2) {
+      throw UsageError{"check needs SCENE IMAGE (your ray tracer's image of the scene) or SCENE --formula SLOT=TEXT"};
+    }
+    if (width || height) throw UsageError{"check SCENE IMAGE takes the image's own size (no --width, --height)"};
+  }
+  std::optional<Scene> scene = load_or_report(positional.empty() ? default_scene_name() : positional[0]);
+  if (!scene) return kExitBadInput;
+  CheckOptions options;
+  options.spp = spp.value_or(1);
+  options.threads = threads.value_or(0);
+  CheckResult result;
+  if (with_formulas) {
+    if (width) scene->width = *width;
+    if (height) scene->height = *height;
+    result = check_formulas(*scene, *formulas, options);
+  } else {
+    std::string error;
+    const std::optional<ReadImage> image = read_image_file(positional[1], &error);
+    if (!image) {
+      std::cerr << error << "\n";
+      return kExitBadInput;
+    }
+    StudentImage student;
+    student.width = image->width;
+    student.height = image->height;
+    student.units = image->kind == ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
+                    : image->kind == ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
+                                                                : StudentImage::Units::kLinear;
+    student.rgb = image->rgb;
+    result = check_image(*scene, student, options);
+  }
+  if (as_json) {
+    std::cout << check_json(result).dump(2) << "\n";
+  } else {
+    std::cout << check_report_text(result);
+  }
+  if (diff_path) {
+    Image diff;
+    diff.width = result.width;
+    diff.height = result.height;
+    for (const Color& c : check_difference_image(result)) diff.pixels.emplace_back(c);
+    if (std::string err = write_image(*diff_path, diff); !err.empty()) {
+      std::cerr << *diff_path << ": " << err << "\n";
+      return kExitBadInput;
+    }
+  }
+  return result.match ? kExitOk : kExitDiffers;
 }
 
 int cmd_probe(Args& args) {
@@ -304,6 +439,32 @@ int cmd_validate(Args& args) {
     std::cout << counted(scene->meshes.size(), "mesh", "meshes") << " of " << counted(mesh_triangles, "triangle") << ", ";
   }
   std::cout << counted(scene->lights.size(), "light") << ", " << counted(scene->materials.size(), "material") << ")\n";
+  return kExitOk;
+}
+
+// The scene with every default written out; --plain: in plain decimal numbers, for a student's
+// own parser (docs/your-ray-tracer.md).
+int cmd_scene(Args& args) {
+  const bool plain = args.take_flag("--plain");
+  const auto out = args.take_value("-o");
+  const std::string scene_arg = args.take_positional().value_or(default_scene_name());
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  // Written to a file, the mesh files read from disk are named relative to its folder.
+  std::string save_dir;
+  if (out) {
+    save_dir = std::filesystem::path(*out).parent_path().string();
+    if (save_dir.empty()) save_dir = ".";
+  }
+  const std::string text = plain ? scene_to_plain_json(*scene, save_dir) : scene_to_json(*scene, save_dir);
+  if (!out) {
+    std::cout << text;
+    return kExitOk;
+  }
+  if (std::string err = write_file_atomically(*out, text); !err.empty()) {
+    std::cerr << err << "\n";
+    return kExitBadInput;
+  }
   return kExitOk;
 }
 
@@ -398,8 +559,10 @@ int main(int argc, char** argv) {
   try {
     if (command == "render") return cmd_render(args);
     if (command == "probe") return cmd_probe(args);
+    if (command == "check") return cmd_check(args);
     if (command == "figure") return cmd_figure(args);
     if (command == "validate") return cmd_validate(args);
+    if (command == "scene") return cmd_scene(args);
     if (command == "scenes") return cmd_scenes(args);
     if (command == "lessons") return cmd_lessons(args);
     if (command == "lesson") return cmd_lesson(args);

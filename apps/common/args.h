@@ -79,6 +79,17 @@ class Args {
     return x;
   }
 
+  // The next positional word (an option left over is an error), or nullopt when none is left.
+  std::optional<std::string> take_positional_word() {
+    for (const std::string& w : words_) {
+      if (w.size() > 1 && w[0] == '-') throw UsageError{"unknown option '" + w + "'"};
+    }
+    if (words_.empty()) return std::nullopt;
+    std::string w = words_.front();
+    words_.erase(words_.begin());
+    return w;
+  }
+
   // The optional positional SCENE; anything else left over is an error.
   std::optional<std::string> take_positional() {
     std::optional<std::string> pos;

@@ -126,6 +126,8 @@ void Instruments::set_heat_map(bool on) {
 }
 
 std::vector<glm::vec3> Instruments::display_pixels() const {
+  // The Formula panel's difference view: the check's image, yours against the reference.
+  if (auto difference = v_.formulas_.difference_pixels(v_.shown_.width, v_.shown_.height)) return *difference;
   if (heat_shown()) {
     // Rays per pixel on the ramp, 0 to the image's maximum. With the sRGB curve the shader
     // encodes heat_color back to the ramp; raw display shows the ramp's codes themselves.

@@ -44,6 +44,7 @@ void LessonShell::start_lesson() {
 
 void LessonShell::close_lesson() {
   v_.lessons_.close();
+  sync_exercise();
   set_presenting(false);
   if (v_.files_.recovery().after_lesson) {
     v_.files_.recovery().after_lesson = false;
@@ -95,6 +96,20 @@ void LessonShell::present(const LessonPresenter::Show& show) {
   apply_step_view(show.view);
   state_.applied = true;
   state_.shown_size = {0, 0};
+  sync_exercise();
+}
+
+const LessonExercise* LessonShell::exercise() const { return v_.session_.exercise(); }
+
+int LessonShell::hints_left() const {
+  const LessonExercise* e = exercise();
+  return e ? static_cast<int>(e->hints.size()) - v_.session_.hints_shown() : 0;
+}
+
+void LessonShell::show_hint() { v_.session_.show_hint(); }
+
+void LessonShell::sync_exercise() {
+  if (v_.session_.sync_exercise()) v_.formulas_.unfold();
 }
 
 void LessonShell::update_lesson() {
@@ -202,6 +217,29 @@ std::vector<LessonShell::CaptionLine> LessonShell::caption_lines(int step_index,
                                     {step.caption, small, IM_COL32(225, 225, 225, 255)}};
   if (step.has_question()) lines.push_back({"Q: " + step.question, small, IM_COL32(255, 200, 70, 255)});
   if (step.has_question() && revealed) lines.push_back({"A: " + step.answer, small, IM_COL32(140, 235, 140, 255)});
+  if (step.exercise) {
+    // `revealed` measures the strip: the task and a long verdict; hints asked for grow the
+    // caption up over the image's bottom (no new render).
+    const LessonExercise& e = *step.exercise;
+    lines.push_back({"Your turn (the " + e.slot + " term, in the Formula panel): " + e.task, small, IM_COL32(255, 200, 70, 255)});
+    const int shown = revealed ? 0 : v_.session_.hints_shown();
+    for (int h = 0; h < shown && h < static_cast<int>(e.hints.size()); ++h) {
+      lines.push_back({"Hint " + std::to_string(h + 1) + ": " + e.hints[static_cast<std::size_t>(h)], small,
+                       IM_COL32(190, 210, 255, 255)});
+    }
+    const std::optional<CheckResult>& check = v_.formulas_.last_check();
+    if (revealed) {
+      lines.push_back({std::string(200, 'x'), small, IM_COL32(0, 0, 0, 0)});
+    } else if (!v_.session_.formulas().any()) {
+      lines.push_back({"Type the formula: the image shows yours.", small, IM_COL32(200, 200, 200, 255)});
+    } else if (!check || !v_.formulas_.check_settled()) {
+      lines.push_back({"Checking against the reference...", small, IM_COL32(200, 200, 200, 255)});
+    } else if (check->match) {
+      lines.push_back({"\xE2\x9C\x93 Your formula matches the reference: every pixel.", small, IM_COL32(140, 235, 140, 255)});
+    } else {
+      lines.push_back({"Not yet: " + check_summary(*check), small, IM_COL32(255, 150, 110, 255)});
+    }
+  }
   const bool posed = step.has_question() && !revealed;
   const LessonPlace place{step_index, revealed};
   const bool last = lesson_next(lesson, place) == place;
@@ -233,7 +271,8 @@ float LessonShell::caption_strip_height(float width, float window_height) {
   if (key == strip_key_) return strip_height_;
   float tallest = 0;
   for (int i = 0; i < static_cast<int>(lesson->steps.size()); ++i) {
-    tallest = std::max(tallest, caption_lines_height(caption_lines(i, lesson->steps[static_cast<std::size_t>(i)].has_question()), width));
+    const LessonStep& s = lesson->steps[static_cast<std::size_t>(i)];
+    tallest = std::max(tallest, caption_lines_height(caption_lines(i, s.has_question() || s.exercise), width));
   }
   strip_key_ = key;
   strip_height_ = std::min(tallest, kCaptionShare * window_height);
@@ -269,6 +308,11 @@ std::optional<std::string> LessonShell::script_lesson_command(const std::vector<
     open_lesson(w[1]);  // a lesson that does not load is reported (stderr, lesson_error) and changes nothing
     return "";
   }
+  if (name == "lesson_hint") {
+    if (hints_left() <= 0) return "no hint left (or no exercise shown)";
+    show_hint();
+    return "";
+  }
   if (name != "lesson_next" && name != "lesson_prev" && name != "lesson_goto") return std::nullopt;
   if (!v_.lessons_.lesson()) return "no lesson is open (lesson_open NAME|FILE)";
   if (name == "lesson_next" || name == "lesson_prev") {
@@ -296,7 +340,9 @@ void LessonShell::write_lesson_state(std::ostream& out) const {
       << "lesson_exploring=" << (v_.lessons_.exploring() ? 1 : 0) << "\n"
       << "lesson_presenting=" << (state_.presenting ? 1 : 0) << "\n"
       << "lesson_comparing=" << (v_.lessons_.awaiting_a() ? 1 : 0) << "\n"
-      << "lesson_error=" << state_.error.substr(0, state_.error.find('\n')) << "\n";
+      << "lesson_error=" << state_.error.substr(0, state_.error.find('\n')) << "\n"
+      << "lesson_exercise=" << (exercise() ? exercise()->slot : "") << "\n"
+      << "lesson_hints_shown=" << v_.session_.hints_shown() << "\n";
 }
 
 }  // namespace phonglab

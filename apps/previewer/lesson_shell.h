@@ -57,10 +57,17 @@ class LessonShell {
   static constexpr float kCaptionShare = 0.4f;
   std::optional<std::string> script_lesson_command(const std::vector<std::string>& words);  // "" done, else why not
   void write_lesson_state(std::ostream& out) const;
+  // An exercise step (docs/lessons.md): the one shown, its hints left, the next one shown.
+  const LessonExercise* exercise() const;
+  int hints_left() const;
+  void show_hint();
 
  private:
   void adopt_step_scene(int step);               // the step's scene becomes the document
   void apply_step_view(const StepView& view);    // the term, instruments, probe, head and depth cut of a view
+  // An exercise step's formula: the starter (or what the student left there) in its slot when
+  // the step is entered, the formulas cleared when it is left.
+  void sync_exercise();
   struct CaptionLine {
     std::string text;
     float size;

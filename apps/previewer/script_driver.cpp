@@ -217,7 +217,8 @@ bool ScriptDriver::script_wait_done(double now) {
     case ScriptWait::kFrames: done = --run_.frames_left <= 0; break;
     case ScriptWait::kIdle:
       // A lesson's compare is done once its A is taken and the step itself is final.
-      done = v_.image_is_final() && !v_.lessons_.awaiting_a() && !v_.lesson_shell_.state().applied;
+      done = v_.image_is_final() && !v_.lessons_.awaiting_a() && !v_.lesson_shell_.state().applied &&
+             v_.formulas_.check_settled();
       break;
     case ScriptWait::kImage:
       done = !v_.upload_pending_ && v_.drawn_serial_ > 0 && v_.drawn_generation_ == v_.renderer_.status().generation;
@@ -464,6 +465,21 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
     if (name == "undo") v_.undo();
     else if (name == "redo") v_.redo();
     else v_.tools_.snapshot_a();
+    return true;
+  }
+  if (name == "formula" || name == "formula_view") {
+    // formula SLOT TEXT...: the slot's text as typed (the words joined by spaces; "" clears it);
+    // formula_view yours|reference|difference.
+    if (name == "formula_view") {
+      if (w.size() != 2 || !v_.formulas_.set_view(w[1])) return step.fail("usage: formula_view yours|reference|difference");
+      return true;
+    }
+    const std::optional<FormulaSlot> slot = w.size() >= 2 ? formula_slot_from_name(w[1]) : std::nullopt;
+    if (!slot) return step.fail("usage: formula ambient|diffuse|specular TEXT...");
+    std::string text;
+    for (std::size_t i = 2; i < w.size(); ++i) text += (i > 2 ? " " : "") + w[i];
+    if (text == "\"\"") text.clear();
+    v_.formulas_.set_text(*slot, text);
     return true;
   }
   if (name == "solo") {

@@ -155,7 +155,34 @@ void ScriptDriver::write_layout_state(std::ostream& out) const {
   if (v_.schedule_.eye()) out << "head_eye=" << vec(*v_.schedule_.eye()) << "\n";
 }
 
+// The Formula panel: each slot's text (newlines as \\n) and error, the view, the check.
+static void write_formula_state(std::ostream& out, const FormulaShell& shell, const FormulaBook& book) {
+  const auto one_line = [](std::string text) {
+    for (std::size_t at = 0; (at = text.find('\n', at)) != std::string::npos; at += 2) text.replace(at, 1, "\\n");
+    return text;
+  };
+  for (int s = 0; s < kFormulaSlots; ++s) {
+    const auto slot = static_cast<FormulaSlot>(s);
+    const FormulaBook::Slot& f = book.slot(slot);
+    out << "formula_" << formula_slot_name(slot) << "=" << one_line(f.text) << "\n"
+        << "formula_error_" << formula_slot_name(slot) << "=" << (f.error ? f.error->text() : std::string()) << "\n";
+  }
+  out << "formula_view=" << ui::formula_view_name(shell.view()) << "\n"
+      << "formula_probe=" << one_line(shell.panel().probe) << "\n"
+      << "formula_checking=" << (shell.check_settled() ? 0 : 1) << "\n";
+  if (const std::optional<CheckResult>& r = shell.last_check(); r && book.any()) {
+    out << "formula_verdict=" << (r->match ? "match" : "differs") << "\n"
+        << "formula_differing=" << r->differing << "\n"
+        << "formula_nan=" << r->nan << "\n"
+        << "formula_mistake=" << r->mistake << "\n"
+        << "formula_summary=" << check_summary(*r) << "\n";
+  } else {
+    out << "formula_verdict=\n";
+  }
+}
+
 void ScriptDriver::write_rays_state(std::ostream& out) const {
+  write_formula_state(out, v_.formulas_, v_.session_.formulas());
   const Scene& scene = v_.doc_.scene();
   // Rays: the overlay as drawn in the last frame, the depth cut and the heat map.
   int tree_blocked = 0, tree_deepest = 0;

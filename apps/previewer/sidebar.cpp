@@ -96,6 +96,8 @@ void Sidebar::draw_sidebar() {
     if (header("Objects", false)) sidebar_objects();
     if (header("Materials", true)) sidebar_materials();
     if (header("Lights", true)) sidebar_lights();
+    if (v_.formulas_.take_unfold()) ImGui::SetNextItemOpen(true);
+    if (header("Formula: your own term", false)) v_.formulas_.sidebar_formulas();
     if (header("Probe", true)) sidebar_probe();
     if (header("Instruments", true)) sidebar_instruments();
     if (header("Rays: tree, depth cut, heat map", false)) sidebar_rays();

@@ -385,6 +385,7 @@ void Viewer::apply_edits(double frame_start) {
   const auto& snapshot = schedule_.snapshot();
   if (snapshot && !same_camera(view_camera(), snapshot->scene().camera)) edits_.camera = true;
   const bool dragging = interacting_ || edits_.while_active;
+  if (formulas_.sync_rules()) edits_.view = true;  // the formulas that render changed: a new snapshot
   const RenderSchedule::Sent sent = schedule_.send_scene(
       {edits_.scene || edits_.camera || edits_.replaced || edits_.view, edits_.replaced, dragging, width, height, frame_start},
       [&] {
@@ -408,6 +409,7 @@ void Viewer::apply_edits(double frame_start) {
     poll_render_frame();
   }
   edits_.scene = edits_.camera = edits_.replaced = edits_.settings = edits_.view = false;
+  formulas_.poll_check();
   tools_.take_a_when_final();
   update_title();
 }

@@ -24,6 +24,7 @@
 #include "apps/previewer/file_shell.h"
 #include "apps/previewer/scene_builder.h"
 #include "apps/previewer/instruments.h"
+#include "apps/previewer/formula_shell.h"
 #include "apps/previewer/overlays.h"
 #include "apps/previewer/sidebar.h"
 #include "apps/previewer/lesson_shell.h"
@@ -276,6 +277,10 @@ class Viewer {
   // head, the ambient views (instruments.h).
   friend class Instruments;
   Instruments tools_{*this};
+  // The student's formulas: the panel, the snapshot's rules, the check beside the renderer
+  // (formula_shell.h).
+  friend class FormulaShell;
+  FormulaShell formulas_{*this};
   int exit_code_ = 0;          // set by handle_signal
   // The test script being run (script_driver.h): a friend, for now, that reads and sets the
   // shell's state directly.

@@ -41,7 +41,13 @@ void WebView::close_lesson() {
   a_.clear();
   view_ = StepView{};
   view_probe_.clear();
+  if (session_.formulas().any()) {
+    session_.sync_exercise();  // an exercise's formula goes with the lesson
+    restart();
+  }
 }
+
+bool WebView::lesson_hint() { return session_.show_hint(); }
 
 std::string WebView::lesson_state() const {
   const LessonPresenter& presenter = session_.lessons();
@@ -59,6 +65,13 @@ std::string WebView::lesson_state() const {
                       {"revealed", place.revealed},
                       {"exploring", presenter.exploring()},
                       {"compare", a_.has_image() && view_.compare != CompareView::kNone}};
+  if (step.exercise) {
+    const int shown = std::min<int>(session_.hints_shown(), static_cast<int>(step.exercise->hints.size()));
+    j["exercise"] = {{"slot", step.exercise->slot},
+                     {"task", step.exercise->task},
+                     {"hints", std::vector<std::string>(step.exercise->hints.begin(), step.exercise->hints.begin() + shown)},
+                     {"hints_left", static_cast<int>(step.exercise->hints.size()) - shown}};
+  }
   return j.dump();
 }
 
@@ -68,6 +81,8 @@ void WebView::present(const LessonPresenter::Show& show) {
   a_.clear();
   if (show.adopt_step) adopt_step(*show.adopt_step);
   apply_view(show.view);
+  session_.sync_exercise();  // an exercise step's starter in its slot, the formulas cleared elsewhere
+  restart();
   if (session_.lessons().take_a_now()) a_.request(static_cast<std::uint64_t>(generation_), true);
 }
 

@@ -86,6 +86,11 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("lightCount", &WebView::light_count)
       .function("lightIntensity", &WebView::light_intensity)
       .function("setLightIntensity", &WebView::set_light_intensity)
+      .function("setFormula", &WebView::set_formula)
+      .function("formulaText", &WebView::formula_text)
+      .function("formulaError", &WebView::formula_error)
+      .function("setFormulaView", &WebView::set_formula_view)
+      .function("checkFormulas", &WebView::check_formulas_json)
       .function("undo", &WebView::undo)
       .function("redo", &WebView::redo)
       .function("openLesson", &WebView::open_lesson)
@@ -94,6 +99,7 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("lessonShow", &WebView::lesson_show)
       .function("closeLesson", &WebView::close_lesson)
       .function("lessonState", &WebView::lesson_state)
+      .function("lessonHint", &WebView::lesson_hint)
       .function("viewProbe", &WebView::view_probe)
       .function("bench", &WebView::bench);
 }

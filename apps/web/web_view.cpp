@@ -173,7 +173,12 @@ int WebView::live_level() {
 }
 
 void WebView::begin_generation() {
-  prepared_ = std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
+  // With formulas, the equation traced with its hooks (src/check/rules.h): no trees to re-shade.
+  const FormulaBook& formulas = session_.formulas();
+  prepared_ = formulas.any() && formula_view_ == 0
+                  ? std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_), PreparedScene::AccelFactory{},
+                                                          make_rules_experiment(formulas.rules()))
+                  : std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
   eye_ = view_shading_eye(*prepared_, view_, width_, height_);
   next_ = FromTrees::kTrace;
   live_shown_ = reshaded_ = false;
@@ -386,6 +391,54 @@ void WebView::set_light_intensity(int l, double value, bool held) {
   Light light = session_.scene().lights[static_cast<std::size_t>(l)];
   light.intensity = scaled(light.intensity, value);
   apply({edit::SetLight{l, light}, held});
+}
+
+std::string WebView::set_formula(int slot, const std::string& text) {
+  if (slot < 0 || slot >= kFormulaSlots) return "no such slot";
+  if (session_.set_formula(static_cast<FormulaSlot>(slot), text)) restart();
+  return formula_error(slot);
+}
+
+std::string WebView::formula_text(int slot) const {
+  if (slot < 0 || slot >= kFormulaSlots) return "";
+  return session_.formulas().slot(static_cast<FormulaSlot>(slot)).text;
+}
+
+std::string WebView::formula_error(int slot) const {
+  if (slot < 0 || slot >= kFormulaSlots) return "";
+  const std::optional<FormulaError>& error = session_.formulas().slot(static_cast<FormulaSlot>(slot)).error;
+  return error ? error->text() : std::string();
+}
+
+void WebView::set_formula_view(int view) {
+  const int v = view == 1 ? 1 : 0;
+  if (v == formula_view_) return;
+  formula_view_ = v;
+  if (session_.formulas().any()) restart();
+}
+
+std::string WebView::check_formulas_json() {
+  if (!session_.formulas().any()) return "";
+  Scene scene = view_scene(session_.scene(), view_);
+  constexpr int kCheckWidth = 320;
+  const double scale = std::min(1.0, static_cast<double>(kCheckWidth) / std::max(1, width_));
+  scene.width = std::max(1, static_cast<int>(width_ * scale));
+  scene.height = std::max(1, static_cast<int>(height_ * scale));
+  CheckOptions options;
+  options.threads = threads_;
+  const CheckResult r = check_formulas(scene, session_.formulas().rules(), options);
+  const auto quoted = [](const std::string& s) {
+    std::string out = "\"";
+    for (const char c : s) {
+      if (c == '"' || c == '\\') out += '\\';
+      out += c;
+    }
+    return out + "\"";
+  };
+  return std::string("{\"verdict\": ") + (r.match ? "\"match\"" : "\"differs\"") +
+         ", \"pixels\": " + std::to_string(r.pixels) + ", \"differing\": " + std::to_string(r.differing) +
+         ", \"nan\": " + std::to_string(r.nan) + ", \"mistake\": " + (r.mistake.empty() ? "null" : quoted(r.mistake)) +
+         ", \"summary\": " + quoted(check_summary(r)) + "}";
 }
 
 bool WebView::undo() {

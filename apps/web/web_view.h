@@ -23,6 +23,7 @@
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
 #include "core/teaching/lesson.h"
+#include "check/check.h"
 #include "session/session.h"
 #include "session/snapshot_a.h"
 
@@ -64,6 +65,19 @@ class WebView {
   // workers started with it (the page passes navigator.hardwareConcurrency).
   void set_threads(int threads) { threads_ = std::clamp(threads, 1, 64); }
   int threads() const { return threads_; }
+
+  // The student's formulas (docs/formulas.md), the session's with its undo: slot 0 ambient, 1
+  // diffuse, 2 specular. Returns the text's positioned error ("" when it compiles; with an
+  // error the last good formula keeps rendering).
+  std::string set_formula(int slot, const std::string& text);
+  std::string formula_text(int slot) const;
+  std::string formula_error(int slot) const;
+  // What the image shows: 0 yours (with the formulas), 1 the reference (the equation's terms).
+  void set_formula_view(int view);
+  // The formulas checked against the reference at a reduced size (at most 320 wide, the view's
+  // aspect; a second or less on one core): the verdict as JSON (check's --json keys and a
+  // `summary` in words), or "" with no formula.
+  std::string check_formulas_json();
 
   // One pass: true when it made a new image (false: the target is reached).
   bool step();
@@ -139,6 +153,7 @@ class WebView {
   bool lesson_show(int step);
   void close_lesson();
   std::string lesson_state() const;
+  bool lesson_hint();  // the exercise's next hint (lesson_state's "hints"); false when none is left
   std::string view_probe() const { return view_probe_; }  // the step's probed pixel's numbers
 
   // The speed: `frames` passes of the document at the page's size, 1 spp each on threads(),
@@ -179,6 +194,7 @@ class WebView {
   Accumulator accum_;
   std::vector<unsigned char> rgba_;
   int width_ = 640, height_ = 360, target_ = 16, level_ = 0, threads_ = 1;
+  int formula_view_ = 0;  // 0: yours (the formulas traced), 1: the reference
   int shown_width_ = 0, shown_height_ = 0, shown_divisor_ = 8;
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1, images_ = 0;

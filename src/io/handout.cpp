@@ -1,5 +1,7 @@
 #include "io/handout.h"
 
+#include "check/formula.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -363,6 +365,8 @@ std::string write_handout(const Lesson& lesson, const std::string& dir, const Ha
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(lesson.title)
        << "</title>\n<style>\nbody{font-family:sans-serif;max-width:70em;margin:2em auto;padding:0 1em;color:#222}\n"
           "img{max-width:100%;display:block;margin:.5em 0}\n.step{margin-bottom:3em}\n.question{color:#a60}\n.of{font-size:60%;font-weight:normal;color:#777}\n"
+          ".write{border:1px solid #999;min-height:7em;margin:.5em 0;background:repeating-linear-gradient(#fff 0 1.9em,#ccc 1.9em 2em)}\n"
+          ".reference{break-before:page;page-break-before:always}\npre{font-size:110%;background:#f4f4f4;padding:.5em}\n"
           "</style>\n</head>\n<body>\n<h1>"
        << html_escape(lesson.title) << "</h1>\n<p>" << html_escape(lesson.description) << "</p>\n";
   const int steps = static_cast<int>(lesson.steps.size());
@@ -386,6 +390,24 @@ std::string write_handout(const Lesson& lesson, const std::string& dir, const Ha
       if (revealed) html << "<p><b>Answer:</b> " << html_escape(step.answer) << "</p>\n";
       else if (step.has_question()) html << "<p class=\"question\"><b>Question:</b> " << html_escape(step.question) << "</p>\n";
       html << "<img alt=\"" << html_escape(step.title) << "\" src=\"data:image/png;base64," << base64(png) << "\">\n";
+    }
+    if (step.exercise) {
+      // The task with room to write the formula by hand; the reference is on the last page.
+      html << "<p class=\"question\"><b>Your turn (the " << html_escape(step.exercise->slot) << " term):</b> "
+           << html_escape(step.exercise->task) << "</p>\n<div class=\"write\"></div>\n";
+    }
+    html << "</section>\n";
+  }
+  bool exercises = false;
+  for (const LessonStep& step : lesson.steps) exercises = exercises || step.exercise.has_value();
+  if (exercises) {
+    html << "<section class=\"reference\" id=\"reference-formulas\">\n<h2>The reference formulas</h2>\n"
+            "<p>What phonglab renders for each term (docs/formulas.md); check yours with "
+            "<code>phonglab-cli check SCENE --formula 'SLOT=...'</code>.</p>\n";
+    for (int s = 0; s < kFormulaSlots; ++s) {
+      const auto slot = static_cast<FormulaSlot>(s);
+      html << "<h3>" << formula_slot_name(slot) << "</h3>\n<pre>" << html_escape(std::string(reference_formula(slot)))
+           << "</pre>\n";
     }
     html << "</section>\n";
   }

@@ -27,7 +27,10 @@ std::string LessonLoad::error_text() const { return diagnostics_text(errors); }
 namespace {
 
 constexpr std::array<std::string_view, 3> kLessonKeys = {"title", "description", "steps"};
-constexpr std::array<std::string_view, 7> kStepKeys = {"title", "caption", "scene", "changes", "show", "question", "answer"};
+constexpr std::array<std::string_view, 8> kStepKeys = {"title",    "caption", "scene",  "changes",
+                                                      "show",     "question", "answer", "exercise"};
+constexpr std::array<std::string_view, 4> kExerciseKeys = {"slot", "task", "starter", "hints"};
+constexpr std::size_t kMaxHints = 16;
 constexpr std::array<std::string_view, 6> kChangeKeys = {"materials", "lights", "camera", "max_depth", "ambient", "background"};
 constexpr std::array<std::string_view, 11> kShowKeys = {"term", "small_multiples", "probe", "ray_tree", "depth_cut",
                                                         "head_angle_deg", "light_markers", "compare", "ambient", "mute",
@@ -100,7 +103,42 @@ class LessonReader : private SceneMembers {
     } else if (!s.question.empty()) {
       report(v, "missing key \"answer\" (a question's answer is revealed on the next key press)");
     }
+    if (const Val* x = f.find("exercise")) {
+      if (!s.question.empty()) report(*x, "a step is a question or an exercise, not both");
+      s.exercise = exercise(*x);
+    }
     return s;
+  }
+
+  // A step of kind "exercise": {"slot", "task", "starter", "hints"}.
+  LessonExercise exercise(const Val& v) {
+    LessonExercise e;
+    if (!expect_object(v)) return e;
+    const Fields f = fields(v, kExerciseKeys);
+    require(v, f, {"slot", "task"});
+    if (const Val* x = f.find("slot")) {
+      set(e.slot, read_string(*x));
+      const std::vector<std::string_view> slots = {"ambient", "diffuse", "specular"};
+      if (!e.slot.empty() && std::find(slots.begin(), slots.end(), e.slot) == slots.end()) {
+        report(*x, "unknown slot \"" + e.slot + "\"" + suggestion_for(e.slot, slots, "expected one of"));
+      }
+    }
+    if (const Val* x = f.find("task")) set(e.task, read_string(*x));
+    if (const Val* x = f.find("starter")) set(e.starter, read_string(*x));
+    if (const Val* x = f.find("hints")) {
+      if (!expect_array(*x)) return e;
+      const std::size_t count = element_count(*x);
+      if (count > kMaxHints) {
+        report(*x, "at most " + std::to_string(kMaxHints) + " hints (got " + std::to_string(count) + ")");
+        return e;
+      }
+      for (std::size_t i = 0; i < count; ++i) {
+        std::string hint;
+        set(hint, read_string(element(*x, i)));
+        e.hints.push_back(std::move(hint));
+      }
+    }
+    return e;
   }
 
   // The scene a step names, loaded once per lesson; reported at `at` when it does not load.

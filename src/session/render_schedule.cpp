@@ -32,7 +32,9 @@ RenderSchedule::Sent RenderSchedule::send_scene(const Frame& frame, const std::f
   deferred_ = sent.deferred;
   if (!((scene_changed && !sent.deferred) || resized)) return sent;
   if (scene_changed) {
-    snapshot_ = std::make_shared<const PreparedScene>(make_snapshot());
+    snapshot_ = rules_.any() ? std::make_shared<const PreparedScene>(make_snapshot(), PreparedScene::AccelFactory{},
+                                                                     make_rules_experiment(rules_))
+                             : std::make_shared<const PreparedScene>(make_snapshot());
     sent.scene = true;
     sent.edit_time = deferred_since_;
   }

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "core/accel/prepared_scene.h"
+#include "check/rules.h"
 #include "core/render/progressive.h"
 #include "core/scene/scene.h"
 
@@ -60,6 +61,10 @@ class RenderSchedule {
   // Sends the frame's scene side; `make_snapshot` gives the scene to render (the document's, with
   // the view's camera and depth cut) and is called only when a snapshot goes out.
   Sent send_scene(const Frame& frame, const std::function<Scene()>& make_snapshot);
+  // The rules the snapshots are traced with (a student's formulas: src/check/rules.h); none:
+  // the production renderer. A change counts as an edit of the next frame (frame.edited).
+  void set_rules(const LocalRules& rules) { rules_ = rules; }
+  const LocalRules& rules() const { return rules_; }
 
   // The snapshot the renderer has (picking, the probe, figures), its size and generation.
   const std::shared_ptr<const PreparedScene>& snapshot() const { return snapshot_; }
@@ -72,6 +77,7 @@ class RenderSchedule {
  private:
   ProgressiveRenderer& renderer_;
   std::shared_ptr<const PreparedScene> snapshot_;
+  LocalRules rules_;
   int width_ = 0;
   int height_ = 0;
   std::uint64_t sent_generation_ = 0;

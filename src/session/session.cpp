@@ -74,31 +74,125 @@ void Session::edited() {
 }
 
 void Session::settle(bool gesture_held) {
-  if (!pending_ || gesture_held) return;
+  if (gesture_held) return;
+  settle_formulas();
+  if (!pending_) return;
   history_.commit(document_.scene());
+  undo_order_.push_back(Step::kScene);
+  redo_order_.clear();
   pending_ = false;
 }
 
 void Session::reset_history() {
   history_.reset(document_.scene());
   pending_ = false;
+  // The formulas stay with a new scene (a student tries theirs on several); their undo steps
+  // stay, the scene's are gone.
+  std::erase(undo_order_, Step::kScene);
+  std::erase(redo_order_, Step::kScene);
+}
+
+bool Session::set_formula(FormulaSlot slot, const std::string& text, bool held) {
+  const bool changed = formulas_.set(slot, text);
+  if (formulas_.texts() != formulas_committed_) formula_pending_ = true;
+  if (!held) settle_formulas();
+  return changed;
+}
+
+void Session::settle_formulas() {
+  if (!formula_pending_) return;
+  formula_pending_ = false;
+  const FormulaBook::Texts now = formulas_.texts();
+  if (now == formulas_committed_) return;
+  formula_undo_.push_back(formulas_committed_);
+  formula_redo_.clear();
+  formulas_committed_ = now;
+  undo_order_.push_back(Step::kFormulas);
+  redo_order_.clear();
+}
+
+const LessonExercise* Session::exercise() const {
+  const Lesson* lesson = lessons_.lesson();
+  if (lesson == nullptr) return nullptr;
+  const LessonStep& step = lesson->steps[static_cast<std::size_t>(lessons_.place().step)];
+  return step.exercise ? &*step.exercise : nullptr;
+}
+
+bool Session::show_hint() {
+  const LessonExercise* e = exercise();
+  if (e == nullptr || hints_shown_ >= static_cast<int>(e->hints.size())) return false;
+  ++hints_shown_;
+  return true;
+}
+
+bool Session::sync_exercise() {
+  const LessonExercise* e = exercise();
+  const int step = e ? lessons_.place().step : -1;
+  if (step == exercise_step_) return false;
+  if (exercise_step_ >= 0) {
+    for (const auto& [index, slot] : exercise_slots_) {
+      if (index == exercise_step_) exercise_texts_[index] = formulas_.slot(slot).text;
+    }
+  }
+  if (exercise_step_ >= 0 || e) {
+    for (int s = 0; s < kFormulaSlots; ++s) set_formula(static_cast<FormulaSlot>(s), "");
+  }
+  exercise_step_ = step;
+  hints_shown_ = 0;
+  if (!e) return false;
+  const std::optional<FormulaSlot> slot = formula_slot_from_name(e->slot);
+  if (!slot) return false;
+  exercise_slots_[step] = *slot;
+  const auto kept = exercise_texts_.find(step);
+  set_formula(*slot, kept != exercise_texts_.end() ? kept->second : e->starter);
+  return true;
 }
 
 bool Session::undo() {
   settle(false);  // a gesture still under way becomes the step undone
-  std::optional<Scene> step = history_.undo(document_.scene());
-  if (!step) return false;
-  document_.scene() = std::move(*step);
-  document_.update_dirty();
-  return true;
+  while (!undo_order_.empty()) {
+    const Step step = undo_order_.back();
+    undo_order_.pop_back();
+    if (step == Step::kFormulas) {
+      if (formula_undo_.empty()) continue;
+      formula_redo_.push_back(formulas_committed_);
+      formulas_committed_ = formula_undo_.back();
+      formula_undo_.pop_back();
+      formulas_.set_all(formulas_committed_);
+      redo_order_.push_back(step);
+      return true;
+    }
+    std::optional<Scene> scene = history_.undo(document_.scene());
+    if (!scene) continue;  // beyond the scene history's bound
+    document_.scene() = std::move(*scene);
+    document_.update_dirty();
+    redo_order_.push_back(step);
+    return true;
+  }
+  return false;
 }
 
 bool Session::redo() {
-  std::optional<Scene> step = history_.redo(document_.scene());
-  if (!step) return false;
-  document_.scene() = std::move(*step);
-  document_.update_dirty();
-  return true;
+  while (!redo_order_.empty()) {
+    const Step step = redo_order_.back();
+    redo_order_.pop_back();
+    if (step == Step::kFormulas) {
+      if (formula_redo_.empty()) continue;
+      formula_undo_.push_back(formulas_committed_);
+      formulas_committed_ = formula_redo_.back();
+      formula_redo_.pop_back();
+      formulas_.set_all(formulas_committed_);
+      undo_order_.push_back(step);
+      return true;
+    }
+    std::optional<Scene> scene = history_.redo(document_.scene());
+    if (!scene) continue;
+    document_.scene() = std::move(*scene);
+    document_.update_dirty();
+    undo_order_.push_back(step);
+    return true;
+  }
+  return false;
 }
 
 }  // namespace phonglab

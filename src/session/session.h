@@ -6,14 +6,17 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "core/render/ray_trees.h"
 #include "core/scene/scene.h"
 #include "interaction/history.h"
 #include "session/document.h"
+#include "session/formula_book.h"
 #include "session/lesson_presenter.h"
 #include "session/recovery_keeper.h"
 
@@ -78,8 +81,8 @@ class Session {
   // there is none.
   bool undo();
   bool redo();
-  std::size_t undo_count() const { return history_.undo_count(); }
-  std::size_t redo_count() const { return history_.redo_count(); }
+  std::size_t undo_count() const { return history_.undo_count() + formula_undo_.size(); }
+  std::size_t redo_count() const { return redo_order_.size(); }
   bool edit_pending() const { return pending_; }  // edits wait for their gesture to end
 
   const Scene& scene() const { return document_.scene(); }
@@ -89,12 +92,37 @@ class Session {
   bool dirty() const { return document_.dirty(); }
   RecoveryKeeper& recovery() { return recovery_; }
   const RecoveryKeeper& recovery() const { return recovery_; }
+  // The student's formulas (docs/formulas.md). A text is an edit with undo, as a scene edit is
+  // (one step per finished gesture: `held` while the text box is being typed in). True when what
+  // renders changed (the snapshot must follow: formulas().version()).
+  bool set_formula(FormulaSlot slot, const std::string& text, bool held = false);
+  const FormulaBook& formulas() const { return formulas_; }
+  // A lesson's exercise step (docs/lessons.md), for the desktop and the page alike: once the
+  // presenter shows another place, the exercise left keeps its text for a return and the
+  // formulas are cleared; the exercise entered gets its starter (or the text left there) in its
+  // slot. True when an exercise was entered. The step shown's exercise, its hints shown so far.
+  bool sync_exercise();
+  const LessonExercise* exercise() const;
+  int hints_shown() const { return hints_shown_; }
+  bool show_hint();  // one more of the exercise's hints; false when none is left
   // The lesson being presented (its steps' scenes are adopted into the document by the shell).
   LessonPresenter& lessons() { return lessons_; }
   const LessonPresenter& lessons() const { return lessons_; }
 
  private:
   void edited();  // dirty again, and an undo step pending
+  // Which history each undo step is in, oldest first (scene edits and formula texts interleave).
+  enum class Step : std::uint8_t { kScene, kFormulas };
+  std::vector<Step> undo_order_, redo_order_;
+  FormulaBook formulas_;
+  FormulaBook::Texts formulas_committed_{};
+  std::vector<FormulaBook::Texts> formula_undo_, formula_redo_;
+  bool formula_pending_ = false;
+  int exercise_step_ = -1;                       // the exercise step whose slot holds the student's text
+  int hints_shown_ = 0;
+  std::map<int, std::string> exercise_texts_;   // per exercise step: the text left there
+  std::map<int, FormulaSlot> exercise_slots_;   // ... and its slot
+  void settle_formulas();
 
   SceneDocument document_;
   ui::SceneHistory history_;

@@ -3,6 +3,7 @@
 // requests in small action structs that the app carries out. No GL here, no file access.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -15,6 +16,7 @@
 #include "core/render/indirect_probe.h"
 #include "core/render/progressive.h"
 #include "core/render/render.h"
+#include "check/formula.h"
 #include "core/scene/scene.h"
 #include "core/shading/shading.h"
 #include "core/teaching/lesson.h"
@@ -23,6 +25,30 @@
 #include "ui/overlay.h"
 
 namespace phonglab::ui {
+
+// The Formula panel (docs/formulas.md): what a student types for the ambient, diffuse and
+// specular terms, which image the view shows, and the check's verdict.
+enum class FormulaView : std::uint8_t { kYours, kReference, kDifference };
+std::string_view formula_view_name(FormulaView view);  // "yours", "reference", "difference"
+std::optional<FormulaView> formula_view_from_name(std::string_view name);
+struct FormulaPanelState {
+  std::array<std::string, kFormulaSlots> texts;   // the boxes (edited in place)
+  std::array<std::string, kFormulaSlots> errors;  // each text's error, "" when it compiles
+  std::string names;                              // the names a formula may use
+  FormulaView view = FormulaView::kYours;
+  std::string verdict;                            // the check's summary ("" before one)
+  bool matches = false;
+  int hints_left = -1;                            // a lesson's exercise: its hints not yet shown (-1: none)
+  std::string probe;                              // yours against the reference at the probed pixel ("" : none)
+};
+struct FormulaPanelEdits {
+  int slot = -1;        // this slot's text changed
+  bool held = false;    // ...and its box is still being typed in
+  int starter = -1;     // "starter" asked for this slot (the reference's names, to be completed)
+  bool view = false;    // the view changed
+  bool hint = false;    // "hint" asked for (a lesson's exercise)
+};
+FormulaPanelEdits formula_panel(FormulaPanelState& state);
 
 // Buttons of the camera panel.
 struct CameraActions {

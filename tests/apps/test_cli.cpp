@@ -16,7 +16,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/embedded_scenes.h"
 #include "io/image_io.h"
+#include "io/scene/scene_io.h"
 #include "tests/support/pfm_reader.h"
 #include "core/packet/packet.h"
 
@@ -32,6 +34,20 @@ struct RunResult {
 
 RunResult run_cli(const std::string& args) {
   const std::string cmd = std::string(PHONGLAB_CLI) + " " + args + " 2>&1";
+  RunResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// The command's standard output alone (its warnings on stderr left out).
+RunResult run_cli_stdout(const std::string& args) {
+  const std::string cmd = std::string(PHONGLAB_CLI) + " " + args + " 2>/dev/null";
   RunResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -463,4 +479,185 @@ TEST_F(CliTest, AmbientIndirectRendersTheLightTheAmbientTermStandsFor) {
   EXPECT_NEAR(j["indirect"]["ambient"][0].get<double>(), 0.1, 1e-9);
   EXPECT_NEAR(j["indirect"]["fitted_ka"][0].get<double>(), 0.5, 1e-9);
   EXPECT_EQ(run_cli("probe " + scene + " --pixel 4,5 --spp 4").exit_code, 2);  // --spp only with indirect
+}
+
+// ----- scene --plain -----------------------------------------------------------------------------
+
+namespace {
+
+// The numbers of a JSON text as written (outside its strings).
+std::vector<std::string> number_tokens(const std::string& text) {
+  std::vector<std::string> out;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+      continue;
+    }
+    if (c == '-' || std::isdigit(static_cast<unsigned char>(c))) {
+      std::size_t j = i;
+      while (j < text.size() && std::strchr("+-.eE0123456789", text[j]) != nullptr) ++j;
+      out.push_back(text.substr(i, j - i));
+      i = j - 1;
+    }
+  }
+  return out;
+}
+
+// Plain decimal: an optional minus, digits, optionally a point and digits; no exponent.
+bool plain_decimal(const std::string& token) {
+  std::size_t i = token[0] == '-' ? 1 : 0;
+  const std::size_t digits = i;
+  while (i < token.size() && std::isdigit(static_cast<unsigned char>(token[i]))) ++i;
+  if (i == digits) return false;
+  if (i == token.size()) return true;
+  if (token[i] != '.') return false;
+  const std::size_t decimals = ++i;
+  while (i < token.size() && std::isdigit(static_cast<unsigned char>(token[i]))) ++i;
+  return i > decimals && i == token.size();
+}
+
+void expect_same_scene(const phonglab::Scene& a, const phonglab::Scene& b, const std::string& what) {
+  EXPECT_TRUE(a.camera == b.camera) << what;
+  EXPECT_EQ(a.width, b.width) << what;
+  EXPECT_EQ(a.height, b.height) << what;
+  EXPECT_EQ(a.ambient, b.ambient) << what;
+  EXPECT_EQ(a.background, b.background) << what;
+  EXPECT_EQ(a.max_depth, b.max_depth) << what;
+  EXPECT_EQ(a.min_weight, b.min_weight) << what;
+  EXPECT_EQ(a.specular_model, b.specular_model) << what;
+  EXPECT_EQ(a.indirect_bounces, b.indirect_bounces) << what;
+  EXPECT_TRUE(a.lights == b.lights) << what;
+  EXPECT_TRUE(a.materials == b.materials) << what;
+  EXPECT_TRUE(a.spheres == b.spheres) << what;
+  EXPECT_TRUE(a.planes == b.planes) << what;
+  EXPECT_TRUE(a.triangles == b.triangles) << what;
+  ASSERT_EQ(a.meshes.size(), b.meshes.size()) << what;
+  for (std::size_t i = 0; i < a.meshes.size(); ++i) {
+    EXPECT_EQ(a.meshes[i].file, b.meshes[i].file) << what;
+    EXPECT_EQ(a.meshes[i].material_override, b.meshes[i].material_override) << what;
+    EXPECT_TRUE(a.meshes[i].transform == b.meshes[i].transform) << what;
+    EXPECT_EQ(a.meshes[i].ns, b.meshes[i].ns) << what;
+  }
+  EXPECT_EQ(a.sphere_object, b.sphere_object) << what;
+  EXPECT_EQ(a.plane_object, b.plane_object) << what;
+  EXPECT_EQ(a.triangle_object, b.triangle_object) << what;
+  EXPECT_EQ(a.mesh_object, b.mesh_object) << what;
+  EXPECT_EQ(a.object_names, b.object_names) << what;
+}
+
+// Every key a student's reader needs is written out, colours as three numbers.
+void expect_every_key(const nlohmann::json& j, const std::string& what) {
+  const auto triple = [&](const nlohmann::json& v, const std::string& key) {
+    EXPECT_TRUE(v.is_array() && v.size() == 3) << what << ": " << key << " is " << v.dump();
+  };
+  ASSERT_TRUE(j.is_object()) << what;
+  for (const char* key : {"position", "look_at", "up"}) triple(j["camera"][key], std::string("camera.") + key);
+  EXPECT_TRUE(j["camera"]["fov_y"].is_number()) << what;
+  EXPECT_TRUE(j["image"]["width"].is_number_integer()) << what;
+  EXPECT_TRUE(j["image"]["height"].is_number_integer()) << what;
+  triple(j["ambient"], "ambient");
+  triple(j["background"], "background");
+  EXPECT_TRUE(j["max_depth"].is_number_integer()) << what;
+  EXPECT_TRUE(j["min_weight"].is_number()) << what;
+  EXPECT_TRUE(j["specular_model"].is_string()) << what;
+  for (const auto& light : j["lights"]) {
+    const bool point = light["type"] == "point";
+    EXPECT_TRUE(point || light["type"] == "directional") << what << ": " << light.dump();
+    triple(light[point ? "position" : "direction"], "a light's position or direction");
+    triple(light["intensity"], "a light's intensity");
+    EXPECT_TRUE(light["enabled"].is_boolean()) << what << ": " << light.dump();
+  }
+  for (const auto& [name, m] : j["materials"].items()) {
+    EXPECT_EQ(m.size(), 8u) << what << ": " << name << " " << m.dump();
+    for (const char* key : {"ka", "kd", "ks", "kr", "kt"}) triple(m[key], name + "." + key);
+    EXPECT_TRUE(m["n"].is_number()) << what << ": " << name;
+    EXPECT_TRUE(m["ior"].is_number()) << what << ": " << name;
+    EXPECT_TRUE(m["fresnel"].is_boolean()) << what << ": " << name;
+  }
+  EXPECT_TRUE(j["objects"].is_array()) << what;
+}
+
+}  // namespace
+
+// scene --plain for every embedded scene: JSON with every key, plain decimal numbers, and it
+// reads back to the same scene (mesh objects as their OBJ files, which load again).
+TEST_F(CliTest, ScenePlainWritesEveryKeyInPlainDecimalAndReadsBackForEveryEmbeddedScene) {
+  for (const phonglab::EmbeddedScene& embedded : phonglab::embedded_scenes()) {
+    const std::string name(embedded.name);
+    const RunResult r = run_cli_stdout("scene " + name + " --plain");
+    ASSERT_EQ(r.exit_code, 0) << name;
+    nlohmann::json j;
+    ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << name << "\n" << r.out;
+    expect_every_key(j, name);
+    const std::vector<std::string> numbers = number_tokens(r.out);
+    EXPECT_GT(numbers.size(), 20u) << name;
+    for (const std::string& number : numbers) EXPECT_TRUE(plain_decimal(number)) << name << ": " << number;
+    const phonglab::LoadResult original = phonglab::load_scene_arg(name);
+    const phonglab::LoadResult again = phonglab::load_scene_text(r.out, name + ".json", ".", true);
+    ASSERT_TRUE(original.ok()) << original.error_text();
+    ASSERT_TRUE(again.ok()) << name << ": " << again.error_text() << "\n" << r.out;
+    expect_same_scene(*original.scene, *again.scene, name);
+  }
+}
+
+// Defaults are filled in, numbers that the shortest text would write with an exponent come out
+// plain and read back to the same doubles; -o writes the file (and nothing to stdout).
+TEST_F(CliTest, ScenePlainFillsInDefaultsAndWritesAwkwardNumbersPlain) {
+  const std::string scene = write("awkward.json", R"({
+  "camera": {"fov_y": 0.00001},
+  "min_weight": 1e-6,
+  "ambient": [0.30000000000000004, 1e22, 5e-324],
+  "lights": [{"type": "directional", "direction": [0, -1, 0]}],
+  "materials": {"m": {"kd": 0.5}},
+  "objects": [{"type": "sphere", "name": "tiny", "center": [-1e-7, 123456789.125, 0], "radius": 2.5e-5, "material": "m"}]
+})");
+  const RunResult r = run_cli_stdout("scene " + scene + " --plain");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  for (const char* text : {"\"fov_y\": 0.00001", "\"min_weight\": 0.000001", "0.30000000000000004",
+                           "10000000000000000000000", "\"radius\": 0.000025", "-0.0000001", "123456789.125",
+                           "\"width\": 960", "\"height\": 540", "\"max_depth\": 5", "\"specular_model\": \"phong\"",
+                           "\"background\": [0, 0, 0]", "\"intensity\": [1, 1, 1]", "\"enabled\": true", "\"n\": 32",
+                           "\"ior\": 1.5", "\"fresnel\": false", "\"kr\": [0, 0, 0]", "\"name\": \"tiny\""}) {
+    EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
+  }
+  for (const std::string& number : number_tokens(r.out)) EXPECT_TRUE(plain_decimal(number)) << number;
+  const phonglab::LoadResult original = phonglab::load_scene_file(scene);
+  const phonglab::LoadResult again = phonglab::load_scene_text(r.out, "plain.json");
+  ASSERT_TRUE(original.ok()) << original.error_text();
+  ASSERT_TRUE(again.ok()) << again.error_text() << "\n" << r.out;
+  expect_same_scene(*original.scene, *again.scene, "awkward.json");
+  EXPECT_EQ(again.scene->ambient.z, 5e-324);
+
+  // -o: the same text in the file, nothing printed.
+  const RunResult to_file = run_cli("scene " + scene + " --plain -o " + path("full.json"));
+  EXPECT_EQ(to_file.exit_code, 0) << to_file.out;
+  EXPECT_TRUE(to_file.out.empty()) << to_file.out;
+  std::ifstream in(path("full.json"));
+  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(written, r.out);
+  // Without --plain: the scene file's shortest numbers, the same scene.
+  const RunResult shortest = run_cli_stdout("scene " + scene);
+  ASSERT_EQ(shortest.exit_code, 0);
+  EXPECT_NE(shortest.out.find("\"min_weight\": 1e-06"), std::string::npos) << shortest.out;
+  EXPECT_EQ(shortest.out, phonglab::scene_to_json(*original.scene));
+}
+
+TEST_F(CliTest, SceneReportsBadScenesAndBadUsage) {
+  const RunResult missing = run_cli("scene " + path("missing.json") + " --plain");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.out.find("missing.json"), std::string::npos) << missing.out;
+  EXPECT_EQ(run_cli("scene lecture --plain --bogus").exit_code, 2);
+  EXPECT_EQ(run_cli("scene lecture glass --plain").exit_code, 2);
+  EXPECT_EQ(run_cli("scene lecture --plain -o /nonexistent-dir/x.json").exit_code, 1);
+  EXPECT_NE(run_cli("--help").out.find("scene [SCENE] [--plain] [-o OUT.json]"), std::string::npos);
 }

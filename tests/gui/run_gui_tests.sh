@@ -1246,7 +1246,7 @@ check_lessons() {
   check_exit "$dir" "the script ran to the end"
   check "--lesson shading opens at its first step, the ambient term ($(state "$dir/n01.txt" lesson_title))" \
     test "$(state "$dir/n01.txt" lesson)" = shading -a "$(state "$dir/n01.txt" lesson_step)" = 1 \
-    -a "$(state "$dir/n01.txt" lesson_steps)" = 13 -a "$(state "$dir/n01.txt" term)" = ambient
+    -a "$(state "$dir/n01.txt" lesson_steps)" = 16 -a "$(state "$dir/n01.txt" term)" = ambient
   check "Right, then space: step 2 and its answer revealed ($(state "$dir/n02.txt" lesson_title))" \
     test "$(state "$dir/n02.txt" lesson_step)" = 2 -a "$(state "$dir/n02.txt" lesson_revealed)" = 1 \
     -a "$(state "$dir/n02.txt" term)" = diffuse
@@ -1621,10 +1621,75 @@ check_drops() {
     test -s "$dir/preset.json" -a -z "$(grep -E '[0-9]{9,}' "$dir/preset.json")"
 }
 
+# The Formula panel: a student's specular term with the sign of R wrong, typed with an error on
+# the way (the last good formula keeps rendering), its difference view, undo, then the right term.
+session_formula() {
+  local dir=$OUT/formula
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render resolution_scale 0.5
+set render target_spp 4
+click_item panel.Formula
+wait_frames 3
+formula specular R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)
+wait_idle 120
+show_item formula.verdict
+wait_frames 3
+probe 440 380
+wait_frames 3
+screenshot $dir/f1_wrong.png
+dump_state $dir/f1.txt
+formula specular R = reflect(L, N) ks * pow(
+wait_idle 120
+screenshot $dir/f2_error.png
+dump_state $dir/f2.txt
+formula_view difference
+wait_idle 120
+screenshot $dir/f3_difference.png
+dump_state $dir/f3.txt
+formula_view yours
+undo
+wait_idle 120
+dump_state $dir/f4.txt
+formula specular R = reflect(-L, N); ks * pow(max(0, dot(R, V)), n)
+wait_idle 120
+screenshot $dir/f5_match.png
+dump_state $dir/f5.txt
+formula diffuse kd * dot(nrm, L)
+wait_idle 120
+dump_state $dir/f6.txt
+quit
+EOF
+  run_script "$dir" lecture
+}
+check_formula() {
+  local dir=$OUT/formula
+  echo "session: the Formula panel"
+  check_exit "$dir" "the script ran to the end"
+  check "reflect(L, N) is named: $(state "$dir/f1.txt" formula_summary)" \
+    test "$(state "$dir/f1.txt" formula_verdict)/$(state "$dir/f1.txt" formula_mistake)" = "differs/reflect-sign or view-reversed"
+  check "the probe gives yours against the reference with R's value: $(state "$dir/f1.txt" formula_probe | cut -c1-160)" \
+    grep -q '^formula_probe=at the primary hit.*specular: yours.*reference.*R = (' "$dir/f1.txt"
+  check "an unfinished text shows its error ($(state "$dir/f2.txt" formula_error_specular)) and the last good formula keeps its verdict" \
+    test "$(state "$dir/f2.txt" formula_error_specular | cut -d: -f1-3)/$(state "$dir/f2.txt" formula_mistake)" = "formula:1:19/reflect-sign or view-reversed"
+  local orange blue
+  orange=$(convert "$dir/f3_difference.png" -crop 880x720+0+0 +repage -fx 'r>0.9&&b<0.2' -format '%[fx:mean]' info:)
+  blue=$(convert "$dir/f3_difference.png" -crop 880x720+0+0 +repage -fx 'b>0.9&&r<0.4' -format '%[fx:mean]' info:)
+  check "the difference view marks where yours is brighter (orange, $orange of the view) and darker (blue, $blue)" \
+    awk -v o="$orange" -v b="$blue" 'BEGIN { exit !(o > 0.05 && b > 0.05) }'
+
+  check "undo gives back the text before the error ($(state "$dir/f4.txt" formula_specular))" \
+    test "$(state "$dir/f4.txt" formula_specular)" = "R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)"
+  check "the reference's own term matches ($(state "$dir/f5.txt" formula_summary))" \
+    test "$(state "$dir/f5.txt" formula_verdict)/$(state "$dir/f5.txt" formula_differing)" = "match/0"
+  check "a misspelt name is positioned with its suggestion: $(state "$dir/f6.txt" formula_error_diffuse)" \
+    test "$(state "$dir/f6.txt" formula_error_diffuse)" = 'formula:1:10: unknown name "nrm" (did you mean "N"?)'
+}
+
 # GUI_PART=1 or 2 runs one half of the sessions (about the same time each; CTest runs the halves
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
-PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture"
-PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display"
+PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture session_formula"
+PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display check_formula"
 PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text session_drops"
 PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text check_drops"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).

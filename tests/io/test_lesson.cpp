@@ -381,7 +381,7 @@ TEST(Handout, TheTextIsThePagesAndThePngIsTheImage) {
   EXPECT_EQ(be32(16), static_cast<unsigned>(kW));
   EXPECT_EQ(be32(20), static_cast<unsigned>(kH)) << "no text below the image";
   const std::string html = read_all(dir / "index.html");
-  EXPECT_NE(html.find("<h2>1. Ambient alone <span class=\"of\">(step 1 of 13)</span></h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2>1. Ambient alone <span class=\"of\">(step 1 of 16)</span></h2>"), std::string::npos);
   EXPECT_NE(html.find("I = ka\xC2\xB7I\xE2\x82\x90. The ambient term"), std::string::npos) << "Ia as the panels write it";
   EXPECT_NE(html.find("This is the end of the lesson."), std::string::npos);
   std::filesystem::remove_all(dir);
@@ -552,7 +552,7 @@ TEST(LessonFile, AStepShowsTheIndirectLightWithAmbientIndirect) {
 // other surfaces) is orange, more light than ka·Ia says, on average over its pixels.
 TEST(EmbeddedLessons, TheLastAnswerShowsTheCeilingAboveTheConstant) {
   const Lesson lesson = embedded("shading");
-  const int last = static_cast<int>(lesson.steps.size()) - 1;
+  const int last = step_titled(lesson, "The light it stands in for");  // the lecture's last, before the exercises
   const Image gap = render_step_view(lesson, LessonPlace{last, true}, small());
   double red = 0, blue = 0;
   for (int y = 0; y < kH / 10; ++y) {  // the top tenth: the ceiling
@@ -568,14 +568,14 @@ TEST(EmbeddedLessons, TheLastAnswerShowsTheCeilingAboveTheConstant) {
 
 TEST(EmbeddedLessons, TheLastStepWipesFromTheConstantToTheIndirectLight) {
   const Lesson lesson = embedded("shading");
-  const int last = static_cast<int>(lesson.steps.size()) - 1;
-  const StepView& view = lesson.steps.back().view;
+  const int last = step_titled(lesson, "The light it stands in for");  // the lecture's last, before the exercises
+  const StepView& view = lesson.steps[static_cast<std::size_t>(last)].view;
   ASSERT_EQ(view.ambient, Ambient::kIndirect);
   ASSERT_EQ(view.compare, CompareView::kWipe);
   ASSERT_EQ(view.compare_against, last - 1);
   // The answer: indirect - ka·Ia on the signed ramp, from one image (no A to wait for).
-  ASSERT_EQ(lesson.steps.back().answer_view.compare, CompareView::kNone);
-  ASSERT_EQ(lesson.steps.back().answer_view.ambient_shown, AmbientShown::kDifference);
+  ASSERT_EQ(lesson.steps[static_cast<std::size_t>(last)].answer_view.compare, CompareView::kNone);
+  ASSERT_EQ(lesson.steps[static_cast<std::size_t>(last)].answer_view.ambient_shown, AmbientShown::kDifference);
   const Image constant = render_step_view(lesson, LessonPlace{last - 1, false}, small());
   const Image wiped = render_step_view(lesson, LessonPlace{last, false}, small());
   ASSERT_EQ(constant.pixels.size(), wiped.pixels.size());
@@ -628,3 +628,50 @@ TEST(LessonFiles, ALessonIsToldFromASceneByItsTopLevelSteps) {
   EXPECT_FALSE(looks_like_lesson(""));
   EXPECT_FALSE(is_lesson_file("/no/such/file.json"));
 }
+
+namespace phonglab {
+namespace {
+
+TEST(LessonFile, ExerciseStepsAreReadWithTheirSlotTaskStarterAndHints) {
+  const LessonLoad load = load_lesson_text(R"({"title": "t", "steps": [
+    {"title": "a", "caption": "c", "scene": "lecture",
+     "exercise": {"slot": "specular", "task": "write it", "starter": "R = ", "hints": ["one", "two"]}}]})",
+                                           "ok.json");
+  ASSERT_TRUE(load.ok()) << load.error_text();
+  const LessonStep& step = load.lesson->steps.at(0);
+  ASSERT_TRUE(step.exercise.has_value());
+  EXPECT_EQ(step.exercise->slot, "specular");
+  EXPECT_EQ(step.exercise->task, "write it");
+  EXPECT_EQ(step.exercise->starter, "R = ");
+  EXPECT_EQ(step.exercise->hints, (std::vector<std::string>{"one", "two"}));
+  // The embedded shading lesson ends with three exercises: diffuse, specular, and "play with n".
+  const LessonLoad shading = load_lesson_arg("shading");
+  ASSERT_TRUE(shading.ok()) << shading.error_text();
+  std::vector<std::string> slots;
+  for (const LessonStep& s : shading.lesson->steps) {
+    if (s.exercise) slots.push_back(s.exercise->slot + "@" + s.scene);
+  }
+  EXPECT_EQ(slots, (std::vector<std::string>{"diffuse@lecture", "specular@lecture", "specular@shininess"}));
+}
+
+TEST(LessonFile, ExerciseErrorsArePositioned) {
+  const std::string base = "{\"title\": \"t\",\n\"steps\": [{\"title\": \"a\", \"caption\": \"c\", \"scene\": \"lecture\", ";
+  const auto errors = [&](const std::string& rest) {
+    const LessonLoad load = load_lesson_text(base + rest, "bad.json");
+    return load.ok() ? std::string() : load.error_text();
+  };
+  EXPECT_NE(errors("\"exercise\": {\"slot\": \"specualr\", \"task\": \"t\"}}]}")
+                .find("steps[0].exercise.slot: (step 1) unknown slot \"specualr\" (did you mean \"specular\"?)"),
+            std::string::npos)
+      << errors("\"exercise\": {\"slot\": \"specualr\", \"task\": \"t\"}}]}");
+  EXPECT_NE(errors("\"exercise\": {\"slot\": \"diffuse\"}}]}").find("missing key \"task\""), std::string::npos);
+  EXPECT_NE(errors("\"exercise\": {\"slot\": \"diffuse\", \"task\": \"t\", \"hint\": []}}]}").find("hint"), std::string::npos);
+  EXPECT_NE(errors("\"question\": \"q\", \"answer\": {\"caption\": \"a\"}, \"exercise\": {\"slot\": \"diffuse\", \"task\": \"t\"}}]}")
+                .find("a step is a question or an exercise, not both"),
+            std::string::npos);
+  EXPECT_NE(errors("\"exercise\": {\"slot\": \"diffuse\", \"task\": \"t\", \"hints\": [1]}}]}").find("steps[0].exercise.hints[0]"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace phonglab

@@ -35,6 +35,9 @@ class PreparedScene {
 
   const Scene& scene() const { return scene_; }
   const Accelerator* accel() const { return accel_.get(); }  // null: queries test every primitive
+  // The same accelerator, shared: a snapshot of the same geometry with another experiment (a
+  // checked mistake) is prepared over it without building it again.
+  const std::shared_ptr<const Accelerator>& shared_accel() const { return accel_; }
   const Experiment* experiment() const { return experiment_.get(); }  // null: the production renderer
   // Unique to this object for the life of the program (what a tracer built for it, kept between
   // passes, is checked against, with its address).

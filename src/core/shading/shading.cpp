@@ -77,12 +77,12 @@ class Equation {
     const Vec3 v = view_direction(hit.p, ray.dir, shading_eye);
     const double offset = offset_of(hit);
     Terms terms;
-    terms.ambient = indirect_ ? tree_gather(m, hit.p, side, offset) : m.ka * scene_.ambient;
+    terms.ambient = indirect_ ? tree_gather(m, hit.p, side, offset) : ambient(m, hit, side, v);
     if (probe) record_hit(*probe, hit, side, v);
     if (recorder_) recorder_->begin_hit(ray, hit, side, offset, depth);
     // Lights are skipped where no term can come back (kd = ks = 0, N.L <= 0); a recorder of ray
     // trees is told of every light, so that a later edit of kd, ks or a mute needs no new rays.
-    if (wanted.lights && (is_lit(m) || probe || recorder_)) {
+    if (wanted.lights && (lit(m) || probe || recorder_)) {
       light_terms(m, hit, side, v, offset, probe, terms);
     }
     mirror_and_glass_terms(m, ray, hit, side, depth, weight, offset, probe, wanted, terms);
@@ -123,7 +123,7 @@ class Equation {
     const HitSide side = hit_side(*hit, ray.dir);
     const double offset = offset_of(*hit);
     Terms terms;
-    if (is_lit(m)) light_terms(m, *hit, side, view_direction(hit->p, ray.dir, nullptr), offset, nullptr, terms);
+    if (lit(m)) light_terms(m, *hit, side, view_direction(hit->p, ray.dir, nullptr), offset, nullptr, terms);
     Color result = terms.diffuse + terms.specular;
 
     std::array<Way, 3> ways{};
@@ -131,7 +131,7 @@ class Equation {
     if (indirect_->bounces_left() > 0 && !is_zero(m.kd)) ways[count++] = Way{WayKind::kGather, m.kd, 1.0};
     Bounce bn;
     if (depth < limits_.max_depth && has_children(m)) {
-      bn = bounce(m, ray.dir, side.n, side.entering, false,
+      bn = bounce(m, ray.dir, side.n, eta_side(side), false,
                   [this](double cos_i, double eta) { return fresnel(cos_i, eta); });
       if (const std::optional<double> w = child_weight(bn.kr, weight, limits_.min_weight)) {
         ways[count++] = Way{WayKind::kReflection, bn.kr, *w};
@@ -225,6 +225,26 @@ class Equation {
     if constexpr (kExperiment) return prepared_.experiment()->refraction_for_opaque();
     return false;
   }
+  // The local terms' hooks (a student's formula, a known mistake: core/shading/experiment.h).
+  Color ambient(const Material& m, const Hit& hit, const HitSide& side, const Vec3& v) const {
+    if constexpr (kExperiment) {
+      return prepared_.experiment()->ambient(LocalHit{&scene_, &m, nullptr, hit.p, side.n, Vec3(0), v, 0, 0});
+    }
+    return m.ka * scene_.ambient;
+  }
+  bool lit(const Material& m) const {
+    if constexpr (kExperiment) return prepared_.experiment()->lit(m);
+    return is_lit(m);
+  }
+  bool shadows() const {
+    if constexpr (kExperiment) return prepared_.experiment()->shadows();
+    return true;
+  }
+  // The side bounce() takes eta for: the hit's own, or the other (the eta-inverted mistake).
+  bool eta_side(const HitSide& side) const {
+    if constexpr (kExperiment) return prepared_.experiment()->eta_inverted() ? !side.entering : side.entering;
+    return side.entering;
+  }
 
   // The nearest object strictly between the ends of a shadow ray from P (for the probe only).
   Occluder find_occluder(const Ray& ray, double t_max, const Vec3& p) const {
@@ -236,6 +256,7 @@ class Equation {
   // loop is the hot path.
   [[gnu::always_inline]] inline bool light_visible(const Light& light, const Hit& hit, const Vec3& ng_facing,
                                                    const Vec3& l, double offset, Occluder* occluder) {
+    if (!shadows()) return true;
     ++counts_.shadow;
     Ray ray;
     double t_max = 0;
@@ -247,7 +268,7 @@ class Equation {
   // Diffuse and specular: the sum over the lights, each behind its shadow ray.
   void light_terms(const Material& m, const Hit& hit, const HitSide& side, const Vec3& v, double offset,
                    ProbeNode* probe, Terms& terms) {
-    const bool has_specular = !is_zero(m.ks);
+    const bool has_specular = kExperiment || !is_zero(m.ks);  // a formula may not need ks
     const Vec3& n = side.n;
     for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
       const Light& light = scene_.lights[li];
@@ -297,7 +318,12 @@ class Equation {
         pl->occluder_distance = occluder.distance;
       }
       if (!visible) continue;
-      const LightShare share = light_share(light, m, n_dot_l, has_specular ? spec : 0.0);
+      LightShare share;
+      if constexpr (kExperiment) {
+        share = prepared_.experiment()->light_share(LocalHit{&scene_, &m, &light, hit.p, n, l, v, n_dot_l, spec});
+      } else {
+        share = light_share(light, m, n_dot_l, has_specular ? spec : 0.0);
+      }
       terms.diffuse += share.diffuse;
       terms.specular += share.specular;
       if (pl) {
@@ -327,7 +353,7 @@ class Equation {
     // The ablation: also a refraction ray for opaque materials (kt = 0), as a naive tracer casts.
     const bool force_refraction = refraction_for_opaque() && is_zero(m.kt);
     if (!(depth < limits_.max_depth && (has_children(m) || force_refraction))) return;
-    const Bounce bn = bounce(m, ray.dir, side.n, side.entering, force_refraction,
+    const Bounce bn = bounce(m, ray.dir, side.n, eta_side(side), force_refraction,
                              [this](double cos_i, double eta) { return fresnel(cos_i, eta); });
     if (recorder_) recorder_->bounced(bn);
     if (probe) {

@@ -38,6 +38,16 @@ struct StepView {
   bool operator==(const StepView&) const = default;
 };
 
+// A step of kind "exercise": the student writes one term of the equation as a formula
+// (docs/formulas.md) and the step says when it matches the reference. The slot's name is
+// checked by the lesson reader ("ambient", "diffuse" or "specular").
+struct LessonExercise {
+  std::string slot;
+  std::string task;                // what to write, for the student
+  std::string starter;             // the slot's text when the step is first shown ("" : empty)
+  std::vector<std::string> hints;  // offered one by one
+};
+
 struct LessonStep {
   std::string title;
   std::string caption;   // a few sentences, with the equation or its part
@@ -47,6 +57,7 @@ struct LessonStep {
   std::string question;  // empty: none; else posed first, and the next key press reveals...
   std::string answer;    // ... this caption
   StepView answer_view;  // ... and this view (the step's view with the answer's changes)
+  std::optional<LessonExercise> exercise;  // a step of kind "exercise" (never with a question)
   bool has_question() const { return !question.empty(); }
 };
 

@@ -53,6 +53,13 @@ LoadResult reload_meshes(const Scene& scene, const std::string& base_dir, bool e
 // relative to it (else as they were written).
 std::string scene_to_json(const Scene& scene, const std::string& save_dir = "");
 
+// The same text with every number in plain decimal notation (0.000001, never 1e-06), each with
+// the fewest digits that read back to the same double: what `phonglab-cli scene --plain` prints
+// for a student's own parser (docs/your-ray-tracer.md). Every key is written, defaults included;
+// mesh objects stay as the scene names them (the OBJ file, its transform), their MTL materials
+// with them. load_scene_text reads it back to an equal scene.
+std::string scene_to_plain_json(const Scene& scene, const std::string& save_dir = "");
+
 // Writes text to `path` through a temporary file and a rename, so a crash never leaves a
 // half-written file. Returns an empty string on success, else the error.
 std::string write_file_atomically(const std::string& path, const std::string& text);
@@ -62,5 +69,9 @@ std::string write_file_atomically(const std::string& path, const std::string& te
 // std::to_chars writes it. Computed with printf alone, so WebAssembly (whose libc++ has no
 // floating-point to_chars) writes the same text as the desktop; not for inf or NaN.
 std::string shortest_number_text(double x);
+// A number in plain decimal notation with the fewest significant digits that read back to the
+// same double (1e-06 as 0.000001, 1e22 as 10000000000000000000000; -0 as -0.0); "null" for inf
+// or NaN. printf alone, as shortest_number_text.
+std::string plain_number_text(double x);
 
 }  // namespace phonglab

@@ -1,0 +1,74 @@
+// The Formula panel's shell (docs/formulas.md): the student's texts turned into the session's
+// formula edits, the snapshot traced with the formulas that render, which view is shown (yours,
+// the reference, the difference), and the check of yours against the reference, run beside the
+// renderer at a reduced size whenever the formulas or the view change. It reaches the shell
+// through `Viewer&` (a friend).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "check/check.h"
+#include "ui/panels.h"
+
+namespace phonglab {
+
+class Viewer;
+
+class FormulaShell {
+ public:
+  explicit FormulaShell(Viewer& viewer) : v_(viewer) {}
+  ~FormulaShell();
+  FormulaShell(const FormulaShell&) = delete;
+  FormulaShell& operator=(const FormulaShell&) = delete;
+
+  void sidebar_formulas();  // the panel; its edits go to the session
+  // A slot's text as if typed and the box left (script commands, a lesson's exercise).
+  void set_text(FormulaSlot slot, const std::string& text);
+  bool set_view(std::string_view name);
+  void unfold() { unfold_ = true; }  // open the panel (a lesson's exercise)
+  bool take_unfold() { return std::exchange(unfold_, false); }
+  ui::FormulaView view() const { return panel_.view; }
+  // Once a UI frame before the snapshot goes out: the rules the renderer traces with (the
+  // formulas, or none for the reference view); true when they changed (a new snapshot).
+  bool sync_rules();
+  // Starts a check when the formulas or the view's snapshot changed and none is running; takes
+  // a finished one's result.
+  void poll_check();
+  // The difference view's pixels at the render size, when it is on and a check is in.
+  std::optional<std::vector<glm::vec3>> difference_pixels(int width, int height) const;
+  // The last check's verdict ("" when none: no formula, or not yet in), its result.
+  const std::optional<CheckResult>& last_check() const { return result_; }
+  bool checking() const { return running_.load(); }
+  // No check to wait for: no formula, or the last one is in for what renders now.
+  bool check_settled() const;
+  const ui::FormulaPanelState& panel() const { return panel_; }
+
+ private:
+  void refresh_panel();  // the texts and errors from the session
+
+  Viewer& v_;
+  ui::FormulaPanelState panel_;
+  bool unfold_ = false;
+  std::uint64_t rules_version_ = 0;
+  bool rules_sent_any_ = false;
+  ui::FormulaView rules_view_ = ui::FormulaView::kYours;
+  // The check beside the renderer.
+  std::thread worker_;
+  std::atomic<bool> running_{false};
+  std::mutex mutex_;
+  std::optional<CheckResult> finished_;  // the worker's, under mutex_
+  std::optional<CheckResult> result_;    // the one shown
+  const void* checked_snapshot_ = nullptr;
+  std::uint64_t checked_version_ = ~std::uint64_t{0};
+};
+
+}  // namespace phonglab
