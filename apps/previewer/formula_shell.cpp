@@ -1,8 +1,11 @@
 #include "apps/previewer/formula_shell.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
 
 #include "apps/previewer/viewer_app.h"
+#include "io/image_read.h"
 
 namespace phonglab {
 
@@ -35,6 +38,21 @@ void FormulaShell::refresh_panel() {
     panel_.errors[i] = slot.error ? slot.error->text() : std::string();
   }
   if (panel_.names.empty()) panel_.names = names_text();
+  panel_.image_name = image_name_;
+  panel_.image_error = image_error_;
+  panel_.image_verdict = image_result_ ? check_summary(*image_result_) : "checking against the reference...";
+  panel_.image_matches = image_result_ && image_result_->match;
+  panel_.image_probe.clear();
+  const auto& probed = v_.tools_.probe();
+  if (image_result_ && probed.tree && probed.x < image_result_->width && probed.y < image_result_->height) {
+    const std::size_t i = static_cast<std::size_t>(probed.y) * image_result_->width + probed.x;
+    const Color yours = image_result_->yours[i], reference = image_result_->reference[i];
+    char text[256];
+    std::snprintf(text, sizeof text, "at pixel (%d, %d): yours (%.4g, %.4g, %.4g), reference (%.4g, %.4g, %.4g) linear; "
+                  "the reference's terms and ray tree: the Probe panel",
+                  probed.x, probed.y, yours.x, yours.y, yours.z, reference.x, reference.y, reference.z);
+    panel_.image_probe = text;
+  }
   if (!book.any()) {
     panel_.verdict.clear();
   } else if (result_) {
@@ -66,6 +84,8 @@ void FormulaShell::sidebar_formulas() {
     v_.session_.set_formula(slot, panel_.texts[static_cast<std::size_t>(edits.slot)], edits.held);
   }
   if (edits.view) v_.upload_pending_ = true;
+  if (edits.open_image) open_image(panel_.image_path);
+  if (edits.close_image) close_image();
 }
 
 void FormulaShell::set_text(FormulaSlot slot, const std::string& text) {
@@ -93,16 +113,92 @@ bool FormulaShell::sync_rules() {
   return true;
 }
 
+std::string FormulaShell::open_image(const std::string& path) {
+  std::string error;
+  const std::optional<ReadImage> read = read_image_file(path, &error);
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (read && (read->width != v_.schedule_.width() || read->height != v_.schedule_.height())) {
+    error = name + " is " + std::to_string(read->width) + "x" + std::to_string(read->height) + ", the view renders " +
+            std::to_string(v_.schedule_.width()) + "x" + std::to_string(v_.schedule_.height()) +
+            ": render yours at the view's size (phonglab-cli probe's command in the Probe panel names it)";
+  }
+  if (!error.empty()) {
+    image_error_ = error;  // the last image, if any, stays
+    return error;
+  }
+  StudentImage student;
+  student.width = read->width;
+  student.height = read->height;
+  student.units = read->kind == ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
+                  : read->kind == ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
+                                                             : StudentImage::Units::kLinear;
+  student.rgb = read->rgb;
+  image_ = std::move(student);
+  image_name_ = name;
+  image_error_.clear();
+  image_result_.reset();
+  image_check_pending_ = true;
+  // A of the compare: the student's image as linear values, as the screen shows a render.
+  ProgressiveFrame a;
+  a.width = image_->width;
+  a.height = image_->height;
+  a.spp = 1;
+  a.pixels.resize(static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height));
+  const bool codes = image_->units == StudentImage::Units::kCodes8;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    const auto at = [&](std::size_t c) {
+      const double v = image_->rgb[3 * i + c];
+      return static_cast<float>(codes ? srgb_to_linear(v / 255) : v);
+    };
+    a.pixels[i] = glm::vec3(at(0), at(1), at(2));
+  }
+  v_.tools_.compare().set_file_image(std::move(a), name);
+  v_.instruments_.compare = 2;  // |live - A|: where yours differs
+  panel_.view = ui::FormulaView::kDifference;
+  unfold_ = true;
+  v_.upload_pending_ = true;
+  return "";
+}
+
+void FormulaShell::close_image() {
+  image_.reset();
+  image_result_.reset();
+  image_name_.clear();
+  image_check_pending_ = false;
+  if (!v_.tools_.compare().file_name().empty()) v_.tools_.compare().clear();
+  v_.upload_pending_ = true;
+}
+
 void FormulaShell::poll_check() {
   if (!running_.load() && worker_.joinable()) {
     worker_.join();
     std::lock_guard<std::mutex> lock(mutex_);
-    if (finished_) result_ = std::move(finished_);
+    if (finished_ && finished_image_) image_result_ = std::move(finished_);
+    else if (finished_) result_ = std::move(finished_);
     finished_.reset();
     v_.upload_pending_ = true;
   }
   const FormulaBook& book = v_.session_.formulas();
   const std::shared_ptr<const PreparedScene>& snapshot = v_.schedule_.snapshot();
+  if (image_ && image_check_pending_ && !running_.load() && snapshot) {
+    // The image against the view's scene at its own size: the reference the renderer's rules
+    // would give without formulas.
+    image_check_pending_ = false;
+    Scene scene = snapshot->scene();
+    running_.store(true);
+    finished_image_ = true;
+    worker_ = std::thread([this, scene = std::move(scene), image = *image_] {
+      CheckOptions options;
+      options.threads = 1;
+      CheckResult r = check_image(scene, image, options);
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        finished_ = std::move(r);
+      }
+      running_.store(false);
+    });
+    return;
+  }
   if (!book.any()) {
     result_.reset();
     checked_version_ = ~std::uint64_t{0};
@@ -119,6 +215,7 @@ void FormulaShell::poll_check() {
   scene.height = std::max(1, static_cast<int>(v_.schedule_.height() * scale));
   LocalRules rules = book.rules();
   running_.store(true);
+  finished_image_ = false;
   worker_ = std::thread([this, scene = std::move(scene), rules = std::move(rules)] {
     CheckOptions options;
     options.threads = 1;  // beside the renderer's threads
@@ -133,21 +230,32 @@ void FormulaShell::poll_check() {
 
 bool FormulaShell::check_settled() const {
   const FormulaBook& book = v_.session_.formulas();
-  if (!book.any()) return true;
+  if (image_ && (image_check_pending_ || !image_result_ || running_.load())) return false;
+  if (!book.any()) return !running_.load() && !worker_.joinable();
   return !running_.load() && !worker_.joinable() && result_ && checked_version_ == book.version() &&
          checked_snapshot_ == v_.schedule_.snapshot().get();
 }
 
 std::optional<std::vector<glm::vec3>> FormulaShell::difference_pixels(int width, int height) const {
-  if (panel_.view != ui::FormulaView::kDifference || !result_ || width < 1 || height < 1) return std::nullopt;
-  if (!v_.session_.formulas().any()) return std::nullopt;
-  const std::vector<Color> diff = check_difference_image(*result_);
+  if (width < 1 || height < 1 || panel_.view == ui::FormulaView::kReference) return std::nullopt;
+  // A student's image: "yours" is the image itself, "difference" its check's.
+  const CheckResult* check = image_result_ ? &*image_result_ : nullptr;
+  if (check && panel_.view == ui::FormulaView::kYours) {
+    if (check->width != width || check->height != height) return std::nullopt;
+    std::vector<glm::vec3> out(check->yours.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(check->yours[i]);
+    return out;
+  }
+  if (!check && v_.session_.formulas().any() && result_) check = &*result_;
+  if (panel_.view != ui::FormulaView::kDifference || !check) return std::nullopt;
+  const CheckResult* result = check;
+  const std::vector<Color> diff = check_difference_image(*result);
   std::vector<glm::vec3> out(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   for (int y = 0; y < height; ++y) {
-    const int sy = std::min(result_->height - 1, y * result_->height / height);
+    const int sy = std::min(result->height - 1, y * result->height / height);
     for (int x = 0; x < width; ++x) {
-      const int sx = std::min(result_->width - 1, x * result_->width / width);
-      out[static_cast<std::size_t>(y) * width + x] = glm::vec3(diff[static_cast<std::size_t>(sy) * result_->width + sx]);
+      const int sx = std::min(result->width - 1, x * result->width / width);
+      out[static_cast<std::size_t>(y) * width + x] = glm::vec3(diff[static_cast<std::size_t>(sy) * result->width + sx]);
     }
   }
   return out;

@@ -31,6 +31,13 @@ class FormulaShell {
   FormulaShell& operator=(const FormulaShell&) = delete;
 
   void sidebar_formulas();  // the panel; its edits go to the session
+  // A student's own image of the view (docs/checking.md): read, refused unless it has the view's
+  // size (both sizes named), made A of the compare and checked beside the renderer. "" or why not.
+  std::string open_image(const std::string& path);
+  void close_image();
+  const std::optional<CheckResult>& image_check() const { return image_result_; }
+  const std::string& image_name() const { return image_name_; }
+  const std::string& image_error() const { return image_error_; }
   // A slot's text as if typed and the box left (script commands, a lesson's exercise).
   void set_text(FormulaSlot slot, const std::string& text);
   bool set_view(std::string_view name);
@@ -66,7 +73,13 @@ class FormulaShell {
   std::atomic<bool> running_{false};
   std::mutex mutex_;
   std::optional<CheckResult> finished_;  // the worker's, under mutex_
-  std::optional<CheckResult> result_;    // the one shown
+  bool finished_image_ = false;          // ... an image's check (else the formulas')
+  std::optional<CheckResult> result_;    // the formulas' check shown
+  // A student's image: what was read, its check, why the last one was refused.
+  std::optional<StudentImage> image_;
+  std::string image_name_, image_error_;
+  std::optional<CheckResult> image_result_;
+  bool image_check_pending_ = false;
   const void* checked_snapshot_ = nullptr;
   std::uint64_t checked_version_ = ~std::uint64_t{0};
 };

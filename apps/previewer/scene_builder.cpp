@@ -174,9 +174,15 @@ std::string SceneBuilder::drop_file(const std::string& path) {
     v_.files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
     return {};
   }
+  if (ext == ".png" || ext == ".PNG" || ext == ".ppm" || ext == ".PPM" || ext == ".pfm" || ext == ".PFM") {
+    // A student's own render of the view: checked against the reference (docs/checking.md).
+    const std::string why = v_.formulas_.open_image(path);
+    v_.files_.file_state().error_text = why;  // a refusal where one looks; a check clears the last
+    return why;
+  }
   // Said where one looks (the overlay's error line and the Scene file panel), not only in the
   // Objects panel, which may be folded.
-  const std::string why = refuse("dropped '" + path + "': not a scene or a lesson (.json), nor a mesh (.obj)");
+  const std::string why = refuse("dropped '" + path + "': not a scene or a lesson (.json), a mesh (.obj), nor an image to check (.png, .ppm, .pfm)");
   v_.files_.file_state().error_text = why;
   return why;
 }

@@ -467,6 +467,17 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
     else v_.tools_.snapshot_a();
     return true;
   }
+  if (name == "check_image" || name == "close_image") {
+    // check_image PATH: a student's image of the view checked (a refusal is in dump_state's
+    // image_check_error, not a broken script); close_image: back to the live image.
+    if (name == "close_image") {
+      v_.formulas_.close_image();
+      return true;
+    }
+    if (w.size() != 2) return step.fail("usage: check_image PATH");
+    v_.formulas_.open_image(w[1]);
+    return true;
+  }
   if (name == "formula" || name == "formula_view") {
     // formula SLOT TEXT...: the slot's text as typed (the words joined by spaces; "" clears it);
     // formula_view yours|reference|difference.

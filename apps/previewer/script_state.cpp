@@ -170,6 +170,16 @@ static void write_formula_state(std::ostream& out, const FormulaShell& shell, co
   out << "formula_view=" << ui::formula_view_name(shell.view()) << "\n"
       << "formula_probe=" << one_line(shell.panel().probe) << "\n"
       << "formula_checking=" << (shell.check_settled() ? 0 : 1) << "\n";
+  out << "image_check_name=" << shell.image_name() << "\n"
+      << "image_check_error=" << shell.image_error() << "\n";
+  if (const std::optional<CheckResult>& r = shell.image_check()) {
+    out << "image_check_verdict=" << (r->match ? "match" : "differs") << "\n"
+        << "image_check_differing=" << r->differing << "\n"
+        << "image_check_mistake=" << r->mistake << "\n"
+        << "image_check_summary=" << check_summary(*r) << "\n";
+  } else {
+    out << "image_check_verdict=\n";
+  }
   if (const std::optional<CheckResult>& r = shell.last_check(); r && book.any()) {
     out << "formula_verdict=" << (r->match ? "match" : "differs") << "\n"
         << "formula_differing=" << r->differing << "\n"

@@ -23,12 +23,20 @@ bool SnapshotA::take_when_ready(std::uint64_t renderer_generation, const Progres
   if (!ready || shown.pixels.empty()) return false;
   image_ = shown;
   requested_ = false;
+  file_name_.clear();
   return true;
 }
 
 void SnapshotA::clear() {
   image_ = ProgressiveFrame{};
   requested_ = dropped_ = false;
+  file_name_.clear();
+}
+
+void SnapshotA::set_file_image(ProgressiveFrame image, std::string name) {
+  image_ = std::move(image);
+  file_name_ = std::move(name);
+  requested_ = dropped_ = first_full_ = false;
 }
 
 bool SnapshotA::comparable(const ProgressiveFrame& shown, CompareView view, bool constant_ambient) const {
@@ -36,6 +44,7 @@ bool SnapshotA::comparable(const ProgressiveFrame& shown, CompareView view, bool
       image_.divisor != shown.divisor || image_.pixels.size() != shown.pixels.size()) {
     return false;
   }
+  if (!file_name_.empty()) return true;
   return view != CompareView::kDifference || image_.spp == shown.spp || !constant_ambient;
 }
 
@@ -56,6 +65,12 @@ std::string SnapshotA::caption(const ProgressiveFrame& shown, CompareView view, 
   } else if (image_.pixels.empty()) {
     std::snprintf(text, sizeof text, "%s", dropped_ ? "A was not taken: the view changed before the image was done"
                                                     : "no A yet: Snapshot A keeps the finished image");
+  } else if (!file_name_.empty() && (image_.width != shown.width || image_.height != shown.height)) {
+    std::snprintf(text, sizeof text, "A is your image %dx%d, the view is now %dx%d: open it at the view's size",
+                  image_.width, image_.height, shown.width, shown.height);
+  } else if (!file_name_.empty()) {
+    std::snprintf(text, sizeof text, "%s A, your image %.60s, against the live image",
+                  view == CompareView::kWipe ? "wipe:" : "|live - A|:", file_name_.c_str());
   } else if (image_.width != shown.width || image_.height != shown.height) {
     std::snprintf(text, sizeof text, "A is %dx%d, the view is now %dx%d: take A again to compare", image_.width,
                   image_.height, shown.width, shown.height);

@@ -25,6 +25,10 @@ class SnapshotA {
   // on to another generation first. True when A was taken.
   bool take_when_ready(std::uint64_t renderer_generation, const ProgressiveFrame& shown, bool final);
   void clear();  // another document or lesson step: no A, nothing asked
+  // A from a file: a student's own image of the view (docs/checking.md), at the view's size. It
+  // is compared with the live image whatever the samples (the student's are the pixel centres).
+  void set_file_image(ProgressiveFrame image, std::string name);
+  const std::string& file_name() const { return file_name_; }  // "" : A is the renderer's
 
   bool has_image() const { return !image_.pixels.empty(); }
   const ProgressiveFrame& image() const { return image_; }
@@ -49,6 +53,7 @@ class SnapshotA {
   bool requested_ = false;
   bool dropped_ = false;
   bool first_full_ = false;
+  std::string file_name_;  // A came from this file
 };
 
 }  // namespace phonglab

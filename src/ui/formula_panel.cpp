@@ -75,6 +75,23 @@ FormulaPanelEdits formula_panel(FormulaPanelState& state) {
     ImGui::TextColored(state.matches ? ImVec4(0.55f, 0.9f, 0.55f, 1.0f) : kErrorColor, "%s", state.verdict.c_str());
     locate("formula.verdict");
   }
+  ImGui::Separator();
+  ImGui::TextUnformatted("Your own ray tracer's image of this view (PNG, PPM, PFM at the view's size):");
+  ImGui::InputText("##image_path", &state.image_path);
+  locate("formula.image_path");
+  ImGui::SameLine();
+  if (ImGui::Button("check it")) edits.open_image = true;
+  locate("formula.image_check");
+  if (!state.image_error.empty()) ImGui::TextColored(kErrorColor, "%s", state.image_error.c_str());
+  if (!state.image_name.empty()) {
+    ImGui::Text("%s: A of the compare; the views show yours, the reference, the difference", state.image_name.c_str());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("close")) edits.close_image = true;
+    ImGui::TextColored(state.image_matches ? ImVec4(0.55f, 0.9f, 0.55f, 1.0f) : kErrorColor, "%s",
+                       state.image_verdict.c_str());
+    locate("formula.image_verdict");
+    if (!state.image_probe.empty()) ImGui::TextUnformatted(state.image_probe.c_str());
+  }
   if (!state.probe.empty()) {
     ImGui::TextDisabled("the probed pixel (Ctrl+click), yours against the reference:");
     ImGui::TextUnformatted(state.probe.c_str());

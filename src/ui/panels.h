@@ -40,6 +40,13 @@ struct FormulaPanelState {
   bool matches = false;
   int hints_left = -1;                            // a lesson's exercise: its hints not yet shown (-1: none)
   std::string probe;                              // yours against the reference at the probed pixel ("" : none)
+  // A student's own image (docs/checking.md): the path typed, the image checked, its verdict.
+  std::string image_path;
+  std::string image_name;     // "" : none loaded
+  std::string image_verdict;  // the check's summary, or "checking..."
+  bool image_matches = false;
+  std::string image_error;    // why the last one was refused
+  std::string image_probe;    // yours against the reference at the probed pixel
 };
 struct FormulaPanelEdits {
   int slot = -1;        // this slot's text changed
@@ -47,6 +54,8 @@ struct FormulaPanelEdits {
   int starter = -1;     // "starter" asked for this slot (the reference's names, to be completed)
   bool view = false;    // the view changed
   bool hint = false;    // "hint" asked for (a lesson's exercise)
+  bool open_image = false;   // "check this image" (image_path)
+  bool close_image = false;
 };
 FormulaPanelEdits formula_panel(FormulaPanelState& state);
 

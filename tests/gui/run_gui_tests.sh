@@ -1686,12 +1686,80 @@ check_formula() {
     test "$(state "$dir/f6.txt" formula_error_diffuse)" = 'formula:1:10: unknown name "nrm" (did you mean "N"?)'
 }
 
+# A student's own image of the view, checked: rendered by phonglab-cli with the sign of R wrong at
+# the view's size and field of view (what the Probe panel's command names), then dropped on the
+# window; a correct one matches; one of another size is refused with both sizes.
+session_image() {
+  local dir=$OUT/image
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render resolution_scale 0.5
+set render target_spp 1
+click_item panel.Formula
+wait_idle 120
+dump_state $dir/i0.txt
+touch $dir/sized
+wait_file $dir/rendered 120
+drop $dir/small.png
+wait_frames 3
+dump_state $dir/i1.txt
+drop $dir/mine.png
+wait_idle 120
+show_item formula.image_verdict
+probe 440 380
+wait_frames 3
+screenshot $dir/i2_difference.png
+dump_state $dir/i2.txt
+formula_view yours
+wait_frames 3
+screenshot $dir/i3_yours.png
+check_image $dir/right.ppm
+wait_idle 120
+dump_state $dir/i4.txt
+close_image
+wait_frames 3
+dump_state $dir/i5.txt
+quit
+EOF
+  env -u LP_NUM_THREADS "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
+  local pid=$!
+  if wait_for_file "$dir/sized" 120 "$pid"; then
+    local size w h fov
+    size=$(state "$dir/i0.txt" render)
+    w=${size%x*}
+    h=${size#*x}
+    fov=$(state "$dir/i0.txt" camera_fov)
+    "$CLI" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 -o "$dir/mine.png" \
+      --formula 'specular=R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)' >/dev/null 2>&1
+    "$CLI" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 -o "$dir/right.png" >/dev/null 2>&1
+    convert "$dir/right.png" -depth 8 "$dir/right.ppm"
+    "$CLI" render lecture --width 64 --height 48 --spp 1 -o "$dir/small.png" >/dev/null 2>&1
+    echo "$w x $h, fov $fov" >"$dir/size.txt"
+    touch "$dir/rendered"
+  fi
+  finish "$dir" "$pid"
+}
+check_image() {
+  local dir=$OUT/image
+  echo "session: a student's image checked"
+  check_exit "$dir" "the script ran to the end"
+  check "an image of another size is refused with both sizes: $(state "$dir/i1.txt" image_check_error)" \
+    grep -q '^image_check_error=small.png is 64x48, the view renders [0-9]*x[0-9]*' "$dir/i1.txt"
+  check "the wrong sign of R is named: $(state "$dir/i2.txt" image_check_summary)" \
+    test "$(state "$dir/i2.txt" image_check_verdict)/$(state "$dir/i2.txt" image_check_mistake)" = "differs/reflect-sign or view-reversed"
+  check "the student's image is A of the compare ($(state "$dir/i2.txt" compare_caption))" \
+    grep -q '^compare_caption=.*your image mine.png' "$dir/i2.txt"
+  check "a correct image (an 8-bit PPM) matches: $(state "$dir/i4.txt" image_check_summary)" \
+    test "$(state "$dir/i4.txt" image_check_verdict)/$(state "$dir/i4.txt" image_check_differing)" = "match/0"
+  check "close goes back to the live image" test -z "$(state "$dir/i5.txt" image_check_name)"
+}
+
 # GUI_PART=1 or 2 runs one half of the sessions (about the same time each; CTest runs the halves
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
 PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture session_formula"
 PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display check_formula"
-PART2_SESSIONS="session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text session_drops"
-PART2_CHECKS="check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text check_drops"
+PART2_SESSIONS="session_image session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text session_drops"
+PART2_CHECKS="check_image check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text check_drops"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
 if [[ -n "${GUI_ONLY:-}" ]]; then
   run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"

@@ -510,6 +510,69 @@ let one_thread_image;
   await page.close();
 }
 
+// 6h. Your formula: typed with the real keyboard into the specular box, the wrong sign of R is
+// named; a misspelt name is positioned under the box while the last good formula keeps its
+// verdict; the reference's own term matches. Then the shading lesson's specular exercise: its
+// starter in the box, a hint from the caption's button, and the verdict in the caption. On a
+// laptop (1366x768) and a phone (390x844, the keyboard typed into the same box).
+for (const [width, height, name] of [[1366, 768, 'laptop'], [390, 844, 'phone']]) {
+  const page = await browser.newPage();
+  page.on('pageerror', (e) => console.log('  page error: ' + e.message));
+  await page.setViewport({ width, height, deviceScaleFactor: name === 'phone' ? 3 : 1, isMobile: name === 'phone',
+                           hasTouch: name === 'phone' });
+  await page.goto(url('scene=lecture&spp=1&size=320x180'));
+  await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
+  await image_at(page, 1);
+  const verdict = async () => {
+    await page.waitForFunction(() => window.phonglab.formulaCheck && document.getElementById('formula-verdict').textContent !== 'checking...',
+                               { timeout: 60000 });
+    return page.evaluate(() => ({ ...window.phonglab.formulaCheck, shown: document.getElementById('formula-verdict').textContent }));
+  };
+  const box = await page.$('#formula-specular');
+  await box.click();
+  await page.keyboard.type('R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)');
+  const wrong = await verdict();
+  check(wrong.verdict === 'differs' && wrong.mistake === 'reflect-sign or view-reversed',
+        `${name}: typed, reflect(L, N) is named (${wrong.shown})`);
+  await page.keyboard.type(' + nrm');
+  const error = await page.evaluate(() => document.getElementById('formula-error-specular').textContent);
+  check(error === 'formula:1:53: unknown name "nrm" (did you mean "N"?)', `${name}: a misspelt name is positioned under its box (${error})`);
+  const typed = await page.evaluate(() => document.getElementById('formula-specular').value);
+  check(typed.endsWith(' + nrm') && !typed.includes('11'), `${name}: keys typed into the box are the box's, not the page's shortcuts`);
+  await page.evaluate(() => { window.phonglab.formulaCheck = null; });
+  const select_all = async () => {
+    await page.keyboard.down('Control');
+    await page.keyboard.press('KeyA');
+    await page.keyboard.up('Control');
+  };
+  await box.click();
+  await select_all();
+  await page.keyboard.type('R = reflect(-L, N); ks * pow(max(0, dot(R, V)), n)');
+  const right = await verdict();
+  check(right.verdict === 'match' && right.differing === 0, `${name}: the reference's own term matches (${right.shown})`);
+  await page.screenshot({ path: path.join(out, `formula-${name}.png`), fullPage: true });
+  // The lesson's specular exercise (step 15 of shading).
+  await page.goto(url('scene=lecture&spp=1&size=320x180#lesson=shading&step=15'));
+  await page.waitForFunction('window.phonglab && window.phonglab.ready && window.phonglab.lesson', { timeout: 60000 });
+  const starter = await page.evaluate(() => document.getElementById('formula-specular').value);
+  const lesson = await page.evaluate(() => window.phonglab.lesson);
+  check(lesson.exercise && lesson.exercise.slot === 'specular' && starter.startsWith('R = '),
+        `${name}: the exercise step puts its starter in the specular box (${JSON.stringify(starter)})`);
+  await (await page.$('#lesson-hint')).click();
+  const hints = await page.evaluate(() => [...document.querySelectorAll('#caption .hint')].map((h) => h.textContent));
+  check(hints.length === 1 && hints[0].startsWith('Hint 1: '), `${name}: the caption's button shows the first hint`);
+  await page.evaluate(() => { window.phonglab.formulaCheck = null; });
+  const lbox = await page.$('#formula-specular');
+  await lbox.click();
+  await select_all();
+  await page.keyboard.type('R = reflect(-L, N)\nks * pow(max(0, dot(R, V)), n)');
+  await verdict();
+  const said = await page.evaluate(() => document.getElementById('lesson-verdict').textContent);
+  check(said.startsWith('\u2713 Your formula matches'), `${name}: the caption says the exercise is done (${said})`);
+  await page.screenshot({ path: path.join(out, `exercise-${name}.png`), fullPage: true });
+  await page.close();
+}
+
 // 6e'. "Play with n": n on a logarithmic slider and a box for any value (0 too); a coefficient
 // slider's value is saved as shown (0.04, no float noise from keeping a colour's hue).
 {
