@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/image_read.h"
+
 #include "core/scene/display8.h"
 #include "core/teaching/compare.h"
 #include "core/teaching/heat_map.h"
@@ -441,6 +443,64 @@ std::string WebView::check_formulas_json() {
          ", \"summary\": " + quoted(check_summary(r)) + "}";
 }
 
+std::string WebView::check_image_json(const std::string& path) {
+  std::string error;
+  const std::optional<ReadImage> read = read_image_file(path, &error);
+  if (read && (read->width != width_ || read->height != height_)) {
+    error = path + " is " + std::to_string(read->width) + "x" + std::to_string(read->height) + ", the view renders " +
+            std::to_string(width_) + "x" + std::to_string(height_) + ": render yours at the view's size";
+  }
+  const auto quoted = [](const std::string& s) { return nlohmann::json(s).dump(); };
+  if (!error.empty()) return "{\"error\": " + quoted(error) + "}";
+  StudentImage student;
+  student.width = read->width;
+  student.height = read->height;
+  student.units = read->kind == ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
+                  : read->kind == ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
+                                                             : StudentImage::Units::kLinear;
+  student.rgb = read->rgb;
+  Scene scene = view_scene(session_.scene(), view_);
+  CheckOptions options;
+  options.threads = threads_;
+  image_check_ = check_image(scene, student, options);
+  ProgressiveFrame a;
+  a.width = image_check_->width;
+  a.height = image_check_->height;
+  a.spp = 1;
+  for (const Color& c : image_check_->yours) a.pixels.emplace_back(c);
+  a_.set_file_image(std::move(a), path);
+  check_view_ = 2;
+  if (accum_.samples > 0) encode();
+  const CheckResult& r = *image_check_;
+  nlohmann::json j = {{"verdict", r.match ? "match" : "differs"}, {"pixels", r.pixels}, {"differing", r.differing},
+                      {"mistake", r.mistake.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.mistake)},
+                      {"explained", r.explained}, {"summary", check_summary(r)}};
+  return j.dump();
+}
+
+void WebView::close_image() {
+  image_check_.reset();
+  check_view_ = 0;
+  if (!a_.file_name().empty()) a_.clear();
+  if (accum_.samples > 0) encode();
+}
+
+void WebView::set_check_view(int view) {
+  check_view_ = std::clamp(view, 0, 2);
+  if (accum_.samples > 0) encode();
+}
+
+std::optional<std::vector<glm::vec3>> WebView::check_view_pixels() const {
+  if (!image_check_ || check_view_ == 0 || image_check_->width != shown_width_ || image_check_->height != shown_height_) {
+    return std::nullopt;
+  }
+  const std::vector<Color> source = check_view_ == 1 ? image_check_->yours : check_difference_image(*image_check_);
+  std::vector<glm::vec3> out;
+  out.reserve(source.size());
+  for (const Color& c : source) out.emplace_back(c);
+  return out;
+}
+
 bool WebView::undo() {
   if (!session_.undo()) return false;
   edited_by_hand();
@@ -541,6 +601,7 @@ void WebView::encode() {
   if (view_.compare != CompareView::kNone && a_.comparable(shown_, view_.compare, constant_ambient())) {
     live = compare_pixels(live, a_.image().pixels, shown_width_, view_.compare, view_.wipe, view_.difference_gain);
   }
+  if (std::optional<std::vector<glm::vec3>> checked = check_view_pixels()) live = std::move(*checked);
   const Display8Encoder& srgb = Display8Encoder::srgb();
   rgba_.resize(4 * live.size());
   for (std::size_t i = 0; i < live.size(); ++i) {

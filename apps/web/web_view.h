@@ -78,6 +78,15 @@ class WebView {
   // aspect; a second or less on one core): the verdict as JSON (check's --json keys and a
   // `summary` in words), or "" with no formula.
   std::string check_formulas_json();
+  // A student's own image of the view (a file in the page's memory file system, from the
+  // chooser): refused unless it has the image's size (both sizes named); checked against the
+  // reference at the view's camera and size, A of the compare. The verdict as JSON (keys of
+  // check --json, `summary`, or `error`).
+  std::string check_image_json(const std::string& path);
+  void close_image();
+  // What the image shows with a student's image checked: 0 the live render, 1 the student's
+  // image, 2 the check's difference (orange brighter, blue darker, magenta NaN).
+  void set_check_view(int view);
 
   // One pass: true when it made a new image (false: the target is reached).
   bool step();
@@ -195,6 +204,9 @@ class WebView {
   std::vector<unsigned char> rgba_;
   int width_ = 640, height_ = 360, target_ = 16, level_ = 0, threads_ = 1;
   int formula_view_ = 0;  // 0: yours (the formulas traced), 1: the reference
+  std::optional<CheckResult> image_check_;  // a student's image, checked
+  int check_view_ = 0;
+  std::optional<std::vector<glm::vec3>> check_view_pixels() const;
   int shown_width_ = 0, shown_height_ = 0, shown_divisor_ = 8;
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1, images_ = 0;

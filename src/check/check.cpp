@@ -244,6 +244,22 @@ class Comparison {
   }
 
  private:
+  // Up to `limit` of the pixels not in `differing` (sorted), evenly spread through them.
+  static std::vector<std::size_t> agreeing_pixels(const std::vector<std::size_t>& differing, std::size_t pixels,
+                                                  std::size_t limit) {
+    std::vector<std::size_t> all;
+    all.reserve(pixels - differing.size());
+    std::size_t d = 0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+      if (d < differing.size() && differing[d] == i) {
+        ++d;
+        continue;
+      }
+      all.push_back(i);
+    }
+    return spread(all, limit);
+  }
+
   // Up to `limit` of `all`, evenly spread through it.
   static std::vector<std::size_t> spread(const std::vector<std::size_t>& all, std::size_t limit) {
     if (all.size() <= limit) return all;
@@ -262,7 +278,29 @@ class Comparison {
     if (scored.empty()) return false;
     std::stable_sort(scored.begin(), scored.end(),
                      [](const Scored& a, const Scored& b) { return a.trial_count > b.trial_count; });
-    const Scored& best = scored.front();
+    // Mistakes that explain the same differing pixels: the ones whose images also keep the
+    // student's pixels that are the reference's are the better explanation (an unclamped
+    // specular term and the reversed R agree where R.V < 0, but the reversed R also loses the
+    // highlight the student's image has); those that agree there too are named together.
+    std::vector<std::size_t> tied = {0};
+    for (std::size_t k = 1; k < scored.size(); ++k) {
+      if (scored[k].trial_count == scored[0].trial_count && scored[k].on_trial == scored[0].on_trial) tied.push_back(k);
+    }
+    if (tied.size() > 1) {
+      const std::vector<std::size_t> same = agreeing_pixels(differing, yours.size(), 4096);
+      std::vector<std::size_t> misses(tied.size());
+      for (std::size_t t = 0; t < tied.size(); ++t) {
+        const Candidate c(scored[tied[t]].variant, scene_, prepared_, reference_, options_, tol_);
+        misses[t] = same.size() - explained(c, same, yours);
+      }
+      const std::size_t fewest = *std::min_element(misses.begin(), misses.end());
+      std::vector<std::size_t> kept;
+      for (std::size_t t = 0; t < tied.size(); ++t) {
+        if (misses[t] == fewest) kept.push_back(tied[t]);
+      }
+      tied = kept;
+    }
+    const Scored& best = scored[tied.front()];
     // The share is counted on every differing pixel (the trial may have been a spread of them).
     double count = static_cast<double>(best.trial_count);
     if (trial.size() != differing.size()) {
@@ -272,11 +310,7 @@ class Comparison {
     const double percent = 100.0 * count / static_cast<double>(differing.size());
     if (percent < 50.0) return false;
     std::string name = best.variant.name();
-    for (std::size_t k = 1; k < scored.size(); ++k) {
-      if (scored[k].trial_count == best.trial_count && scored[k].on_trial == best.on_trial) {
-        name += joiner + scored[k].variant.name();
-      }
-    }
+    for (std::size_t t = 1; t < tied.size(); ++t) name += joiner + scored[tied[t]].variant.name();
     result.mistake = name;
     result.mistakes = best.mistakes;
     result.explained = percent;

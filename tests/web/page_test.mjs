@@ -573,6 +573,35 @@ for (const [width, height, name] of [[1366, 768, 'laptop'], [390, 844, 'phone']]
   await page.close();
 }
 
+// 6i. A student's own image, chosen with the page's file chooser: phonglab-cli's render with no
+// shadows (the sign mistake of a student's light loop) at the page's size is named; one of
+// another size is refused with both sizes; the difference view marks it.
+{
+  const page = await open('scene=lecture&spp=1&size=320x180');
+  await image_at(page, 1);
+  const mine = path.join(out, 'mine.png'), small = path.join(out, 'small.png');
+  execFileSync(cli, ['render', 'lecture', '--width', '320', '--height', '180', '--spp', '1', '-o', mine,
+                     '--formula', 'specular=R = reflect(-L, N); ks * pow(dot(R, V), n)']);
+  execFileSync(cli, ['render', 'lecture', '--width', '64', '--height', '36', '--spp', '1', '-o', small]);
+  const chooser = await page.$('#check-image');
+  await chooser.uploadFile(small);
+  await page.waitForFunction(() => window.phonglab.imageCheck, { timeout: 60000 });
+  const refused = await page.evaluate(() => window.phonglab.imageCheck);
+  check(refused.error && refused.error.includes('is 64x36, the view renders 320x180'), `an image of another size is refused (${refused.error})`);
+  await page.evaluate(() => { window.phonglab.imageCheck = null; });
+  await chooser.uploadFile(mine);
+  await page.waitForFunction(() => window.phonglab.imageCheck, { timeout: 60000 });
+  const named = await page.evaluate(() => window.phonglab.imageCheck);
+  check(named.verdict === 'differs' && (named.mistake || '').split(' or ').includes('specular-unclamped'), `a student's image is checked and its mistake named (${named.mistake}: ${named.summary})`);
+  await new Promise((resolve) => setTimeout(resolve, 500));  // the next animation frame draws it
+  const rgb = await canvas_rgb(page);
+  let orange = 0;
+  for (let i = 0; i + 2 < rgb.length; i += 3) if (rgb[i] > 230 && rgb[i + 2] < 60) ++orange;
+  check(orange > 50, `the difference view marks the differing pixels (${orange} orange)`);
+  await page.screenshot({ path: path.join(out, 'image-check.png'), fullPage: true });
+  await page.close();
+}
+
 // 6e'. "Play with n": n on a logarithmic slider and a box for any value (0 too); a coefficient
 // slider's value is saved as shown (0.04, no float noise from keeping a colour's hue).
 {
