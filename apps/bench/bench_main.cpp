@@ -2,6 +2,7 @@
 // bench` (the CLI executes this program, installed beside it). Usage: kUsage, phonglab-bench --help.
 // Exit codes: 0 success, 1 bad input, 2 bad usage.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -17,6 +18,8 @@
 #include "apps/bench/bench_report.h"
 #include "apps/common/args.h"
 #include "apps/common/formula_args.h"
+#include "check/check.h"
+#include "core/scene/display8.h"
 #include "core/packet/packet.h"
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
@@ -33,7 +36,7 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
                       [--only accel|indirect]
        phonglab-bench SCENE [--frames N] [--width W] [--height H] [--threads N]
                       [--scalar] [--edited] [--reshade shading|light|head]
-                      [--formula SLOT=TEXT|@FILE ...]
+                      [--formula SLOT=TEXT|@FILE ...] [--check MISTAKE]
   (also run as `phonglab-cli bench ...`, which executes phonglab-bench)
 
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
@@ -53,6 +56,9 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
   light-intensity slider (within 1e-12 of render_pass; default: plain frames).
   --formula: a term by a formula of your own (docs/formulas.md): the image
   with the formulas timed against the built-in re-shade of a kd edit.
+  --check MISTAKE: a student's 8-bit image with that mistake (docs/checking.md)
+  checked against every single mistake, timed against one 1-spp render
+  (default 5 runs at 960 x 540).
   --threads N: worker threads (default 0: all hardware threads).
   SCENE is a scene file (JSON) or an embedded scene's name.
   Exit codes: 0 success, 1 bad input, 2 bad usage.
@@ -222,6 +228,68 @@ int time_formula(const std::string& scene_arg, const LocalRules& formulas, int f
   return kExitOk;
 }
 
+// A student's image checked (docs/checking.md): the scene rendered at the pixel centres with
+// `mistake` made (the check's own variant, as a student's program would make it), then checked
+// against every single mistake, against one render of the scene (1 spp), alternating.
+int time_check(const std::string& scene_arg, const std::string& mistake_name, int frames, int width, int height,
+               int threads) {
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  const std::optional<Mistake> mistake = mistake_from_name(mistake_name);
+  if (!mistake) {
+    std::fprintf(stderr, "phonglab-bench: no mistake named '%s'\n", mistake_name.c_str());
+    return kExitUsage;
+  }
+  scene->width = width;
+  scene->height = height;
+  const PreparedScene prepared(*scene);
+  const std::vector<MistakeVariant> variants = mistake_variants({*mistake}, *scene);
+  if (variants.empty()) return kExitUsage;
+  const MistakeVariant& v = variants.front();
+  const PreparedScene made = prepare_with_rules(v.scene_of(*scene), prepared, v.rules);
+  StudentImage student;
+  student.width = width;
+  student.height = height;
+  student.units = StudentImage::Units::kCodes8;
+  student.rgb.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const int sy = v.flipped_y ? height - 1 - y : y;
+      const Color c = shade_pixel(made, x, sy, 1, v.pixel_corner).value;
+      const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
+      for (int k = 0; k < 3; ++k) {
+        const Display8Encoder& encode = v.linear_png ? Display8Encoder::linear() : Display8Encoder::srgb();
+        student.rgb[i + static_cast<std::size_t>(k)] = encode(static_cast<float>(c[k]));
+      }
+    }
+  }
+  CheckOptions options;
+  options.threads = threads;
+  options.pairs = false;  // the issue's measure: against all single mistakes
+  RenderOptions render_options;
+  render_options.threads = threads;
+  std::vector<double> check_ms, render_ms;
+  std::string named;
+  for (int f = 0; f < frames; ++f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const CheckResult r = check_image(*scene, student, options);
+    check_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    named = r.mistake;
+    // One render as phonglab-cli render does it: the scene prepared, the image's sums, one pass.
+    const auto t1 = std::chrono::steady_clock::now();
+    Accumulator accum;
+    accum.reset(width, height);
+    render_pass(PreparedScene(*scene), render_options, accum);
+    render_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
+  }
+  std::printf("scene %s, %dx%d, %s, a %s image, %s each, alternating\n", scene_arg.c_str(), width, height,
+              counted(static_cast<std::size_t>(resolve_thread_count(threads)), "thread").c_str(), mistake_name.c_str(),
+              counted(static_cast<std::size_t>(frames), "run").c_str());
+  std::printf("check %.1f ms (%.2fx render of %.1f ms: the scene prepared, its sums, one pass); named: %s\n", median(check_ms),
+              median(check_ms) / median(render_ms), median(render_ms), named.empty() ? "none" : named.c_str());
+  return kExitOk;
+}
+
 // Frames of one scene, timed.
 int time_frames(const std::string& scene_arg, int frames, int width, int height, int threads, bool scalar,
                 bool edited) {
@@ -274,6 +342,7 @@ int run(Args& args) {
   const auto reshade = args.take_value("--reshade");
   bool with_formulas = false;
   const std::optional<LocalRules> formulas = take_formulas(args, with_formulas);
+  const auto check = args.take_value("--check");
   const auto positional = args.take_positional();
   if (!formulas) return kExitBadInput;
   if (only) {
@@ -289,6 +358,10 @@ int run(Args& args) {
     report.quick = quick;
     report.threads = threads.value_or(0);
     return run_bench_report(report);
+  }
+  if (check) {
+    return time_check(*positional, *check, frames.value_or(5), width.value_or(960), height.value_or(540),
+                      threads.value_or(0));
   }
   if (with_formulas) {
     return time_formula(*positional, *formulas, frames.value_or(15), width.value_or(1280), height.value_or(720),

@@ -27,6 +27,29 @@ struct Sample {
 
 // kLinearUnit: a linear image that holds [0, 1] only (a 16-bit PPM or PNG), compared with the
 // reference clamped as its file would hold it.
+// Yours per pixel: the full value, and (formula checks) the local terms.
+struct Yours {
+  std::vector<Color> full;
+  std::vector<std::array<Color, kFormulaSlots>> slots;  // empty for an image
+  std::size_t size() const { return full.size(); }
+  Sample at(std::size_t i) const {
+    Sample s;
+    s.full = full[i];
+    if (!slots.empty()) s.slots = slots[i];
+    return s;
+  }
+};
+
+// sRGB codes to linear values, once for the 256 codes.
+const std::array<double, 256>& srgb_decode() {
+  static const std::array<double, 256> table = [] {
+    std::array<double, 256> t{};
+    for (int c = 0; c < 256; ++c) t[static_cast<std::size_t>(c)] = srgb_to_linear(c / 255.0);
+    return t;
+  }();
+  return table;
+}
+
 enum class Tolerance : std::uint8_t { kCodes8, kLinearImage, kLinearUnit, kFormula };
 
 bool channel_differs(Tolerance tol, double yours, double reference) {
@@ -45,8 +68,11 @@ bool colour_differs(Tolerance tol, const Color& yours, const Color& reference) {
          channel_differs(tol, yours.z, reference.z);
 }
 
+// The 8-bit codes `render` writes to a PNG for a linear value: through float, as its images hold
+// them (Display8Encoder gives linear_to_srgb8 of the float exactly, without a pow per channel).
 Color to_codes(const Color& linear, bool srgb) {
-  const auto code = [srgb](double c) { return static_cast<double>(srgb ? linear_to_srgb8(c) : linear_to_unorm8(c)); };
+  const Display8Encoder& encode = srgb ? Display8Encoder::srgb() : Display8Encoder::linear();
+  const auto code = [&](double c) { return static_cast<double>(encode(static_cast<float>(c))); };
   return {code(linear.x), code(linear.y), code(linear.z)};
 }
 
@@ -175,32 +201,32 @@ class Comparison {
 
   // How many of `pixels` (indices) the candidate's image matches yours at.
   std::size_t explained(const Candidate& c, const std::vector<std::size_t>& pixels,
-                        const std::vector<Sample>& yours) const {
+                        const Yours& yours) const {
     std::atomic<std::size_t> count{0};
     parallel_for(pixels.size(), options_.threads, [&](std::size_t k) {
       const std::size_t i = pixels[k];
       const int x = static_cast<int>(i % static_cast<std::size_t>(reference_.width));
       const int y = static_cast<int>(i / static_cast<std::size_t>(reference_.width));
-      if (!differs(yours[i], c.at(x, y))) count.fetch_add(1, std::memory_order_relaxed);
+      if (!differs(yours.at(i), c.at(x, y))) count.fetch_add(1, std::memory_order_relaxed);
     });
     return count.load();
   }
 
   // The matches per pixel of `pixels`, as a bit string (to tell two mistakes' images apart).
   std::vector<bool> matches(const Candidate& c, const std::vector<std::size_t>& pixels,
-                            const std::vector<Sample>& yours) const {
+                            const Yours& yours) const {
     std::vector<char> m(pixels.size(), 0);
     parallel_for(pixels.size(), options_.threads, [&](std::size_t k) {
       const std::size_t i = pixels[k];
       const int x = static_cast<int>(i % static_cast<std::size_t>(reference_.width));
       const int y = static_cast<int>(i / static_cast<std::size_t>(reference_.width));
-      m[k] = differs(yours[i], c.at(x, y)) ? 0 : 1;
+      m[k] = differs(yours.at(i), c.at(x, y)) ? 0 : 1;
     });
     return std::vector<bool>(m.begin(), m.end());
   }
 
   // The nearest mistake (or pair) for the differing pixels, into `result`.
-  void explain(const std::vector<std::size_t>& differing, const std::vector<Sample>& yours, bool formulas_only,
+  void explain(const std::vector<std::size_t>& differing, const Yours& yours, bool formulas_only,
                CheckResult& result) const {
     if (differing.empty()) return;
     const std::vector<std::size_t> trial = spread(differing, options_.sample_pixels);
@@ -226,7 +252,7 @@ class Comparison {
     if (name_best(scored, differing, trial, yours, " or ", result)) return;
     if (!options_.pairs) return;
     // No single mistake explains half: two at once (the catalogue is small).
-    const std::vector<std::size_t> pair_trial = spread(differing, std::min<std::size_t>(options_.sample_pixels, 2048));
+    const std::vector<std::size_t> pair_trial = spread(differing, std::min<std::size_t>(options_.sample_pixels, 512));
     std::vector<Scored> pairs;
     for (std::size_t a = 0; a < singles.size(); ++a) {
       for (std::size_t b = a + 1; b < singles.size(); ++b) {
@@ -273,7 +299,7 @@ class Comparison {
   // with the others whose images agree with it on every trial pixel and explain as many.
   template <class Scored>
   bool name_best(std::vector<Scored>& scored, const std::vector<std::size_t>& differing,
-                 const std::vector<std::size_t>& trial, const std::vector<Sample>& yours, const char* joiner,
+                 const std::vector<std::size_t>& trial, const Yours& yours, const char* joiner,
                  CheckResult& result) const {
     if (scored.empty()) return false;
     std::stable_sort(scored.begin(), scored.end(),
@@ -287,7 +313,7 @@ class Comparison {
       if (scored[k].trial_count == scored[0].trial_count && scored[k].on_trial == scored[0].on_trial) tied.push_back(k);
     }
     if (tied.size() > 1) {
-      const std::vector<std::size_t> same = agreeing_pixels(differing, yours.size(), 4096);
+      const std::vector<std::size_t> same = agreeing_pixels(differing, yours.size(), options_.sample_pixels);
       std::vector<std::size_t> misses(tied.size());
       for (std::size_t t = 0; t < tied.size(); ++t) {
         const Candidate c(scored[tied[t]].variant, scene_, prepared_, reference_, options_, tol_);
@@ -303,11 +329,14 @@ class Comparison {
     const Scored& best = scored[tied.front()];
     // The share is counted on every differing pixel (the trial may have been a spread of them).
     double count = static_cast<double>(best.trial_count);
+    double counted = static_cast<double>(trial.size());
     if (trial.size() != differing.size()) {
       const Candidate c(best.variant, scene_, prepared_, reference_, options_, tol_);
-      count = static_cast<double>(explained(c, differing, yours));
+      const std::vector<std::size_t> all = spread(differing, options_.count_pixels);
+      count = static_cast<double>(explained(c, all, yours));
+      counted = static_cast<double>(all.size());
     }
-    const double percent = 100.0 * count / static_cast<double>(differing.size());
+    const double percent = 100.0 * count / counted;
     if (percent < 50.0) return false;
     std::string name = best.variant.name();
     for (std::size_t t = 1; t < tied.size(); ++t) name += joiner + scored[tied[t]].variant.name();
@@ -327,7 +356,7 @@ class Comparison {
 
 // Fills the verdict, the figures and the per-pixel signs from yours and the reference.
 std::vector<std::size_t> compare_all(const Comparison& cmp, const Accumulator& reference,
-                                     const std::vector<Sample>& yours, const std::vector<bool>& nan,
+                                     const Yours& yours, const std::vector<bool>& nan,
                                      Tolerance tol, CheckResult& result) {
   const std::size_t n = yours.size();
   result.pixels = n;
@@ -343,21 +372,21 @@ std::vector<std::size_t> compare_all(const Comparison& cmp, const Accumulator& r
     if (nan[i]) ++result.nan;
     // The largest channel difference, over the full value (NaN counts as the largest).
     for (int c = 0; c < 3; ++c) {
-      const double d = std::abs(yours[i].full[c] - ref.full[c]);
+      const double d = std::abs(yours.full[i][c] - ref.full[c]);
       const double score = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
       if (score > worst) {
         worst = score;
         result.max_difference = d;
         result.worst_x = x;
         result.worst_y = y;
-        result.worst_yours = yours[i].full;
+        result.worst_yours = yours.full[i];
         result.worst_reference = ref.full;
       }
     }
-    if (!cmp.differs(yours[i], ref)) continue;
+    if (!cmp.differs(yours.at(i), ref)) continue;
     differing.push_back(i);
-    const Color d = yours[i].full - ref.full;
-    result.sign[i] = nan[i] || !all_finite(yours[i].full) ? 3 : (d.x + d.y + d.z >= 0 ? 1 : 2);
+    const Color d = yours.full[i] - ref.full;
+    result.sign[i] = nan[i] || !all_finite(yours.full[i]) ? 3 : (d.x + d.y + d.z >= 0 ? 1 : 2);
   }
   result.differing = differing.size();
   result.match = differing.empty();
@@ -373,10 +402,13 @@ Accumulator render_reference(const PreparedScene& prepared, const CheckOptions& 
   return accum;
 }
 
-std::vector<Color> reference_image(const Accumulator& accum) {
-  std::vector<Color> out(accum.sum.size());
-  for (int y = 0; y < accum.height; ++y) {
-    for (int x = 0; x < accum.width; ++x) out[static_cast<std::size_t>(y) * accum.width + x] = accum.mean(x, y);
+// The reference's means, taken over from its sums once the check no longer needs them (no
+// second image of the same size: a check's time is mostly its memory).
+std::vector<Color> reference_image(Accumulator&& accum) {
+  std::vector<Color> out = std::move(accum.sum);
+  const double n = static_cast<double>(std::max(accum.samples, 1u));
+  if (n != 1) {
+    for (Color& c : out) c /= n;
   }
   return out;
 }
@@ -490,33 +522,38 @@ CheckResult check_image(const Scene& scene_in, const StudentImage& image, const 
   const Tolerance tol = codes8                                               ? Tolerance::kCodes8
                         : image.units == StudentImage::Units::kLinearUnit ? Tolerance::kLinearUnit
                                                                           : Tolerance::kLinearImage;
-  const Accumulator reference = render_reference(prepared, options, false);
+  Accumulator reference = render_reference(prepared, options, false);
 
   CheckResult result;
   result.codes8 = codes8;
   result.width = image.width;
   result.height = image.height;
   const std::size_t n = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-  std::vector<Sample> yours(n);
+  Yours yours;
+  yours.full.resize(n);
   std::vector<bool> nan(n, false);
-  result.yours.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Color c{image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]};
-    yours[i].full = c;
+    yours.full[i] = c;
     nan[i] = !all_finite(c);
-    result.yours[i] = codes8 ? Color(srgb_to_linear(c.x / 255), srgb_to_linear(c.y / 255), srgb_to_linear(c.z / 255))
-                             : c;
   }
   const Comparison cmp(scene, prepared, reference, options, tol, {false, false, false});
   const std::vector<std::size_t> differing = compare_all(cmp, reference, yours, nan, tol, result);
   cmp.explain(differing, yours, false, result);
-  result.reference = reference_image(reference);
+  result.reference = reference_image(std::move(reference));
+  // Yours as linear values (for the views), in place of the codes.
+  result.yours = std::move(yours.full);
+  if (codes8) {
+    const std::array<double, 256>& decode = srgb_decode();
+    const auto linear = [&](double code) { return decode[static_cast<std::size_t>(std::clamp(code, 0.0, 255.0))]; };
+    for (Color& c : result.yours) c = Color(linear(c.x), linear(c.y), linear(c.z));
+  }
   return result;
 }
 
 CheckResult check_formulas(const Scene& scene, const LocalRules& formulas, const CheckOptions& options) {
   const PreparedScene prepared(scene);
-  const Accumulator reference = render_reference(prepared, options, true);
+  Accumulator reference = render_reference(prepared, options, true);
   LocalRules only_formulas;
   only_formulas.formulas = formulas.formulas;
   const PreparedScene with_formulas = prepare_with_rules(scene, prepared, only_formulas);
@@ -527,14 +564,16 @@ CheckResult check_formulas(const Scene& scene, const LocalRules& formulas, const
   result.width = scene.width;
   result.height = scene.height;
   const std::size_t n = static_cast<std::size_t>(scene.width) * static_cast<std::size_t>(scene.height);
-  std::vector<Sample> yours(n);
+  Yours yours;
+  yours.full.resize(n);
+  yours.slots.resize(n);
   std::vector<char> finite(n, 1);
   parallel_for(n, options.threads, [&](std::size_t i) {
     const int x = static_cast<int>(i % static_cast<std::size_t>(scene.width));
     const int y = static_cast<int>(i / static_cast<std::size_t>(scene.width));
     const PixelShade p = shade_pixel_in(with_formulas, frame, x, y, std::max(1, options.spp), false);
-    yours[i].full = p.value;
-    yours[i].slots = {p.terms.ambient, p.terms.diffuse, p.terms.specular};
+    yours.full[i] = p.value;
+    yours.slots[i] = {p.terms.ambient, p.terms.diffuse, p.terms.specular};
     finite[i] = p.finite && all_finite(p.terms.ambient) && all_finite(p.terms.diffuse) && all_finite(p.terms.specular)
                     ? 1
                     : 0;
@@ -543,7 +582,7 @@ CheckResult check_formulas(const Scene& scene, const LocalRules& formulas, const
   result.yours.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     nan[i] = finite[i] == 0;
-    result.yours[i] = yours[i].full;
+    result.yours[i] = yours.full[i];
   }
   std::array<bool, kFormulaSlots> slots{};
   for (int s = 0; s < kFormulaSlots; ++s) slots[static_cast<std::size_t>(s)] = formulas.formulas[static_cast<std::size_t>(s)] != nullptr;
@@ -551,7 +590,7 @@ CheckResult check_formulas(const Scene& scene, const LocalRules& formulas, const
   const std::vector<std::size_t> differing = compare_all(cmp, reference, yours, nan, Tolerance::kFormula, result);
   // The formula mistakes are specular ones: tried when the specular term is the student's.
   if (slots[static_cast<std::size_t>(FormulaSlot::kSpecular)]) cmp.explain(differing, yours, true, result);
-  result.reference = reference_image(reference);
+  result.reference = reference_image(std::move(reference));
   return result;
 }
 

@@ -34,8 +34,9 @@ struct CheckOptions {
   int threads = 0;      // 0: all hardware threads
   bool pairs = true;    // try two mistakes at once when no single one explains half
   // Differing pixels a mistake is first tried on (an even stride through them); the named
-  // mistake's share is then counted on every differing pixel.
-  std::size_t sample_pixels = 8192;
+  // mistake's share is then counted on up to `count_pixels` of them (all, in most checks).
+  std::size_t sample_pixels = 1024;
+  std::size_t count_pixels = 16384;
 };
 
 struct CheckResult {

@@ -434,6 +434,9 @@ constexpr bool kAddressSanitizer = false;
 
 TEST(ImageReadMemory, AnImageTooLargeForTheMemoryLeftIsRefusedWithItsSize) {
   if (kAddressSanitizer) GTEST_SKIP() << "ASan reserves terabytes of address space: no RLIMIT_AS under it";
+  // The suite's process has the renderer's helper threads by now: the child re-executes the
+  // test alone rather than forking them mid-flight.
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
   // 1024 x 1024 pixels, whose doubles need 24 MiB.
   const std::string bytes = "P6 1024 1024 255\n" + std::string(std::size_t{3} << 20, '\x80');
   EXPECT_EXIT(read_with_16_mib_to_spare(bytes), testing::ExitedWithCode(0),
