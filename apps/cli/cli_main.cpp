@@ -330,14 +330,7 @@ int cmd_check(Args& args) {
       std::cerr << error << "\n";
       return kExitBadInput;
     }
-    StudentImage student;
-    student.width = image->width;
-    student.height = image->height;
-    student.units = image->kind == ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
-                    : image->kind == ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
-                                                                : StudentImage::Units::kLinear;
-    student.rgb = image->rgb;
-    result = check_image(*scene, student, options);
+    result = check_image(*scene, student_image(*image), options);
   }
   if (as_json) {
     std::cout << check_json(result).dump(2) << "\n";

@@ -126,14 +126,7 @@ std::string FormulaShell::open_image(const std::string& path) {
     image_error_ = error;  // the last image, if any, stays
     return error;
   }
-  StudentImage student;
-  student.width = read->width;
-  student.height = read->height;
-  student.units = read->kind == ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
-                  : read->kind == ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
-                                                             : StudentImage::Units::kLinear;
-  student.rgb = read->rgb;
-  image_ = std::move(student);
+  image_ = student_image(*read);
   image_name_ = name;
   image_error_.clear();
   image_result_.reset();

@@ -452,17 +452,10 @@ std::string WebView::check_image_json(const std::string& path) {
   }
   const auto quoted = [](const std::string& s) { return nlohmann::json(s).dump(); };
   if (!error.empty()) return "{\"error\": " + quoted(error) + "}";
-  StudentImage student;
-  student.width = read->width;
-  student.height = read->height;
-  student.units = read->kind == ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
-                  : read->kind == ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
-                                                             : StudentImage::Units::kLinear;
-  student.rgb = read->rgb;
   Scene scene = view_scene(session_.scene(), view_);
   CheckOptions options;
   options.threads = threads_;
-  image_check_ = check_image(scene, student, options);
+  image_check_ = check_image(scene, student_image(*read), options);
   ProgressiveFrame a;
   a.width = image_check_->width;
   a.height = image_check_->height;

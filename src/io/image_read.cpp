@@ -543,4 +543,15 @@ std::optional<ReadImage> read_image_file(const std::string& path, std::string* e
   return read_image(bytes, path, error);
 }
 
+StudentImage student_image(const ReadImage& image) {
+  StudentImage student;
+  student.width = image.width;
+  student.height = image.height;
+  student.units = image.kind == ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
+                  : image.kind == ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
+                                                             : StudentImage::Units::kLinear;
+  student.rgb = image.rgb;
+  return student;
+}
+
 }  // namespace phonglab

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "check/check.h"
+
 namespace phonglab {
 
 // An image as read from a file, in that file's units.
@@ -41,6 +43,10 @@ struct ReadImage {
 // Width and height are 1..16384 each. On failure returns nullopt and sets *error to a message
 // such as "mine.ppm: line 3: maxval 70000 is over 65535".
 std::optional<ReadImage> read_image(std::string_view bytes, const std::string& name, std::string* error);
+
+// The image as a check takes it (check/check.h): 8-bit codes, linear values in [0, 1] (16 bit),
+// or unclamped linear values (PFM).
+StudentImage student_image(const ReadImage& image);
 
 // read_image of the file at `path`, or "path: cannot open (No such file or directory)" and the
 // like when it cannot be read.

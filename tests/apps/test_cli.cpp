@@ -20,6 +20,7 @@
 #include "io/image_io.h"
 #include "io/scene/scene_io.h"
 #include "tests/support/pfm_reader.h"
+#include "tests/support/run_cli.h"
 #include "core/packet/packet.h"
 
 namespace fs = std::filesystem;
@@ -27,37 +28,9 @@ using phonglab::Image;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out;  // stdout and stderr together
-};
-
-RunResult run_cli(const std::string& args) {
-  const std::string cmd = std::string(PHONGLAB_CLI) + " " + args + " 2>&1";
-  RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-// The command's standard output alone (its warnings on stderr left out).
-RunResult run_cli_stdout(const std::string& args) {
-  const std::string cmd = std::string(PHONGLAB_CLI) + " " + args + " 2>/dev/null";
-  RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using phonglab::test::RunResult;
+using phonglab::test::run_cli;
+using phonglab::test::run_cli_stdout;
 
 // A fresh temporary directory per test.
 class CliTest : public ::testing::Test {

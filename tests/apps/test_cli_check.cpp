@@ -3,8 +3,6 @@
 // mistake named as a student would type it, a student's image with its format's errors.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,27 +11,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/run_cli.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Ran {
-  int exit_code = -1;
-  std::string out;  // stdout, then stderr
-};
-
-Ran cli(const std::string& args) {
-  const std::string cmd = std::string(PHONGLAB_CLI) + " " + args + " 2>&1";
-  Ran r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using Ran = phonglab::test::RunResult;
+Ran cli(const std::string& args) { return phonglab::test::run_cli(args); }
 
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 

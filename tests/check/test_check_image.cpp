@@ -517,16 +517,7 @@ std::string p6_bytes(const World& world, const std::vector<dvec3>& pixels, int m
   return out;
 }
 
-StudentImage as_student(const phonglab::ReadImage& read) {
-  StudentImage s;
-  s.width = read.width;
-  s.height = read.height;
-  s.units = read.kind == phonglab::ReadImage::Kind::kSrgb8      ? StudentImage::Units::kCodes8
-            : read.kind == phonglab::ReadImage::Kind::kLinear16 ? StudentImage::Units::kLinearUnit
-                                                               : StudentImage::Units::kLinear;
-  s.rgb = read.rgb;
-  return s;
-}
+StudentImage as_student(const phonglab::ReadImage& read) { return phonglab::student_image(read); }
 
 TEST(CheckImage, TheIndependentTracersFilesReadBackAndMatch) {
   const World world = test_world();
