@@ -235,7 +235,7 @@ std::vector<LessonShell::CaptionLine> LessonShell::caption_lines(int step_index,
     } else if (!check || !v_.formulas_.check_settled()) {
       lines.push_back({"Checking against the reference...", small, IM_COL32(200, 200, 200, 255)});
     } else if (check->match) {
-      lines.push_back({"\xE2\x9C\x93 Your formula matches the reference: every pixel.", small, IM_COL32(140, 235, 140, 255)});
+      lines.push_back({"Done: your formula matches the reference at every pixel.", small, IM_COL32(140, 235, 140, 255)});
     } else {
       lines.push_back({"Not yet: " + check_summary(*check), small, IM_COL32(255, 150, 110, 255)});
     }

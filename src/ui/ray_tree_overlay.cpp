@@ -16,7 +16,7 @@ namespace phonglab::ui {
 namespace {
 
 // Bounce colours by depth 1, 2, 3, 4+: reflections cool (cyan to violet), refractions green.
-constexpr ImU32 kOutline = IM_COL32(0, 0, 0, 170);  // under every line, so it reads on any image
+constexpr ImU32 kTreeOutline = IM_COL32(0, 0, 0, 170);  // under every line, so it reads on any image
 
 // The tree's make-up, walked from the probe (not from the segments, which may be filtered).
 struct TreeTally {
@@ -56,7 +56,7 @@ void legend_row(ImU32 color, const char* text, bool cross_at_end = false) {
   const float h = ImGui::GetTextLineHeight();
   const float w = 2.2f * h;
   const ImVec2 a(at.x, at.y + h / 2), b(at.x + w, at.y + h / 2);
-  draw->AddLine(a, b, kOutline, 4.5f);
+  draw->AddLine(a, b, kTreeOutline, 4.5f);
   draw->AddLine(a, b, color, 2.5f);
   if (cross_at_end) {
     const float r = h * 0.3f;
@@ -83,7 +83,7 @@ void depth_row(TreeSegmentKind kind, const char* text, int deepest) {
     std::snprintf(label, sizeof label, d < 4 || deepest == 4 ? "%d" : "%d+", d);
     const ImU32 color = segment_color(kind, d);
     const float seg = 1.1f * h;
-    draw->AddLine(ImVec2(at.x, at.y + h / 2), ImVec2(at.x + seg, at.y + h / 2), kOutline, 4.5f);
+    draw->AddLine(ImVec2(at.x, at.y + h / 2), ImVec2(at.x + seg, at.y + h / 2), kTreeOutline, 4.5f);
     draw->AddLine(ImVec2(at.x, at.y + h / 2), ImVec2(at.x + seg, at.y + h / 2), color, 2.5f);
     draw->AddText(ImVec2(at.x + seg + 2, at.y), color, label);
     ImGui::Dummy(ImVec2(seg + 2 + ImGui::CalcTextSize(label).x, h));
@@ -165,7 +165,7 @@ void draw_ray_tree(ImDrawList* draw, std::span<const ScreenSegment> segments, co
       const ImVec2 b = to_screen(rect, s.to);
       const ImU32 color = segment_color(s.kind, s.depth, s.blocked);
       if (pass < 2) {
-        draw->AddLine(a, b, kOutline, thick + 2.5f * ui_scale);
+        draw->AddLine(a, b, kTreeOutline, thick + 2.5f * ui_scale);
         draw->AddLine(a, b, color, thick);
       }
       if (pass == 0) continue;
@@ -178,7 +178,7 @@ void draw_ray_tree(ImDrawList* draw, std::span<const ScreenSegment> segments, co
           // Seen end-on (V always is, unless the head moves): the "arrow towards you" symbol,
           // a ring with a dot, labelled beside it.
           const float r = 6 * ui_scale;
-          draw->AddCircle(b, r, kOutline, 0, thick + 2 * ui_scale);
+          draw->AddCircle(b, r, kTreeOutline, 0, thick + 2 * ui_scale);
           draw->AddCircle(b, r, color, 0, thick);
           draw->AddCircleFilled(b, 1.5f * ui_scale, color);
           const char* letter = arrow_letter(s.kind, blinn);
@@ -207,7 +207,7 @@ void draw_ray_tree(ImDrawList* draw, std::span<const ScreenSegment> segments, co
       if (!s.to_visible) continue;  // leaves the image or the ray escaped: no end point to mark
       switch (s.kind) {
         case TreeSegmentKind::kPrimary:
-          draw->AddCircleFilled(b, dot * 1.3f, kOutline);
+          draw->AddCircleFilled(b, dot * 1.3f, kTreeOutline);
           draw->AddCircleFilled(b, dot, color);
           break;
         case TreeSegmentKind::kShadowBlocked: {

@@ -1754,12 +1754,63 @@ check_image() {
   check "close goes back to the live image" test -z "$(state "$dir/i5.txt" image_check_name)"
 }
 
+# A lesson's exercise step: the shading lesson's diffuse exercise puts its starter in the
+# Formula panel (an unfinished text: its error shown, the equation's term rendering), the
+# student's formula matches and the caption says so, a hint is shown, presenter mode keeps the
+# caption; leaving the step clears the formulas, coming back gives the text back.
+session_exercise() {
+  local dir=$OUT/exercise
+  mkdir -p "$dir"
+  cat >"$dir/script.txt" <<EOF
+set render resolution_scale 0.5
+set render target_spp 1
+lesson_open shading
+lesson_goto 14
+wait_idle 120
+dump_state $dir/e1.txt
+screenshot $dir/e1_starter.png
+formula diffuse kd * dot(N, L)
+wait_idle 120
+lesson_hint
+wait_frames 3
+dump_state $dir/e2.txt
+screenshot $dir/e2_match.png
+key F11
+wait_frames 10
+wait_idle 120
+screenshot $dir/e3_presenting.png
+key F11
+wait_frames 5
+lesson_goto 1
+wait_idle 120
+dump_state $dir/e4.txt
+lesson_goto 14
+wait_idle 120
+dump_state $dir/e5.txt
+quit
+EOF
+  run_script "$dir" lecture
+}
+check_exercise() {
+  local dir=$OUT/exercise
+  echo "session: a lesson's exercise step"
+  check_exit "$dir" "the script ran to the end"
+  check "the diffuse exercise puts its starter in the panel ('$(state "$dir/e1.txt" formula_diffuse)'), its error shown: $(state "$dir/e1.txt" formula_error_diffuse)" \
+    test "$(state "$dir/e1.txt" lesson_exercise)/$(state "$dir/e1.txt" formula_diffuse)" = "diffuse/kd * " -a -n "$(state "$dir/e1.txt" formula_error_diffuse)"
+  check "the student's diffuse term matches, a hint is shown ($(state "$dir/e2.txt" formula_summary))" \
+    test "$(state "$dir/e2.txt" formula_verdict)/$(state "$dir/e2.txt" lesson_hints_shown)" = "match/1"
+  check "another step shows the equation's terms: the formulas are cleared" \
+    test "$(state "$dir/e4.txt" lesson_exercise)/$(state "$dir/e4.txt" formula_diffuse)/$(state "$dir/e4.txt" formula_verdict)" = "//"
+  check "back at the exercise, the student's text is given back ($(state "$dir/e5.txt" formula_diffuse))" \
+    test "$(state "$dir/e5.txt" formula_diffuse)" = "kd * dot(N, L)"
+}
+
 # GUI_PART=1 or 2 runs one half of the sessions (about the same time each; CTest runs the halves
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
 PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture session_formula"
 PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display check_formula"
-PART2_SESSIONS="session_image session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text session_drops"
-PART2_CHECKS="check_image check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text check_drops"
+PART2_SESSIONS="session_image session_exercise session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text session_drops"
+PART2_CHECKS="check_image check_exercise check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text check_drops"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
 if [[ -n "${GUI_ONLY:-}" ]]; then
   run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"

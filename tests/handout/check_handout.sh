@@ -36,5 +36,12 @@ for lesson in $("$CLI" lessons | awk '{print $1}'); do
   check "$lesson: the page's screenshot shows the first image (grey spread $spread)" \
     awk -v s="${spread:-0}" 'BEGIN { exit !(s > 0.03) }'
 done
+# The shading lesson's exercises: each task with room to write, and the reference formulas at
+# the end, on a page of their own when printed (a page break before them).
+dir=$OUT/shading
+tasks=$(grep -c 'class="write"' "$dir/index.html")
+check "shading: its three exercises have room to write ($tasks)" test "$tasks" = 3
+check "shading: the reference formulas close the handout on a page of their own" \
+  grep -q '<section class="reference" id="reference-formulas">' "$dir/index.html"
 echo "handout: $failures failure(s); pages and screenshots in $OUT"
 ((failures == 0))
