@@ -30,6 +30,7 @@
 #include "io/lesson_io.h"
 #include "core/teaching/heat_map.h"
 #include "io/image_io.h"
+#include "io/check_report.h"
 #include "io/image_read.h"
 #include "core/packet/packet.h"
 #include "io/probe_report.h"
@@ -266,30 +267,6 @@ int cmd_render(Args& args) {
   return kExitOk;
 }
 
-// The verdict as JSON (docs/checking.md): the text report's figures under fixed keys.
-nlohmann::json check_json(const CheckResult& r) {
-  const auto number = [](double v) -> nlohmann::json {
-    if (std::isfinite(v)) return v;
-    return nullptr;
-  };
-  const auto colour = [&](const Color& c) { return nlohmann::json::array({number(c.x), number(c.y), number(c.z)}); };
-  nlohmann::json mistakes = nlohmann::json::array();
-  for (const Mistake m : r.mistakes) mistakes.push_back(std::string(mistake_info(m).name));
-  return {{"verdict", r.match ? "match" : "differs"},
-          {"pixels", r.pixels},
-          {"differing", r.differing},
-          {"max_difference", number(r.max_difference)},
-          {"worst_pixel", {r.worst_x, r.worst_y}},
-          {"yours", colour(r.worst_yours)},
-          {"reference", colour(r.worst_reference)},
-          {"units", r.codes8 ? "8-bit codes" : "linear"},
-          {"nan", r.nan},
-          {"mistake", r.mistake.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.mistake)},
-          {"mistakes", mistakes},
-          {"explained", r.mistake.empty() ? 0.0 : r.explained},
-          {"summary", check_summary(r)}};
-}
-
 int cmd_check(Args& args) {
   const bool as_json = args.take_flag("--json");
   const auto diff_path = args.take_value("--diff");
@@ -333,7 +310,7 @@ int cmd_check(Args& args) {
     result = check_image(*scene, student_image(*image), options);
   }
   if (as_json) {
-    std::cout << check_json(result).dump(2) << "\n";
+    std::cout << check_to_json(result, 2) << "\n";
   } else {
     std::cout << check_report_text(result);
   }

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/check_report.h"
 #include "io/image_read.h"
 
 #include "core/scene/display8.h"
@@ -428,19 +429,7 @@ std::string WebView::check_formulas_json() {
   scene.height = std::max(1, static_cast<int>(height_ * scale));
   CheckOptions options;
   options.threads = threads_;
-  const CheckResult r = check_formulas(scene, session_.formulas().rules(), options);
-  const auto quoted = [](const std::string& s) {
-    std::string out = "\"";
-    for (const char c : s) {
-      if (c == '"' || c == '\\') out += '\\';
-      out += c;
-    }
-    return out + "\"";
-  };
-  return std::string("{\"verdict\": ") + (r.match ? "\"match\"" : "\"differs\"") +
-         ", \"pixels\": " + std::to_string(r.pixels) + ", \"differing\": " + std::to_string(r.differing) +
-         ", \"nan\": " + std::to_string(r.nan) + ", \"mistake\": " + (r.mistake.empty() ? "null" : quoted(r.mistake)) +
-         ", \"summary\": " + quoted(check_summary(r)) + "}";
+  return check_to_json(check_formulas(scene, session_.formulas().rules(), options));
 }
 
 std::string WebView::check_image_json(const std::string& path) {
@@ -450,8 +439,7 @@ std::string WebView::check_image_json(const std::string& path) {
     error = path + " is " + std::to_string(read->width) + "x" + std::to_string(read->height) + ", the view renders " +
             std::to_string(width_) + "x" + std::to_string(height_) + ": render yours at the view's size";
   }
-  const auto quoted = [](const std::string& s) { return nlohmann::json(s).dump(); };
-  if (!error.empty()) return "{\"error\": " + quoted(error) + "}";
+  if (!error.empty()) return nlohmann::json{{"error", error}}.dump();
   Scene scene = view_scene(session_.scene(), view_);
   CheckOptions options;
   options.threads = threads_;
@@ -464,11 +452,7 @@ std::string WebView::check_image_json(const std::string& path) {
   a_.set_file_image(std::move(a), path);
   check_view_ = 2;
   if (accum_.samples > 0) encode();
-  const CheckResult& r = *image_check_;
-  nlohmann::json j = {{"verdict", r.match ? "match" : "differs"}, {"pixels", r.pixels}, {"differing", r.differing},
-                      {"mistake", r.mistake.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.mistake)},
-                      {"explained", r.explained}, {"summary", check_summary(r)}};
-  return j.dump();
+  return check_to_json(*image_check_);
 }
 
 void WebView::close_image() {

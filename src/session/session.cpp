@@ -129,20 +129,15 @@ bool Session::sync_exercise() {
   const LessonExercise* e = exercise();
   const int step = e ? lessons_.place().step : -1;
   if (step == exercise_step_) return false;
-  if (exercise_step_ >= 0) {
-    for (const auto& [index, slot] : exercise_slots_) {
-      if (index == exercise_step_) exercise_texts_[index] = formulas_.slot(slot).text;
-    }
-  }
+  if (exercise_step_ >= 0) exercise_texts_[exercise_step_] = formulas_.slot(exercise_slot_).text;
   if (exercise_step_ >= 0 || e) {
     for (int s = 0; s < kFormulaSlots; ++s) set_formula(static_cast<FormulaSlot>(s), "");
   }
-  exercise_step_ = step;
   hints_shown_ = 0;
-  if (!e) return false;
-  const std::optional<FormulaSlot> slot = formula_slot_from_name(e->slot);
+  const std::optional<FormulaSlot> slot = e ? formula_slot_from_name(e->slot) : std::nullopt;
+  exercise_step_ = slot ? step : -1;  // the reader refuses any other slot's name
   if (!slot) return false;
-  exercise_slots_[step] = *slot;
+  exercise_slot_ = *slot;
   const auto kept = exercise_texts_.find(step);
   set_formula(*slot, kept != exercise_texts_.end() ? kept->second : e->starter);
   return true;

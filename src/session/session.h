@@ -120,8 +120,8 @@ class Session {
   bool formula_pending_ = false;
   int exercise_step_ = -1;                       // the exercise step whose slot holds the student's text
   int hints_shown_ = 0;
-  std::map<int, std::string> exercise_texts_;   // per exercise step: the text left there
-  std::map<int, FormulaSlot> exercise_slots_;   // ... and its slot
+  FormulaSlot exercise_slot_ = FormulaSlot::kAmbient;  // ... and its slot (the lesson may be gone on leaving)
+  std::map<int, std::string> exercise_texts_;          // per exercise step: the text left there
   void settle_formulas();
 
   SceneDocument document_;
