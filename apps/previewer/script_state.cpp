@@ -81,6 +81,8 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "image_rows_from_top=" << (v_.image_view_.rows_from_top() ? 1 : 0) << "\n"
       << "frames_drawn=" << v_.stats_.frames_drawn << "\n"
       << "nan_count=" << v_.shown_.stats.nan_count << "\n"
+      << "edit_to_image_ms=" << v_.stats_.last_latency_ms << "\n"
+      << "edit_first_image=" << v_.stats_.last_first_image << "\n"
       << "status=" << v_.files_.file_state().status << "\n"
       << "changed_on_disk=" << (v_.files_.file_state().changed_on_disk ? 1 : 0) << "\n"
       << "sidebar=" << (v_.sidebar_visible_ ? 1 : 0) << "\n"

@@ -541,6 +541,8 @@ void Viewer::after_swap() {
   for (const auto& [generation, edit_time] : restart_times_) {
     if (generation != first_image_generation_) continue;
     stats_.last_latency_ms = (now - edit_time) * 1e3;
+    stats_.last_first_image = std::string(shown_.stats.live ? "live" : shown_.stats.reshaded ? "reshaded" : "traced") +
+                              " 1/" + std::to_string(shown_.divisor);
     // The renderer's share: restart to publication of this image.
     if (stats_.log) {
       stats_.latencies_ms.push_back(stats_.last_latency_ms);

@@ -245,6 +245,7 @@ class Viewer {
     bool was_rendering = false;                         // the renderer was busy when this frame started
     bool slept_idle = false;                            // this frame followed an idle sleep, not the 60 Hz pacing
     double last_latency_ms = -1;                        // edit to first image on screen, last measured
+    std::string last_first_image;                       // how that image was made: "reshaded 1/1", "traced 1/8", "live 1/1"
     std::vector<double> latencies_ms;                   // for the stats log's summary (kept only with a log)
     std::vector<double> busy_frame_ms;                  // UI frame times while the renderer was working (same)
     std::map<int, std::vector<double>> pass_mrays;      // Mrays/s of the passes taken, by level divisor (same)

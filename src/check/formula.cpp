@@ -370,7 +370,7 @@ struct Formula::Program {
   std::vector<Statement> statements;
   Value result;
 
-  void run(const FormulaInputs* inputs, std::size_t count, std::uint32_t names_read, double* regs,
+  void run(const FormulaSource& source, std::size_t count, std::uint32_t names_read, double* regs,
            std::size_t stride, Color* out) const;
 };
 
@@ -814,25 +814,17 @@ void execute(const Instruction& in, double* regs, std::size_t stride, std::size_
 
 // Runs the code for `count` hits, `stride` (at most kLanes) at a time, in `regs` (registers x
 // stride doubles); the final values go to `out` when it is not null.
-void Formula::Program::run(const FormulaInputs* inputs, std::size_t count, std::uint32_t names_read, double* regs,
+void Formula::Program::run(const FormulaSource& source, std::size_t count, std::uint32_t names_read, double* regs,
                            std::size_t stride, Color* out) const {
   for (const auto& [r, v] : constants) std::fill_n(regs + r * stride, stride, v);
   for (std::size_t first = 0; first < count; first += stride) {
     const std::size_t n = std::min(stride, count - first);
-    const FormulaInputs* in = inputs + first;
     // The given names the formula reads, one register per component (hits to lanes).
     for (std::size_t g = 0; g < kGiven.size(); ++g) {
       if ((names_read >> g & 1u) == 0) continue;
       double* r = regs + kGivenRegister[g] * stride;
-      if (kGiven[g].triple != nullptr) {
-        const auto field = kGiven[g].triple;
-        for (std::size_t i = 0; i < n; ++i) {
-          const Vec3& v = in[i].*field;
-          r[i] = v.x, r[stride + i] = v.y, r[2 * stride + i] = v.z;
-        }
-      } else {
-        for (std::size_t i = 0; i < n; ++i) r[i] = in[i].*kGiven[g].number;
-      }
+      const bool triple = kGiven[g].triple != nullptr;
+      source.fill(static_cast<int>(g), first, n, r, triple ? r + stride : nullptr, triple ? r + 2 * stride : nullptr);
     }
     for (const Instruction& instruction : code) execute(instruction, regs, stride, n);
     if (out == nullptr) continue;
@@ -898,13 +890,52 @@ std::vector<double>& scratch(std::size_t size) {
   if (registers.size() < size) registers.resize(size);
   return registers;
 }
+
+// FormulaInputs as a source: the fields the names point to.
+class InputsSource final : public FormulaSource {
+ public:
+  explicit InputsSource(const FormulaInputs* inputs) : inputs_(inputs) {}
+  void fill(int name, std::size_t first, std::size_t n, double* x, double* y, double* z) const override {
+    const Given& g = kGiven[static_cast<std::size_t>(name)];
+    const FormulaInputs* in = inputs_ + first;
+    if (g.triple != nullptr) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec3& v = in[i].*g.triple;
+        x[i] = v.x, y[i] = v.y, z[i] = v.z;
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) x[i] = in[i].*g.number;
+    }
+  }
+
+ private:
+  const FormulaInputs* inputs_;
+};
+
 }  // namespace
 
-void Formula::evaluate(const FormulaInputs* inputs, std::size_t count, Color* out) const {
+FormulaInputs FormulaSource::at(std::size_t i) const {
+  FormulaInputs in;
+  for (std::size_t g = 0; g < kGiven.size(); ++g) {
+    if (kGiven[g].triple != nullptr) {
+      Vec3& v = in.*kGiven[g].triple;
+      fill(static_cast<int>(g), i, 1, &v.x, &v.y, &v.z);
+    } else {
+      fill(static_cast<int>(g), i, 1, &(in.*kGiven[g].number), nullptr, nullptr);
+    }
+  }
+  return in;
+}
+
+void Formula::evaluate(const FormulaSource& source, std::size_t count, Color* out) const {
   if (count == 0) return;
   const std::size_t stride = std::min(count, kLanes);
   std::vector<double>& regs = scratch(program_->registers * stride);
-  program_->run(inputs, count, names_read_, regs.data(), stride, out);
+  program_->run(source, count, names_read_, regs.data(), stride, out);
+}
+
+void Formula::evaluate(const FormulaInputs* inputs, std::size_t count, Color* out) const {
+  evaluate(InputsSource(inputs), count, out);
 }
 
 Color Formula::evaluate(const FormulaInputs& inputs) const {
@@ -915,7 +946,7 @@ Color Formula::evaluate(const FormulaInputs& inputs) const {
 
 std::vector<std::pair<std::string, FormulaValue>> Formula::trace(const FormulaInputs& inputs) const {
   std::vector<double>& regs = scratch(program_->registers);
-  program_->run(&inputs, 1, names_read_, regs.data(), 1, nullptr);
+  program_->run(InputsSource(&inputs), 1, names_read_, regs.data(), 1, nullptr);
   auto value = [&](const Value& v) {
     return v.triple ? FormulaValue{true, regs[v.r[0]], regs[v.r[1]], regs[v.r[2]]} : FormulaValue{false, regs[v.r[0]], 0, 0};
   };

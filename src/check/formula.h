@@ -56,6 +56,18 @@ struct FormulaValue {
   double x = 0, y = 0, z = 0;
 };
 
+// The given names of many hits, handed over a block of lanes at a time, for a caller whose hits
+// are not FormulaInputs (a re-shade's stored hits): fill() writes the components of given name
+// `name` (formula_given_names() order) of hits [first, first + n) to x, y, z (y and z null for a
+// number). Asked only for the names the formula reads.
+class FormulaSource {
+ public:
+  virtual ~FormulaSource() = default;
+  virtual void fill(int name, std::size_t first, std::size_t n, double* x, double* y, double* z) const = 0;
+  // Hit i's given names, all of them.
+  FormulaInputs at(std::size_t i) const;
+};
+
 class Formula {
  public:
   // Hits evaluated per instruction (the register arrays' length).
@@ -69,6 +81,7 @@ class Formula {
   // is grey (the same in all three channels). NaN and infinities are kept as they come.
   void evaluate(const FormulaInputs* inputs, std::size_t count, Color* out) const;
   Color evaluate(const FormulaInputs& inputs) const;
+  void evaluate(const FormulaSource& source, std::size_t count, Color* out) const;
 
   // The statements' values at one hit, in order, for the probe: (name, value), then ("=", the
   // final value).

@@ -1682,6 +1682,8 @@ check_formula() {
     test "$(state "$dir/f4.txt" formula_specular)" = "R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)"
   check "the reference's own term matches ($(state "$dir/f5.txt" formula_summary))" \
     test "$(state "$dir/f5.txt" formula_verdict)/$(state "$dir/f5.txt" formula_differing)" = "match/0"
+  check "a formula edit is re-shaded from the stored ray trees at full size, no ray traced ($(state "$dir/f5.txt" edit_first_image), $(state "$dir/f5.txt" edit_to_image_ms) ms from the edit)" \
+    test "$(state "$dir/f5.txt" edit_first_image)" = "reshaded 1/1"
   check "a misspelt name is positioned with its suggestion: $(state "$dir/f6.txt" formula_error_diffuse)" \
     test "$(state "$dir/f6.txt" formula_error_diffuse)" = 'formula:1:10: unknown name "nrm" (did you mean "N"?)'
 }

@@ -39,6 +39,12 @@ class PreparedScene {
   // checked mistake) is prepared over it without building it again.
   const std::shared_ptr<const Accelerator>& shared_accel() const { return accel_; }
   const Experiment* experiment() const { return experiment_.get(); }  // null: the production renderer
+  // The same scene and accelerator without the experiment (the production renderer's).
+  PreparedScene without_experiment() const {
+    PreparedScene twin(*this);
+    twin.experiment_.reset();
+    return twin;
+  }
   // Unique to this object for the life of the program (what a tracer built for it, kept between
   // passes, is checked against, with its address).
   std::uint64_t id() const { return id_; }

@@ -10,6 +10,7 @@
 #include "core/render/shadow_rays.h"
 #include "core/render/threads.h"
 #include "core/render/tile_work.h"
+#include "core/shading/experiment.h"
 
 namespace phonglab {
 
@@ -288,12 +289,78 @@ void update_bounce(const Scene& scene, const Changes& changes, Tile& tile, std::
   if (changes.ior_changed[material]) node.refraction = RayTrees::kNone;
 }
 
-// The equation over one tile's stored trees, for `scene`.
+// The local terms an experiment gives at one tile's stored hits (one that changes them alone:
+// Experiment::local_terms_only), asked for all at once so that a formula runs lane by lane: the
+// ambient term per node, and per node and light the share of each enabled light its shadow ray
+// reached, at the nodes of the materials the experiment lights.
+struct LocalTerms {
+  std::vector<Color> ambient;       // per node
+  std::vector<LightShare> shares;   // per node and light, as Tile::lights (only those asked for)
+  std::vector<std::uint8_t> lit;    // per material: Experiment::lit
+  std::vector<LocalHit> hits;       // scratch
+  std::vector<std::size_t> at;      // scratch: where each share goes
+  std::vector<LightShare> batch;    // scratch
+  std::vector<LocalHit> block;      // scratch
+
+  void compute(const Experiment& e, const Scene& scene, const Tile& tile, const Vec3* eye) {
+    const std::size_t nodes = tile.nodes.size(), lights = scene.lights.size();
+    lit.resize(scene.materials.size());
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) lit[m] = e.lit(scene.materials[m]) ? 1 : 0;
+    hits.resize(nodes);
+    for (std::size_t i = 0; i < nodes; ++i) {
+      const Node& node = tile.nodes[i];
+      const NodeGeometry g = tile.geometry[i];
+      hits[i] = LocalHit{&scene, &scene.materials[static_cast<std::size_t>(node.material)], nullptr, g.p, g.n, Vec3(0),
+                         view_direction(g.p, g.dir, node.depth == 0 ? eye : nullptr), 0, 0};
+    }
+    ambient.resize(nodes);
+    e.ambient_batch(hits.data(), nodes, ambient.data());
+    // The lights: the hits again, each with a light (the node's entries overwritten in place).
+    std::size_t count = 0;
+    at.clear();
+    for (std::size_t i = 0; i < nodes; ++i) {
+      if (!lit[static_cast<std::size_t>(tile.nodes[i].material)]) continue;
+      for (std::size_t li = 0; li < lights; ++li) {
+        const std::size_t k = i * lights + li;
+        const Light& light = scene.lights[li];
+        if (!light.enabled || tile.seen[k] != LightSeen::kVisible) continue;
+        at.push_back(k);
+        ++count;
+      }
+    }
+    if (count == 0) return;
+    shares.resize(nodes * lights);
+    batch.resize(count);
+    // In blocks, so the hits asked for stay in cache with their answers.
+    constexpr std::size_t kBlock = 256;
+    block.resize(std::min(count, kBlock));
+    for (std::size_t first = 0; first < count; first += kBlock) {
+      const std::size_t n = std::min(kBlock, count - first);
+      for (std::size_t j = 0; j < n; ++j) {
+        const std::size_t k = at[first + j];
+        const std::size_t i = k / lights, li = k % lights;
+        LocalHit h = hits[i];
+        h.light = &scene.lights[li];
+        double dist = 0;
+        light_direction(*h.light, h.p, h.l, dist);
+        h.n_dot_l = tile.lights[k].n_dot_l;
+        h.spec = tile.lights[k].spec;
+        block[j] = h;
+      }
+      e.light_share_batch(block.data(), n, batch.data() + first);
+    }
+    for (std::size_t j = 0; j < count; ++j) shares[at[j]] = batch[j];
+  }
+};
+
+// The equation over one tile's stored trees, for `scene`; with kExperiment, its local terms are
+// the experiment's, from `local` (computed for this tile and scene).
+template <bool kExperiment>
 class TileShader {
  public:
-  TileShader(const PreparedScene& prepared, const Tile& tile, RayCounts& counts)
+  TileShader(const PreparedScene& prepared, const Tile& tile, RayCounts& counts, const LocalTerms* local = nullptr)
       : prepared_(prepared), scene_(prepared.scene()), tile_(tile), counts_(counts),
-        lights_(scene_.lights.size()) {}
+        lights_(scene_.lights.size()), local_(local) {}
 
   // The terms of node i, as shade() gives them. Inlined where the pixel loop calls it for a root
   // (most nodes are roots); children go through child_terms.
@@ -301,16 +368,30 @@ class TileShader {
     const Node& node = tile_.nodes[static_cast<std::size_t>(i)];
     const Material& m = scene_.materials[static_cast<std::size_t>(node.material)];
     Terms t;
-    t.ambient = m.ka * scene_.ambient;
-    if (wanted.lights && is_lit(m)) {
-      const bool has_specular = !is_zero(m.ks);
-      const std::size_t first = static_cast<std::size_t>(i) * lights_;
-      const NodeLight* lights = tile_.lights.data() + first;
-      const LightSeen* seen = tile_.seen.data() + first;
-      for (std::size_t li = 0; li < lights_; ++li) {
-        const Light& light = scene_.lights[li];
-        if (!light.enabled || seen[li] != LightSeen::kVisible) continue;
-        add_light(light, m, lights[li].n_dot_l, has_specular ? lights[li].spec : 0.0, t.diffuse, t.specular);
+    if constexpr (kExperiment) {
+      t.ambient = local_->ambient[static_cast<std::size_t>(i)];
+      if (wanted.lights && local_->lit[static_cast<std::size_t>(node.material)]) {
+        const std::size_t first = static_cast<std::size_t>(i) * lights_;
+        const LightSeen* seen = tile_.seen.data() + first;
+        for (std::size_t li = 0; li < lights_; ++li) {
+          if (!scene_.lights[li].enabled || seen[li] != LightSeen::kVisible) continue;
+          const LightShare& share = local_->shares[first + li];
+          t.diffuse += share.diffuse;
+          t.specular += share.specular;
+        }
+      }
+    } else {
+      t.ambient = m.ka * scene_.ambient;
+      if (wanted.lights && is_lit(m)) {
+        const bool has_specular = !is_zero(m.ks);
+        const std::size_t first = static_cast<std::size_t>(i) * lights_;
+        const NodeLight* lights = tile_.lights.data() + first;
+        const LightSeen* seen = tile_.seen.data() + first;
+        for (std::size_t li = 0; li < lights_; ++li) {
+          const Light& light = scene_.lights[li];
+          if (!light.enabled || seen[li] != LightSeen::kVisible) continue;
+          add_light(light, m, lights[li].n_dot_l, has_specular ? lights[li].spec : 0.0, t.diffuse, t.specular);
+        }
       }
     }
     if (!(node.depth < scene_.max_depth && has_children(m))) return t;
@@ -354,6 +435,7 @@ class TileShader {
   const Tile& tile_;
   RayCounts& counts_;
   std::size_t lights_;
+  const LocalTerms* local_;
   bool traced_fresh_ = false;
 };
 
@@ -363,7 +445,13 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
                                            const std::optional<Vec3>& shading_eye, int threads,
                                            std::size_t budget_bytes, const std::atomic<bool>* cancel,
                                            bool allow_packets, std::unique_ptr<RayTrees> recycled) {
-  if (!scene || scene->experiment() || width <= 0 || height <= 0) return nullptr;
+  if (!scene || width <= 0 || height <= 0) return nullptr;
+  if (const Experiment* e = scene->experiment()) {
+    if (!e->local_terms_only()) return nullptr;
+    // Its rays are production's: the trees of the production twin (the same accelerator), which
+    // a re-shade then shades with the experiment's local terms.
+    scene = std::make_shared<const PreparedScene>(scene->without_experiment());
+  }
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<RayTrees> trees(new RayTrees);
   trees->scene_ = scene;
@@ -426,10 +514,15 @@ std::unique_ptr<RayTrees> RayTrees::record(std::shared_ptr<const PreparedScene> 
 
 EditScope RayTrees::scope_for(const PreparedScene& scene, int width, int height,
                               const std::optional<Vec3>& shading_eye) const {
-  if (!usable_ || width != width_ || height != height_ || scene.experiment()) return EditScope::kRetrace;
+  const Experiment* e = scene.experiment();
+  if (!usable_ || width != width_ || height != height_ || (e != nullptr && !e->local_terms_only())) {
+    return EditScope::kRetrace;
+  }
   Changes changes = changes_between(scene_->scene(), scene.scene());
   changes.eye_moved = shading_eye != shading_eye_;
-  return changes.scope();
+  const EditScope scope = changes.scope();
+  // Other local terms (a formula typed, another mistake) are a shading edit of every pixel.
+  return scope == EditScope::kNothing && e != scene_->experiment() ? EditScope::kShading : scope;
 }
 
 PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term term,
@@ -444,22 +537,17 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
   // With term images every pixel is shaded whole: only its value is kept from pass to pass.
   const bool with_terms = accum.has_terms();
   const TermsWanted wanted = with_terms ? TermsWanted{} : terms_wanted(term);
-  const std::uint64_t dirty =
-      with_terms || !values_valid_ ? ~std::uint64_t{0} : changes.dirty_reach(term != values_term_);
+  // Local terms of an experiment, now or in the stored values: every pixel is shaded again.
+  const Experiment* experiment = scene->experiment();
+  const std::uint64_t dirty = with_terms || !values_valid_ || experiment || scene_->experiment()
+                                  ? ~std::uint64_t{0}
+                                  : changes.dirty_reach(term != values_term_);
   std::atomic<bool> stop{false};
   std::vector<RayCounts> counts;
   std::atomic<std::uint64_t> nan_count{0};
   std::atomic<std::size_t> traced_pixels{0};
-  const bool done = for_each_tile(tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
-    if (update) {
-      thread_local ShadowBatch batch;
-      for (std::size_t i = 0; i < tile.nodes.size(); ++i) {
-        update_lights(*scene, changes, tile, i, eye, batch);
-        update_bounce(s, changes, tile, i);
-      }
-      batch.resolve(*scene, tile, rays);
-    }
-    TileShader shader(*scene, tile, rays);
+  // One tile's pixels, by a shader of the production terms or of the experiment's.
+  const auto shade_pixels = [&](Tile& tile, auto& shader) {
     std::size_t pixel = 0;
     for (int y = tile.y0; y < tile.y1; ++y) {
       const std::size_t row_start = static_cast<std::size_t>(y) * static_cast<std::size_t>(accum.width);
@@ -490,6 +578,25 @@ PassStats RayTrees::reshade(std::shared_ptr<const PreparedScene> scene, Term ter
         }
         row[x] = Color(0) + c;  // what render_pass adds to the empty sum, without reading it
       }
+    }
+  };
+  const bool done = for_each_tile(tiles_, threads, cancel, stop, counts, [&](Tile& tile, RayCounts& rays) {
+    if (update) {
+      thread_local ShadowBatch batch;
+      for (std::size_t i = 0; i < tile.nodes.size(); ++i) {
+        update_lights(*scene, changes, tile, i, eye, batch);
+        update_bounce(s, changes, tile, i);
+      }
+      batch.resolve(*scene, tile, rays);
+    }
+    if (experiment) {
+      thread_local LocalTerms local;
+      local.compute(*experiment, s, tile, eye);
+      TileShader<true> shader(*scene, tile, rays, &local);
+      shade_pixels(tile, shader);
+    } else {
+      TileShader<false> shader(*scene, tile, rays);
+      shade_pixels(tile, shader);
     }
   });
   PassStats stats;

@@ -391,7 +391,7 @@ const RayTrees::Sums* RayTrees::sums_for(std::uint8_t coefficient, int index, Te
 bool RayTrees::recombines(const PreparedScene& scene, int width, int height, Term term,
                           const std::optional<Vec3>& shading_eye, bool term_images) const {
   if (!usable_ || !values_valid_ || sums_refused_ || term_images || width != width_ || height != height_ || term != values_term_ || !reshades(term) ||
-      scene.experiment() || shading_eye != shading_eye_) {
+      scene.experiment() || scene_->experiment() || shading_eye != shading_eye_) {
     return false;
   }
   const Changes::Linear family = changes_between(scene_->scene(), scene.scene()).linear();

@@ -6,6 +6,8 @@
 // hooks. Geometry experiments come in through the accelerator instead (PreparedScene's factory).
 #pragma once
 
+#include <cstddef>
+
 #include "core/geometry/geometry.h"
 #include "core/scene/scene.h"
 #include "core/shading/shading.h"
@@ -47,6 +49,18 @@ class Experiment {
   virtual bool shadows() const { return true; }
   // Whether a refracting hit takes eta the wrong way round: ior entering, 1 / ior leaving.
   virtual bool eta_inverted() const { return false; }
+
+  // Whether the experiment changes the local terms alone (ambient, light_share, lit): every ray,
+  // hit and shadow ray is production's, so an image is re-shaded from ray trees recorded without
+  // it (RayTrees::reshade), which asks for the terms many hits at a time below.
+  virtual bool local_terms_only() const { return false; }
+  // ambient() and light_share() of `count` hits at once (a formula evaluates them lane by lane).
+  virtual void ambient_batch(const LocalHit* hits, std::size_t count, Color* out) const {
+    for (std::size_t i = 0; i < count; ++i) out[i] = ambient(hits[i]);
+  }
+  virtual void light_share_batch(const LocalHit* hits, std::size_t count, LightShare* out) const {
+    for (std::size_t i = 0; i < count; ++i) out[i] = light_share(hits[i]);
+  }
 };
 
 }  // namespace phonglab
