@@ -91,7 +91,7 @@ test_all() {
   CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DPHONGLAB_SANITIZE='address;undefined' -DPHONGLAB_FUZZ=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UNITY_BUILD=ON >/dev/null
   cmake --build build-asan --parallel "$(nproc)" --target phonglab phonglab-cli phonglab_tests phonglab_float_loop \
-    phonglab_fuzz_scene phonglab_fuzz_obj phonglab_fuzz_lesson phonglab_fuzz_formula phonglab_fuzz_image
+    phonglab_fuzz_scene phonglab_fuzz_obj phonglab_fuzz_lesson phonglab_fuzz_formula phonglab_fuzz_formula_file phonglab_fuzz_image
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure --parallel "$(nproc)")
 
   echo "== ThreadSanitizer: the renderer's threading tests (at $((SECONDS - start)) s)"
@@ -101,7 +101,7 @@ test_all() {
   cmake --build build-tsan --parallel "$(nproc)" --target phonglab_tests
   (cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure)
 
-  echo "== fuzzing the scene loader, OBJ + MTL, lesson files, formulas and images, 15 s side by side (libFuzzer, ASan, UBSan; at $((SECONDS - start)) s)"
+  echo "== fuzzing the scene loader, OBJ + MTL, lesson files, formulas, formula files and images, 15 s side by side (libFuzzer, ASan, UBSan; at $((SECONDS - start)) s)"
   tools/fuzz.sh 15
 
   echo "== all tests passed in $((SECONDS - start)) s"

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Runs the fuzzers (libFuzzer with ASan and UBSan, built by tools/dev.sh test in build-asan):
 #
-#   tools/fuzz.sh SECONDS [TARGET...]    TARGET: scene, obj, lesson, formula, image (default: all five,
+#   tools/fuzz.sh SECONDS [TARGET...]    TARGET: scene, obj, lesson, formula, formula_file, image (default: all six,
 #                                        side by side)
 #
 # Each starts from its seed corpus (scene: assets/scenes; obj: tests/fuzz/corpus/obj; lesson:
-# tests/fuzz/corpus/lesson and assets/lessons; formula: tests/fuzz/corpus/formula; image:
+# tests/fuzz/corpus/lesson and assets/lessons; formula: tests/fuzz/corpus/formula; formula_file:
+# tests/fuzz/corpus/formula_file; image:
 # tests/fuzz/corpus/image) in a fresh temporary folder and prints libFuzzer's final statistics
 # (stat::number_of_executed_units is the executions). Any crash, hang (-timeout), sanitizer report,
 # NaN in a render (the file targets abort on one; a formula's own NaN is the student's, as is a
@@ -13,10 +14,10 @@
 # the run; the input is kept in BUILD/fuzz-crashes/. BUILD defaults to build-asan (FUZZ_BUILD=...).
 set -uo pipefail
 cd "$(dirname "$0")/.."
-SECONDS_EACH=${1:?usage: tools/fuzz.sh SECONDS [scene|obj|lesson|formula|image ...]}
+SECONDS_EACH=${1:?usage: tools/fuzz.sh SECONDS [scene|obj|lesson|formula|formula_file|image ...]}
 shift
 TARGETS=("$@")
-((${#TARGETS[@]})) || TARGETS=(scene obj lesson formula image)
+((${#TARGETS[@]})) || TARGETS=(scene obj lesson formula formula_file image)
 BUILD=${FUZZ_BUILD:-build-asan}
 mkdir -p "$BUILD/fuzz-crashes"
 pids=()
@@ -27,6 +28,7 @@ for t in "${TARGETS[@]}"; do
     obj) cp tests/fuzz/corpus/obj/* "$corpus"/; max_len=8192 ;;
     lesson) cp tests/fuzz/corpus/lesson/* assets/lessons/*.json "$corpus"/; max_len=8192 ;;
     formula) cp tests/fuzz/corpus/formula/* "$corpus"/; max_len=8192 ;;
+    formula_file) cp tests/fuzz/corpus/formula_file/* "$corpus"/; max_len=4096 ;;
     image) cp tests/fuzz/corpus/image/* "$corpus"/; max_len=4096 ;;
     *) echo "tools/fuzz.sh: unknown target $t" >&2; exit 2 ;;
   esac

@@ -55,7 +55,7 @@ commands:
   render [SCENE] -o OUT [--width W] [--height H] [--spp N] [--term T]
          [--max-depth D] [--fov-y DEG] [--threads N] [--stats FILE.json]
          [--ambient constant|indirect] [--bounces B]
-         [--formula SLOT=TEXT|@FILE ...]
+         [--formula SLOT=TEXT|@FILE ...] [--formulas FILE]
       Render to OUT (.pfm: linear float32, unclamped; .png: 8-bit sRGB).
       W x H: the image's size (default: the scene's image size, 960 x 540 in a
          file without one). N: samples per pixel (default 16, anti-aliased;
@@ -74,9 +74,11 @@ commands:
       --stats: the times, rays by kind and Mrays/s as JSON (default: none).
       --formula: a term (ambient, diffuse or specular) by your own formula
          (docs/formulas.md); a NaN or infinite value is written as 0.
+         --formulas: the formulas of a file the Formula panel saved.
   check SCENE IMAGE [--spp N] [--json] [--diff OUT.png] [--threads N]
-  check [SCENE] --formula SLOT=TEXT|@FILE ... [--width W] [--height H]
-        [--spp N] [--json] [--diff OUT.png] [--threads N]
+  check [SCENE] --formula SLOT=TEXT|@FILE ... [--formulas FILE]
+        [--width W] [--height H] [--spp N] [--json] [--diff OUT.png]
+        [--threads N]
       A student's work against the exact image. IMAGE: what your own ray
       tracer rendered of SCENE, at its own size (PNG 8-bit sRGB; PPM P6/P3,
       maxval 255 as sRGB, other maxvals linear; PFM linear). --formula: your

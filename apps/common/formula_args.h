@@ -1,4 +1,4 @@
-// --formula SLOT=TEXT|@FILE, the words of phonglab-cli render, check and phonglab-bench SCENE
+// --formula SLOT=TEXT|@FILE and --formulas FILE, the words of phonglab-cli render, check and phonglab-bench SCENE
 // (docs/formulas.md), turned into the formulas' rules.
 #pragma once
 
@@ -16,6 +16,7 @@
 #include "check/formula.h"
 #include "check/rules.h"
 #include "io/diagnostic.h"
+#include "io/formula_file.h"
 
 namespace phonglab::cli {
 
@@ -40,6 +41,28 @@ inline bool read_text_file(const std::string& path, std::string& out, std::strin
 inline std::optional<LocalRules> take_formulas(Args& args, bool& any) {
   LocalRules rules;
   any = false;
+  // --formulas FILE: a formula file the panel saved (docs/formulas.md); --formula SLOT=... after
+  // it replaces a slot.
+  while (const auto path = args.take_value("--formulas")) {
+    const FormulaFileLoad loaded = load_formula_file(*path);
+    if (!loaded.ok()) {
+      std::cerr << loaded.error_text();
+      return std::nullopt;
+    }
+    for (int s = 0; s < kFormulaSlots; ++s) {
+      const std::string& text = (*loaded.texts)[static_cast<std::size_t>(s)];
+      if (text.empty()) continue;
+      const std::string source = *path + ": " + std::string(formula_slot_name(static_cast<FormulaSlot>(s))) + ": formula";
+      FormulaError error;
+      std::shared_ptr<const Formula> formula = Formula::compile(text, &error, source);
+      if (!formula) {
+        std::cerr << error.text() << "\n";
+        return std::nullopt;
+      }
+      rules.formulas[static_cast<std::size_t>(s)] = std::move(formula);
+      any = true;
+    }
+  }
   while (const auto arg = args.take_value("--formula")) {
     const std::size_t eq = arg->find('=');
     const std::string slot_name = arg->substr(0, eq);

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "apps/previewer/viewer_app.h"
+#include "io/formula_file.h"
 #include "io/image_read.h"
 
 namespace phonglab {
@@ -86,6 +87,40 @@ void FormulaShell::sidebar_formulas() {
   if (edits.view) v_.upload_pending_ = true;
   if (edits.open_image) open_image(panel_.image_path);
   if (edits.close_image) close_image();
+  if (edits.save_formulas) save_formulas(panel_.formulas_path);
+  if (edits.open_formulas) open_formulas(panel_.formulas_path);
+}
+
+std::string FormulaShell::formulas_path() const {
+  if (!panel_.formulas_path.empty()) return panel_.formulas_path;
+  // Beside the scene file, named after it; an embedded scene's in the working folder.
+  const std::filesystem::path scene(v_.doc_.file_path());
+  if (scene.empty()) return "formulas.json";
+  return (scene.parent_path() / (scene.stem().string() + ".formulas.json")).string();
+}
+
+bool FormulaShell::save_formulas(const std::string& path) {
+  panel_.formulas_path = path.empty() ? formulas_path() : path;
+  const std::string error = save_formula_file(panel_.formulas_path, v_.session_.formulas().texts());
+  panel_.formulas_failed = !error.empty();
+  panel_.formulas_status = error.empty() ? "saved to " + panel_.formulas_path : error;
+  return error.empty();
+}
+
+bool FormulaShell::open_formulas(const std::string& path) {
+  panel_.formulas_path = path.empty() ? formulas_path() : path;
+  const FormulaFileLoad loaded = load_formula_file(panel_.formulas_path);
+  panel_.formulas_failed = !loaded.ok();
+  if (!loaded.ok()) {
+    // Nothing changes: the formulas on screen stay, the file's first error says why.
+    panel_.formulas_status = loaded.errors.empty() ? "cannot read " + panel_.formulas_path : loaded.errors.front().to_string();
+    return false;
+  }
+  v_.session_.set_formulas(*loaded.texts);
+  panel_.texts = v_.session_.formulas().texts();
+  panel_.formulas_status = "opened " + panel_.formulas_path;
+  refresh_panel();
+  return true;
 }
 
 void FormulaShell::set_text(FormulaSlot slot, const std::string& text) {

@@ -41,6 +41,12 @@ class FormulaShell {
   // A slot's text as if typed and the box left (script commands, a lesson's exercise).
   void set_text(FormulaSlot slot, const std::string& text);
   bool set_view(std::string_view name);
+  // The formulas' own file (docs/formulas.md): saved atomically, or opened as one undo step (a
+  // bad file changes nothing and its first error is shown). "" : the panel's path, by default
+  // beside the scene file as NAME.formulas.json. False when it failed (formulas_status says why).
+  bool save_formulas(const std::string& path);
+  bool open_formulas(const std::string& path);
+  const std::string& formulas_status() const { return panel_.formulas_status; }
   void unfold() { unfold_ = true; }  // open the panel (a lesson's exercise)
   bool take_unfold() { return std::exchange(unfold_, false); }
   ui::FormulaView view() const { return panel_.view; }
@@ -61,6 +67,7 @@ class FormulaShell {
 
  private:
   void refresh_panel();  // the texts and errors from the session
+  std::string formulas_path() const;
 
   Viewer& v_;
   ui::FormulaPanelState panel_;

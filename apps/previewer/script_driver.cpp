@@ -478,6 +478,15 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
     v_.formulas_.open_image(w[1]);
     return true;
   }
+  if (name == "save_formulas" || name == "open_formulas") {
+    // save_formulas|open_formulas [PATH]: the Formula panel's file buttons (a refusal is in
+    // dump_state's formula_file_status, not a broken script).
+    if (w.size() > 2) return step.fail("usage: " + name + " [PATH]");
+    const std::string path = w.size() == 2 ? w[1] : "";
+    if (name == "save_formulas") v_.formulas_.save_formulas(path);
+    else v_.formulas_.open_formulas(path);
+    return true;
+  }
   if (name == "formula" || name == "formula_view") {
     // formula SLOT TEXT...: the slot's text as typed (the words joined by spaces; "" clears it);
     // formula_view yours|reference|difference.

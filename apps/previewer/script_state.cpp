@@ -171,7 +171,8 @@ static void write_formula_state(std::ostream& out, const FormulaShell& shell, co
   }
   out << "formula_view=" << ui::formula_view_name(shell.view()) << "\n"
       << "formula_probe=" << one_line(shell.panel().probe) << "\n"
-      << "formula_checking=" << (shell.check_settled() ? 0 : 1) << "\n";
+      << "formula_checking=" << (shell.check_settled() ? 0 : 1) << "\n"
+      << "formula_file_status=" << shell.formulas_status() << "\n";
   out << "image_check_name=" << shell.image_name() << "\n"
       << "image_check_error=" << shell.image_error() << "\n";
   if (const std::optional<CheckResult>& r = shell.image_check()) {

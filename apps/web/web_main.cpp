@@ -87,6 +87,8 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("lightIntensity", &WebView::light_intensity)
       .function("setLightIntensity", &WebView::set_light_intensity)
       .function("setFormula", &WebView::set_formula)
+      .function("formulasFileText", &WebView::formulas_file_text)
+      .function("openFormulas", &WebView::open_formulas)
       .function("formulaText", &WebView::formula_text)
       .function("formulaError", &WebView::formula_error)
       .function("setFormulaView", &WebView::set_formula_view)

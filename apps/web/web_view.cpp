@@ -9,7 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "check/check.h"
 #include "io/check_report.h"
+#include "io/formula_file.h"
 #include "io/image_read.h"
 
 #include "core/scene/display8.h"
@@ -354,7 +356,9 @@ std::string WebView::probe(double u, double v) {
   const PixelProbe probe = probe_at(u, v);
   tree_pixel_ = std::array<int, 2>{probe.x, probe.y};
   probe_pixel_ = tree_pixel_;
-  return probe_to_text(session_.scene(), probe, 4);
+  // With formulas: yours against the reference at the hit, with your statements' values.
+  const std::string formulas = formula_probe_text(session_.scene(), probe.root, session_.formulas().rules());
+  return probe_to_text(session_.scene(), probe, 4) + (formulas.empty() ? "" : "\n" + formulas);
 }
 
 std::string WebView::material_name(int m) const {
@@ -400,6 +404,15 @@ std::string WebView::set_formula(int slot, const std::string& text) {
   if (slot < 0 || slot >= kFormulaSlots) return "no such slot";
   if (session_.set_formula(static_cast<FormulaSlot>(slot), text)) restart();
   return formula_error(slot);
+}
+
+std::string WebView::formulas_file_text() const { return formula_file_text(session_.formulas().texts()); }
+
+std::string WebView::open_formulas(const std::string& text, const std::string& name) {
+  const FormulaFileLoad loaded = load_formula_text(text, name);
+  if (!loaded.ok()) return loaded.errors.empty() ? name + ": cannot read" : loaded.errors.front().to_string();
+  if (session_.set_formulas(*loaded.texts)) restart();
+  return "";
 }
 
 std::string WebView::formula_text(int slot) const {

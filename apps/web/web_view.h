@@ -72,6 +72,10 @@ class WebView {
   std::string set_formula(int slot, const std::string& text);
   std::string formula_text(int slot) const;
   std::string formula_error(int slot) const;
+  // The formulas' own file (docs/formulas.md): the session's texts as the file's text, and a
+  // file's text opened as one undo step ("" , or its first error, positioned: nothing changes).
+  std::string formulas_file_text() const;
+  std::string open_formulas(const std::string& text, const std::string& name);
   // What the image shows: 0 yours (with the formulas), 1 the reference (the equation's terms).
   void set_formula_view(int view);
   // The formulas checked against the reference at a reduced size (at most 320 wide, the view's

@@ -99,6 +99,14 @@ bool Session::set_formula(FormulaSlot slot, const std::string& text, bool held) 
   return changed;
 }
 
+bool Session::set_formulas(const FormulaBook::Texts& texts) {
+  settle_formulas();
+  const bool changed = formulas_.set_all(texts);
+  if (formulas_.texts() != formulas_committed_) formula_pending_ = true;
+  settle_formulas();
+  return changed;
+}
+
 void Session::settle_formulas() {
   if (!formula_pending_) return;
   formula_pending_ = false;

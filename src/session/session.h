@@ -96,6 +96,8 @@ class Session {
   // (one step per finished gesture: `held` while the text box is being typed in). True when what
   // renders changed (the snapshot must follow: formulas().version()).
   bool set_formula(FormulaSlot slot, const std::string& text, bool held = false);
+  // Every slot's text at once (a formula file opened): one undo step.
+  bool set_formulas(const FormulaBook::Texts& texts);
   const FormulaBook& formulas() const { return formulas_; }
   // A lesson's exercise step (docs/lessons.md), for the desktop and the page alike: once the
   // presenter shows another place, the exercise left keeps its text for a return and the

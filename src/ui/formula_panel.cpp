@@ -75,6 +75,20 @@ FormulaPanelEdits formula_panel(FormulaPanelState& state) {
     ImGui::TextColored(state.matches ? ImVec4(0.55f, 0.9f, 0.55f, 1.0f) : kErrorColor, "%s", state.verdict.c_str());
     locate("formula.verdict");
   }
+  ImGui::TextUnformatted("Your formulas' file (not the scene's):");
+  ImGui::InputText("##formulas_path", &state.formulas_path);
+  locate("formula.file_path");
+  ImGui::SameLine();
+  if (ImGui::Button("save")) edits.save_formulas = true;
+  locate("formula.file_save");
+  ImGui::SameLine();
+  if (ImGui::Button("open")) edits.open_formulas = true;
+  locate("formula.file_open");
+  if (!state.formulas_status.empty()) {
+    ImGui::TextColored(state.formulas_failed ? kErrorColor : ImVec4(0.7f, 0.7f, 0.7f, 1.0f), "%s",
+                       state.formulas_status.c_str());
+    locate("formula.file_status");
+  }
   ImGui::Separator();
   ImGui::TextUnformatted("Your own ray tracer's image of this view (PNG, PPM, PFM at the view's size):");
   ImGui::InputText("##image_path", &state.image_path);

@@ -47,6 +47,10 @@ struct FormulaPanelState {
   bool image_matches = false;
   std::string image_error;    // why the last one was refused
   std::string image_probe;    // yours against the reference at the probed pixel
+  // The formulas' own file (docs/formulas.md): its path, what the last save or open did.
+  std::string formulas_path;
+  std::string formulas_status;
+  bool formulas_failed = false;
 };
 struct FormulaPanelEdits {
   int slot = -1;        // this slot's text changed
@@ -56,6 +60,8 @@ struct FormulaPanelEdits {
   bool hint = false;    // "hint" asked for (a lesson's exercise)
   bool open_image = false;   // "check this image" (image_path)
   bool close_image = false;
+  bool save_formulas = false;  // to formulas_path
+  bool open_formulas = false;  // from formulas_path
 };
 FormulaPanelEdits formula_panel(FormulaPanelState& state);
 

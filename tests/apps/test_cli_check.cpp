@@ -110,6 +110,28 @@ TEST(CliCheck, FormulaErrorsAndUsage) {
   EXPECT_EQ(cli("check lecture --formula specular=@/nonexistent/f.txt").exit_code, 1);
 }
 
+// A formula file the Formula panel saved: checked as --formula's; its problems positioned; a
+// --formula after it replaces a slot.
+TEST(CliCheck, AFormulaFile) {
+  const std::string dir = temp_dir("formulas");
+  std::ofstream(dir + "/mine.formulas.json")
+      << "{\n  \"diffuse\": \"kd * dot(N, L)\",\n  \"specular\": \"R = reflect(L, N)\\nks * pow(max(0, dot(R, V)), n)\"\n}\n";
+  const Ran wrong = cli("check lecture" + kSmall + " --formulas " + dir + "/mine.formulas.json");
+  EXPECT_EQ(wrong.exit_code, 3) << wrong.out;
+  EXPECT_NE(wrong.out.find("nearest mistake: reflect-sign or view-reversed"), std::string::npos) << wrong.out;
+  const Ran fixed = cli("check lecture" + kSmall + " --formulas " + dir +
+                        "/mine.formulas.json --formula 'specular=R = reflect(-L, N); ks * pow(max(0, dot(R, V)), n)'");
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.out;
+  std::ofstream(dir + "/bad.json") << "{\n  \"difuse\": \"kd\"\n}\n";
+  const Ran bad = cli("check lecture --formulas " + dir + "/bad.json");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(first_line(bad.out), dir + "/bad.json:2:3: difuse: unknown slot (did you mean \"diffuse\"?)") << bad.out;
+  std::ofstream(dir + "/typo.json") << "{\"specular\": \"ks * pow(\"}";
+  const Ran typo = cli("check lecture --formulas " + dir + "/typo.json");
+  EXPECT_EQ(typo.exit_code, 1);
+  EXPECT_EQ(typo.out.rfind(dir + "/typo.json: specular: formula:1:10: ", 0), 0U) << typo.out;
+}
+
 TEST(CliCheck, RenderWithTheReferenceFormulasIsTheRendersImage) {
   const std::string dir = temp_dir("render");
   ASSERT_EQ(cli("render lecture" + kSmall + " --spp 1 -o " + dir + "/ref.png").exit_code, 0);

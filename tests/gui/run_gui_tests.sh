@@ -1655,11 +1655,25 @@ formula specular R = reflect(-L, N); ks * pow(max(0, dot(R, V)), n)
 wait_idle 120
 screenshot $dir/f5_match.png
 dump_state $dir/f5.txt
+save_formulas $dir/mine.formulas.json
 formula diffuse kd * dot(nrm, L)
 wait_idle 120
 dump_state $dir/f6.txt
+formula specular ""
+formula diffuse ""
+open_formulas $dir/bad.json
+wait_idle 120
+dump_state $dir/f7.txt
+open_formulas $dir/mine.formulas.json
+wait_idle 120
+screenshot $dir/f8_opened.png
+dump_state $dir/f8.txt
+undo
+wait_frames 3
+dump_state $dir/f9.txt
 quit
 EOF
+  printf '{\n  "specular": 1\n}\n' >"$dir/bad.json"
   run_script "$dir" lecture
 }
 check_formula() {
@@ -1686,6 +1700,14 @@ check_formula() {
     test "$(state "$dir/f5.txt" edit_first_image)" = "reshaded 1/1"
   check "a misspelt name is positioned with its suggestion: $(state "$dir/f6.txt" formula_error_diffuse)" \
     test "$(state "$dir/f6.txt" formula_error_diffuse)" = 'formula:1:10: unknown name "nrm" (did you mean "N"?)'
+  check "the formulas are saved in a file of their own ($(tr '\n' ' ' <"$dir/mine.formulas.json"))" \
+    grep -q '"specular": "R = reflect(-L, N); ks \* pow(max(0, dot(R, V)), n)"' "$dir/mine.formulas.json"
+  check "a bad formula file changes nothing and says where: $(state "$dir/f7.txt" formula_file_status)" \
+    test "$(state "$dir/f7.txt" formula_file_status)/$(state "$dir/f7.txt" formula_specular)" = "$dir/bad.json:2:15: specular: expected the formula's text as a string (got a number)/"
+  check "the file opened gives the texts back and they render ($(state "$dir/f8.txt" formula_summary))" \
+    test "$(state "$dir/f8.txt" formula_specular)/$(state "$dir/f8.txt" formula_verdict)" = "R = reflect(-L, N); ks * pow(max(0, dot(R, V)), n)/match"
+  check "undo takes the opened file back in one step" \
+    test "$(state "$dir/f9.txt" formula_specular)" = ""
 }
 
 # A student's own image of the view, checked: rendered by phonglab-cli with the sign of R wrong at

@@ -539,6 +539,17 @@ for (const [width, height, name] of [[1366, 768, 'laptop'], [390, 844, 'phone']]
   check(error === 'formula:1:53: unknown name "nrm" (did you mean "N"?)', `${name}: a misspelt name is positioned under its box (${error})`);
   const typed = await page.evaluate(() => document.getElementById('formula-specular').value);
   check(typed.endsWith(' + nrm') && !typed.includes('11'), `${name}: keys typed into the box are the box's, not the page's shortcuts`);
+  if (name === 'laptop') {
+    // A shift-click probes: yours against the reference at the hit, with R's value.
+    const ibox = await (await page.$('#image')).boundingBox();
+    await page.keyboard.down('Shift');
+    await page.mouse.click(ibox.x + ibox.width * 0.5, ibox.y + ibox.height * 0.8);
+    await page.keyboard.up('Shift');
+    const probed = await page.evaluate(() => document.getElementById('probe').textContent);
+    const mine = probed.slice(probed.indexOf('at the primary hit'));
+    check(/^at the primary hit[\s\S]*specular: yours \([^)]*\), reference \([^)]*\)\n +R = \(/.test(mine),
+          `${name}: the probe gives yours against the reference with R's value (${mine.split('\n').slice(0, 4).join(' | ')})`);
+  }
   await page.evaluate(() => { window.phonglab.formulaCheck = null; });
   const select_all = async () => {
     await page.keyboard.down('Control');
@@ -551,6 +562,33 @@ for (const [width, height, name] of [[1366, 768, 'laptop'], [390, 844, 'phone']]
   const right = await verdict();
   check(right.verdict === 'match' && right.differing === 0, `${name}: the reference's own term matches (${right.shown})`);
   await page.screenshot({ path: path.join(out, `formula-${name}.png`), fullPage: true });
+  if (name === 'laptop') {
+    // The formulas' own file, through the page's file chooser: a bad one changes nothing and says
+    // where; a good one fills the boxes; the page saves the same text.
+    const bad = path.join(out, 'bad.formulas.json'), good = path.join(out, 'mine.formulas.json');
+    writeFileSync(bad, '{\n  "difuse": "kd"\n}\n');
+    writeFileSync(good, JSON.stringify({ diffuse: 'kd * dot(N, L)', specular: 'R = reflect(L, N)\nks * pow(max(0, dot(R, V)), n)' }));
+    const opener = await page.$('#open-formulas');
+    await opener.uploadFile(bad);
+    await page.waitForFunction(() => document.getElementById('formulas-status').textContent !== '', { timeout: 10000 });
+    const refused = await page.evaluate(() => [document.getElementById('formulas-status').textContent, document.getElementById('formula-specular').value]);
+    check(refused[0] === 'bad.formulas.json:2:3: difuse: unknown slot (did you mean "diffuse"?)' && refused[1].startsWith('R = reflect(-L, N)'),
+          `${name}: a bad formula file changes nothing and says where (${refused[0]})`);
+    await page.evaluate(() => { window.phonglab.formulaCheck = null; });
+    await opener.uploadFile(good);
+    const opened = await verdict();
+    const boxes = await page.evaluate(() => [document.getElementById('formula-diffuse').value, document.getElementById('formula-specular').value,
+                                             window.phonglab.view.formulasFileText()]);
+    check(boxes[0] === 'kd * dot(N, L)' && boxes[1].startsWith('R = reflect(L, N)\n') && opened.mistake === 'reflect-sign or view-reversed',
+          `${name}: a formula file opened fills the boxes and is checked (${opened.shown})`);
+    check(JSON.stringify(JSON.parse(boxes[2])) === JSON.stringify(JSON.parse(readFileSync(good, 'utf8'))), `${name}: and saves back to the same formulas`);
+    await page.evaluate(() => document.activeElement && document.activeElement.blur());
+    await page.keyboard.down('Control');
+    await page.keyboard.press('KeyZ');
+    await page.keyboard.up('Control');
+    const undone = await page.evaluate(() => document.getElementById('formula-specular').value);
+    check(undone.startsWith('R = reflect(-L, N)'), `${name}: Ctrl+Z takes the opened file back in one step`);
+  }
   // The lesson's specular exercise (step 15 of shading).
   await page.goto(url('scene=lecture&spp=1&size=320x180#lesson=shading&step=15'));
   await page.waitForFunction('window.phonglab && window.phonglab.ready && window.phonglab.lesson', { timeout: 60000 });
