@@ -541,6 +541,7 @@ for (const [width, height, name] of [[1366, 768, 'laptop'], [390, 844, 'phone']]
   check(typed.endsWith(' + nrm') && !typed.includes('11'), `${name}: keys typed into the box are the box's, not the page's shortcuts`);
   if (name === 'laptop') {
     // A shift-click probes: yours against the reference at the hit, with R's value.
+    await page.$eval('#image', (e) => e.scrollIntoView({ block: 'center' }));
     const ibox = await (await page.$('#image')).boundingBox();
     await page.keyboard.down('Shift');
     await page.mouse.click(ibox.x + ibox.width * 0.5, ibox.y + ibox.height * 0.8);
