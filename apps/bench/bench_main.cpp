@@ -21,6 +21,7 @@
 #include "check/check.h"
 #include "core/scene/display8.h"
 #include "core/packet/packet.h"
+#include "experiments/quad_shading.h"
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
 #include "core/scene/camera.h"
@@ -36,7 +37,7 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
                       [--only accel|indirect]
        phonglab-bench SCENE [--frames N] [--width W] [--height H] [--threads N]
                       [--scalar] [--edited] [--reshade shading|light|head]
-                      [--formula SLOT=TEXT|@FILE ...] [--check MISTAKE]
+                      [--formula SLOT=TEXT|@FILE ...] [--check MISTAKE] [--live]
   (also run as `phonglab-cli bench ...`, which executes phonglab-bench)
 
   The speed-versus-error report: report.md, CSV files and SVG plots in DIR
@@ -234,6 +235,73 @@ int time_formula(const std::string& scene_arg, const LocalRules& formulas, int f
   return identical ? kExitOk : kExitBadInput;
 }
 
+// The live levels of a camera drag against their error (docs/speed.md, "The camera drag"): a
+// camera orbiting the look-at point 2 degrees a frame; each frame, in turn, the exact image
+// (render_pass at full resolution), the 1/8, 1/4 and 1/2 levels (shown widened into blocks, as
+// the previewer shows them) and the quad-shaded rung (exact visibility, a quarter of the
+// shading). Per level: the median time and the RMSE of the image as shown against the exact
+// image of the same camera, in display sRGB (0..1), and each as a ratio to the full pass's.
+int time_live_levels(const std::string& scene_arg, int frames, int width, int height, int threads) {
+  std::optional<Scene> scene = load_or_report(scene_arg);
+  if (!scene) return kExitBadInput;
+  struct Level {
+    const char* name;
+    int divisor;  // 0: the quad-shaded rung
+    std::vector<double> ms, rmse;
+    std::uint64_t shadow_rays = 0;
+  };
+  std::vector<Level> levels = {{"full", 1, {}, {}}, {"quads", 0, {}, {}}, {"half", 2, {}, {}},
+                               {"quarter", 4, {}, {}}, {"eighth", 8, {}, {}}};
+  RenderOptions options;
+  options.threads = threads;
+  const Display8Encoder& srgb = Display8Encoder::srgb();
+  for (int f = 0; f < frames; ++f) {
+    Scene s = *scene;
+    const double angle = glm::radians(2.0 * f);
+    const Vec3 arm = s.camera.position - s.camera.look_at;
+    s.camera.position = s.camera.look_at + Vec3(std::cos(angle) * arm.x + std::sin(angle) * arm.z, arm.y,
+                                                 -std::sin(angle) * arm.x + std::cos(angle) * arm.z);
+    const PreparedScene prepared(s);
+    std::vector<std::uint8_t> exact;
+    for (Level& level : levels) {
+      const int d = std::max(level.divisor, 1);
+      const int lw = (width + d - 1) / d, lh = (height + d - 1) / d;
+      Accumulator a;
+      a.reset(lw, lh);
+      const PassStats pass = level.divisor == 0 ? render_quad_shaded(prepared, options, a) : render_pass(prepared, options, a);
+      level.ms.push_back(pass.seconds * 1e3);
+      level.shadow_rays += pass.rays.shadow;
+      std::vector<std::uint8_t> shown(static_cast<std::size_t>(width) * height * 3);
+      for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+          const Color c = a.sum[static_cast<std::size_t>(y / d) * lw + x / d];
+          for (int k = 0; k < 3; ++k) shown[(static_cast<std::size_t>(y) * width + x) * 3 + k] = srgb(static_cast<float>(c[k]));
+        }
+      }
+      if (level.divisor == 1) exact = shown;
+      double sq = 0;
+      for (std::size_t i = 0; i < shown.size(); ++i) {
+        const double e = (static_cast<double>(shown[i]) - exact[i]) / 255.0;
+        sq += e * e;
+      }
+      level.rmse.push_back(std::sqrt(sq / static_cast<double>(shown.size())));
+    }
+  }
+  const std::string thread_count = counted(static_cast<std::size_t>(resolve_thread_count(threads)), "thread");
+  std::printf("scene %s, %dx%d, %s, %s of a camera orbit (2 degrees a frame)\n", scene_arg.c_str(), width, height,
+              thread_count.c_str(), counted(static_cast<std::size_t>(frames), "frame").c_str());
+  const double full_ms = median(levels[0].ms);
+  const double half_rmse = median(levels[2].rmse);
+  for (Level& level : levels) {
+    std::printf("live %-7s ms %7.2f rmse %.5f  (%.2fx the full pass's time, %.2fx its shadow rays; %.2fx the half "
+                "level's rmse)\n",
+                level.name, median(level.ms), median(level.rmse), median(level.ms) / full_ms,
+                static_cast<double>(level.shadow_rays) / static_cast<double>(std::max<std::uint64_t>(levels[0].shadow_rays, 1)),
+                half_rmse > 0 ? median(level.rmse) / half_rmse : 0.0);
+  }
+  return kExitOk;
+}
+
 // A student's image checked (docs/checking.md): the scene rendered at the pixel centres with
 // `mistake` made (the check's own variant, as a student's program would make it), then checked
 // against every single mistake, against one render of the scene (1 spp), alternating.
@@ -346,6 +414,7 @@ int run(Args& args) {
   const bool scalar = args.take_flag("--scalar");
   const bool edited = args.take_flag("--edited");
   const auto reshade = args.take_value("--reshade");
+  const bool live = args.take_flag("--live");
   bool with_formulas = false;
   const std::optional<LocalRules> formulas = take_formulas(args, with_formulas);
   const auto check = args.take_value("--check");
@@ -372,6 +441,10 @@ int run(Args& args) {
   if (with_formulas) {
     return time_formula(*positional, *formulas, frames.value_or(15), width.value_or(1280), height.value_or(720),
                         threads.value_or(0));
+  }
+  if (live) {
+    return time_live_levels(*positional, frames.value_or(5), width.value_or(1280), height.value_or(720),
+                            threads.value_or(0));
   }
   if (reshade) {
     if (*reshade != "shading" && *reshade != "light" && *reshade != "head") {
