@@ -21,7 +21,7 @@
 #include "check/check.h"
 #include "core/scene/display8.h"
 #include "core/packet/packet.h"
-#include "experiments/quad_shading.h"
+#include "core/render/quad_shading.h"
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
 #include "core/scene/camera.h"

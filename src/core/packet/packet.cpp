@@ -224,6 +224,26 @@ packet::Spheres PacketTracer::Impl::primary_rays(const CameraFrame& frame, int x
       y_plus_v[at(i)] = y + v;
     }
   }
+  return finish_primary(frame, x0, y0, x1, y1, n);
+}
+
+packet::Spheres PacketTracer::Impl::primary_rays_at(const CameraFrame& frame, int x0, int y0, int x1, int y1,
+                                                    const int* xs, const int* ys, int n) {
+  primary.reserve_lanes(n);
+  primary.n = n;
+  fit(x_plus_u, padded(n));
+  fit(y_plus_v, padded(n));
+  for (int i = 0; i < padded(n); ++i) {
+    const int k = std::min(i, n - 1);  // padding lanes repeat the last pixel
+    double u, v;
+    sample_offset(xs[k], ys[k], 0, u, v, 0);
+    x_plus_u[at(i)] = xs[k] + u;
+    y_plus_v[at(i)] = ys[k] + v;
+  }
+  return finish_primary(frame, x0, y0, x1, y1, n);
+}
+
+packet::Spheres PacketTracer::Impl::finish_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1, int n) {
   const packet::CameraIn cam{frame.forward.x, frame.forward.y, frame.forward.z, frame.right.x,
                              frame.right.y,   frame.right.z,   frame.up.x,      frame.up.y,
                              frame.up.z,      static_cast<double>(frame.width), static_cast<double>(frame.height)};
@@ -451,6 +471,74 @@ PacketTracer::PacketTracer(const PreparedScene& prepared, PacketTracer&& recycle
 PacketTracer::~PacketTracer() = default;
 
 bool PacketTracer::draws(Term term) { return is_equation_term(term) && term != Term::kIndirect; }
+
+void PacketTracer::Impl::mask_quads(const Level& lv, int width, int lanes, std::int64_t* surface,
+                                    std::uint8_t* shaded) const {
+  const int h = lanes / width;
+  for (int i = 0; i < lanes; ++i) {
+    const std::int32_t id = lv.id[at(i)];
+    surface[i] = id < 0 ? -1
+                        : static_cast<std::int64_t>(id) << 32 |
+                              static_cast<std::uint32_t>(material_of(id, lv.prim[at(i)]));
+    shaded[i] = 1;
+  }
+  for (int qy = 0; qy + 1 < h; qy += 2) {
+    for (int qx = 0; qx + 1 < width; qx += 2) {
+      const int a = qy * width + qx, b = a + 1, c = a + width, d = c + 1;
+      const std::int32_t id = lv.id[at(a)];
+      if (id < 0) continue;
+      const int material = material_of(id, lv.prim[at(a)]);
+      bool uniform = !info[at(material)].bounces;
+      for (const int k : {b, c, d}) uniform = uniform && lv.id[at(k)] == id && material_of(id, lv.prim[at(k)]) == material;
+      if (!uniform) continue;
+      for (const int k : {b, c, d}) shaded[k] = 0;
+    }
+  }
+}
+
+void PacketTracer::render_quads_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, const Vec3* shading_eye,
+                                     Color* out, std::int64_t* surface, std::uint8_t* shaded, RayCounts& counts) {
+  Impl& im = *impl_;
+  // Every pixel's nearest hit first (which surface it shows), then the pixels to shade, traced
+  // as one batch of their own: the others cost no lane of the shading.
+  const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
+  const int n = im.primary.n, w = x1 - x0;
+  counts.primary += static_cast<std::uint64_t>(n);
+  im.find_hits(im.levels[0], im.primary, tested, &im.primary_loose);
+  im.mask_quads(im.levels[0], w, n, surface, shaded);
+  thread_local std::vector<int> xs, ys, slot;
+  thread_local std::vector<Color> values;
+  xs.clear(), ys.clear(), slot.clear();
+  for (int i = 0; i < n; ++i) {
+    if (!shaded[i]) continue;
+    if (surface[i] < 0) {
+      out[i] = im.scene.background;  // what trace() gives a ray that meets nothing
+      continue;
+    }
+    xs.push_back(x0 + i % w), ys.push_back(y0 + i / w), slot.push_back(i);
+  }
+  const int m = static_cast<int>(xs.size());
+  if (m == 0) return;
+  values.resize(static_cast<std::size_t>(m));
+  RayCounts again;  // their primary rays were counted above
+  render_pixels(frame, x0, y0, x1, y1, xs.data(), ys.data(), m, shading_eye, values.data(), again);
+  again.primary = 0;
+  counts += again;
+  for (int j = 0; j < m; ++j) out[slot[static_cast<std::size_t>(j)]] = values[static_cast<std::size_t>(j)];
+}
+
+void PacketTracer::render_pixels(const CameraFrame& frame, int x0, int y0, int x1, int y1, const int* xs, const int* ys,
+                                 int n, const Vec3* shading_eye, Color* out, RayCounts& counts) {
+  if (n <= 0) return;
+  Impl& im = *impl_;
+  im.primary_term = Term::kFull;
+  im.primary_wanted = terms_wanted(Term::kFull);
+  im.shading_eye = shading_eye;
+  im.primary_terms = nullptr;
+  const packet::Spheres tested = im.primary_rays_at(frame, x0, y0, x1, y1, xs, ys, n);
+  counts.primary += static_cast<std::uint64_t>(n);
+  im.trace_level(0, im.primary, tested, out, counts);
+}
 
 void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                                std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye,

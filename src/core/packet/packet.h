@@ -76,6 +76,19 @@ class PacketTracer {
                    std::uint32_t seed, Color* out, RayCounts& counts, Term term = Term::kFull,
                    const Vec3* shading_eye = nullptr, Terms* terms_out = nullptr);
 
+  // The quad-shaded rung's tile (core/render/quad_shading.h): the full image's sample 0 of pixels
+  // [x0, x1) x [y0, y1) (x0 and y0 even), every primary ray traced, but in each 2x2 quad whose
+  // four primary hits are on one surface of one material without mirror or glass only the
+  // top-left pixel shaded. Per pixel, row by row: `shaded` 1 where `out` holds render_tile's
+  // value (bit for bit), 0 where it holds nothing meaningful; `surface` which surface the pixel
+  // shows (-1: none): the same number for the same object and material within the scene.
+  void render_quads_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, const Vec3* shading_eye, Color* out,
+                         std::int64_t* surface, std::uint8_t* shaded, RayCounts& counts);
+  // render_tile's full-image value of sample 0 of the n pixels (xs[i], ys[i]), all within
+  // [x0, x1) x [y0, y1), into out[0 .. n).
+  void render_pixels(const CameraFrame& frame, int x0, int y0, int x1, int y1, const int* xs, const int* ys, int n,
+                     const Vec3* shading_eye, Color* out, RayCounts& counts);
+
   // render_tile of the full image at the pixel centres, telling `sink` of every tree as
   // trace_recorded tells its recorder: every light at every hit (muted or not, whatever the
   // material), the shadow rays of all of them. The values are render_tile's, bit for bit.

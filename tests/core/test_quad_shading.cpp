@@ -1,24 +1,25 @@
 // The quad-shaded rung under study (src/experiments/quad_shading.h): the pixels it shades are the
 // exact image's bit for bit, every pixel is within a few display codes of it, its error is under a
 // third of the half-resolution level's (the target of the camera-drag design), and it is the same
-// image for any thread count.
+// image for any thread count, traced in packets or by the scalar tracer.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 
 #include "core/scene/display8.h"
-#include "experiments/quad_shading.h"
+#include "core/render/quad_shading.h"
 #include "io/scene/scene_io.h"
 
 namespace phonglab {
 namespace {
 
-Accumulator image(const PreparedScene& scene, int w, int h, bool quads, int threads) {
+Accumulator image(const PreparedScene& scene, int w, int h, bool quads, int threads, bool packets = true) {
   Accumulator a;
   a.reset(w, h);
   RenderOptions options;
   options.threads = threads;
+  options.packets = packets;
   if (quads) render_quad_shaded(scene, options, a);
   else render_pass(scene, options, a);
   return a;
@@ -63,6 +64,9 @@ TEST(QuadShading, ShadedPixelsAreExactAndTheErrorIsUnderAThirdOfTheHalfLevels) {
     EXPECT_LT(rmse(quads, exact), rmse(half, exact) / 3) << name;
     const Accumulator one = image(scene, kW, kH, true, 1);
     EXPECT_EQ(std::memcmp(one.sum.data(), quads.sum.data(), one.sum.size() * sizeof(Color)), 0) << name;
+    const Accumulator scalar = image(scene, kW, kH, true, 2, false);
+    EXPECT_EQ(std::memcmp(scalar.sum.data(), quads.sum.data(), scalar.sum.size() * sizeof(Color)), 0)
+        << name << ": the scalar tracer's rung is the packet tracer's";
   }
 }
 

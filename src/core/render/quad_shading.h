@@ -1,0 +1,27 @@
+// The live rung with exact visibility and less shading (docs/speed.md, "The camera drag"): sample
+// 0 at every pixel centre, every pixel's primary ray traced (exact silhouettes, exactly which
+// surface each pixel shows); in a 2x2 quad whose four primary hits are on one surface, of one
+// material that neither reflects nor refracts, only the top-left pixel is shaded (its lights,
+// shadow rays and terms) at first. Each other pixel of such a quad is interpolated between the
+// shaded pixels of its surface at the corners of the cell around it (never across an edge),
+// unless those corners differ by more than two display codes (a shadow's edge, a highlight, a
+// terminator): then it is shaded itself. Quads on an edge, mirrors and glass are shaded whole.
+// Every shaded pixel is the exact image's bit for bit; the others are measured by
+// `phonglab-bench SCENE --live`. Shown while the hand moves; the exact image replaces it when
+// the hand stops.
+#pragma once
+
+#include <atomic>
+
+#include "core/render/render.h"
+
+namespace phonglab {
+
+// Writes the rung's image of `prepared` into `accum` (its size, a first pass: samples becomes
+// 1). The full image only (another term is rendered exactly, by render_pass). Traced in packets
+// where the packet tracer serves the scene and options.packets allows; the same image either way
+// and for any thread count.
+PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
+                             const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace phonglab
