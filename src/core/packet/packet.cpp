@@ -260,9 +260,9 @@ packet::Spheres PacketTracer::Impl::finish_primary(const CameraFrame& frame, int
 }
 
 void PacketTracer::Impl::trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts,
-                 TraceRecorder::Child kind) {
+                 TraceRecorder::Child kind, bool hits_found) {
   Level& lv = levels[at(depth)];
-  find_hits(lv, rays, tested, depth == 0 ? &primary_loose : nullptr);
+  if (!hits_found) find_hits(lv, rays, tested, depth == 0 ? &primary_loose : nullptr);
   const int lanes = rays.n;
   packet::hit_records(spheres, planes, {kCoordinateMargin, kSizeMargin}, rays.view(), lv.t.data(), lv.id.data(),
                       padded(lanes), lv.records());
@@ -506,24 +506,39 @@ void PacketTracer::render_quads_tile(const CameraFrame& frame, int x0, int y0, i
   counts.primary += static_cast<std::uint64_t>(n);
   im.find_hits(im.levels[0], im.primary, tested, &im.primary_loose);
   im.mask_quads(im.levels[0], w, n, surface, shaded);
-  thread_local std::vector<int> xs, ys, slot;
-  thread_local std::vector<Color> values;
-  xs.clear(), ys.clear(), slot.clear();
+  // The pixels to shade: their rays and hits moved to the front of the batch, in order.
+  Impl::Level& lv = im.levels[0];
+  Impl::RayBatch& rays = im.primary;
+  thread_local std::vector<int> slot;
+  slot.clear();
   for (int i = 0; i < n; ++i) {
     if (!shaded[i]) continue;
     if (surface[i] < 0) {
       out[i] = im.scene.background;  // what trace() gives a ray that meets nothing
       continue;
     }
-    xs.push_back(x0 + i % w), ys.push_back(y0 + i / w), slot.push_back(i);
+    const std::size_t from = at(i), to = at(static_cast<int>(slot.size()));
+    rays.ox[to] = rays.ox[from], rays.oy[to] = rays.oy[from], rays.oz[to] = rays.oz[from];
+    rays.dx[to] = rays.dx[from], rays.dy[to] = rays.dy[from], rays.dz[to] = rays.dz[from];
+    rays.weight[to] = rays.weight[from];
+    lv.t[to] = lv.t[from], lv.id[to] = lv.id[from], lv.prim[to] = lv.prim[from];
+    lv.b1[to] = lv.b1[from], lv.b2[to] = lv.b2[from];
+    slot.push_back(i);
   }
-  const int m = static_cast<int>(xs.size());
+  const int m = static_cast<int>(slot.size());
   if (m == 0) return;
-  values.resize(static_cast<std::size_t>(m));
-  RayCounts again;  // their primary rays were counted above
-  render_pixels(frame, x0, y0, x1, y1, xs.data(), ys.data(), m, shading_eye, values.data(), again);
-  again.primary = 0;
-  counts += again;
+  for (int i = m; i < padded(m); ++i) {  // padding lanes: no hit
+    lv.t[at(i)] = kInf;
+    lv.id[at(i)] = -1;
+  }
+  rays.n = m;
+  thread_local std::vector<Color> values;
+  values.resize(static_cast<std::size_t>(padded(m)));
+  im.primary_term = Term::kFull;
+  im.primary_wanted = terms_wanted(Term::kFull);
+  im.shading_eye = shading_eye;
+  im.primary_terms = nullptr;
+  im.trace_level(0, rays, tested, values.data(), counts, TraceRecorder::Child::kReflection, true);
   for (int j = 0; j < m; ++j) out[slot[static_cast<std::size_t>(j)]] = values[static_cast<std::size_t>(j)];
 }
 

@@ -156,8 +156,9 @@ struct PacketTracer::Impl {
 
   // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n); `tested`:
   // the spheres those rays can meet.
+  // `hits_found`: the level's nearest hits are already in place (the quad-shaded rung's batch).
   void trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts,
-                   TraceRecorder::Child kind = TraceRecorder::Child::kReflection);
+                   TraceRecorder::Child kind = TraceRecorder::Child::kReflection, bool hits_found = false);
 
   // The reflection and refraction terms of the level's hits: kr' and kt' times what their
   // children brought back, zero where none was traced.
