@@ -1,6 +1,7 @@
 #include "core/render/quad_shading.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <vector>
@@ -65,6 +66,7 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
   Color* value = accum.sum.data();  // the pass writes every pixel once: values go straight there
   const Tiles tiles(w, h);
   std::atomic<bool> stop{false};
+  std::atomic<std::uint64_t> nan_count{0};
   std::vector<RayCounts> counts, fill_counts;
   const auto index = [&](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + x; };
 
@@ -135,6 +137,19 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
       thread_local std::vector<int> xs, ys;
       thread_local std::vector<Color> out;
       xs.clear(), ys.clear();
+      // The display codes of the shaded pixels at the quads' corners (the tile's and the next
+      // tiles' first row and column), each taken once.
+      constexpr int kSide = kTile / 2 + 1;
+      std::array<std::array<int, 3>, kSide * kSide> lattice;
+      std::array<bool, kSide * kSide> coded{};
+      const auto codes_at = [&](int sx, int sy, const Color& c) -> const std::array<int, 3>& {
+        const int k = (sy - y0) / 2 * kSide + (sx - x0) / 2;
+        if (!coded[static_cast<std::size_t>(k)]) {
+          for (int ch = 0; ch < 3; ++ch) lattice[static_cast<std::size_t>(k)][static_cast<std::size_t>(ch)] = codes(static_cast<float>(c[ch]));
+          coded[static_cast<std::size_t>(k)] = true;
+        }
+        return lattice[static_cast<std::size_t>(k)];
+      };
       for (int qy = y0; qy < y1; qy += 2) {
         for (int qx = x0; qx < x1; qx += 2) {
           if (qx + 1 >= x1 || qy + 1 >= y1 || shaded[index(qx + 1, qy)]) continue;  // a quad shaded whole
@@ -149,9 +164,10 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
             valid[k] = sx < w && sy < h && shaded[index(sx, sy)] && surface[index(sx, sy)] == own;
             if (!valid[k]) continue;
             corner[k] = value[index(sx, sy)];
+            const std::array<int, 3>& code = codes_at(sx, sy, corner[k]);
             for (int c = 0; c < 3; ++c) {
-              const int code = codes(static_cast<float>(corner[k][c]));
-              lo[c] = std::min(lo[c], code), hi[c] = std::max(hi[c], code);
+              lo[c] = std::min(lo[c], code[static_cast<std::size_t>(c)]);
+              hi[c] = std::max(hi[c], code[static_cast<std::size_t>(c)]);
             }
           }
           const bool smooth = hi[0] - lo[0] <= kSmoothCodes && hi[1] - lo[1] <= kSmoothCodes && hi[2] - lo[2] <= kSmoothCodes;
@@ -175,19 +191,29 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
         }
       }
       const int n = static_cast<int>(xs.size());
-      if (n == 0) return;
-      if (packets) {
+      if (n > 0 && packets) {
         out.resize(static_cast<std::size_t>(n));
         packet_tracer_for(prepared).render_pixels(frame, x0, y0, x1, y1, xs.data(), ys.data(), n, eye, out.data(), rays);
         for (int i = 0; i < n; ++i) value[index(xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(i)])] = out[static_cast<std::size_t>(i)];
-        return;
+      } else {
+        for (int i = 0; i < n; ++i) {
+          std::optional<Hit> hit;
+          Ray ray;
+          ++rays.primary;
+          scalar_pixel(xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(i)], hit, ray);
+          value[index(xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(i)])] = scalar_value(ray, hit, rays);
+        }
       }
-      for (int i = 0; i < n; ++i) {
-        std::optional<Hit> hit;
-        Ray ray;
-        ++rays.primary;
-        scalar_pixel(xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(i)], hit, ray);
-        value[index(xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(i)])] = scalar_value(ray, hit, rays);
+      // The tile's pixels as render_pass writes a first sample: NaN and infinities as 0 (counted).
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          Color& c = value[index(x, y)];
+          if (!all_finite(c)) {
+            c = Color(0);
+            nan_count.fetch_add(1, std::memory_order_relaxed);
+          }
+          c = Color(0) + c;  // what render_pass adds to the empty sum
+        }
       }
     });
   }
@@ -196,16 +222,8 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
   for (const RayCounts& c : fill_counts) stats.rays += c;
   stats.completed = done;
   stats.packets = packets;
-  if (done) {
-    for (std::size_t i = 0; i < pixels; ++i) {
-      if (!all_finite(value[i])) {  // as render_pass replaces them
-        value[i] = Color(0);
-        ++stats.nan_count;
-      }
-      value[i] = Color(0) + value[i];  // what render_pass adds to the empty sum
-    }
-    accum.samples = 1;
-  }
+  stats.nan_count = nan_count.load();
+  if (done) accum.samples = 1;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
