@@ -3,8 +3,27 @@
 # Each folder may include the project's headers of the layers listed for it, and none of the
 # libraries listed as forbidden. Link lines enforce the same for code; this catches a header
 # reached without linking (an inline helper, a type) that the link lines cannot see.
+# Inside the core, each folder sees only those below it: base (threads), scene (the data, math,
+# the camera), geometry (primitives), accel (scene queries), shading (the equation), packet (its
+# four-wide tracer), render (passes, trees), teaching (the instruments).
+set(_base "core/base/")
+set(_scene "${_base} core/scene/")
+set(_geometry "${_scene} core/geometry/")
+set(_accel "${_geometry} core/accel/")
+set(_shading "${_accel} core/shading/")
+set(_packet "${_shading} core/packet/")
+set(_render "${_packet} core/render/")
+set(_core_libs "nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3")
 set(_rules
   "src/core|core/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"
+  "src/core/base|${_base}|${_core_libs}"
+  "src/core/scene|${_scene}|${_core_libs}"
+  "src/core/geometry|${_geometry}|${_core_libs}"
+  "src/core/accel|${_accel}|${_core_libs}"
+  "src/core/shading|${_shading}|${_core_libs}"
+  "src/core/packet|${_packet}|${_core_libs}"
+  "src/core/render|${_render}|${_core_libs}"
+  "src/core/teaching|${_render} core/teaching/|${_core_libs}"
   "src/io|core/ check/ io/|imgui GL/ glad GLFW embree3"
   "src/check|core/ check/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"
   "src/experiments|core/ experiments/|nlohmann tiny_obj_loader stb_ imgui GL/ glad GLFW embree3"

@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "core/accel/accel.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "core/scene/camera.h"
 #include "io/embedded_scenes.h"
 #include "core/packet/packet.h"

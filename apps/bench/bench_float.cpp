@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "core/accel/accel.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "core/scene/camera.h"
 
 namespace phonglab {

@@ -15,7 +15,7 @@
 
 #include "core/accel/accel.h"
 #include "core/accel/bvh.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "core/scene/camera.h"
 
 namespace phonglab {

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "core/render/render.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "core/scene/camera.h"
 #include "core/scene/display8.h"
 

@@ -7,7 +7,7 @@
 
 #include "core/accel/accel.h"
 #include "core/render/render.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "core/shading/experiment.h"
 
 namespace phonglab {

@@ -1,6 +1,6 @@
 #include "io/obj_io.h"
 #include "core/scene/chars.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "io/memory_budget.h"
 
 #include <algorithm>

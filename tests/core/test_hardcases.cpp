@@ -20,6 +20,7 @@
 
 #include "core/accel/prepared_scene.h"
 #include "core/scene/camera.h"
+#include "core/accel/accel.h"
 #include "core/geometry/geometry.h"
 #include "tests/support/test_support.h"
 #include "core/scene/math.h"

@@ -14,7 +14,7 @@
 
 #include "core/packet/packet.h"
 #include "core/render/render.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "tests/support/random_scenes.h"
 
 using namespace phonglab;

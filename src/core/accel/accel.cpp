@@ -1,5 +1,5 @@
 #include "core/accel/accel.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 
 #include <chrono>
 #include <exception>

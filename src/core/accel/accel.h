@@ -5,6 +5,8 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <memory>
 #include <vector>
 
@@ -76,5 +78,15 @@ Aabb scene_bounds(const Scene& scene);
 
 // The triangle an ObjectRef of kind kTriangle or kMesh names.
 const Triangle& triangle_of(const Scene& scene, const ObjectRef& obj);
+
+// The nearest-hit and any-hit queries testing every primitive (mesh triangles one by one): the
+// brute force of scenes without an accelerator, and the reference the acceleration structures
+// are tested against. The queries of a prepared scene are in core/accel/prepared_scene.h.
+std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray,
+                                 double t_max = std::numeric_limits<double>::infinity());
+bool occluded_all(const Scene& scene, const Ray& ray, double t_max);
+
+// Fills a Hit for the primitive `obj` hit at distance t (used after the nearest-hit loop).
+Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double b1, double b2);
 
 }  // namespace phonglab

@@ -1,5 +1,5 @@
 #include "core/accel/bvh.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 
 #include <algorithm>
 #include <array>

@@ -12,15 +12,6 @@
 
 namespace phonglab {
 
-// A ray with unit direction.
-struct Ray {
-  Vec3 origin;
-  Vec3 dir;  // unit length
-};
-
-// Makes a ray; `dir` must be unit length and finite.
-inline Ray make_ray(const Vec3& origin, const Vec3& dir) { return Ray{origin, dir}; }
-
 // Per-ray constants of the watertight triangle test (Woop et al. 2013): the axis permutation
 // that makes the ray's largest direction component z, and the shear onto the z axis.
 struct TriangleShear {
@@ -141,12 +132,6 @@ class Accelerator {
   virtual bool matches(const Scene& scene) const = 0;
 };
 
-// The nearest-hit and any-hit queries testing every primitive (mesh triangles one by one): the
-// brute force of scenes without an accelerator, and the reference the acceleration structures
-// are tested against. The queries of a prepared scene are in core/accel/prepared_scene.h.
-std::optional<Hit> intersect_all(const Scene& scene, const Ray& ray,
-                                 double t_max = std::numeric_limits<double>::infinity());
-bool occluded_all(const Scene& scene, const Ray& ray, double t_max);
 
 // A triangle's unit geometric normal Ng = normalize((v1 - v0) x (v2 - v0)), and its coordinate
 // magnitude for surface_offset (its largest vertex coordinate).
@@ -173,8 +158,6 @@ inline void triangle_hit_record(const Triangle& tri, const Vec3& ng, double magn
   hit.material = tri.material;
 }
 
-// Fills a Hit for the primitive `obj` hit at distance t (used after the nearest-hit loop).
-Hit make_hit(const Scene& scene, const Ray& ray, ObjectRef obj, double t, double b1, double b2);
 
 // How far to move a secondary ray's origin off a surface point reached after distance t,
 // where `magnitude` is the size of the coordinates the point was computed from (|p|; for a

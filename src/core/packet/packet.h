@@ -19,7 +19,7 @@
 #include <memory>
 
 #include "core/scene/camera.h"
-#include "core/render/render.h"
+#include "core/shading/term.h"
 #include "core/scene/scene.h"
 #include "core/shading/shading.h"
 

@@ -4,7 +4,7 @@
 #include <atomic>
 #include <cmath>
 
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "core/scene/camera.h"
 #include "core/shading/shading.h"
 

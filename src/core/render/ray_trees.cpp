@@ -8,7 +8,7 @@
 #include "core/packet/packet.h"
 #include "core/render/scene_changes.h"
 #include "core/render/shadow_rays.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 #include "core/render/tile_work.h"
 #include "core/shading/experiment.h"
 

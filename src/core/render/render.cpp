@@ -8,11 +8,6 @@
 namespace phonglab {
 
 namespace {
-constexpr std::array<std::string_view, 10> kTermNames = {"full",       "ambient",    "diffuse",
-                                                         "specular",   "reflection", "refraction",
-                                                         "normal",     "depth",      "rays",
-                                                         "indirect"};
-
 // The sampler of one (pixel, sample) under indirect light, else nothing.
 std::optional<IndirectSampler> sampler_for(const Scene& scene, Ambient ambient, int x, int y,
                                            std::uint32_t sample_index, std::uint32_t seed) {
@@ -22,14 +17,7 @@ std::optional<IndirectSampler> sampler_for(const Scene& scene, Ambient ambient, 
 IndirectSampler* pointer(std::optional<IndirectSampler>& sampler) { return sampler ? &*sampler : nullptr; }
 }  // namespace
 
-std::optional<Term> term_from_name(std::string_view name) {
-  for (std::size_t i = 0; i < kTermNames.size(); ++i) {
-    if (kTermNames[i] == name) return static_cast<Term>(i);
-  }
-  return std::nullopt;
-}
 
-std::string_view term_name(Term term) { return kTermNames[static_cast<std::size_t>(term)]; }
 
 void Accumulator::reset(int w, int h, bool with_terms) {
   width = w;
@@ -134,29 +122,7 @@ Color render_sample_terms(const PreparedScene& prepared, const CameraFrame& fram
   return debug ? *debug : term_value(terms, term);
 }
 
-TermsWanted terms_wanted(Term term) {
-  switch (term) {
-    case Term::kAmbient:
-    case Term::kIndirect: return {false, false, false};
-    case Term::kDiffuse:
-    case Term::kSpecular: return {true, false, false};
-    case Term::kReflection: return {false, true, false};
-    case Term::kRefraction: return {false, false, true};
-    default: return {};
-  }
-}
 
-Color term_value(const Terms& t, Term term) {
-  switch (term) {
-    case Term::kAmbient:
-    case Term::kIndirect: return t.ambient;
-    case Term::kDiffuse: return t.diffuse;
-    case Term::kSpecular: return t.specular;
-    case Term::kReflection: return t.reflection;
-    case Term::kRefraction: return t.refraction;
-    default: return t.sum();
-  }
-}
 
 
 PassStats render_pass(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,

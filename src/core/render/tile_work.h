@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/render/render.h"
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 
 namespace phonglab {
 

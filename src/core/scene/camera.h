@@ -3,7 +3,6 @@
 
 #include <cstdint>
 
-#include "core/geometry/geometry.h"
 #include "core/scene/math.h"
 #include "core/scene/scene.h"
 

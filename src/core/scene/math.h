@@ -23,6 +23,14 @@ inline double max_channel(const Color& c) { return std::max(std::max(c.x, c.y), 
 
 inline bool is_zero(const Color& c) { return c.x == 0 && c.y == 0 && c.z == 0; }
 
+struct Ray {
+  Vec3 origin;
+  Vec3 dir;  // unit length
+};
+
+// Makes a ray; `dir` must be unit length and finite.
+inline Ray make_ray(const Vec3& origin, const Vec3& dir) { return Ray{origin, dir}; }
+
 // The inverse of the sRGB transfer curve (IEC 61966-2-1): an encoded value in [0, 1] to linear.
 inline double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 

@@ -1,4 +1,4 @@
-#include "core/render/threads.h"
+#include "core/base/threads.h"
 
 #include <condition_variable>
 #include <cstdint>
