@@ -16,7 +16,7 @@ namespace phonglab {
 
 namespace {
 
-constexpr int kTile = 16;  // even: a tile holds whole quads
+constexpr int kQuadTile = 16;  // even: a tile holds whole quads
 // Shaded corners further apart than this many display codes (sRGB, any channel) are not
 // interpolated between.
 constexpr int kSmoothCodes = 2;
@@ -33,12 +33,12 @@ std::int64_t surface_of(const Hit& hit) {
 struct Tiles {
   int w, h, across, count;
   Tiles(int width, int height)
-      : w(width), h(height), across((width + kTile - 1) / kTile), count(across * ((height + kTile - 1) / kTile)) {}
+      : w(width), h(height), across((width + kQuadTile - 1) / kQuadTile), count(across * ((height + kQuadTile - 1) / kQuadTile)) {}
   void bounds(std::size_t t, int& x0, int& y0, int& x1, int& y1) const {
-    x0 = static_cast<int>(t % static_cast<std::size_t>(across)) * kTile;
-    y0 = static_cast<int>(t / static_cast<std::size_t>(across)) * kTile;
-    x1 = std::min(x0 + kTile, w);
-    y1 = std::min(y0 + kTile, h);
+    x0 = static_cast<int>(t % static_cast<std::size_t>(across)) * kQuadTile;
+    y0 = static_cast<int>(t / static_cast<std::size_t>(across)) * kQuadTile;
+    x1 = std::min(x0 + kQuadTile, w);
+    y1 = std::min(y0 + kQuadTile, h);
   }
 };
 
@@ -139,7 +139,7 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
       xs.clear(), ys.clear();
       // The display codes of the shaded pixels at the quads' corners (the tile's and the next
       // tiles' first row and column), each taken once.
-      constexpr int kSide = kTile / 2 + 1;
+      constexpr int kSide = kQuadTile / 2 + 1;
       std::array<std::array<int, 3>, kSide * kSide> lattice;
       std::array<bool, kSide * kSide> coded{};
       const auto codes_at = [&](int sx, int sy, const Color& c) -> const std::array<int, 3>& {
