@@ -4,20 +4,13 @@
 #include <gtest/gtest.h>
 
 #include "check/check.h"
+#include "tests/support/formula_rules.h"
 #include "tests/support/random_scenes.h"
 
 namespace phonglab {
 namespace {
 
-LocalRules rules_of(std::initializer_list<std::pair<FormulaSlot, const char*>> texts) {
-  LocalRules rules;
-  for (const auto& [slot, text] : texts) {
-    FormulaError error;
-    rules.formulas[static_cast<std::size_t>(slot)] = Formula::compile(text, &error);
-    EXPECT_NE(rules.formulas[static_cast<std::size_t>(slot)], nullptr) << error.text();
-  }
-  return rules;
-}
+using test::rules_of;
 
 Scene small(std::uint32_t seed) {
   Scene s = random_scene_data(seed);

@@ -15,6 +15,7 @@
 #include "core/render/render.h"
 #include "io/scene/scene_io.h"
 #include "io/embedded_scenes.h"
+#include "tests/support/formula_rules.h"
 #include "tests/support/random_scenes.h"
 
 namespace phonglab {
@@ -22,15 +23,7 @@ namespace {
 
 constexpr int kW = 40, kH = 27;
 
-LocalRules rules_of(std::initializer_list<std::pair<FormulaSlot, const char*>> texts) {
-  LocalRules rules;
-  for (const auto& [slot, text] : texts) {
-    FormulaError error;
-    rules.formulas[static_cast<std::size_t>(slot)] = Formula::compile(text, &error);
-    EXPECT_NE(rules.formulas[static_cast<std::size_t>(slot)], nullptr) << error.text();
-  }
-  return rules;
-}
+using test::rules_of;
 
 // The rule sets every scene is re-shaded with: the reference formulas, a student's wrong ones
 // (unclamped, a diffuse term without kd that lights mirrors and glass, NaN where R.V < 0 and n is
