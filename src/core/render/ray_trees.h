@@ -37,8 +37,11 @@ class RayTrees {
  public:
   // Traces the centre ray (sample 0) of every pixel of a width x height image of `scene`, with
   // `shading_eye` as RenderOptions has it, keeping every tree. Null when the trees would need
-  // more than `budget_bytes`, when cancelled, or for a scene with an experiment. Traced in
-  // packets where the packet tracer serves the scene (`allow_packets`; the same trees either way).
+  // more than `budget_bytes`, when cancelled, or for a scene with an experiment that changes rays.
+  // A scene whose experiment changes the local terms alone (a student's formulas) gets the trees
+  // of its production twin: its rays are the same, and a re-shade gives the experiment's terms.
+  // Traced in packets where the packet tracer serves the scene (`allow_packets`; the same trees
+  // either way).
   // `recycled`: trees no longer wanted, whose memory the new ones take over (no page faults).
   static std::unique_ptr<RayTrees> record(std::shared_ptr<const PreparedScene> scene, int width, int height,
                                           const std::optional<Vec3>& shading_eye, int threads,
@@ -46,7 +49,8 @@ class RayTrees {
                                           bool allow_packets = true, std::unique_ptr<RayTrees> recycled = nullptr);
 
   // What re-shading `scene` at this size and eye would need (kRetrace: it cannot be). Another
-  // eye ("move your head") is a shading edit: V changes at the primary hits only.
+  // eye ("move your head") is a shading edit: V changes at the primary hits only; so are other
+  // local terms (an experiment's that changes them alone: every pixel is shaded again).
   EditScope scope_for(const PreparedScene& scene, int width, int height, const std::optional<Vec3>& shading_eye) const;
 
   // Sample 0 of `scene` for `term` (reshades(term)) into `accum`, which must be empty at this
