@@ -49,11 +49,11 @@ class RulesExperiment final : public Experiment {
  public:
   explicit RulesExperiment(LocalRules rules) : rules_(std::move(rules)) {}
 
+  // One hit is a batch of one: the rules have one definition.
   Color ambient(const LocalHit& h) const override {
-    const Formula* f = formula(FormulaSlot::kAmbient);
-    Color once;
-    if (f) f->evaluate(HitsSource(&h, FormulaSlot::kAmbient), 1, &once);
-    return per_light(h, f ? once : Experiment::ambient(h));
+    Color out;
+    ambient_batch(&h, 1, &out);
+    return out;
   }
   void ambient_batch(const LocalHit* hits, std::size_t count, Color* out) const override {
     if (const Formula* f = formula(FormulaSlot::kAmbient)) {
@@ -67,19 +67,9 @@ class RulesExperiment final : public Experiment {
   }
 
   LightShare light_share(const LocalHit& h) const override {
-    const Formula* diffuse = rules_.formulas[static_cast<int>(FormulaSlot::kDiffuse)].get();
-    const Formula* specular = rules_.formulas[static_cast<int>(FormulaSlot::kSpecular)].get();
-    LightShare share = Experiment::light_share(h);
-    Color value;
-    if (diffuse) {
-      diffuse->evaluate(HitsSource(&h, FormulaSlot::kDiffuse), 1, &value);
-      share.diffuse = h.light->intensity * value;
-    }
-    if (specular) {
-      specular->evaluate(HitsSource(&h, FormulaSlot::kSpecular), 1, &value);
-      share.specular = h.light->intensity * value;
-    }
-    return share;
+    LightShare out;
+    light_share_batch(&h, 1, &out);
+    return out;
   }
   void light_share_batch(const LocalHit* hits, std::size_t count, LightShare* out) const override {
     for (std::size_t i = 0; i < count; ++i) out[i] = Experiment::light_share(hits[i]);
@@ -97,8 +87,7 @@ class RulesExperiment final : public Experiment {
 
   // A formula may light a material the reference leaves dark (a diffuse term without kd).
   bool lit(const Material& m) const override {
-    return rules_.formulas[static_cast<int>(FormulaSlot::kDiffuse)] ||
-           rules_.formulas[static_cast<int>(FormulaSlot::kSpecular)] || is_lit(m);
+    return formula(FormulaSlot::kDiffuse) || formula(FormulaSlot::kSpecular) || is_lit(m);
   }
   bool shadows() const override { return !rules_.no_shadows; }
   bool eta_inverted() const override { return rules_.eta_inverted; }

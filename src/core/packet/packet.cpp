@@ -472,6 +472,13 @@ PacketTracer::~PacketTracer() = default;
 
 bool PacketTracer::draws(Term term) { return is_equation_term(term) && term != Term::kIndirect; }
 
+void PacketTracer::Impl::aim_primary(Term term, const Vec3* eye, Terms* terms_out) {
+  primary_term = term;
+  primary_wanted = terms_out ? TermsWanted{} : terms_wanted(term);
+  shading_eye = eye;
+  primary_terms = terms_out;
+}
+
 void PacketTracer::Impl::mask_quads(const Level& lv, int width, int lanes, std::int64_t* surface,
                                     std::uint8_t* shaded) const {
   const int h = lanes / width;
@@ -485,12 +492,9 @@ void PacketTracer::Impl::mask_quads(const Level& lv, int width, int lanes, std::
   for (int qy = 0; qy + 1 < h; qy += 2) {
     for (int qx = 0; qx + 1 < width; qx += 2) {
       const int a = qy * width + qx, b = a + 1, c = a + width, d = c + 1;
-      const std::int32_t id = lv.id[at(a)];
-      if (id < 0) continue;
-      const int material = material_of(id, lv.prim[at(a)]);
-      bool uniform = !info[at(material)].bounces;
-      for (const int k : {b, c, d}) uniform = uniform && lv.id[at(k)] == id && material_of(id, lv.prim[at(k)]) == material;
-      if (!uniform) continue;
+      const std::int64_t s = surface[a];
+      if (s < 0 || surface[b] != s || surface[c] != s || surface[d] != s) continue;
+      if (info[at(static_cast<int>(static_cast<std::uint32_t>(s)))].bounces) continue;  // mirror or glass
       for (const int k : {b, c, d}) shaded[k] = 0;
     }
   }
@@ -534,10 +538,7 @@ void PacketTracer::render_quads_tile(const CameraFrame& frame, int x0, int y0, i
   rays.n = m;
   thread_local std::vector<Color> values;
   values.resize(static_cast<std::size_t>(padded(m)));
-  im.primary_term = Term::kFull;
-  im.primary_wanted = terms_wanted(Term::kFull);
-  im.shading_eye = shading_eye;
-  im.primary_terms = nullptr;
+  im.aim_primary(Term::kFull, shading_eye, nullptr);
   im.trace_level(0, rays, tested, values.data(), counts, TraceRecorder::Child::kReflection, true);
   for (int j = 0; j < m; ++j) out[slot[static_cast<std::size_t>(j)]] = values[static_cast<std::size_t>(j)];
 }
@@ -546,10 +547,7 @@ void PacketTracer::render_pixels(const CameraFrame& frame, int x0, int y0, int x
                                  int n, const Vec3* shading_eye, Color* out, RayCounts& counts) {
   if (n <= 0) return;
   Impl& im = *impl_;
-  im.primary_term = Term::kFull;
-  im.primary_wanted = terms_wanted(Term::kFull);
-  im.shading_eye = shading_eye;
-  im.primary_terms = nullptr;
+  im.aim_primary(Term::kFull, shading_eye, nullptr);
   const packet::Spheres tested = im.primary_rays_at(frame, x0, y0, x1, y1, xs, ys, n);
   counts.primary += static_cast<std::uint64_t>(n);
   im.trace_level(0, im.primary, tested, out, counts);
@@ -559,10 +557,7 @@ void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1,
                                std::uint32_t seed, Color* out, RayCounts& counts, Term term, const Vec3* shading_eye,
                                Terms* terms_out) {
   Impl& im = *impl_;
-  im.primary_term = term;
-  im.primary_wanted = terms_out ? TermsWanted{} : terms_wanted(term);
-  im.shading_eye = shading_eye;
-  im.primary_terms = terms_out;
+  im.aim_primary(term, shading_eye, terms_out);
   const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, sample_index, seed);
   counts.primary += static_cast<std::uint64_t>(im.primary.n);
   im.trace_level(0, im.primary, tested, out, counts);

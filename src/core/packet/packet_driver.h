@@ -149,6 +149,9 @@ struct PacketTracer::Impl {
                                   int n);
   // The camera rays of the lanes' x + u, y + v, and what the region's primary rays can meet.
   packet::Spheres finish_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1, int n);
+  // What the primary hits give: `term`'s value, and with `terms_out` their five terms; V towards
+  // `eye` (null: -D).
+  void aim_primary(Term term, const Vec3* eye, Terms* terms_out);
   // The quad-shaded rung (render_quads_tile): per lane of a tile `width` pixels wide, the surface
   // its nearest hit is on (object and material; -1: none) and whether it is shaded: not the other three pixels of a
   // 2x2 quad whose four hits share a surface and a material without children.

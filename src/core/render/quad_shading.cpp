@@ -114,8 +114,11 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
           scalar_pixel(x, y, hit[k], ray[k]);
           surface[index(x, y)] = hit[k] ? surface_of(*hit[k]) : kNoSurface;
         }
-        bool uniform = inside[3] && hit[0] && !has_children(scene.materials[static_cast<std::size_t>(hit[0]->material)]);
-        for (int k = 1; uniform && k < 4; ++k) uniform = hit[k] && surface_of(*hit[k]) == surface_of(*hit[0]);
+        // One surface under all four (the packet tracer's mask_quads, the same rule), neither
+        // mirror nor glass.
+        const std::int64_t s = surface[index(qx, qy)];
+        bool uniform = inside[3] && s != kNoSurface && !has_children(scene.materials[static_cast<std::size_t>(hit[0]->material)]);
+        for (int k = 1; uniform && k < 4; ++k) uniform = surface[index(qx + (k & 1), qy + (k >> 1))] == s;
         for (int k = 0; k < 4; ++k) {
           if (!inside[k]) continue;
           const std::size_t at = index(qx + (k & 1), qy + (k >> 1));

@@ -315,19 +315,16 @@ struct LocalTerms {
     }
     ambient.resize(nodes);
     e.ambient_batch(hits.data(), nodes, ambient.data());
-    // The lights: the hits again, each with a light (the node's entries overwritten in place).
-    std::size_t count = 0;
+    // The lights: each node's hit again with every enabled light its shadow ray reached.
     at.clear();
     for (std::size_t i = 0; i < nodes; ++i) {
       if (!lit[static_cast<std::size_t>(tile.nodes[i].material)]) continue;
       for (std::size_t li = 0; li < lights; ++li) {
         const std::size_t k = i * lights + li;
-        const Light& light = scene.lights[li];
-        if (!light.enabled || tile.seen[k] != LightSeen::kVisible) continue;
-        at.push_back(k);
-        ++count;
+        if (scene.lights[li].enabled && tile.seen[k] == LightSeen::kVisible) at.push_back(k);
       }
     }
+    const std::size_t count = at.size();
     if (count == 0) return;
     shares.resize(nodes * lights);
     batch.resize(count);
