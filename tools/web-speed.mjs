@@ -1,5 +1,6 @@
-// The web page's speed against the native tracers, side by side: rounds of the page's scalar
-// renderer (WebAssembly in headless Chromium) and the native phonglab-bench, scalar and packet,
+// The web page's speed against the native tracers, side by side: rounds of the page's renderer
+// (WebAssembly in headless Chromium: its packet kernels' SIMD128 instance, or the scalar renderer
+// in a page without them) and the native phonglab-bench, scalar and packet,
 // alternating, on the same scene, size and thread count. With THREADS > 1 the page is served
 // cross-origin isolated from a local server (as tools/dev.sh serve does) and runs its threaded module.
 //
@@ -40,15 +41,18 @@ if (threads > 1) {
 }
 await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
 const page_threads = await page.evaluate(() => window.phonglab.state().threads);
+const page_simd = await page.evaluate(() => window.phonglab.state().simd || '');
 if (page_threads !== threads) throw new Error(`the page renders on ${page_threads} threads, not ${threads}`);
 function native(scalar) {
   const args = [scene, '--frames', '7', '--threads', String(threads), '--width', String(width), '--height', String(height)];
   const out = execFileSync(bench, scalar ? [...args, '--scalar'] : args).toString();
   const ms = Number(/median frame: ([0-9.]+) ms/.exec(out)[1]);
   const rays = Number(/rays per frame: (\d+)/.exec(out)[1]);
+  tracer = /, ([^,]*(?:, \d+ lanes\))?) tracer/.exec(out)?.[1] ?? tracer;
   return { ms, rays };
 }
 const rows = { web: [], scalar: [], packet: [] };
+let tracer = 'packet';
 let rays = 0;
 for (let r = 0; r < rounds; ++r) {
   const web = JSON.parse(await page.evaluate(() => window.phonglab.view.bench(7)));
@@ -64,6 +68,7 @@ if (server) server.close();
 const mrays = (ms) => (rays / ms / 1e3).toFixed(1);
 const web = median(rows.web), scalar = median(rows.scalar), packet = median(rows.packet);
 console.log(`${scene} ${size}, ${threads} thread(s), ${rays} rays a frame, medians of ${rounds} rounds:`);
-console.log(`  web page (WebAssembly, scalar)  ${web.toFixed(1)} ms  ${mrays(web)} Mrays/s  ${(scalar / web).toFixed(2)}x native scalar`);
-console.log(`  native scalar                   ${scalar.toFixed(1)} ms  ${mrays(scalar)} Mrays/s  1.00x`);
-console.log(`  native packet (AVX2)            ${packet.toFixed(1)} ms  ${mrays(packet)} Mrays/s  ${(scalar / packet).toFixed(2)}x native scalar`);
+const pad = (text) => text.padEnd(32);
+console.log(`  ${pad(`web page (WebAssembly, ${page_simd || 'scalar'})`)}${web.toFixed(1)} ms  ${mrays(web)} Mrays/s  ${(scalar / web).toFixed(2)}x native scalar`);
+console.log(`  ${pad('native scalar')}${scalar.toFixed(1)} ms  ${mrays(scalar)} Mrays/s  1.00x`);
+console.log(`  ${pad(`native ${tracer}`)}${packet.toFixed(1)} ms  ${mrays(packet)} Mrays/s  ${(scalar / packet).toFixed(2)}x native scalar`);

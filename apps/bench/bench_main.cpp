@@ -393,7 +393,9 @@ int time_frames(const std::string& scene_arg, int frames, int width, int height,
   std::printf("scene %s, %dx%d, 1 spp, %s, %s%s, %s tracer\n", scene_arg.c_str(), width, height,
               counted(static_cast<std::size_t>(resolve_thread_count(options.threads)), "thread").c_str(),
               counted(ms.size(), "frame").c_str(), edited ? " (a new snapshot each)" : "",
-              options.packets && packet_tracing_applies(*fresh) ? "packet (AVX2)" : "scalar");
+              options.packets && packet_tracing_applies(*fresh)
+                  ? ("packet (" + std::string(packet_simd_target()) + ", " + std::to_string(packet_simd_lanes()) + " lanes)").c_str()
+                  : "scalar");
   std::printf("rays per frame: %llu (primary %llu, shadow %llu, reflection %llu, refraction %llu)\n",
               static_cast<unsigned long long>(rays.total()), static_cast<unsigned long long>(rays.primary),
               static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.reflection),

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "apps/web/web_view.h"
+#include "core/packet/packet.h"
 #include "io/embedded_scenes.h"
 
 namespace phonglab {
@@ -16,6 +17,8 @@ std::string scene_names() {
   for (const EmbeddedScene& s : embedded_scenes()) out += std::string(s.name) + "\t" + std::string(s.description) + "\n";
   return out;
 }
+// The instance of the packet kernels the page runs ("SIMD128"), or "" (the scalar renderer).
+std::string simd_target() { return packet_simd_target(); }
 std::string lesson_names() {
   std::string out;
   for (const EmbeddedLesson& l : embedded_lessons()) out += std::string(l.name) + "\n";
@@ -28,6 +31,7 @@ std::string lesson_names() {
 EMSCRIPTEN_BINDINGS(phonglab) {
   using phonglab::WebView;
   emscripten::function("sceneNames", &phonglab::scene_names);
+  emscripten::function("simdTarget", &phonglab::simd_target);
   emscripten::function("lessonNames", &phonglab::lesson_names);
   emscripten::class_<WebView>("WebView")
       .constructor<>()

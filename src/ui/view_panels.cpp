@@ -243,9 +243,9 @@ void stats_overlay(const StatsView& stats) {
       if (f.reshaded) ImGui::Text("%.1f ms re-shade (%.2f Mrays/s re-cast)", f.pass_ms, f.mrays_per_s);
       else ImGui::Text("%.1f ms, %.2f Mrays/s", f.pass_ms, f.mrays_per_s);
       row("tracer");
-      ImGui::TextUnformatted(f.reshaded ? "re-shaded from the stored ray trees"
-                             : f.packets ? "packets, 4 rays wide (AVX2)"
-                                         : "scalar, ray by ray");
+      if (f.reshaded) ImGui::TextUnformatted("re-shaded from the stored ray trees");
+      else if (f.packets) ImGui::Text("packets, %d rays wide (%s)", f.packet_lanes, f.packet_kernels);
+      else ImGui::TextUnformatted("scalar, ray by ray");
       row("ray trees");
       if (f.tree_bytes > 0) ImGui::Text("%.1f MiB kept (first sample)", static_cast<double>(f.tree_bytes) / (1 << 20));
       else ImGui::TextUnformatted("none kept");

@@ -286,7 +286,7 @@ TEST_F(CliTest, WidthHeightOverridesAndStatsFile) {
   EXPECT_EQ(j["samples_per_pixel"], 2);
   EXPECT_EQ(j["rays"]["primary"], 40 * 30 * 2);
   EXPECT_EQ(j["nan_count"], 0);
-  // lecture's full image goes to the packet tracer wherever the CPU has AVX2.
+  // lecture's full image goes to the packet tracer wherever the CPU runs the packet kernels.
   EXPECT_EQ(j["tracer"], phonglab::packet_cpu_supported() ? "packet" : "scalar");
   ASSERT_EQ(run_cli("render lecture -o " + path("d.pfm") + " --width 8 --height 8 --term diffuse --stats " +
                     path("stats_term.json"))

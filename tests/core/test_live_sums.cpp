@@ -19,6 +19,7 @@
 #include "core/render/ray_trees.h"
 #include "core/render/render.h"
 #include "tests/support/random_scenes.h"
+#include "tests/support/simd_targets.h"
 
 using namespace phonglab;
 
@@ -101,78 +102,82 @@ bool same_bits(const Accumulator& a, const Accumulator& b) {
 }  // namespace
 
 TEST(LiveSums, RecombinedImagesEqualTheExactReshade) {
-  int checked = 0;
-  for (std::uint32_t seed = 1; seed <= 90; ++seed) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    const Term term = std::array<Term, 6>{Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular,
-                                          Term::kReflection, Term::kRefraction}[seed % 6];
-    Scene s = random_scene_data(seed, seed % 4 == 0);
-    std::shared_ptr<const PreparedScene> base = prepared(s);
-    // Two copies of the same trees (in packets and ray by ray): one writes a new image each
-    // time, the other each image over the last (as the previewer's renderer).
-    std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, true);
-    std::unique_ptr<RayTrees> over_trees =
-        RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, false);
-    ASSERT_NE(trees, nullptr);
-    ASSERT_NE(over_trees, nullptr);
-    Accumulator before = sized();
-    ASSERT_TRUE(trees->reshade(base, term, std::nullopt, 2, before).completed);  // the trees' image of `term`
-    Accumulator unused = sized();
-    ASSERT_TRUE(over_trees->reshade(base, term, std::nullopt, 2, unused).completed);
-    std::mt19937 rng(seed);
-    const int family = static_cast<int>(seed % 4);
-    Accumulator over = sized();  // each image written over the last, as the previewer's
-    for (int e = 0; e < 6; ++e) {  // a drag: every edit against the same trees
-      linear_edit(s, rng, family, seed / 4);
-      const std::shared_ptr<const PreparedScene> edited = prepared(s);
-      if (edited->scene().lights.empty() && family >= 2) break;
-      ASSERT_TRUE(trees->recombines(*edited, kW, kH, term, std::nullopt, false)) << "edit " << e;
-      Accumulator live = uncleared();  // every pixel is written: no clearing needed
-      const PassStats stats = trees->recombine(*edited, term, 1 + e % 2, live);
-      ASSERT_TRUE(stats.completed);
-      EXPECT_EQ(live.samples, 1u);
-      const Accumulator exact = fresh_image(*edited, term);
-      ASSERT_TRUE(close(live, exact, before)) << "edit " << e << ", term " << term_name(term);
-      over.samples = 0;
-      ASSERT_TRUE(over_trees->recombine(*edited, term, 2, over, nullptr, e > 0).completed);
-      ASSERT_TRUE(close(over, exact, before)) << "written over the last, edit " << e << ", term " << term_name(term);
-      ++checked;
+  test::for_each_simd_target([&] {
+    int checked = 0;
+    for (std::uint32_t seed = 1; seed <= 90; ++seed) {
+      SCOPED_TRACE("seed " + std::to_string(seed));
+      const Term term = std::array<Term, 6>{Term::kFull, Term::kAmbient, Term::kDiffuse, Term::kSpecular,
+                                            Term::kReflection, Term::kRefraction}[seed % 6];
+      Scene s = random_scene_data(seed, seed % 4 == 0);
+      std::shared_ptr<const PreparedScene> base = prepared(s);
+      // Two copies of the same trees (in packets and ray by ray): one writes a new image each
+      // time, the other each image over the last (as the previewer's renderer).
+      std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, true);
+      std::unique_ptr<RayTrees> over_trees =
+          RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, false);
+      ASSERT_NE(trees, nullptr);
+      ASSERT_NE(over_trees, nullptr);
+      Accumulator before = sized();
+      ASSERT_TRUE(trees->reshade(base, term, std::nullopt, 2, before).completed);  // the trees' image of `term`
+      Accumulator unused = sized();
+      ASSERT_TRUE(over_trees->reshade(base, term, std::nullopt, 2, unused).completed);
+      std::mt19937 rng(seed);
+      const int family = static_cast<int>(seed % 4);
+      Accumulator over = sized();  // each image written over the last, as the previewer's
+      for (int e = 0; e < 6; ++e) {  // a drag: every edit against the same trees
+        linear_edit(s, rng, family, seed / 4);
+        const std::shared_ptr<const PreparedScene> edited = prepared(s);
+        if (edited->scene().lights.empty() && family >= 2) break;
+        ASSERT_TRUE(trees->recombines(*edited, kW, kH, term, std::nullopt, false)) << "edit " << e;
+        Accumulator live = uncleared();  // every pixel is written: no clearing needed
+        const PassStats stats = trees->recombine(*edited, term, 1 + e % 2, live);
+        ASSERT_TRUE(stats.completed);
+        EXPECT_EQ(live.samples, 1u);
+        const Accumulator exact = fresh_image(*edited, term);
+        ASSERT_TRUE(close(live, exact, before)) << "edit " << e << ", term " << term_name(term);
+        over.samples = 0;
+        ASSERT_TRUE(over_trees->recombine(*edited, term, 2, over, nullptr, e > 0).completed);
+        ASSERT_TRUE(close(over, exact, before)) << "written over the last, edit " << e << ", term " << term_name(term);
+        ++checked;
+      }
+      // The hand stops: the exact re-shade from the same trees, bit for bit a fresh render.
+      const std::shared_ptr<const PreparedScene> rest = prepared(s);
+      Accumulator exact = sized();
+      ASSERT_TRUE(trees->reshade(rest, term, std::nullopt, 2, exact).completed);
+      EXPECT_TRUE(same_bits(exact, fresh_image(*rest, term)));
     }
-    // The hand stops: the exact re-shade from the same trees, bit for bit a fresh render.
-    const std::shared_ptr<const PreparedScene> rest = prepared(s);
-    Accumulator exact = sized();
-    ASSERT_TRUE(trees->reshade(rest, term, std::nullopt, 2, exact).completed);
-    EXPECT_TRUE(same_bits(exact, fresh_image(*rest, term)));
-  }
-  EXPECT_GT(checked, 400);
+    EXPECT_GT(checked, 400);
+  });
 }
 
 // The moved light's live path on the lecture's kind of scene at a larger size, with the light
 // dragged across the image (lit and shadowed sides swap), through the packet kernels and ray by
 // ray, in every term; and a muted light moved gives the image without it.
 TEST(LiveSums, AMovedLightsShareIsCastAgainAtTheStoredHits) {
-  for (std::uint32_t seed = 200; seed < 230; ++seed) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    Scene s = random_scene_data(seed, seed % 3 == 0);
-    if (s.lights.empty()) continue;
-    const Term term = std::array<Term, 4>{Term::kFull, Term::kDiffuse, Term::kSpecular, Term::kReflection}[seed % 4];
-    const std::shared_ptr<const PreparedScene> base = prepared(s);
-    std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, seed % 2 == 0);
-    ASSERT_NE(trees, nullptr);
-    Accumulator before = sized();
-    ASSERT_TRUE(trees->reshade(base, term, std::nullopt, 2, before).completed);
-    Light& light = s.lights[seed % s.lights.size()];
-    for (int e = 0; e < 4; ++e) {
-      if (light.type == LightType::kPoint) light.position = Vec3(light.position.x * -0.7 + e, light.position.y, -light.position.z);
-      else light.direction = Vec3(-light.direction.x + 0.2 * e, light.direction.y, light.direction.z * 0.5);
-      if (e == 3) light.enabled = !light.enabled;
-      const std::shared_ptr<const PreparedScene> edited = prepared(s);
-      ASSERT_TRUE(trees->recombines(*edited, kW, kH, term, std::nullopt, false));
-      Accumulator live = uncleared();
-      ASSERT_TRUE(trees->recombine(*edited, term, 2, live, nullptr, e > 0).completed);
-      ASSERT_TRUE(close(live, fresh_image(*edited, term), before)) << "edit " << e << ", term " << term_name(term);
+  test::for_each_simd_target([&] {
+    for (std::uint32_t seed = 200; seed < 230; ++seed) {
+      SCOPED_TRACE("seed " + std::to_string(seed));
+      Scene s = random_scene_data(seed, seed % 3 == 0);
+      if (s.lights.empty()) continue;
+      const Term term = std::array<Term, 4>{Term::kFull, Term::kDiffuse, Term::kSpecular, Term::kReflection}[seed % 4];
+      const std::shared_ptr<const PreparedScene> base = prepared(s);
+      std::unique_ptr<RayTrees> trees = RayTrees::record(base, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, seed % 2 == 0);
+      ASSERT_NE(trees, nullptr);
+      Accumulator before = sized();
+      ASSERT_TRUE(trees->reshade(base, term, std::nullopt, 2, before).completed);
+      Light& light = s.lights[seed % s.lights.size()];
+      for (int e = 0; e < 4; ++e) {
+        if (light.type == LightType::kPoint) light.position = Vec3(light.position.x * -0.7 + e, light.position.y, -light.position.z);
+        else light.direction = Vec3(-light.direction.x + 0.2 * e, light.direction.y, light.direction.z * 0.5);
+        if (e == 3) light.enabled = !light.enabled;
+        const std::shared_ptr<const PreparedScene> edited = prepared(s);
+        ASSERT_TRUE(trees->recombines(*edited, kW, kH, term, std::nullopt, false));
+        Accumulator live = uncleared();
+        ASSERT_TRUE(trees->recombine(*edited, term, 2, live, nullptr, e > 0).completed);
+        ASSERT_TRUE(close(live, fresh_image(*edited, term), before)) << "edit " << e << ", term " << term_name(term);
+      }
     }
-  }
+  });
 }
 
 // A moved light's arrays count against the trees' budget: over it, no live path for the light

@@ -1,4 +1,4 @@
-// The packet tracer's whole specular powers (packet::specular_powers, src/core/packet/packet_pow_fma.cpp)
+// The packet tracer's whole specular powers (packet::specular_powers, src/core/packet/packet_kernels_powers.cpp, every instance)
 // against specular_factor, the one definition (std::pow): every lane the kernel decides holds
 // std::pow's double bit for bit, every other seen lane is left to the caller, and most lanes are
 // decided. Seeded, so a failure repeats. Deciding every lane (a margin of 0.5 ulp instead of
@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
 
 #include "core/packet/packet.h"
+#include "tests/support/simd_targets.h"
 #include "core/packet/packet_kernels.h"
 #include "core/shading/shading.h"
 
@@ -35,68 +37,87 @@ struct Lanes {
 }  // namespace
 
 TEST(PacketPowers, DecidedLanesHoldStdPowsDoubleBitForBit) {
-  if (!packet_fma_supported()) GTEST_SKIP() << "no AVX2 and FMA on this CPU";
-  std::mt19937_64 rng(2026);
-  std::uniform_real_distribution<double> unit(0, 1);
-  constexpr int kLanes = 4096;
-  for (int n : {1, 2, 3, 10, 20, 64, 200, 255, 300, 1000, 4095}) {
-    long decided = 0, total = 0;
-    Lanes lanes(kLanes);
-    for (int round = 0; round < 40; ++round) {
-      for (double& c : lanes.cos_spec) c = unit(rng);
-      lanes.run({n});
-      for (int i = 0; i < kLanes; ++i) {
-        ++total;
-        if (lanes.pending[i]) continue;
-        ++decided;
-        const double want = specular_factor(lanes.cos_spec[i], n);
-        ASSERT_TRUE(same_bits(lanes.spec[i], want))
-            << "n " << n << " cos " << lanes.cos_spec[i] << ": " << lanes.spec[i] << " instead of " << want;
+  if (!packet_fma_supported()) GTEST_SKIP() << "no fused multiply-add in this CPU's packet kernels";
+  test::for_each_simd_target([&] {
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<double> unit(0, 1);
+    constexpr int kLanes = 4096;
+    for (int n : {1, 2, 3, 10, 20, 64, 200, 255, 300, 1000, 4095}) {
+      long decided = 0, total = 0;
+      Lanes lanes(kLanes);
+      for (int round = 0; round < 40; ++round) {
+        for (double& c : lanes.cos_spec) c = unit(rng);
+        lanes.run({n});
+        for (int i = 0; i < kLanes; ++i) {
+          ++total;
+          if (lanes.pending[i]) continue;
+          ++decided;
+          const double want = specular_factor(lanes.cos_spec[i], n);
+          ASSERT_TRUE(same_bits(lanes.spec[i], want))
+              << "n " << n << " cos " << lanes.cos_spec[i] << ": " << lanes.spec[i] << " instead of " << want;
+        }
+      }
+      // About one lane in eight is too near a rounding boundary; results below 2^-968 go to std::pow
+      // too (x < 0.107 for n = 300, most lanes of the largest n).
+      const double share = static_cast<double>(decided) / static_cast<double>(total);
+      if (n <= 20) {
+        EXPECT_GT(share, 0.85) << "n " << n;
+      } else if (n <= 300) {
+        EXPECT_GT(share, 0.75) << "n " << n;
       }
     }
-    // About one lane in eight is too near a rounding boundary; results below 2^-968 go to std::pow
-    // too (x < 0.107 for n = 300, most lanes of the largest n).
-    const double share = static_cast<double>(decided) / static_cast<double>(total);
-    if (n <= 20) {
-      EXPECT_GT(share, 0.85) << "n " << n;
-    } else if (n <= 300) {
-      EXPECT_GT(share, 0.75) << "n " << n;
-    }
-  }
+  });
 }
 
 TEST(PacketPowers, EdgeBasesFollowSpecularFactor) {
-  if (!packet_fma_supported()) GTEST_SKIP() << "no AVX2 and FMA on this CPU";
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::vector<double> bases = {0.0,   -0.0,  -0.25, -1.0,   -3.0,   1.0,      1.0 + 1e-15, 2.0,  nan,
-                                     0.5,   0.25,  1e-300, 1e-20, 0.9999999999999999, 0x1p-60, 0.03, 0.7,  0.999};
-  Lanes lanes(static_cast<int>((bases.size() + 3) / 4 * 4));
-  std::copy(bases.begin(), bases.end(), lanes.cos_spec.begin());
-  for (int n : {1, 2, 10, 200}) {
-    lanes.run({n});
-    for (std::size_t i = 0; i < bases.size(); ++i) {
-      if (lanes.pending[i]) continue;
-      EXPECT_TRUE(same_bits(lanes.spec[i], specular_factor(bases[i], n))) << "n " << n << " base " << bases[i];
+  if (!packet_fma_supported()) GTEST_SKIP() << "no fused multiply-add in this CPU's packet kernels";
+  test::for_each_simd_target([&] {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> bases = {0.0,   -0.0,  -0.25, -1.0,   -3.0,   1.0,      1.0 + 1e-15, 2.0,  nan,
+                                       0.5,   0.25,  1e-300, 1e-20, 0.9999999999999999, 0x1p-60, 0.03, 0.7,  0.999};
+    Lanes lanes(packet::padded_lanes(static_cast<int>(bases.size())));
+    std::copy(bases.begin(), bases.end(), lanes.cos_spec.begin());
+    for (int n : {1, 2, 10, 200}) {
+      lanes.run({n});
+      for (std::size_t i = 0; i < bases.size(); ++i) {
+        if (lanes.pending[i]) continue;
+        EXPECT_TRUE(same_bits(lanes.spec[i], specular_factor(bases[i], n))) << "n " << n << " base " << bases[i];
+      }
+      // 0 and 1 (and what clamps to them) are exact; a power of two is left to std::pow.
+      for (std::size_t i : {0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u}) EXPECT_EQ(lanes.pending[i], 0) << "base " << bases[i];
+      EXPECT_EQ(lanes.pending[9], 1);   // 0.5^n
+      EXPECT_EQ(lanes.pending[10], 1);  // 0.25^n
     }
-    // 0 and 1 (and what clamps to them) are exact; a power of two is left to std::pow.
-    for (std::size_t i : {0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u}) EXPECT_EQ(lanes.pending[i], 0) << "base " << bases[i];
-    EXPECT_EQ(lanes.pending[9], 1);   // 0.5^n
-    EXPECT_EQ(lanes.pending[10], 1);  // 0.25^n
-  }
+  });
 }
 
+// Groups of the instance's lanes: one of mixed materials, one without ks, one left to std::pow.
 TEST(PacketPowers, OtherLanesAreLeftToTheCaller) {
-  if (!packet_fma_supported()) GTEST_SKIP() << "no AVX2 and FMA on this CPU";
-  Lanes lanes(12);
-  for (double& c : lanes.cos_spec) c = 0.8;
-  lanes.material = {0, 0, 1, 0, 2, 2, 2, 2, 1, 1, 1, 1};  // mixed; no ks; std::pow
-  lanes.seen = {1, 1, 1, 0, 1, 1, 0, 1, 1, 1, 1, 1};
-  lanes.run({10, -1, 0});
-  const std::vector<std::uint8_t> pending = {1, 1, 1, 0, 0, 0, 0, 0, 1, 1, 1, 1};
-  EXPECT_EQ(lanes.pending, pending);
-  EXPECT_EQ(lanes.spec[4], 0.0);  // a seen lane without ks: factor 0
-  EXPECT_EQ(lanes.spec[6], -7.0);  // not seen: untouched
-  EXPECT_EQ(lanes.spec[3], -7.0);
+  if (!packet_fma_supported()) GTEST_SKIP() << "no fused multiply-add in this CPU's packet kernels";
+  test::for_each_simd_target([&] {
+    if (!packet_fma_supported()) return;
+    const int w = packet_simd_lanes();
+    const auto at = [](int i) { return static_cast<std::size_t>(i); };
+    Lanes lanes(packet::padded_lanes(3 * w));
+    for (double& c : lanes.cos_spec) c = 0.8;
+    std::fill(lanes.seen.begin(), lanes.seen.end(), 0);
+    std::vector<std::uint8_t> pending(lanes.seen.size(), 0);
+    for (int j = 0; j < w; ++j) {
+      lanes.material[at(j)] = j == 2 ? 1 : 0;  // mixed
+      lanes.material[at(w + j)] = 2;           // no ks
+      lanes.material[at(2 * w + j)] = 1;       // std::pow
+      lanes.seen[at(j)] = j != 3;
+      lanes.seen[at(w + j)] = j != 2;
+      lanes.seen[at(2 * w + j)] = 1;
+      pending[at(j)] = j != 3;
+      pending[at(2 * w + j)] = 1;
+    }
+    lanes.run({10, -1, 0});
+    EXPECT_EQ(lanes.pending, pending);
+    EXPECT_EQ(lanes.spec[at(w)], 0.0);       // a seen lane without ks: factor 0
+    EXPECT_EQ(lanes.spec[at(w + 2)], -7.0);  // not seen: untouched
+    EXPECT_EQ(lanes.spec[3], -7.0);
+  });
 }
 
 TEST(PacketPowers, WholeExponentsWithinTheStepLimit) {

@@ -10,6 +10,7 @@
 #include "core/scene/display8.h"
 #include "core/render/quad_shading.h"
 #include "io/scene/scene_io.h"
+#include "tests/support/simd_targets.h"
 
 namespace phonglab {
 namespace {
@@ -44,30 +45,32 @@ double rmse(const Accumulator& a, const Accumulator& exact) {
 }
 
 TEST(QuadShading, ShadedPixelsAreExactAndTheErrorIsUnderAThirdOfTheHalfLevels) {
-  for (const char* name : {"lecture", "cornell", "shininess"}) {
-    LoadResult loaded = load_scene_arg(name);
-    ASSERT_TRUE(loaded.ok()) << name;
-    const PreparedScene scene(*loaded.scene);
-    constexpr int kW = 320, kH = 180;
-    const Accumulator exact = image(scene, kW, kH, false, 2);
-    const Accumulator quads = image(scene, kW, kH, true, 2);
-    const Accumulator half = image(scene, kW / 2, kH / 2, false, 2);
-    std::size_t same = 0, far = 0;
-    for (std::size_t i = 0; i < exact.sum.size(); ++i) {
-      if (std::memcmp(&exact.sum[i], &quads.sum[i], sizeof(Color)) == 0) ++same;
-      for (int k = 0; k < 3; ++k) {
-        if (std::abs(linear_to_srgb8(exact.sum[i][k]) - linear_to_srgb8(quads.sum[i][k])) > 3) ++far;
+  test::for_each_simd_target([&] {
+    for (const char* name : {"lecture", "cornell", "shininess"}) {
+      LoadResult loaded = load_scene_arg(name);
+      ASSERT_TRUE(loaded.ok()) << name;
+      const PreparedScene scene(*loaded.scene);
+      constexpr int kW = 320, kH = 180;
+      const Accumulator exact = image(scene, kW, kH, false, 2);
+      const Accumulator quads = image(scene, kW, kH, true, 2);
+      const Accumulator half = image(scene, kW / 2, kH / 2, false, 2);
+      std::size_t same = 0, far = 0;
+      for (std::size_t i = 0; i < exact.sum.size(); ++i) {
+        if (std::memcmp(&exact.sum[i], &quads.sum[i], sizeof(Color)) == 0) ++same;
+        for (int k = 0; k < 3; ++k) {
+          if (std::abs(linear_to_srgb8(exact.sum[i][k]) - linear_to_srgb8(quads.sum[i][k])) > 3) ++far;
+        }
       }
+      EXPECT_GT(same, exact.sum.size() / 4) << name << ": at least the shaded quarter is exact";
+      EXPECT_LT(far, exact.sum.size() / 1000) << name << ": hardly a channel more than 3 codes off";
+      EXPECT_LT(rmse(quads, exact), rmse(half, exact) / 3) << name;
+      const Accumulator one = image(scene, kW, kH, true, 1);
+      EXPECT_EQ(std::memcmp(one.sum.data(), quads.sum.data(), one.sum.size() * sizeof(Color)), 0) << name;
+      const Accumulator scalar = image(scene, kW, kH, true, 2, false);
+      EXPECT_EQ(std::memcmp(scalar.sum.data(), quads.sum.data(), scalar.sum.size() * sizeof(Color)), 0)
+          << name << ": the scalar tracer's rung is the packet tracer's";
     }
-    EXPECT_GT(same, exact.sum.size() / 4) << name << ": at least the shaded quarter is exact";
-    EXPECT_LT(far, exact.sum.size() / 1000) << name << ": hardly a channel more than 3 codes off";
-    EXPECT_LT(rmse(quads, exact), rmse(half, exact) / 3) << name;
-    const Accumulator one = image(scene, kW, kH, true, 1);
-    EXPECT_EQ(std::memcmp(one.sum.data(), quads.sum.data(), one.sum.size() * sizeof(Color)), 0) << name;
-    const Accumulator scalar = image(scene, kW, kH, true, 2, false);
-    EXPECT_EQ(std::memcmp(scalar.sum.data(), quads.sum.data(), scalar.sum.size() * sizeof(Color)), 0)
-        << name << ": the scalar tracer's rung is the packet tracer's";
-  }
+  });
 }
 
 }  // namespace

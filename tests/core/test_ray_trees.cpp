@@ -15,6 +15,7 @@
 #include "core/render/render.h"
 #include "tests/support/random_scenes.h"
 #include "tests/support/test_support.h"
+#include "tests/support/simd_targets.h"
 
 using namespace phonglab;
 
@@ -143,36 +144,38 @@ TEST(EditScope, SaysWhatAnEditInvalidates) {
 // Trees recorded in packets (where the packet tracer serves the scene) and ray by ray, on
 // alternate seeds: every re-shade from either is bit for bit a fresh render.
 TEST(RayTrees, ReshadedImagesAreBitIdenticalToFreshRenders) {
-  int edits = 0;
-  for (std::uint32_t seed = 1; seed <= 120; ++seed) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    Scene s = random_scene_data(seed, seed % 4 == 0);
-    std::shared_ptr<const PreparedScene> scene = prepared(s);
-    const bool packets = seed % 2 == 0;
-    std::unique_ptr<RayTrees> trees =
-        RayTrees::record(scene, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, packets);
-    ASSERT_NE(trees, nullptr);
-    ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh_image(*scene, Term::kFull, false)));
-    std::mt19937 rng(seed);
-    for (int e = 0; e < 9; ++e) {
-      if (e % 3 == 2) {
-        light_edit(s, rng);
-      } else if (e % 3 == 1) {
-        bounce_edit(s, rng);
-      } else {
-        shading_edit(s, rng);
+  test::for_each_simd_target([&] {
+    int edits = 0;
+    for (std::uint32_t seed = 1; seed <= 120; ++seed) {
+      SCOPED_TRACE("seed " + std::to_string(seed));
+      Scene s = random_scene_data(seed, seed % 4 == 0);
+      std::shared_ptr<const PreparedScene> scene = prepared(s);
+      const bool packets = seed % 2 == 0;
+      std::unique_ptr<RayTrees> trees =
+          RayTrees::record(scene, kW, kH, std::nullopt, 2, std::size_t{1} << 30, nullptr, packets);
+      ASSERT_NE(trees, nullptr);
+      ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh_image(*scene, Term::kFull, false)));
+      std::mt19937 rng(seed);
+      for (int e = 0; e < 9; ++e) {
+        if (e % 3 == 2) {
+          light_edit(s, rng);
+        } else if (e % 3 == 1) {
+          bounce_edit(s, rng);
+        } else {
+          shading_edit(s, rng);
+        }
+        scene = prepared(s);
+        ASSERT_NE(trees->scope_for(*scene, kW, kH, std::nullopt), EditScope::kRetrace);
+        const Accumulator fresh = fresh_image(*scene, Term::kFull, false);
+        ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh)) << "after edit " << e;
+        if (packet_cpu_supported()) {
+          ASSERT_TRUE(same_bits(fresh, fresh_image(*scene, Term::kFull, true)));
+        }
+        ++edits;
       }
-      scene = prepared(s);
-      ASSERT_NE(trees->scope_for(*scene, kW, kH, std::nullopt), EditScope::kRetrace);
-      const Accumulator fresh = fresh_image(*scene, Term::kFull, false);
-      ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull), fresh)) << "after edit " << e;
-      if (packet_cpu_supported()) {
-        ASSERT_TRUE(same_bits(fresh, fresh_image(*scene, Term::kFull, true)));
-      }
-      ++edits;
     }
-  }
-  EXPECT_GT(edits, 1000);
+    EXPECT_GT(edits, 1000);
+  });
 }
 
 // Each term image from the same trees, after an edit: what render_pass gives for that term.
@@ -229,31 +232,33 @@ TEST(RayTrees, OneReshadeGivesEveryTermImage) {
 // "Move your head": trees recorded with one eye re-shade to the image render_pass gives with
 // another (V changes at the primary hits only), with other edits between, and back to no eye.
 TEST(RayTrees, AnotherEyeIsAReshade) {
-  for (std::uint32_t seed = 300; seed <= 340; ++seed) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    Scene s = random_scene_data(seed);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> c(-2, 2);
-    const double scale = std::max(1e-3, glm::length(s.camera.position) / 6);
-    const auto random_eye = [&] { return std::optional<Vec3>(s.camera.position + Vec3(c(rng), c(rng), c(rng)) * scale); };
-    std::optional<Vec3> eye = seed % 2 ? random_eye() : std::nullopt;
-    std::unique_ptr<RayTrees> trees = RayTrees::record(prepared(s), kW, kH, eye, 2, std::size_t{1} << 30);
-    ASSERT_NE(trees, nullptr);
-    for (int e = 0; e < 4; ++e) {
-      eye = e == 3 ? std::nullopt : random_eye();
-      if (e == 1) light_edit(s, rng);
-      if (e == 2) shading_edit(s, rng);
-      const std::shared_ptr<const PreparedScene> scene = prepared(s);
-      ASSERT_GE(trees->scope_for(*scene, kW, kH, eye), EditScope::kShading);
-      Accumulator fresh;
-      fresh.reset(kW, kH);
-      RenderOptions options;
-      options.shading_eye = eye;
-      options.packets = false;
-      render_pass(*scene, options, fresh);
-      ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull, eye), fresh)) << "after edit " << e;
+  test::for_each_simd_target([&] {
+    for (std::uint32_t seed = 300; seed <= 340; ++seed) {
+      SCOPED_TRACE("seed " + std::to_string(seed));
+      Scene s = random_scene_data(seed);
+      std::mt19937 rng(seed);
+      std::uniform_real_distribution<double> c(-2, 2);
+      const double scale = std::max(1e-3, glm::length(s.camera.position) / 6);
+      const auto random_eye = [&] { return std::optional<Vec3>(s.camera.position + Vec3(c(rng), c(rng), c(rng)) * scale); };
+      std::optional<Vec3> eye = seed % 2 ? random_eye() : std::nullopt;
+      std::unique_ptr<RayTrees> trees = RayTrees::record(prepared(s), kW, kH, eye, 2, std::size_t{1} << 30);
+      ASSERT_NE(trees, nullptr);
+      for (int e = 0; e < 4; ++e) {
+        eye = e == 3 ? std::nullopt : random_eye();
+        if (e == 1) light_edit(s, rng);
+        if (e == 2) shading_edit(s, rng);
+        const std::shared_ptr<const PreparedScene> scene = prepared(s);
+        ASSERT_GE(trees->scope_for(*scene, kW, kH, eye), EditScope::kShading);
+        Accumulator fresh;
+        fresh.reset(kW, kH);
+        RenderOptions options;
+        options.shading_eye = eye;
+        options.packets = false;
+        render_pass(*scene, options, fresh);
+        ASSERT_TRUE(same_bits(reshaded_image(*trees, scene, Term::kFull, eye), fresh)) << "after edit " << e;
+      }
     }
-  }
+  });
 }
 
 TEST(RayTrees, RecordingStopsAtTheMemoryBudget) {

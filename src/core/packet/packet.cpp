@@ -1,5 +1,5 @@
 // The packet tracer's driver: set-up, the recursion levels, their hits and children, the scalar
-// steps between the AVX2 kernels (the light loop and culling: packet_lights.cpp).
+// steps between the kernels (the light loop and culling: packet_lights.cpp).
 #include "core/packet/packet.h"
 
 #include <algorithm>
@@ -18,24 +18,6 @@
 
 namespace phonglab {
 
-bool packet_cpu_supported() {
-#if defined(PHONGLAB_PACKET_AVX2)
-  static const bool supported = __builtin_cpu_supports("avx2");
-  return supported;
-#else
-  return false;
-#endif
-}
-
-bool packet_fma_supported() {
-#if defined(PHONGLAB_PACKET_AVX2)
-  static const bool supported = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return supported;
-#else
-  return false;
-#endif
-}
-
 int whole_power_exponent(double n) {
   if (!(n >= 1 && n <= 4096) || n != static_cast<double>(static_cast<int>(n))) return -1;
   const int k = static_cast<int>(n);
@@ -52,7 +34,7 @@ bool packet_tracing_applies(const PreparedScene& prepared) {
 namespace {
 
 // The kernels read BVH nodes and triangles in place, through plain structs of their own (the
-// AVX2 unit sees no glm): the layouts must agree.
+// kernels' units see no glm): the layouts must agree.
 static_assert(std::is_standard_layout_v<BvhNode> && std::is_standard_layout_v<Aabb> && std::is_standard_layout_v<Vec3>);
 static_assert(sizeof(Vec3) == 3 * sizeof(double) && offsetof(Aabb, lo) == 0 && offsetof(Aabb, hi) == sizeof(Vec3));
 static_assert(sizeof(BvhNode) == sizeof(packet::Node) && offsetof(BvhNode, box) == offsetof(packet::Node, box) &&

@@ -2,22 +2,28 @@
 //
 // All rays of a level go through each stage as one batch: nearest hits, the light loop with its
 // shadow rays (one batch per light), then the reflected and the refracted rays as the next
-// level's batches. The intersection tests, the camera rays and the light geometry run four
-// lanes wide (AVX2, packet_kernels.h); hit records, pow and the recursion set-up reuse the
-// scalar renderer's own functions. The image is bit-identical to render_sample's, pixel by
-// pixel (tests/core/test_packet.cpp), so the packet tracer is purely a matter of speed.
+// level's batches. The intersection tests, the camera rays and the light geometry run many lanes
+// wide in the packet kernels (packet_kernels.h: one source, an instance per instruction set:
+// AVX-512, AVX2, SIMD128 in the page, NEON, chosen at run time); hit records, pow and the
+// recursion set-up reuse the scalar renderer's own functions. The image is bit-identical to
+// render_sample's, pixel by pixel, on every instance (tests/core/test_packet.cpp,
+// tests/web/simd_check.cpp), so the packet tracer is purely a matter of speed.
 //
 // It serves the full image and the five term images ("move your head" included) of scenes
 // traced by brute force (no acceleration structure: a few spheres and triangles, any planes, no
-// mesh) and of scenes with the project's own SceneBvh (meshes, larger scenes: walked four rays
-// at a time), with the production numerics, on CPUs with AVX2; render_pass falls back to the
-// scalar renderer for everything else (another accelerator, the numerics variants, the debug
-// views).
+// mesh) and of scenes with the project's own SceneBvh (meshes, larger scenes: walked a packet
+// at a time), with the production numerics, where the CPU runs an instance; render_pass falls
+// back to the scalar renderer for everything else (another accelerator, the numerics variants,
+// the debug views).
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
 
+#include "core/packet/packet_lanes.h"
 #include "core/scene/camera.h"
 #include "core/shading/term.h"
 #include "core/scene/scene.h"
@@ -25,10 +31,21 @@
 
 namespace phonglab {
 
-// Whether this CPU runs the packet kernels (AVX2), checked once.
+// Whether this CPU runs an instance of the packet kernels (packet_kernels.h), chosen once.
 bool packet_cpu_supported();
-// The CPU also has fused multiply-add (packet::specular_powers needs it).
+// The instance has the whole powers' kernel (packet::specular_powers needs a fused multiply-add).
 bool packet_fma_supported();
+// The instance running: its name ("AVX-512", "AVX2", "SIMD128", "NEON"; "" for none) and lanes.
+const char* packet_simd_target();
+const char* packet_simd_key();  // as packet_simd_targets names it
+int packet_simd_lanes();
+// The instances this build has and this CPU runs, best first, by key ("avx512", "avx2",
+// "simd128", "neon", then "off": none, the scalar renderer).
+std::vector<std::string> packet_simd_targets();
+// Runs another of them from now on (PHONGLAB_SIMD=KEY in the environment chooses at start);
+// false, changing nothing, for a key not among them. For benchmarks and tests: not while a
+// render runs.
+bool set_packet_simd_target(std::string_view key);
 // The specular exponent n as the whole number packet::specular_powers raises to, or -1 where the
 // lanes take std::pow: n not whole, above 4096, or more than kWholePowerSteps squarings and
 // products (docs/speed.md).

@@ -1,6 +1,6 @@
 // The packet driver's batch buffers (internal to src/core/packet): a batch of rays and one
 // recursion level's hits, lights, children and terms, as structure of arrays with room for a
-// multiple of 4 lanes; what the light loop needs of a material.
+// multiple of packet::kBatchLanes lanes; what the light loop needs of a material.
 #pragma once
 
 #include <algorithm>
@@ -17,7 +17,7 @@ namespace phonglab::packet_driver {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-inline int padded(int n) { return (n + 3) & ~3; }
+inline int padded(int n) { return packet::padded_lanes(n); }
 
 // Grows v to at least n elements (never shrinks, never clears: lanes past the live ones keep
 // old but initialised values, which the kernels compute on and the driver ignores).
@@ -28,7 +28,7 @@ void fit(std::vector<T>& v, int n) {
 
 inline std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-// Rays of one batch as structure of arrays, with room for a multiple of 4 lanes.
+// Rays of one batch as structure of arrays, with room for a multiple of kBatchLanes lanes.
 struct RayBatch {
   std::vector<double> ox, oy, oz, dx, dy, dz;
   std::vector<double> weight;  // path weight from the camera
@@ -68,7 +68,7 @@ struct ColorArrays {
     fit(g, size);
     fit(b, size);
   }
-  void zero(int lanes) {  // lanes: a multiple of 4 within the room
+  void zero(int lanes) {  // lanes: a multiple of kBatchLanes within the room
     for (std::vector<double>* v : {&r, &g, &b}) std::fill_n(v->begin(), lanes, 0.0);
   }
   packet::ColorLanes lanes() { return {r.data(), g.data(), b.data()}; }

@@ -1,5 +1,6 @@
 #include "core/render/progressive.h"
 
+#include "core/packet/packet.h"
 #include "core/render/ray_trees.h"
 #include "core/render/scene_changes.h"
 
@@ -446,6 +447,8 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   back_.stats.mrays_per_s = pass.seconds > 0 ? static_cast<double>(pass.rays.total()) / pass.seconds * 1e-6 : 0;
   back_.stats.nan_count = job.nan_count;
   back_.stats.packets = pass.packets;
+  back_.stats.packet_kernels = pass.packets ? packet_simd_target() : "";
+  back_.stats.packet_lanes = pass.packets ? packet_simd_lanes() : 0;
   back_.stats.reshaded = job.reshaded && job.accum.samples == 1;
   back_.stats.live = job.live_shown;
   back_.stats.tree_bytes = job.trees ? job.trees->memory_bytes() : 0;

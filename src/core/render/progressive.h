@@ -64,6 +64,8 @@ struct FrameStats {
   double ms_since_restart = 0;        // from the restart to this image's publication
   std::uint64_t serial = 0;           // counts every image ever published (1, 2, ...)
   bool packets = false;               // PassStats::packets of that pass
+  const char* packet_kernels = "";    // then the packet kernels' instance ("AVX2": packet_simd_target)
+  int packet_lanes = 0;               // and its lanes
   bool reshaded = false;              // re-shaded from the stored ray trees, not traced
   bool live = false;                  // the live path's image of a linear edit (RayTrees::recombine):
                                       // equal to rounding; the exact re-shade follows when the hand stops

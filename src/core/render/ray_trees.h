@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/packet/packet_lanes.h"
 #include "core/accel/prepared_scene.h"
 #include "core/render/render.h"
 #include "core/shading/shading.h"
@@ -104,7 +105,7 @@ class RayTrees {
     double fresnel = 0;              // F at a mirror or glass hit (Bounce::fresnel)
   };
   // A tile's NodeGeometry, node by node, as structure of arrays that the packet tracer's
-  // four-wide kernels read in place: P, N, the geometric normal, V = -D (the ray reversed,
+  // kernels read in place: P, N, the geometric normal, V = -D (the ray reversed,
   // exactly), the offset and F. The arrays are at least lanes() long (pad() zeroes the lanes
   // past the last node) and keep their length when cleared, so a tile recorded again over them
   // writes in place.
@@ -112,7 +113,7 @@ class RayTrees {
     std::vector<double> px, py, pz, nx, ny, nz, gx, gy, gz, vx, vy, vz, offset, fresnel;
     std::size_t count = 0;      // nodes
     bool same_normals = false;  // after pad(): every node's geometric normal is its shading normal
-    std::size_t lanes() const { return (count + 3) / 4 * 4; }
+    std::size_t lanes() const { return static_cast<std::size_t>(packet::padded_lanes(static_cast<int>(count))); }
     void push_back(const NodeGeometry& g);
     NodeGeometry operator[](std::size_t i) const {
       return {{px[i], py[i], pz[i]}, {nx[i], ny[i], nz[i]}, {gx[i], gy[i], gz[i]}, {-vx[i], -vy[i], -vz[i]}, offset[i],
@@ -146,7 +147,7 @@ class RayTrees {
     std::vector<Color> values;         // per pixel: its value as last computed (for values_term_)
   };
   // The stored hits a moved light reaches in the walk of the trees' term, for the live path of
-  // its drag: one tile's, node by node beside Tile::geometry (which the four-wide light and
+  // its drag: one tile's, node by node beside Tile::geometry (which the packet light and
   // shadow kernels read in place), and each pixel's value without the light's share.
   struct LightHits {
     std::vector<std::uint8_t> active;  // 1 for a node the walk reaches with a part the light lights, padded

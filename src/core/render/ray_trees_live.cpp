@@ -214,7 +214,7 @@ Views views(const Tile& tile, const Vec3* eye, LightScratch& s) {
 
 // N.L, the specular cosine and the shadow ray at every node the walk reached: the packet
 // tracer's light kernel over the tile's geometry in place, or node by node through the same
-// rules (shading.h) without AVX2.
+// rules (shading.h) without packet kernels.
 void light_geometry(const Scene& scene, const Light& light, const Tile& tile, const LightHits& h, const Views& v,
                     bool packets, LightScratch& s) {
   const Geometry& g = tile.geometry;

@@ -27,12 +27,12 @@ struct ShadowRays {
   }
 };
 
-// blocked[i] for each of the rays towards `light` (one of the scene's), resized to whole lanes of
-// four; the rays are padded with idle lanes for the packet tracer (clear them before reuse).
+// blocked[i] for each of the rays towards `light` (one of the scene's), resized to whole groups of
+// packet::kBatchLanes lanes; the rays are padded with idle lanes for the packet tracer (clear them before reuse).
 inline void answer_shadow_rays(const PreparedScene& prepared, const Light& light, bool packets, ShadowRays& rays,
                                std::vector<std::uint8_t>& blocked) {
   const std::size_t n = rays.size();
-  blocked.assign((n + 3) / 4 * 4, 0);
+  blocked.assign(static_cast<std::size_t>(packet::padded_lanes(static_cast<int>(n))), 0);
   if (n == 0) return;
   if (!packets) {
     for (std::size_t i = 0; i < n; ++i) {

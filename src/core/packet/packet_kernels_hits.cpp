@@ -1,46 +1,45 @@
-// AVX2 kernels of the packet tracer: intersections (spheres and planes, loose triangles, the
-// hierarchy walk). See packet_kernels.h for the rules these files follow (only plain data,
-// intrinsics and functions with internal linkage: no header with inline code shared with the
-// rest of the program).
-#include "core/packet/packet_avx2_ops.h"
+// The packet tracer's kernels, intersections: spheres and planes, loose triangles, the hierarchy
+// walk. One source for every instance (packet_kernels.h): built once per instruction set, in the
+// namespace PHONGLAB_SIMD_NS, over the vocabulary of packet_simd_ops.h.
 #include "core/packet/packet_kernels.h"
+#include "core/packet/packet_simd_ops.h"
 
-namespace phonglab::packet {
+namespace phonglab::packet::PHONGLAB_SIMD_NS {
 
 namespace {
 
-// sphere_root(s, o, d, 0, t_max) for four rays: the root, or 0 where there is none.
+// sphere_root(s, o, d, 0, t_max) for kLanes rays: the root, or 0 where there is none.
 inline V sphere_root(V ox, V oy, V oz, V dx, V dy, V dz, double cx, double cy, double cz, double radius,
                      V t_max) {
-  const V zero = _mm256_setzero_pd();
+  const V zero = zeros();
   const V fx = ox - splat(cx), fy = oy - splat(cy), fz = oz - splat(cz);
   const V b = dot(fx, fy, fz, dx, dy, dz);
   const double r2 = radius * radius;
   const V c = dot(fx, fy, fz, fx, fy, fz) - splat(r2);
-  const V early = both(gt(c, zero), either(gt(b, zero), gt(negate(b) - splat(radius), t_max)));
+  const M early = both(gt(c, zero), either(gt(b, zero), gt(negate(b) - splat(radius), t_max)));
   const V px = fx - b * dx, py = fy - b * dy, pz = fz - b * dz;
   const V disc = splat(r2) - dot(px, py, pz, px, py, pz);
-  const V candidates = and_not(early, ge(disc, zero));
-  if (lanes_set(candidates) == 0) return zero;  // the usual case: the sphere is missed by all four
+  const M candidates = and_not(early, ge(disc, zero));
+  if (lanes_set(candidates) == 0) return zero;  // the usual case: the sphere is missed by every lane
   const V root = sqrt(disc);
-  const V signed_root = either(and_not(sign_bit(), root), both(sign_bit(), b));  // copysign(root, b)
+  const V signed_root = copysign(root, b);
   const V q = negate(b + signed_root);
   const V t0 = c / q;
-  const V swap = gt(t0, q);
+  const M swap = gt(t0, q);
   const V lo = pick(swap, q, t0), hi = pick(swap, t0, q);
-  const V lo_t = both(lt(lo, t_max), lo);
-  const V hi_t = both(lt(hi, t_max), hi);
-  const V t = pick(gt(lo, zero), lo_t, both(gt(hi, zero), hi_t));
-  return both(both(candidates, ne(q, zero)), t);
+  const V lo_t = keep(lt(lo, t_max), lo);
+  const V hi_t = keep(lt(hi, t_max), hi);
+  const V t = pick(gt(lo, zero), lo_t, keep(gt(hi, zero), hi_t));
+  return keep(both(candidates, ne(q, zero)), t);
 }
 
 // intersect_plane's distance, and whether it counts (t in (0, inf), the plane not parallel).
-inline V plane_t(V ox, V oy, V oz, V dx, V dy, V dz, const Planes& pl, int k, V* valid) {
+inline V plane_t(V ox, V oy, V oz, V dx, V dy, V dz, const Planes& pl, int k, M* valid) {
   const V nx = splat(pl.nx[k]), ny = splat(pl.ny[k]), nz = splat(pl.nz[k]);
   const V denom = dot(dx, dy, dz, nx, ny, nz);
   const V wx = splat(pl.px[k]) - ox, wy = splat(pl.py[k]) - oy, wz = splat(pl.pz[k]) - oz;
   const V t = dot(wx, wy, wz, nx, ny, nz) / denom;
-  const V zero = _mm256_setzero_pd();
+  const V zero = zeros();
   *valid = both(ne(denom, zero), both(gt(t, zero), lt(t, splat(kInf))));
   return t;
 }
@@ -49,7 +48,7 @@ inline V plane_t(V ox, V oy, V oz, V dx, V dy, V dz, const Planes& pl, int k, V*
 
 void nearest(const Spheres& spheres, const Planes& planes, const Rays& rays, int lanes, double* t_best,
              std::int32_t* id) {
-  for (int i = 0; i < lanes; i += 4) {
+  for (int i = 0; i < lanes; i += kLanes) {
     const V ox = load(rays.ox + i), oy = load(rays.oy + i), oz = load(rays.oz + i);
     const V dx = load(rays.dx + i), dy = load(rays.dy + i), dz = load(rays.dz + i);
     V best = load(t_best + i);
@@ -57,21 +56,21 @@ void nearest(const Spheres& spheres, const Planes& planes, const Rays& rays, int
     for (int j = 0; j < spheres.tested_count; ++j) {
       const int k = spheres.tested[j];
       const V t = sphere_root(ox, oy, oz, dx, dy, dz, spheres.cx[k], spheres.cy[k], spheres.cz[k], spheres.r[k], best);
-      const V hit = gt(t, _mm256_setzero_pd());
+      const M hit = gt(t, zeros());
       best = pick(hit, t, best);
       best_id = pick(hit, splat(k), best_id);
     }
     for (int k = 0; k < planes.count; ++k) {
-      V valid;
+      M valid;
       const V t = plane_t(ox, oy, oz, dx, dy, dz, planes, k, &valid);
-      const V hit = both(valid, lt(t, best));
+      const M hit = both(valid, lt(t, best));
       best = pick(hit, t, best);
       best_id = pick(hit, splat(spheres.count + k), best_id);
     }
     store(t_best + i, best);
-    alignas(32) double ids[4];
-    _mm256_store_pd(ids, best_id);
-    for (int j = 0; j < 4; ++j) {
+    double ids[kLanes];
+    store(ids, best_id);
+    for (int j = 0; j < kLanes; ++j) {
       if (ids[j] >= 0) id[i + j] = static_cast<std::int32_t>(ids[j]);
     }
   }
@@ -79,26 +78,26 @@ void nearest(const Spheres& spheres, const Planes& planes, const Rays& rays, int
 
 void occluded(const Spheres& spheres, const Planes& planes, const Rays& rays, const double* t_max, int lanes,
               std::uint8_t* occluded_out) {
-  for (int i = 0; i < lanes; i += 4) {
+  for (int i = 0; i < lanes; i += kLanes) {
     const V ox = load(rays.ox + i), oy = load(rays.oy + i), oz = load(rays.oz + i);
     const V dx = load(rays.dx + i), dy = load(rays.dy + i), dz = load(rays.dz + i);
     const V limit = load(t_max + i);
-    const V idle = _mm256_cmp_pd(limit, _mm256_setzero_pd(), _CMP_NGT_UQ);  // !(t_max > 0): no ray
-    if (lanes_set(idle) == 0xF) continue;
-    V blocked = _mm256_setzero_pd();
-    for (int j = 0; j < spheres.tested_count && lanes_set(either(blocked, idle)) != 0xF; ++j) {
+    const M idle = not_gt(limit, zeros());  // !(t_max > 0): no ray
+    if (lanes_set(idle) == kAll) continue;
+    M blocked = no_lanes();
+    for (int j = 0; j < spheres.tested_count && lanes_set(either(blocked, idle)) != kAll; ++j) {
       const int k = spheres.tested[j];
       const V t = sphere_root(ox, oy, oz, dx, dy, dz, spheres.cx[k], spheres.cy[k], spheres.cz[k], spheres.r[k], limit);
-      blocked = either(blocked, gt(t, _mm256_setzero_pd()));
+      blocked = either(blocked, gt(t, zeros()));
     }
-    for (int k = 0; k < planes.count && lanes_set(either(blocked, idle)) != 0xF; ++k) {
-      V valid;
+    for (int k = 0; k < planes.count && lanes_set(either(blocked, idle)) != kAll; ++k) {
+      M valid;
       const V t = plane_t(ox, oy, oz, dx, dy, dz, planes, k, &valid);
       blocked = either(blocked, both(valid, lt(t, limit)));
     }
     blocked = and_not(idle, blocked);
     const int bits = lanes_set(blocked);
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < kLanes; ++j) {
       if (bits & (1 << j)) occluded_out[i + j] = 1;
     }
   }
@@ -106,21 +105,21 @@ void occluded(const Spheres& spheres, const Planes& planes, const Rays& rays, co
 
 namespace {
 
-// Four rays with what the box test (BoxRay) and the watertight triangle test (make_shear) need.
+// kLanes rays with what the box test (BoxRay) and the watertight triangle test (make_shear) need.
 struct Packet {
   V o[3], d[3];
   V inv[3];             // 1 / d
   int sign[3];          // bit j set when lane j's d[a] has its sign bit set
   int octant(int j) const { return ((sign[0] >> j) & 1) | (((sign[1] >> j) & 1) << 1) | (((sign[2] >> j) & 1) << 2); }
   // The shear of each lane: its axis permutation as masks, its origin permuted, sx, sy, sz.
-  V kx_is0, kx_is1, ky_is0, ky_is1, kz_is0, kz_is1;
+  M kx_is0, kx_is1, ky_is0, ky_is1, kz_is0, kz_is1;
   V okx, oky, okz;
   V sx, sy, sz;
-  bool uniform;         // all four lanes share one permutation, namely kx, ky, kz
+  bool uniform;         // all lanes share one permutation, namely kx, ky, kz
   int kx, ky, kz;
 };
 
-// Four rays of `rays` from lane i with their triangle shear only (inv and sign unset: the loose
+// kLanes rays of `rays` from lane i with their triangle shear only (inv and sign unset: the loose
 // triangles test no boxes); `live`: the lanes that matter (the shear's `uniform` looks at those
 // only).
 Packet shear_packet(const Rays& rays, int i, int live) {
@@ -129,13 +128,13 @@ Packet shear_packet(const Rays& rays, int i, int live) {
   p.d[0] = load(rays.dx + i), p.d[1] = load(rays.dy + i), p.d[2] = load(rays.dz + i);
   // make_shear, lane by lane: kz is the axis of the largest |d| (the first of equals), kx and ky
   // follow it cyclically, swapped when d[kz] < 0.
-  const V ax = and_not(sign_bit(), p.d[0]), ay = and_not(sign_bit(), p.d[1]), az = and_not(sign_bit(), p.d[2]);
-  const V x_ge_y = ge(ax, ay);
-  const V kz0 = both(x_ge_y, ge(ax, az));
-  const V kz1 = and_not(x_ge_y, ge(ay, az));
-  const V kz2 = and_not(either(kz0, kz1), _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
+  const V ax = abs(p.d[0]), ay = abs(p.d[1]), az = abs(p.d[2]);
+  const M x_ge_y = ge(ax, ay);
+  const M kz0 = both(x_ge_y, ge(ax, az));
+  const M kz1 = and_not(x_ge_y, ge(ay, az));
+  const M kz2 = and_not(either(kz0, kz1), all_lanes());
   const V d_kz = pick(kz0, p.d[0], pick(kz1, p.d[1], p.d[2]));
-  const V swap = lt(d_kz, _mm256_setzero_pd());
+  const M swap = lt(d_kz, zeros());
   // One permutation for all live lanes (the usual case): kz and the swap agree.
   const int m0 = lanes_set(kz0) & live, m1 = lanes_set(kz1) & live, ms = lanes_set(swap) & live;
   p.uniform = (m0 == 0 || m0 == live) && (m1 == 0 || m1 == live) && (ms == 0 || ms == live);
@@ -152,9 +151,9 @@ Packet shear_packet(const Rays& rays, int i, int live) {
     return p;
   }
   p.kz_is0 = kz0, p.kz_is1 = kz1;
-  p.kx_is0 = pick(swap, kz1, kz2), p.kx_is1 = pick(swap, kz2, kz0);
-  p.ky_is0 = pick(swap, kz2, kz1), p.ky_is1 = pick(swap, kz0, kz2);
-  const auto select = [](V is0, V is1, const V* v) { return pick(is0, v[0], pick(is1, v[1], v[2])); };
+  p.kx_is0 = choose(swap, kz1, kz2), p.kx_is1 = choose(swap, kz2, kz0);
+  p.ky_is0 = choose(swap, kz2, kz1), p.ky_is1 = choose(swap, kz0, kz2);
+  const auto select = [](M is0, M is1, const V* v) { return pick(is0, v[0], pick(is1, v[1], v[2])); };
   p.okx = select(p.kx_is0, p.kx_is1, p.o), p.oky = select(p.ky_is0, p.ky_is1, p.o), p.okz = select(kz0, kz1, p.o);
   p.sx = select(p.kx_is0, p.kx_is1, p.d) * p.sz;
   p.sy = select(p.ky_is0, p.ky_is1, p.d) * p.sz;
@@ -165,7 +164,7 @@ Packet shear_packet(const Rays& rays, int i, int live) {
 Packet make_packet(const Rays& rays, int i, int live) {
   Packet p = shear_packet(rays, i, live);
   for (int a = 0; a < 3; ++a) p.inv[a] = splat(1.0) / p.d[a];
-  for (int a = 0; a < 3; ++a) p.sign[a] = lanes_set(p.d[a]);
+  for (int a = 0; a < 3; ++a) p.sign[a] = sign_lanes(p.d[a]);
   return p;
 }
 
@@ -184,33 +183,34 @@ struct Octant {
 };
 
 // hits_box for the lanes of one octant: whether each meets the box within (0, t_max].
-inline V hits_box(const Node& n, const Packet& p, const Octant& o, V t_max, const Hierarchy& h) {
-  V t0 = _mm256_setzero_pd();
+inline M hits_box(const Node& n, const Packet& p, const Octant& o, V t_max, const Hierarchy& h) {
+  V t0 = zeros();
   V t1 = t_max * splat(h.t_max_slack);
   for (int a = 0; a < 3; ++a) {
     const V tn = (splat(n.box[o.near[a]]) - p.o[a]) * p.inv[a];
     const V tf = (splat(n.box[o.far[a]]) - p.o[a]) * p.inv[a] * splat(h.far_widen);
-    t0 = _mm256_max_pd(tn, t0);  // tn > t0 ? tn : t0
-    t1 = _mm256_min_pd(tf, t1);  // tf < t1 ? tf : t1
+    t0 = max_of(tn, t0);  // tn > t0 ? tn : t0
+    t1 = min_of(tf, t1);  // tf < t1 ? tf : t1
   }
-  return _mm256_cmp_pd(t0, t1, _CMP_LE_OQ);
+  return le(t0, t1);
 }
 
 // Component k of vertex v for each lane, k being each lane's kx, ky or kz (masks is0, is1).
-inline V component(const Packet& p, const double* v, int uniform_k, V is0, V is1) {
+inline V component(const Packet& p, const double* v, int uniform_k, M is0, M is1) {
   if (p.uniform) return splat(v[uniform_k]);
   return pick(is0, splat(v[0]), pick(is1, splat(v[1]), splat(v[2])));
 }
 
-// The watertight test of intersect_triangle for four rays: the lanes with a hit at t in
+// The watertight test of intersect_triangle for kLanes rays: the lanes with a hit at t in
 // (0, inf), its t and (when asked) the barycentric weights.
 struct TriangleHit {
-  V valid, t, u, v, w, det;
+  M valid;
+  V t, u, v, w, det;
 };
 inline TriangleHit triangle_hit(const Packet& p, const double* v0) {
   const double* v1 = v0 + 3;
   const double* v2 = v0 + 6;
-  const V zero = _mm256_setzero_pd();
+  const V zero = zeros();
   const V a_x = component(p, v0, p.kx, p.kx_is0, p.kx_is1) - p.okx;
   const V a_y = component(p, v0, p.ky, p.ky_is0, p.ky_is1) - p.oky;
   const V a_z = component(p, v0, p.kz, p.kz_is0, p.kz_is1) - p.okz;
@@ -227,11 +227,11 @@ inline TriangleHit triangle_hit(const Packet& p, const double* v0) {
   r.u = cx * by - cy * bx;
   r.v = ax * cy - ay * cx;
   r.w = bx * ay - by * ax;
-  const V negative = either(either(lt(r.u, zero), lt(r.v, zero)), lt(r.w, zero));
-  const V positive = either(either(gt(r.u, zero), gt(r.v, zero)), gt(r.w, zero));
-  const V mixed = both(negative, positive);
-  if (lanes_set(mixed) == 0xF) {  // every lane passes outside an edge: no t to compute
-    r.valid = zero;
+  const M negative = either(either(lt(r.u, zero), lt(r.v, zero)), lt(r.w, zero));
+  const M positive = either(either(gt(r.u, zero), gt(r.v, zero)), gt(r.w, zero));
+  const M mixed = both(negative, positive);
+  if (lanes_set(mixed) == kAll) {  // every lane passes outside an edge: no t to compute
+    r.valid = no_lanes();
     return r;
   }
   r.det = (r.u + r.v) + r.w;
@@ -250,27 +250,27 @@ bool has_area(const double* v0) {
   return (c[0] * c[0] + c[1] * c[1]) + c[2] * c[2] > 0;
 }
 
-// What a walk keeps for four lanes. Nearest-hit: the nearest so far (t, id, prim, b1, b2).
+// What a walk keeps for kLanes lanes. Nearest-hit: the nearest so far (t, id, prim, b1, b2).
 // Any-hit: `best` holds each lane's fixed t_max, and `blocked` grows.
 struct Walk {
   V best, id, prim, b1, b2;
-  V blocked;
+  M blocked;
 };
 
 // Tests one triangle (id, prim) for the lanes of `m`.
 template <bool kAny>
-inline void test_triangle(const Packet& p, const double* v0, double id, double prim, V m, Walk& w) {
+inline void test_triangle(const Packet& p, const double* v0, double id, double prim, M m, Walk& w) {
   const TriangleHit hit = triangle_hit(p, v0);
   if constexpr (kAny) {
-    const V blocks = both(both(m, hit.valid), lt(hit.t, w.best));
+    const M blocks = both(both(m, hit.valid), lt(hit.t, w.best));
     if (lanes_set(blocks) == 0 || !has_area(v0)) return;
     w.blocked = either(w.blocked, blocks);
   } else {
     // replaces(): nearer, or as near and first in the scene's order (id, then prim).
     const V cand_id = splat(id), cand_prim = splat(prim);
-    const V first = either(lt(cand_id, w.id), both(_mm256_cmp_pd(cand_id, w.id, _CMP_EQ_OQ), lt(cand_prim, w.prim)));
-    const V tie = both(both(_mm256_cmp_pd(hit.t, w.best, _CMP_EQ_OQ), ge(w.id, _mm256_setzero_pd())), first);
-    const V take = both(both(m, hit.valid), either(lt(hit.t, w.best), tie));
+    const M first = either(lt(cand_id, w.id), both(eq(cand_id, w.id), lt(cand_prim, w.prim)));
+    const M tie = both(both(eq(hit.t, w.best), ge(w.id, zeros())), first);
+    const M take = both(both(m, hit.valid), either(lt(hit.t, w.best), tie));
     if (lanes_set(take) == 0 || !has_area(v0)) return;
     w.best = pick(take, hit.t, w.best);
     w.id = pick(take, cand_id, w.id);
@@ -282,7 +282,7 @@ inline void test_triangle(const Packet& p, const double* v0, double id, double p
 
 // The lanes still walking: all of `lanes` for a nearest-hit query, the unblocked ones for any-hit.
 template <bool kAny>
-inline V walking(V lanes, const Walk& w) {
+inline M walking(M lanes, const Walk& w) {
   if constexpr (kAny) return and_not(w.blocked, lanes);
   return lanes;
 }
@@ -290,17 +290,17 @@ inline V walking(V lanes, const Walk& w) {
 // traverse() over one BVH for the lanes of `lanes` (all of one octant): `leaf(first, count, m)`
 // tests a leaf's primitives for the lanes m whose own box test passed.
 template <bool kAny, class Leaf>
-inline void walk(const Node* nodes, const Packet& p, const Octant& octant, V lanes, Walk& w, const Hierarchy& h, Leaf&& leaf) {
+inline void walk(const Node* nodes, const Packet& p, const Octant& octant, M lanes, Walk& w, const Hierarchy& h, Leaf&& leaf) {
   std::uint32_t stack[128];
   int top = 0;
   std::uint32_t index = 0;
   for (;;) {
     const Node& node = nodes[index];
-    const V live = walking<kAny>(lanes, w);
+    const M live = walking<kAny>(lanes, w);
     if constexpr (kAny) {
       if (lanes_set(live) == 0) return;  // every lane blocked
     }
-    const V m = both(live, hits_box(node, p, octant, w.best, h));
+    const M m = both(live, hits_box(node, p, octant, w.best, h));
     if (lanes_set(m) != 0) {
       if (node.count > 0) {
         leaf(node.first, node.count, m);
@@ -318,14 +318,14 @@ inline void walk(const Node* nodes, const Packet& p, const Octant& octant, V lan
 
 // The whole hierarchy for the lanes of `lanes` (all of one octant).
 template <bool kAny>
-void walk_scene(const Hierarchy& h, const Packet& p, const Octant& octant, V lanes, Walk& w) {
-  const auto top_leaf = [&](std::uint32_t first, std::uint32_t count, V m) {
+void walk_scene(const Hierarchy& h, const Packet& p, const Octant& octant, M lanes, Walk& w) {
+  const auto top_leaf = [&](std::uint32_t first, std::uint32_t count, M m) {
     for (std::uint32_t slot = first; slot < first + count; ++slot) {
       const std::int32_t k = h.prim_index[slot];
       switch (h.prim_kind[slot]) {
         case 0: {  // sphere
           const V t = sphere_root(p.o[0], p.o[1], p.o[2], p.d[0], p.d[1], p.d[2], h.cx[k], h.cy[k], h.cz[k], h.r[k], w.best);
-          const V hit = both(walking<kAny>(m, w), gt(t, _mm256_setzero_pd()));
+          const M hit = both(walking<kAny>(m, w), gt(t, zeros()));
           if constexpr (kAny) {
             w.blocked = either(w.blocked, hit);
           } else {
@@ -341,7 +341,7 @@ void walk_scene(const Hierarchy& h, const Packet& p, const Octant& octant, V lan
         default: {  // mesh
           const MeshTree& mesh = h.meshes[k];
           const double id = h.mesh_id + k;
-          walk<kAny>(mesh.nodes, p, octant, m, w, h, [&](std::uint32_t f, std::uint32_t n, V mm) {
+          walk<kAny>(mesh.nodes, p, octant, m, w, h, [&](std::uint32_t f, std::uint32_t n, M mm) {
             for (std::uint32_t i = f; i < f + n; ++i) {
               test_triangle<kAny>(p, mesh.vertices + static_cast<long>(i) * h.triangle_stride, id, i,
                                   walking<kAny>(mm, w), w);
@@ -362,7 +362,7 @@ void walk_octants(const Hierarchy& h, const Packet& p, int lanes, Walk& w) {
     const int first = __builtin_ctz(static_cast<unsigned>(lanes));
     const int octant = p.octant(first);
     int group = 0;
-    for (int j = first; j < 4; ++j) {
+    for (int j = first; j < kLanes; ++j) {
       if ((lanes >> j) & 1 && p.octant(j) == octant) group |= 1 << j;
     }
     walk_scene<kAny>(h, p, Octant(octant), lane_mask(group), w);
@@ -370,11 +370,11 @@ void walk_octants(const Hierarchy& h, const Packet& p, int lanes, Walk& w) {
   }
 }
 
-// The lanes i .. i + 3 of a shadow batch that still need a query: a ray (t_max > 0) that
+// The lanes i .. i + kLanes - 1 of a shadow batch that still need a query: a ray (t_max > 0) that
 // nothing has occluded yet.
 int shadow_lanes(const double* t_max, const std::uint8_t* occluded, int i) {
-  int live = lanes_set(gt(load(t_max + i), _mm256_setzero_pd()));
-  for (int j = 0; j < 4; ++j) {
+  int live = lanes_set(gt(load(t_max + i), zeros()));
+  for (int j = 0; j < kLanes; ++j) {
     if (occluded[i + j]) live &= ~(1 << j);
   }
   return live;
@@ -384,26 +384,26 @@ int shadow_lanes(const double* t_max, const std::uint8_t* occluded, int i) {
 
 void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const NearestHits& out) {
   if (h.top == nullptr) return;
-  for (int i = 0; i < live; i += 4) {
-    const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;
+  for (int i = 0; i < live; i += kLanes) {
+    const int lanes = live_lanes(live - i);
     const Packet p = make_packet(rays, i, lanes);
     Walk w;
     w.best = load(out.t + i);
-    w.id = _mm256_set_pd(out.id[i + 3], out.id[i + 2], out.id[i + 1], out.id[i]);
+    w.id = from_int32(out.id + i);
     w.prim = splat(-1);
-    w.b1 = w.b2 = _mm256_setzero_pd();
-    w.blocked = _mm256_setzero_pd();
+    w.b1 = w.b2 = zeros();
+    w.blocked = no_lanes();
     walk_octants<false>(h, p, lanes, w);
-    alignas(32) double t[4], id[4], prim[4], b1[4], b2[4];
-    _mm256_store_pd(t, w.best);
-    _mm256_store_pd(id, w.id);
-    _mm256_store_pd(prim, w.prim);
-    _mm256_store_pd(b1, w.b1);
-    _mm256_store_pd(b2, w.b2);
+    double t[kLanes], id[kLanes], prim[kLanes], b1[kLanes], b2[kLanes];
+    store(t, w.best);
+    store(id, w.id);
+    store(prim, w.prim);
+    store(b1, w.b1);
+    store(b2, w.b2);
     // Whatever the hierarchy finds is nearer than the lane's plane hit (a tie goes to the plane,
     // first in the scene's order), so a nearer t is the mark of a new answer.
     const int changed = lanes_set(lt(w.best, load(out.t + i)));
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < kLanes; ++j) {
       if (!((lanes & changed) >> j & 1)) continue;
       out.t[i + j] = t[j];
       out.id[i + j] = static_cast<std::int32_t>(id[j]);
@@ -416,17 +416,17 @@ void hierarchy_nearest(const Hierarchy& h, const Rays& rays, int live, const Nea
 
 void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_max, int lanes, std::uint8_t* occluded_out) {
   if (h.top == nullptr) return;
-  for (int i = 0; i < lanes; i += 4) {
+  for (int i = 0; i < lanes; i += kLanes) {
     const int live = shadow_lanes(t_max, occluded_out, i);
     if (live == 0) continue;
     const Packet p = make_packet(rays, i, live);
     Walk w;
     w.best = load(t_max + i);
-    w.id = w.prim = w.b1 = w.b2 = _mm256_setzero_pd();
-    w.blocked = _mm256_setzero_pd();
+    w.id = w.prim = w.b1 = w.b2 = zeros();
+    w.blocked = no_lanes();
     walk_octants<true>(h, p, live, w);
     const int bits = lanes_set(w.blocked) & live;
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < kLanes; ++j) {
       if (bits & (1 << j)) occluded_out[i + j] = 1;
     }
   }
@@ -434,19 +434,19 @@ void hierarchy_occluded(const Hierarchy& h, const Rays& rays, const double* t_ma
 
 void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, const NearestHits& out) {
   if (tris.tested_count == 0) return;
-  for (int i = 0; i < live; i += 4) {
-    const int lanes = live - i >= 4 ? 0xF : (1 << (live - i)) - 1;
+  for (int i = 0; i < live; i += kLanes) {
+    const int lanes = live_lanes(live - i);
     const Packet p = shear_packet(rays, i, lanes);
-    const V m = lane_mask(lanes);
+    const M m = lane_mask(lanes);
     V best = load(out.t + i);
-    V id = _mm256_set_pd(out.id[i + 3], out.id[i + 2], out.id[i + 1], out.id[i]);
-    V b1 = _mm256_setzero_pd(), b2 = _mm256_setzero_pd();
+    V id = from_int32(out.id + i);
+    V b1 = zeros(), b2 = zeros();
     int changed = 0;
     for (int j = 0; j < tris.tested_count; ++j) {
       const int k = tris.tested[j];
       const double* v0 = tris.vertices + k * tris.stride;
       const TriangleHit hit = triangle_hit(p, v0);
-      const V take = both(both(m, hit.valid), lt(hit.t, best));
+      const M take = both(both(m, hit.valid), lt(hit.t, best));
       const int bits = lanes_set(take);
       if (bits == 0 || !has_area(v0)) continue;
       best = pick(take, hit.t, best);
@@ -456,12 +456,12 @@ void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, c
       changed |= bits;
     }
     if (changed == 0) continue;
-    alignas(32) double t_out[4], id_out[4], b1_out[4], b2_out[4];
-    _mm256_store_pd(t_out, best);
-    _mm256_store_pd(id_out, id);
-    _mm256_store_pd(b1_out, b1);
-    _mm256_store_pd(b2_out, b2);
-    for (int j = 0; j < 4; ++j) {
+    double t_out[kLanes], id_out[kLanes], b1_out[kLanes], b2_out[kLanes];
+    store(t_out, best);
+    store(id_out, id);
+    store(b1_out, b1);
+    store(b2_out, b2);
+    for (int j = 0; j < kLanes; ++j) {
       if (!((changed >> j) & 1)) continue;
       out.t[i + j] = t_out[j];
       out.id[i + j] = static_cast<std::int32_t>(id_out[j]);
@@ -474,25 +474,25 @@ void triangles_nearest(const LooseTriangles& tris, const Rays& rays, int live, c
 void triangles_occluded(const LooseTriangles& tris, const Rays& rays, const double* t_max, int lanes,
                         std::uint8_t* occluded_out) {
   if (tris.tested_count == 0) return;
-  for (int i = 0; i < lanes; i += 4) {
+  for (int i = 0; i < lanes; i += kLanes) {
     const int live = shadow_lanes(t_max, occluded_out, i);
     if (live == 0) continue;
     const Packet p = shear_packet(rays, i, live);
     const V limit = load(t_max + i);
-    V open = lane_mask(live);
+    M open = lane_mask(live);
     for (int j = 0; j < tris.tested_count && lanes_set(open) != 0; ++j) {
       const int k = tris.tested[j];
       const double* v0 = tris.vertices + k * tris.stride;
       const TriangleHit hit = triangle_hit(p, v0);
-      const V blocks = both(both(open, hit.valid), lt(hit.t, limit));
+      const M blocks = both(both(open, hit.valid), lt(hit.t, limit));
       if (lanes_set(blocks) == 0 || !has_area(v0)) continue;
       open = and_not(blocks, open);
     }
     const int bits = live & ~lanes_set(open);
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < kLanes; ++j) {
       if (bits & (1 << j)) occluded_out[i + j] = 1;
     }
   }
 }
 
-}  // namespace phonglab::packet
+}  // namespace phonglab::packet::PHONGLAB_SIMD_NS

@@ -1,6 +1,8 @@
-// The specular factor for a whole exponent, four lanes at a time, bit for bit std::pow's value
-// where it decides (packet_kernels.h, whole_powers). Built with -mavx2 -mfma: the double-double
-// products need the exact rounding error of a product, which one fused multiply-add gives.
+// The specular factor for a whole exponent, kLanes lanes at a time, bit for bit std::pow's value
+// where it decides (packet_kernels.h, whole_powers). One source for the instances whose
+// instruction set has a fused multiply-add (built with -mfma on x86): the double-double products
+// need the exact rounding error of a product, which one fused multiply-add gives. An instance
+// without it (SIMD128) builds no powers kernel, and every lane goes to std::pow.
 //
 // Why it is exact: x^n for a whole n is formed by squaring and multiplying in double-double
 // arithmetic (a value as hi + lo), whose relative error after the at most 24 steps allowed here is
@@ -12,19 +14,20 @@
 // (about one lane in eight, and results below 2^-968, where lo could be subnormal) the lane is
 // left to std::pow. Deciding every lane instead (a margin of 0.5 ulp) gives pow's neighbour on
 // about 0.08 % of lanes, which the seeded test of tests/core/test_packet_powers.cpp finds.
-#include <immintrin.h>
-
-#include "core/packet/packet_avx2_ops.h"
 #include "core/packet/packet_kernels.h"
+#include "core/packet/packet_simd_ops.h"
 
-namespace phonglab::packet {
+#if !defined(__FMA__)
+#error "the powers kernel needs a fused multiply-add: build it with one (-mfma)"
+#endif
+
+namespace phonglab::packet::PHONGLAB_SIMD_NS {
 namespace {
 
-struct Wide {  // four double-double values
+struct Wide {  // kLanes double-double values
   V hi, lo;
 };
-inline V fma(V a, V b, V c) { return _mm256_fmadd_pd(a, b, c); }
-inline V product_error(V a, V b, V p) { return _mm256_fmsub_pd(a, b, p); }  // a b - p, exactly
+inline V product_error(V a, V b, V p) { return fms(a, b, p); }  // a b - p, exactly
 inline Wide renormalise(V s, V e) {  // |s| >= |e|: s + e as hi + lo (Dekker's fast two-sum)
   const V hi = s + e;
   return {hi, e - (hi - s)};
@@ -41,16 +44,14 @@ inline Wide times(Wide a, V x) {
   const V p = a.hi * x;
   return {p, fma(a.lo, x, product_error(a.hi, x, p))};
 }
-inline V as_double(__m256i bits) { return _mm256_castsi256_pd(bits); }
-inline __m256i as_bits(V x) { return _mm256_castpd_si256(x); }
 
 }  // namespace
 
 namespace {
 
-// whole_powers for four lanes sharing the exponent n: writes the decided lanes, returns their bits.
-int four_powers(const double* cos_spec, int n, int bits, double* out) {
-  const V zero = _mm256_setzero_pd(), one = splat(1);
+// whole_powers for kLanes lanes sharing the exponent n: writes the decided lanes, returns their bits.
+int lane_powers(const double* cos_spec, int n, int bits, double* out) {
+  const V zero = zeros(), one = splat(1);
   // specular_factor's base: clamp_positive(clamp_unit(cos)); NaN and cos <= 0 give 0.
   const V c = load(cos_spec);
   const V clamped = pick(gt(c, one), one, c);
@@ -63,15 +64,13 @@ int four_powers(const double* cos_spec, int n, int bits, double* out) {
   }
   p = renormalise(p.hi, p.lo);
   // ulp(hi) = 2^(exponent - 52): hi's exponent field alone, scaled exactly (hi >= 2^-968).
-  const __m256i exponent = _mm256_and_si256(as_bits(p.hi), _mm256_set1_epi64x(0x7ff0000000000000LL));
-  const V ulp = as_double(exponent) * splat(0x1p-52);
-  const __m256i mantissa = _mm256_and_si256(as_bits(p.hi), _mm256_set1_epi64x(0x000fffffffffffffLL));
-  const V power_of_two = _mm256_castsi256_pd(_mm256_cmpeq_epi64(mantissa, _mm256_setzero_si256()));
-  const V abs_lo = _mm256_andnot_pd(sign_bit(), p.lo);
-  const V near = both(ge(p.hi, splat(0x1p-968)), _mm256_cmp_pd(abs_lo, splat(0.44) * ulp, _CMP_LE_OQ));
-  const V decided_power = and_not(power_of_two, near);
+  const V ulp = and_bits(p.hi, 0x7ff0000000000000ULL) * splat(0x1p-52);
+  // The mantissa field's bits, read as a double, are +0 exactly where they are all zero.
+  const M power_of_two = eq(and_bits(p.hi, 0x000fffffffffffffULL), zero);
+  const M near = both(ge(p.hi, splat(0x1p-968)), le(abs(p.lo), splat(0.44) * ulp));
+  const M decided_power = and_not(power_of_two, near);
   // x = 0 gives 0 (pow(0, n) for n > 0) and x = 1 gives 1 (pow(1, y) is 1 for every y).
-  const V ends = either(_mm256_cmp_pd(x, zero, _CMP_EQ_OQ), _mm256_cmp_pd(x, one, _CMP_EQ_OQ));
+  const M ends = either(eq(x, zero), eq(x, one));
   const int decided = lanes_set(either(ends, decided_power)) & bits;
   // The other lanes keep what they held: std::pow will write them.
   store(out, pick(lane_mask(decided), pick(ends, x, p.hi), load(out)));
@@ -82,22 +81,21 @@ int four_powers(const double* cos_spec, int n, int bits, double* out) {
 
 void specular_powers(const double* cos_spec, const std::int32_t* material, const int* power,
                      const std::uint8_t* seen, int lanes, double* spec, std::uint8_t* pending) {
-  for (int i = 0; i < lanes; i += 4) {
+  for (int i = 0; i < lanes; i += kLanes) {
     int bits = byte_lanes(seen + i);
     if (bits != 0) {
       const int first = __builtin_ctz(static_cast<unsigned>(bits));
-      const __m128i index = _mm_loadu_si128(reinterpret_cast<const __m128i*>(material + i));
-      const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(index, _mm_set1_epi32(material[i + first]))));
-      const int n = (same & bits) == bits ? power[material[i + first]] : -1;
+      const bool same = (equal_int32_lanes(material + i, material[i + first]) & bits) == bits;
+      const int n = same ? power[material[i + first]] : -1;
       if (n == 0) {  // no ks: the factor is never read, 0 as the scalar loop writes
-        store(spec + i, pick(lane_mask(bits), _mm256_setzero_pd(), load(spec + i)));
+        store(spec + i, pick(lane_mask(bits), zeros(), load(spec + i)));
         bits = 0;
       } else if (n > 0) {
-        bits &= ~four_powers(cos_spec + i, n, bits, spec + i);
+        bits &= ~lane_powers(cos_spec + i, n, bits, spec + i);
       }
     }
     put_byte_lanes(pending + i, spread_bits(bits));
   }
 }
 
-}  // namespace phonglab::packet
+}  // namespace phonglab::packet::PHONGLAB_SIMD_NS

@@ -1,0 +1,81 @@
+// The page's packet kernels (the SIMD128 instance, Emscripten's libm) against the page's scalar
+// renderer, bit for bit, run under Node.js: every embedded scene, then seeded random scenes
+// traced by brute force and through the hierarchy (tests/support/random_scenes.h), each
+// rendered with packets and without. The native suite's bit-identity tests, for the instance the
+// native build cannot run. Prints one line per failure and a summary; exit 0 when none differ.
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "core/packet/packet.h"
+#include "core/render/render.h"
+#include "io/embedded_scenes.h"
+#include "io/scene/scene_io.h"
+#include "tests/support/random_scenes.h"
+
+using namespace phonglab;
+
+namespace {
+
+struct Image {
+  Accumulator accum;
+  RayCounts rays;
+};
+
+Image render(const PreparedScene& scene, int w, int h, int passes, bool packets, std::uint32_t seed) {
+  Image out;
+  out.accum.reset(w, h);
+  RenderOptions opt;
+  opt.packets = packets;
+  opt.threads = 1;
+  opt.seed = seed;
+  render_passes(scene, opt, out.accum, passes);
+  return out;
+}
+
+// 0 when the two images have the same bits and ray counts, else 1 (and a line saying where).
+int compare(const std::string& what, const PreparedScene& scene, int w, int h, int passes, std::uint32_t seed) {
+  if (!packet_tracing_applies(scene)) return 0;
+  const Image a = render(scene, w, h, passes, true, seed);
+  const Image b = render(scene, w, h, passes, false, seed);
+  for (std::size_t i = 0; i < a.accum.sum.size(); ++i) {
+    if (std::memcmp(&a.accum.sum[i], &b.accum.sum[i], sizeof(Color)) != 0) {
+      std::printf("%s: pixel %zu differs: packets %.17g %.17g %.17g, scalar %.17g %.17g %.17g\n", what.c_str(), i,
+                  a.accum.sum[i].x, a.accum.sum[i].y, a.accum.sum[i].z, b.accum.sum[i].x, b.accum.sum[i].y,
+                  b.accum.sum[i].z);
+      return 1;
+    }
+  }
+  if (a.rays.total() != b.rays.total()) {
+    std::printf("%s: ray counts differ\n", what.c_str());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main() {
+  if (!packet_cpu_supported()) {
+    std::printf("simd-check: this build has no packet kernels\n");
+    return 1;
+  }
+  int scenes = 0, failed = 0;
+  for (const EmbeddedScene& e : embedded_scenes()) {
+    LoadResult loaded = load_scene_arg(std::string(e.name));
+    if (!loaded.ok()) continue;
+    const PreparedScene scene(std::move(*loaded.scene));
+    failed += compare(std::string(e.name), scene, 97, 61, 2, 0);
+    ++scenes;
+  }
+  for (std::uint32_t seed = 1; seed <= 120; ++seed) {
+    failed += compare("random " + std::to_string(seed), random_scene(seed), 29, 17, 2, seed);
+    const PreparedScene with_bvh(random_scene_data(seed, seed % 4 != 0),
+                                 [](const Scene& s) { return build_scene_accel(s, /*force_bvh=*/true); });
+    failed += compare("hierarchy " + std::to_string(seed), with_bvh, 23, 19, 2, seed);
+    scenes += 2;
+  }
+  std::printf("simd-check (%s, %d lanes): %d scenes, %d differ\n", packet_simd_target(), packet_simd_lanes(), scenes,
+              failed);
+  return failed == 0 ? 0 : 1;
+}
