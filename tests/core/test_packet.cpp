@@ -18,6 +18,7 @@
 #include "core/accel/prepared_scene.h"
 #include "experiments/numerics_variants.h"
 #include "core/packet/packet.h"
+#include "tests/support/kernel_checks.h"
 #include "tests/support/simd_targets.h"
 #include "core/render/render.h"
 #include "tests/support/random_scenes.h"
@@ -493,6 +494,13 @@ TEST(PacketTracer, ShadowCullingNeverDropsATriangleARayMeets) {
     }
   }
   EXPECT_EQ(culled_batches_checked, 40 * 20);
+}
+
+// The kernels' bounds pass over NaN coordinates on every instance (minpd's rule, which not every
+// instruction set's own min follows).
+TEST(PacketTracer, KernelBoundsPassOverNaN) {
+  REQUIRE_PACKETS();
+  test::for_each_simd_target([&] { EXPECT_EQ(test::nan_bounds_failures(), ""); });
 }
 
 TEST(PacketTracer, TheImageDoesNotDependOnTheThreadCount) {

@@ -87,6 +87,9 @@ let one_thread_image;
   check(off <= pixels / 1000, `spp=4 equals phonglab-cli render's PNG within 1 code on 99.9 % of pixels (${off} of ${pixels} differ)`);
   const state = await page.evaluate(() => window.phonglab.state());
   check(!state.isolated && state.threads === 1, 'from file:// the page is not cross-origin isolated and renders on one thread');
+  const status = await page.$eval('#status', (e) => e.textContent);
+  check(state.simd === 'SIMD128' && status.includes('SIMD128, one thread'),
+        `the page traces in packets with its SIMD128 kernels and says so (${state.simd}: "${status}")`);
   one_thread_image = web;
   await page.close();
 }
@@ -660,6 +663,21 @@ for (const [width, height, name] of [[1366, 768, 'laptop'], [390, 844, 'phone']]
   await page.$eval('#slider-ka', (e) => { e.value = '0.04'; e.dispatchEvent(new Event('input')); e.dispatchEvent(new Event('change')); });
   const text = await page.evaluate(() => window.phonglab.view.sceneJson());
   check(!/\d{9,}/.test(text), `the saved file holds the slider's numbers, no float noise (${(text.match(/"plastic": \{[^}]*"ka": [^\]]*\]/) || [''])[0]})`);
+  await page.close();
+}
+
+// 6j. A browser without WebAssembly SIMD (its validate refusing the page's probe) is told which
+// browsers run the page, instead of a blank page.
+{
+  const page = await browser.newPage();
+  await page.evaluateOnNewDocument(() => {
+    const validate = WebAssembly.validate;
+    WebAssembly.validate = (bytes) => (bytes.length === 31 ? false : validate(bytes));
+  });
+  await page.goto(url('scene=lecture&size=160x90&spp=1'));
+  await page.waitForTimeout(500);
+  const status = await page.$eval('#status', (e) => e.textContent);
+  check(/no WebAssembly SIMD/.test(status) && /Safari 16\.4/.test(status), `without SIMD the page says what it needs ("${status}")`);
   await page.close();
 }
 

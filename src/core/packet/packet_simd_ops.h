@@ -26,6 +26,9 @@
 #elif PHONGLAB_SIMD_WIDTH == 4
 #include <simde/x86/avx2.h>
 #include <simde/x86/fma.h>
+#if defined(__wasm_simd128__)
+#include <wasm_simd128.h>
+#endif
 #else
 #error "PHONGLAB_SIMD_WIDTH: 4 or 8"
 #endif
@@ -110,6 +113,15 @@ inline V fms(V a, V b, V c) { return _mm512_fmsub_pd(a, b, c); }  // a b - c, ro
 
 using V = simde__m256d;
 using M = simde__m256d;  // lanes of all ones or all zeros
+#if defined(__wasm_simd128__)
+// Two v128 halves as one V (register moves once compiled).
+inline V from_halves(v128_t lo, v128_t hi) {
+  const v128_t x[2] = {lo, hi};
+  V r;
+  std::memcpy(&r, x, sizeof r);
+  return r;
+}
+#endif
 
 inline V load(const double* p) { return simde_mm256_loadu_pd(p); }
 inline void store(double* p, V v) { simde_mm256_storeu_pd(p, v); }
@@ -136,16 +148,58 @@ inline V copysign(V magnitude, V sign) {
   return simde_mm256_or_pd(simde_mm256_andnot_pd(splat(-0.0), magnitude), simde_mm256_and_pd(splat(-0.0), sign));
 }
 inline V sqrt(V a) { return simde_mm256_sqrt_pd(a); }
-inline V min_of(V a, V b) { return simde_mm256_min_pd(a, b); }
-inline V max_of(V a, V b) { return simde_mm256_max_pd(a, b); }
-inline int lanes_set(M m) { return simde_mm256_movemask_pd(m); }
+#if defined(SIMDE_X86_AVX_NATIVE)
+inline V min_of(V a, V b) { return simde_mm256_min_pd(a, b); }  // minpd: a < b ? a : b
+inline V max_of(V a, V b) { return simde_mm256_max_pd(a, b); }  // maxpd: a > b ? a : b
+#elif defined(__wasm_simd128__)
+// SIMDe's min and max are the target's own elsewhere, which return NaN where either operand is
+// one (WebAssembly's f64x2.min, NEON's fmin), not minpd's second operand. SIMD128's pseudo-min
+// is minpd's rule exactly: pmin(b, a) = a < b ? a : b, one instruction per half.
+template <class Op>
+inline V per_half(V a, V b, Op op) {
+  v128_t x[2], y[2];
+  std::memcpy(x, &a, sizeof x);
+  std::memcpy(y, &b, sizeof y);
+  return from_halves(op(x[0], y[0]), op(x[1], y[1]));
+}
+inline V min_of(V a, V b) { return per_half(a, b, [](v128_t x, v128_t y) { return wasm_f64x2_pmin(y, x); }); }
+inline V max_of(V a, V b) { return per_half(a, b, [](v128_t x, v128_t y) { return wasm_f64x2_pmax(y, x); }); }
+#else
+// As above (NEON's fmin and fmax return NaN): minpd's rule written out.
+inline V min_of(V a, V b) { return pick(lt(a, b), a, b); }
+inline V max_of(V a, V b) { return pick(gt(a, b), a, b); }
+#endif
+#if defined(__wasm_simd128__)
+// SIMDe's movemask is a loop over the lanes in WebAssembly; SIMD128 has the instruction itself,
+// one per half of the four lanes (which are two v128 registers).
+inline int sign_lanes(V a) {
+  v128_t half[2];
+  std::memcpy(half, &a, sizeof half);
+  return wasm_i64x2_bitmask(half[0]) | wasm_i64x2_bitmask(half[1]) << 2;
+}
+#else
 inline int sign_lanes(V a) { return simde_mm256_movemask_pd(a); }
+#endif
+inline int lanes_set(M m) { return sign_lanes(m); }
+#if defined(__wasm_simd128__)
+// SIMDe 0.7.4 writes these as loops over the lanes in WebAssembly; SIMD128 has them.
+inline M lane_mask(int bits) {
+  const v128_t b = wasm_i64x2_splat(bits);
+  const v128_t lo = wasm_i64x2_make(1, 2), hi = wasm_i64x2_make(4, 8);
+  return from_halves(wasm_i64x2_eq(wasm_v128_and(b, lo), lo), wasm_i64x2_eq(wasm_v128_and(b, hi), hi));
+}
+inline V from_int32(const std::int32_t* p) {
+  const v128_t x = wasm_v128_load(p);
+  return from_halves(wasm_f64x2_convert_low_i32x4(x), wasm_f64x2_convert_low_i32x4(wasm_i32x4_shuffle(x, x, 2, 3, 0, 1)));
+}
+#else
 inline M lane_mask(int bits) {
   const simde__m256i select = simde_mm256_set_epi64x(8, 4, 2, 1);
   const simde__m256i set = simde_mm256_and_si256(simde_mm256_set1_epi64x(bits), select);
   return simde_mm256_castsi256_pd(simde_mm256_cmpeq_epi64(set, select));
 }
 inline V from_int32(const std::int32_t* p) { return simde_mm256_cvtepi32_pd(simde_mm_loadu_si128(p)); }
+#endif
 inline V gather(const double* base, const std::int64_t* index) {
   return simde_mm256_i64gather_pd(base, simde_mm256_loadu_si256(index), 8);
 }
@@ -156,6 +210,15 @@ inline V and_bits(V a, std::uint64_t pattern) {
   return simde_mm256_castsi256_pd(
       simde_mm256_and_si256(simde_mm256_castpd_si256(a), simde_mm256_set1_epi64x(static_cast<std::int64_t>(pattern))));
 }
+#if defined(__wasm_simd128__)
+inline int equal_int32_lanes(const std::int32_t* p, std::int32_t v) {
+  return wasm_i32x4_bitmask(wasm_i32x4_eq(wasm_v128_load(p), wasm_i32x4_splat(v)));
+}
+inline int negative_int32_lanes(const std::int32_t* p) { return wasm_i32x4_bitmask(wasm_v128_load(p)); }
+inline int byte_lanes(const std::uint8_t* p) {
+  return ~wasm_i8x16_bitmask(wasm_i8x16_eq(wasm_v128_load32_zero(p), wasm_i8x16_splat(0))) & kAll;
+}
+#else
 inline int equal_int32_lanes(const std::int32_t* p, std::int32_t v) {
   const simde__m128i x = simde_mm_loadu_si128(p);
   return simde_mm_movemask_ps(simde_mm_castsi128_ps(simde_mm_cmpeq_epi32(x, simde_mm_set1_epi32(v))));
@@ -169,6 +232,7 @@ inline int byte_lanes(const std::uint8_t* p) {
   const simde__m128i bytes = simde_mm_cvtsi32_si128(word);
   return ~simde_mm_movemask_epi8(simde_mm_cmpeq_epi8(bytes, simde_mm_setzero_si128())) & kAll;
 }
+#endif
 #if defined(__FMA__)
 inline V fma(V a, V b, V c) { return simde_mm256_fmadd_pd(a, b, c); }
 inline V fms(V a, V b, V c) { return simde_mm256_fmsub_pd(a, b, c); }
