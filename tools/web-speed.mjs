@@ -68,7 +68,7 @@ if (server) server.close();
 const mrays = (ms) => (rays / ms / 1e3).toFixed(1);
 const web = median(rows.web), scalar = median(rows.scalar), packet = median(rows.packet);
 console.log(`${scene} ${size}, ${threads} thread(s), ${rays} rays a frame, medians of ${rounds} rounds:`);
-const pad = (text) => text.padEnd(32);
+const pad = (text) => text.padEnd(36);
 console.log(`  ${pad(`web page (WebAssembly, ${page_simd || 'scalar'})`)}${web.toFixed(1)} ms  ${mrays(web)} Mrays/s  ${(scalar / web).toFixed(2)}x native scalar`);
 console.log(`  ${pad('native scalar')}${scalar.toFixed(1)} ms  ${mrays(scalar)} Mrays/s  1.00x`);
 console.log(`  ${pad(`native ${tracer}`)}${packet.toFixed(1)} ms  ${mrays(packet)} Mrays/s  ${(scalar / packet).toFixed(2)}x native scalar`);

@@ -2,7 +2,9 @@
 # but its own functions (PREFIX*, default phonglab::packet::) and local functions. A weak function there (a template, a glm or std helper not inlined)
 # could be picked by the linker for the whole program, and would then run AVX2 instructions on
 # a CPU without them. Data cannot: weak objects (V, such as the typeinfo UndefinedBehaviorSanitizer
-# emits) and read-only or local data pass. Usage: cmake -DNM=nm -DOBJECTS="a.o;b.o" [-DPREFIX=ns::] -P this-file
+# emits) and read-only or local data pass. With -DOBJDUMP=objdump, the code may hold no fused
+# multiply-add either (x86's vfmadd and kin): only the whole powers' kernel rounds a product and a
+# sum once. Usage: cmake -DNM=nm -DOBJECTS="a.o;b.o" [-DPREFIX=ns::] [-DOBJDUMP=objdump] -P this-file
 if(NOT PREFIX)
   set(PREFIX "phonglab::packet::")
 endif()
@@ -29,3 +31,16 @@ foreach(obj IN LISTS OBJECTS)
   endif()
   message(STATUS "${obj}: ${kernels} kernels, no other shared code")
 endforeach()
+if(OBJDUMP)
+  foreach(obj IN LISTS OBJECTS)
+    execute_process(COMMAND ${OBJDUMP} -d ${obj} OUTPUT_VARIABLE code RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "objdump failed on ${obj}")
+    endif()
+    string(REGEX MATCH "vfn?m(add|sub)[a-z0-9]*" fused "${code}")
+    if(fused)
+      message(FATAL_ERROR "${obj} fuses a product and a sum (${fused}): build it with -ffp-contract=off")
+    endif()
+    message(STATUS "${obj}: no fused multiply-add")
+  endforeach()
+endif()

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/packet/packet.h"
+#include "tests/support/kernel_checks.h"
 #include "tests/support/simd_targets.h"
 #include "core/packet/packet_kernels.h"
 #include "core/shading/shading.h"
@@ -39,31 +40,16 @@ struct Lanes {
 TEST(PacketPowers, DecidedLanesHoldStdPowsDoubleBitForBit) {
   if (!packet_fma_supported()) GTEST_SKIP() << "no fused multiply-add in this CPU's packet kernels";
   test::for_each_simd_target([&] {
-    std::mt19937_64 rng(2026);
-    std::uniform_real_distribution<double> unit(0, 1);
-    constexpr int kLanes = 4096;
-    for (int n : {1, 2, 3, 10, 20, 64, 200, 255, 300, 1000, 4095}) {
-      long decided = 0, total = 0;
-      Lanes lanes(kLanes);
-      for (int round = 0; round < 40; ++round) {
-        for (double& c : lanes.cos_spec) c = unit(rng);
-        lanes.run({n});
-        for (int i = 0; i < kLanes; ++i) {
-          ++total;
-          if (lanes.pending[i]) continue;
-          ++decided;
-          const double want = specular_factor(lanes.cos_spec[i], n);
-          ASSERT_TRUE(same_bits(lanes.spec[i], want))
-              << "n " << n << " cos " << lanes.cos_spec[i] << ": " << lanes.spec[i] << " instead of " << want;
-        }
-      }
-      // About one lane in eight is too near a rounding boundary; results below 2^-968 go to std::pow
-      // too (x < 0.107 for n = 300, most lanes of the largest n).
-      const double share = static_cast<double>(decided) / static_cast<double>(total);
+    const test::PowerCheck check = test::check_powers(40);
+    EXPECT_EQ(check.failures, "");
+    for (std::size_t e = 0; e < test::kPowerExponents.size(); ++e) {
+      // About one lane in eight is too near a rounding boundary; results below 2^-968 go to
+      // std::pow too (x < 0.107 for n = 300, most lanes of the largest n).
+      const int n = test::kPowerExponents[e];
       if (n <= 20) {
-        EXPECT_GT(share, 0.85) << "n " << n;
+        EXPECT_GT(check.decided[e], 0.85) << "n " << n;
       } else if (n <= 300) {
-        EXPECT_GT(share, 0.75) << "n " << n;
+        EXPECT_GT(check.decided[e], 0.75) << "n " << n;
       }
     }
   });

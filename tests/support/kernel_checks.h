@@ -2,13 +2,17 @@
 // runs (tests/core/test_packet.cpp natively, tests/web/simd_check.cpp in the page's engine).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "core/packet/packet_kernels.h"
+#include "core/shading/shading.h"
 
 namespace phonglab::test {
 
@@ -32,6 +36,47 @@ inline std::string nan_bounds_failures() {
     }
   }
   return failures;
+}
+
+// The whole powers' kernel (packet::specular_powers) against specular_factor (std::pow, this
+// build's libm): seeded bases in [0, 1) for each exponent of kPowerExponents, `rounds` batches of
+// 4096 lanes. Every lane the kernel decides must hold std::pow's double bit for bit: `failures`
+// names the first few that do not; `decided` is the share of lanes decided, per exponent. Only
+// where packet_fma_supported().
+inline constexpr std::array<int, 11> kPowerExponents = {1, 2, 3, 10, 20, 64, 200, 255, 300, 1000, 4095};
+struct PowerCheck {
+  std::string failures;
+  std::array<double, kPowerExponents.size()> decided{};
+};
+inline PowerCheck check_powers(int rounds) {
+  constexpr int kLanes = 4096;
+  PowerCheck check;
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<double> cos_spec(kLanes), spec(kLanes);
+  const std::vector<std::int32_t> material(kLanes, 0);
+  const std::vector<std::uint8_t> seen(kLanes, 1);
+  std::vector<std::uint8_t> pending(kLanes);
+  int wrong = 0;
+  for (std::size_t e = 0; e < kPowerExponents.size(); ++e) {
+    const int n = kPowerExponents[e];
+    long decided = 0;
+    for (int round = 0; round < rounds; ++round) {
+      for (double& c : cos_spec) c = unit(rng);
+      packet::specular_powers(cos_spec.data(), material.data(), &n, seen.data(), kLanes, spec.data(), pending.data());
+      for (std::size_t i = 0; i < cos_spec.size(); ++i) {
+        if (pending[i]) continue;
+        ++decided;
+        const double want = specular_factor(cos_spec[i], n);
+        if (std::memcmp(&spec[i], &want, sizeof want) != 0 && ++wrong <= 5) {
+          check.failures += "n " + std::to_string(n) + " cos " + std::to_string(cos_spec[i]) + ": not std::pow's double\n";
+        }
+      }
+    }
+    check.decided[e] = static_cast<double>(decided) / (static_cast<double>(rounds) * kLanes);
+  }
+  if (wrong > 5) check.failures += std::to_string(wrong) + " lanes in all\n";
+  return check;
 }
 
 }  // namespace phonglab::test

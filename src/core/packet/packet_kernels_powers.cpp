@@ -17,7 +17,7 @@
 #include "core/packet/packet_kernels.h"
 #include "core/packet/packet_simd_ops.h"
 
-#if !defined(__FMA__)
+#if !defined(PHONGLAB_SIMD_FMA)
 #error "the powers kernel needs a fused multiply-add: build it with one (-mfma)"
 #endif
 

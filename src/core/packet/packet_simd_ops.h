@@ -28,6 +28,8 @@
 #include <simde/x86/fma.h>
 #if defined(__wasm_simd128__)
 #include <wasm_simd128.h>
+#elif defined(__aarch64__)
+#include <arm_neon.h>
 #endif
 #else
 #error "PHONGLAB_SIMD_WIDTH: 4 or 8"
@@ -105,6 +107,7 @@ inline int byte_lanes(const std::uint8_t* p) {
   return ~_mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_setzero_si128())) & kAll;
 }
 #if defined(__FMA__)
+#define PHONGLAB_SIMD_FMA 1
 inline V fma(V a, V b, V c) { return _mm512_fmadd_pd(a, b, c); }  // a b + c, rounded once
 inline V fms(V a, V b, V c) { return _mm512_fmsub_pd(a, b, c); }  // a b - c, rounded once
 #endif
@@ -234,8 +237,29 @@ inline int byte_lanes(const std::uint8_t* p) {
 }
 #endif
 #if defined(__FMA__)
+#define PHONGLAB_SIMD_FMA 1
 inline V fma(V a, V b, V c) { return simde_mm256_fmadd_pd(a, b, c); }
 inline V fms(V a, V b, V c) { return simde_mm256_fmsub_pd(a, b, c); }
+#elif defined(__aarch64__)
+// SIMDe's fmadd is a product and a sum, rounded twice, where x86's FMA is not native: NEON's
+// own fused instructions instead, half by half.
+inline V neon_halves(float64x2_t lo, float64x2_t hi) {
+  const float64x2_t x[2] = {lo, hi};
+  V r;
+  std::memcpy(&r, x, sizeof r);
+  return r;
+}
+inline V fma(V a, V b, V c) {  // c + a b, rounded once
+  float64x2_t x[2], y[2], z[2];
+  std::memcpy(x, &a, sizeof x), std::memcpy(y, &b, sizeof y), std::memcpy(z, &c, sizeof z);
+  return neon_halves(vfmaq_f64(z[0], x[0], y[0]), vfmaq_f64(z[1], x[1], y[1]));
+}
+inline V fms(V a, V b, V c) {  // a b - c = -(c - a b), rounded once
+  float64x2_t x[2], y[2], z[2];
+  std::memcpy(x, &a, sizeof x), std::memcpy(y, &b, sizeof y), std::memcpy(z, &c, sizeof z);
+  return neon_halves(vnegq_f64(vfmsq_f64(z[0], x[0], y[0])), vnegq_f64(vfmsq_f64(z[1], x[1], y[1])));
+}
+#define PHONGLAB_SIMD_FMA 1
 #endif
 
 #endif

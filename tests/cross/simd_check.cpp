@@ -1,8 +1,10 @@
-// The page's packet kernels (the SIMD128 instance, Emscripten's libm) against the page's scalar
-// renderer, bit for bit, run under Node.js: every embedded scene, then seeded random scenes
-// traced by brute force and through the hierarchy (tests/support/random_scenes.h), each
-// rendered with packets and without. The native suite's bit-identity tests, for the instance the
-// native build cannot run. Prints one line per failure and a summary; exit 0 when none differ.
+// The packet kernels' instance of a build the native test suite cannot run against that build's
+// own scalar renderer, bit for bit: the page's SIMD128 instance (Emscripten's libm) under
+// Node.js, and the aarch64 build's NEON instance under qemu-aarch64 (tests/cross/CMakeLists.txt).
+// The kernels' NaN rule and whole powers (tests/support/kernel_checks.h), every embedded scene (where the build
+// has the scene files: PHONGLAB_CHECK_EMBEDDED_SCENES), then seeded random scenes traced by brute
+// force and through the hierarchy (tests/support/random_scenes.h), each rendered with packets and
+// without. Prints one line per failure and a summary; exit 0 when none differ.
 //
 //   node phonglab_simd_check.js                      the check
 //   node phonglab_simd_check.js bench SCENE W H N    N frames of SCENE with packets and without,
@@ -18,8 +20,10 @@
 
 #include "core/packet/packet.h"
 #include "core/render/render.h"
+#if defined(PHONGLAB_CHECK_EMBEDDED_SCENES)
 #include "io/embedded_scenes.h"
 #include "io/scene/scene_io.h"
+#endif
 #include "tests/support/kernel_checks.h"
 #include "tests/support/random_scenes.h"
 
@@ -68,6 +72,7 @@ int compare(const std::string& what, const PreparedScene& scene, int w, int h, i
 
 }  // namespace
 
+#if defined(PHONGLAB_CHECK_EMBEDDED_SCENES)
 int bench(const char* name, int w, int h, int frames) {
   LoadResult loaded = load_scene_arg(name);
   if (!loaded.ok()) return 2;
@@ -86,19 +91,24 @@ int bench(const char* name, int w, int h, int frames) {
               scalar, scalar / packets);
   return 0;
 }
+#endif
 
-int main(int argc, char** argv) {
+int main([[maybe_unused]] int argc, [[maybe_unused]] char** argv) {
+#if defined(PHONGLAB_CHECK_EMBEDDED_SCENES)
   if (argc == 6 && std::string(argv[1]) == "bench") {
     return bench(argv[2], std::atoi(argv[3]), std::atoi(argv[4]), std::atoi(argv[5]));
   }
+#endif
   if (!packet_cpu_supported()) {
     std::printf("simd-check: this build has no packet kernels\n");
     return 1;
   }
   int scenes = 0, failed = 0;
-  const std::string kernel_failures = test::nan_bounds_failures();
+  std::string kernel_failures = test::nan_bounds_failures();
+  if (packet_fma_supported()) kernel_failures += test::check_powers(4).failures;
   std::printf("%s", kernel_failures.c_str());
   failed += !kernel_failures.empty();
+#if defined(PHONGLAB_CHECK_EMBEDDED_SCENES)
   for (const EmbeddedScene& e : embedded_scenes()) {
     LoadResult loaded = load_scene_arg(std::string(e.name));
     if (!loaded.ok()) continue;
@@ -106,6 +116,7 @@ int main(int argc, char** argv) {
     failed += compare(std::string(e.name), scene, 97, 61, 2, 0);
     ++scenes;
   }
+#endif
   for (std::uint32_t seed = 1; seed <= 120; ++seed) {
     failed += compare("random " + std::to_string(seed), random_scene(seed), 29, 17, 2, seed);
     const PreparedScene with_bvh(random_scene_data(seed, seed % 4 != 0),
