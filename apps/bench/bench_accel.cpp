@@ -422,8 +422,8 @@ class AccelBench {
         << " frames with " << threads_ << " threads and " << frames_single_
         << " with 1 thread, the contenders and the thread counts alternating frame by frame: the project's default "
            "path (PreparedScene:"
-           " brute force for a few spheres and triangles, else its BVH; traced by the packet tracer where the CPU has"
-           " AVX2, four rays at a time, through the BVH too), the scalar renderer where the default is the packet "
+           " brute force for a few spheres and triangles, else its BVH; traced by the packet tracer where the CPU runs"
+           " its kernels, a batch of rays at a time, through the BVH too), the scalar renderer where the default is the packet "
            "tracer"
            " (the same image, ray by ray), its BVH forced on every scene, and "
         << (kEmbree ? "Embree 3 single-ray queries (rtcIntersect1 for the nearest hit, rtcOccluded1 for shadow rays; "
@@ -516,7 +516,9 @@ class AccelBench {
         secs.push_back(last.seconds);
       }
       last.seconds = median(secs);
-      rows.push_back({"packet tracer kernels (AVX2, 4 lanes, 16x16 tiles)", last});
+      rows.push_back({"packet tracer kernels (" + std::string(packet_simd_target()) + ", " +
+                          std::to_string(packet_simd_lanes()) + " lanes, 16x16 tiles)",
+                      last});
     }
 #ifdef PHONGLAB_HAVE_EMBREE
     {
