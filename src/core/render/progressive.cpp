@@ -314,13 +314,17 @@ void ProgressiveRenderer::run() {
       job.accum_live = false;
       continue;
     }
-    // A re-shade says nothing of a traced pass's time. A probe's pass is the level's time now:
-    // the older ones were why it was not run.
-    if (!job.reshaded && job.probing) job.level_times.forget(divisor);
-    if (!job.reshaded) job.level_times.note(divisor, divisor_ms);
-    job.probing = false;
     job.nan_count += pass.nan_count;
+    const auto publishing = std::chrono::steady_clock::now();
     publish(job, pass);
+    // A level's time is what the hall waits for its image: the pass and the image's conversion
+    // for the screen (which grows with the pixels too, and is the render thread's while the next
+    // pass waits). A re-shade says nothing of a traced pass's time. A probe's pass is the
+    // level's time now: the older ones were why it was not run.
+    const double image_ms = divisor_ms + ms_between(publishing, std::chrono::steady_clock::now());
+    if (!job.reshaded && job.probing) job.level_times.forget(divisor);
+    if (!job.reshaded) job.level_times.note(divisor, image_ms);
+    job.probing = false;
     if (job.level + 1 < job.levels.size()) {
       ++job.level;
       job.accum.reset_for_first_pass(job.levels[job.level].width, job.levels[job.level].height,
