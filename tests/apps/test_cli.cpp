@@ -8,6 +8,7 @@
 #include <cstring>
 #include <sys/wait.h>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <set>
@@ -208,6 +209,25 @@ TEST_F(CliTest, BenchUsageNamesItself) {
   EXPECT_EQ(bad.out.rfind("phonglab-bench: ", 0), 0u) << bad.out;
   EXPECT_NE(bad.out.find("(see phonglab-bench --help)"), std::string::npos) << bad.out;
   EXPECT_EQ(bad.out.find("phonglab-cli"), std::string::npos) << bad.out;
+}
+
+// PHONGLAB_SIMD chooses the packet kernels' instance ("off": the scalar renderer); a key this CPU
+// cannot run is said on stderr, and the render goes on with the best instance.
+TEST_F(CliTest, TheKernelsInstanceIsChosenAndABadChoiceIsSaid) {
+  const auto render_with = [&](const char* simd, const std::string& stats) {
+    setenv("PHONGLAB_SIMD", simd, 1);
+    RunResult r = run_cli("render lecture -o " + path("k.pfm") + " --width 16 --height 8 --spp 1 --stats " + path(stats));
+    unsetenv("PHONGLAB_SIMD");
+    return r;
+  };
+  ASSERT_EQ(render_with("off", "off.json").exit_code, 0);
+  std::ifstream off(path("off.json"));
+  EXPECT_EQ(nlohmann::json::parse(off)["tracer"], "scalar");
+  const RunResult bad = render_with("avx9", "bad.json");
+  EXPECT_EQ(bad.exit_code, 0);
+  EXPECT_NE(bad.out.find("PHONGLAB_SIMD=avx9: expected one of "), std::string::npos) << bad.out;
+  std::ifstream bad_stats(path("bad.json"));
+  EXPECT_EQ(nlohmann::json::parse(bad_stats)["tracer"], phonglab::packet_cpu_supported() ? "packet" : "scalar");
 }
 
 TEST_F(CliTest, BadUsageExitsTwo) {

@@ -2,6 +2,7 @@
 // one kernel source chosen for this CPU (packet_kernels.h), once at the first call, or by
 // PHONGLAB_SIMD in the environment, or by set_packet_simd_target.
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <string_view>
@@ -100,14 +101,27 @@ const Instance* find(std::string_view key) {
   return nullptr;
 }
 
-const Instance* first_choice() {
-  if (const char* env = std::getenv("PHONGLAB_SIMD")) {
-    if (const Instance* k = find(env)) return k;
-  }
+const Instance* best() {
   for (const Instance& k : kInstances) {
     if (usable(k)) return &k;
   }
   return &kInstances[std::size(kInstances) - 1];
+}
+
+// PHONGLAB_SIMD's instance, or the best this CPU runs; an unknown or unusable key is said once,
+// on stderr, with the keys that would do.
+const Instance* first_choice() {
+  const char* env = std::getenv("PHONGLAB_SIMD");
+  if (env == nullptr || *env == '\0') return best();
+  if (const Instance* k = find(env)) return k;
+  std::string keys;
+  for (const Instance& k : kInstances) {
+    if (usable(k)) keys += std::string(keys.empty() ? "" : ", ") + k.key;
+  }
+  const Instance* chosen_here = best();
+  std::fprintf(stderr, "phonglab: PHONGLAB_SIMD=%s: expected one of %s on this CPU; using %s\n", env, keys.c_str(),
+               chosen_here->key);
+  return chosen_here;
 }
 
 std::atomic<const Instance*> chosen{nullptr};

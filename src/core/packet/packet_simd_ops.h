@@ -116,15 +116,26 @@ inline V fms(V a, V b, V c) { return _mm512_fmsub_pd(a, b, c); }  // a b - c, ro
 
 using V = simde__m256d;
 using M = simde__m256d;  // lanes of all ones or all zeros
-#if defined(__wasm_simd128__)
-// Two v128 halves as one V (register moves once compiled).
-inline V from_halves(v128_t lo, v128_t hi) {
-  const v128_t x[2] = {lo, hi};
+// A V as two 128-bit halves of the target's own type and back (register moves once compiled),
+// for what the target's instructions do as x86 does and SIMDe's do not (WebAssembly, aarch64).
+template <class Half>
+struct Halves {
+  Half lo, hi;
+};
+template <class Half>
+inline Halves<Half> split(V a) {
+  static_assert(sizeof(Halves<Half>) == sizeof(V));
+  Halves<Half> h;
+  std::memcpy(&h, &a, sizeof h);
+  return h;
+}
+template <class Half>
+inline V join(Half lo, Half hi) {
+  const Halves<Half> h{lo, hi};
   V r;
-  std::memcpy(&r, x, sizeof r);
+  std::memcpy(&r, &h, sizeof r);
   return r;
 }
-#endif
 
 inline V load(const double* p) { return simde_mm256_loadu_pd(p); }
 inline void store(double* p, V v) { simde_mm256_storeu_pd(p, v); }
@@ -160,10 +171,8 @@ inline V max_of(V a, V b) { return simde_mm256_max_pd(a, b); }  // maxpd: a > b 
 // is minpd's rule exactly: pmin(b, a) = a < b ? a : b, one instruction per half.
 template <class Op>
 inline V per_half(V a, V b, Op op) {
-  v128_t x[2], y[2];
-  std::memcpy(x, &a, sizeof x);
-  std::memcpy(y, &b, sizeof y);
-  return from_halves(op(x[0], y[0]), op(x[1], y[1]));
+  const Halves<v128_t> x = split<v128_t>(a), y = split<v128_t>(b);
+  return join(op(x.lo, y.lo), op(x.hi, y.hi));
 }
 inline V min_of(V a, V b) { return per_half(a, b, [](v128_t x, v128_t y) { return wasm_f64x2_pmin(y, x); }); }
 inline V max_of(V a, V b) { return per_half(a, b, [](v128_t x, v128_t y) { return wasm_f64x2_pmax(y, x); }); }
@@ -176,9 +185,8 @@ inline V max_of(V a, V b) { return pick(gt(a, b), a, b); }
 // SIMDe's movemask is a loop over the lanes in WebAssembly; SIMD128 has the instruction itself,
 // one per half of the four lanes (which are two v128 registers).
 inline int sign_lanes(V a) {
-  v128_t half[2];
-  std::memcpy(half, &a, sizeof half);
-  return wasm_i64x2_bitmask(half[0]) | wasm_i64x2_bitmask(half[1]) << 2;
+  const Halves<v128_t> h = split<v128_t>(a);
+  return wasm_i64x2_bitmask(h.lo) | wasm_i64x2_bitmask(h.hi) << 2;
 }
 #else
 inline int sign_lanes(V a) { return simde_mm256_movemask_pd(a); }
@@ -189,11 +197,11 @@ inline int lanes_set(M m) { return sign_lanes(m); }
 inline M lane_mask(int bits) {
   const v128_t b = wasm_i64x2_splat(bits);
   const v128_t lo = wasm_i64x2_make(1, 2), hi = wasm_i64x2_make(4, 8);
-  return from_halves(wasm_i64x2_eq(wasm_v128_and(b, lo), lo), wasm_i64x2_eq(wasm_v128_and(b, hi), hi));
+  return join(wasm_i64x2_eq(wasm_v128_and(b, lo), lo), wasm_i64x2_eq(wasm_v128_and(b, hi), hi));
 }
 inline V from_int32(const std::int32_t* p) {
   const v128_t x = wasm_v128_load(p);
-  return from_halves(wasm_f64x2_convert_low_i32x4(x), wasm_f64x2_convert_low_i32x4(wasm_i32x4_shuffle(x, x, 2, 3, 0, 1)));
+  return join(wasm_f64x2_convert_low_i32x4(x), wasm_f64x2_convert_low_i32x4(wasm_i32x4_shuffle(x, x, 2, 3, 0, 1)));
 }
 #else
 inline M lane_mask(int bits) {
@@ -243,21 +251,13 @@ inline V fms(V a, V b, V c) { return simde_mm256_fmsub_pd(a, b, c); }
 #elif defined(__aarch64__)
 // SIMDe's fmadd is a product and a sum, rounded twice, where x86's FMA is not native: NEON's
 // own fused instructions instead, half by half.
-inline V neon_halves(float64x2_t lo, float64x2_t hi) {
-  const float64x2_t x[2] = {lo, hi};
-  V r;
-  std::memcpy(&r, x, sizeof r);
-  return r;
-}
 inline V fma(V a, V b, V c) {  // c + a b, rounded once
-  float64x2_t x[2], y[2], z[2];
-  std::memcpy(x, &a, sizeof x), std::memcpy(y, &b, sizeof y), std::memcpy(z, &c, sizeof z);
-  return neon_halves(vfmaq_f64(z[0], x[0], y[0]), vfmaq_f64(z[1], x[1], y[1]));
+  const Halves<float64x2_t> x = split<float64x2_t>(a), y = split<float64x2_t>(b), z = split<float64x2_t>(c);
+  return join(vfmaq_f64(z.lo, x.lo, y.lo), vfmaq_f64(z.hi, x.hi, y.hi));
 }
 inline V fms(V a, V b, V c) {  // a b - c = -(c - a b), rounded once
-  float64x2_t x[2], y[2], z[2];
-  std::memcpy(x, &a, sizeof x), std::memcpy(y, &b, sizeof y), std::memcpy(z, &c, sizeof z);
-  return neon_halves(vnegq_f64(vfmsq_f64(z[0], x[0], y[0])), vnegq_f64(vfmsq_f64(z[1], x[1], y[1])));
+  const Halves<float64x2_t> x = split<float64x2_t>(a), y = split<float64x2_t>(b), z = split<float64x2_t>(c);
+  return join(vnegq_f64(vfmsq_f64(z.lo, x.lo, y.lo)), vnegq_f64(vfmsq_f64(z.hi, x.hi, y.hi)));
 }
 #define PHONGLAB_SIMD_FMA 1
 #endif
