@@ -91,19 +91,16 @@ const Instance kInstances[] = {
 };
 #undef PHONGLAB_KERNELS_OF
 
-// Whether this CPU runs the instance (AVX2's powers kernel also needs FMA: packet_fma_supported).
-bool usable(const Instance& k) { return k.runs(); }
-
 const Instance* find(std::string_view key) {
   for (const Instance& k : kInstances) {
-    if (key == k.key) return usable(k) ? &k : nullptr;
+    if (key == k.key) return k.runs() ? &k : nullptr;  // AVX2's powers kernel also needs FMA: packet_fma_supported
   }
   return nullptr;
 }
 
 const Instance* best() {
   for (const Instance& k : kInstances) {
-    if (usable(k)) return &k;
+    if (k.runs()) return &k;
   }
   return &kInstances[std::size(kInstances) - 1];
 }
@@ -116,7 +113,7 @@ const Instance* first_choice() {
   if (const Instance* k = find(env)) return k;
   std::string keys;
   for (const Instance& k : kInstances) {
-    if (usable(k)) keys += std::string(keys.empty() ? "" : ", ") + k.key;
+    if (k.runs()) keys += std::string(keys.empty() ? "" : ", ") + k.key;
   }
   const Instance* chosen_here = best();
   std::fprintf(stderr, "phonglab: PHONGLAB_SIMD=%s: expected one of %s on this CPU; using %s\n", env, keys.c_str(),
@@ -219,7 +216,7 @@ int packet_simd_lanes() { return packet::active().lanes; }
 std::vector<std::string> packet_simd_targets() {
   std::vector<std::string> keys;
   for (const packet::Instance& k : packet::kInstances) {
-    if (packet::usable(k)) keys.emplace_back(k.key);
+    if (k.runs()) keys.emplace_back(k.key);
   }
   return keys;
 }

@@ -345,7 +345,7 @@ void bounce(const BounceIn& in, int lanes, const BounceOut& out) {
     return pick(gt(x, one), one, pick(lt(x, negate(one)), negate(one), x));
   };
   for (int i = 0; i < lanes; i += kLanes) {
-    if (byte_word(in.active + i) == 0) continue;
+    if (byte_lanes(in.active + i) == 0) continue;
     const V dx = load(in.dx + i), dy = load(in.dy + i), dz = load(in.dz + i);
     const V nx = load(in.nx + i), ny = load(in.ny + i), nz = load(in.nz + i);
     const V ior = load(in.ior + i);

@@ -267,11 +267,6 @@ inline V fms(V a, V b, V c) {  // a b - c = -(c - a b), rounded once
 inline V dot(V ax, V ay, V az, V bx, V by, V bz) { return (ax * bx + ay * by) + az * bz; }  // glm's order
 
 // Byte flags and lane bits (kLanes <= 8 bytes a group, as one word).
-inline std::uint64_t byte_word(const std::uint8_t* p) {
-  std::uint64_t word = 0;
-  std::memcpy(&word, p, kLanes);
-  return word;
-}
 // Bit j of `bits` as byte j (0 or 1) of a word, and kLanes such bytes stored from p on. Four
 // bits at a time: bit j of the product moves to 8 j and no two products overlap.
 inline std::uint64_t spread_bits(int bits) {
