@@ -1,6 +1,7 @@
 // phonglab-digest: one line per image of every embedded scene (the full image, the five terms
 // and the debug views, three passes each, by the packet and by the scalar tracer, the full image
-// and the specular term also with "move your head"; every numerics variant with its acne count; a probed pixel), each with
+// and the specular term also with "move your head"; the quad-shaded live rung, at the image's size and at an odd one;
+// every numerics variant with its acne count; a probed pixel), each with
 // its ray count and an FNV-1a hash of the accumulated sums. Run it before and after a change
 // that must not change any image, and compare the two outputs:
 //
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/render/quad_shading.h"
 #include "core/render/render.h"
 #include "experiments/numerics_variants.h"
 #include "io/embedded_scenes.h"
@@ -58,6 +60,23 @@ void term_images(const std::string& name, const PreparedScene& prepared) {
   }
 }
 
+// The quad-shaded live rung, both tracers, at the digest's size and at an odd one (quads cut
+// by the image's edges).
+void quad_rung(const std::string& name, const PreparedScene& prepared) {
+  for (const bool packets : {false, true}) {
+    for (const bool odd : {false, true}) {
+      RenderOptions options;
+      options.threads = 2;
+      options.packets = packets;
+      Accumulator accum;
+      accum.reset(kWidth + (odd ? 7 : 0), kHeight + (odd ? 3 : 0));
+      render_quad_shaded(prepared, options, accum);
+      std::printf("%s quads %s %dx%d %016llx\n", name.c_str(), packets ? "packets" : "scalar", accum.width,
+                  accum.height, static_cast<unsigned long long>(hash(accum, 1469598103934665603ull)));
+    }
+  }
+}
+
 // Every numerics variant and ablation of the bench: one pass and its acne count.
 void variants(const std::string& name, const Scene& scene) {
   for (int v = 0; v < 8; ++v) {
@@ -95,6 +114,7 @@ int main() {
     }
     const PreparedScene prepared(*r.scene);
     term_images(name, prepared);
+    quad_rung(name, prepared);
     variants(name, *r.scene);
     const PixelProbe probe = probe_pixel(prepared, kWidth, kHeight, kWidth / 2, kHeight / 2);
     std::printf("%s probe %.17g %.17g %.17g\n", name.c_str(), probe.root.total.r, probe.root.total.g,

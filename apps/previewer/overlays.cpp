@@ -216,6 +216,7 @@ void Overlays::draw_stats() {
   stats.edit_to_image_ms = v_.stats_.last_latency_ms;
   stats.have_frame = !v_.shown_.pixels.empty();
   stats.level_divisor = v_.shown_.divisor;
+  stats.level_quads = v_.shown_.quads;
   stats.image_width = v_.shown_.width;
   stats.image_height = v_.shown_.height;
   stats.spp = v_.shown_.spp;

@@ -73,6 +73,7 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "drawn_generation=" << v_.drawn_generation_ << "\n"
       << "spp=" << v_.shown_.spp << "\n"
       << "divisor=" << v_.shown_.divisor << "\n"
+      << "quads=" << (v_.shown_.quads ? 1 : 0) << "\n"
       << "image=" << v_.shown_.width << "x" << v_.shown_.height << "\n"
       << "render=" << v_.schedule_.width() << "x" << v_.schedule_.height() << "\n"
       << "window=" << window_w << "x" << window_h << "\n"
@@ -249,7 +250,7 @@ void ScriptDriver::write_probe_state(std::ostream& out) const {
       << "probe_rays=" << v_.tools_.probe().tree->rays.total() << "\n";
   // The shown image's pixel there, when it is the full-resolution 1-spp image of this
   // snapshot: the probe must reproduce it exactly (as float, the texture's precision).
-  if (v_.shown_.divisor == 1 && v_.shown_.spp == 1 && v_.shown_.width == v_.schedule_.width() && v_.shown_.height == v_.schedule_.height()) {
+  if (v_.shown_.divisor == 1 && !v_.shown_.quads && v_.shown_.spp == 1 && v_.shown_.width == v_.schedule_.width() && v_.shown_.height == v_.schedule_.height()) {
     const glm::vec3 shown = v_.shown_.pixels[static_cast<std::size_t>(v_.tools_.probe().y) * static_cast<std::size_t>(v_.shown_.width) +
                                           static_cast<std::size_t>(v_.tools_.probe().x)];
     out << "probe_match=" << (glm::vec3(total) == shown ? 1 : 0) << "\n";

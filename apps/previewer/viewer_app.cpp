@@ -28,6 +28,9 @@ namespace phonglab {
 
 namespace {
 
+// The stats log's key for the level of an image: its divisor, 0 for the quad-shaded live rung.
+int level_key(const ProgressiveFrame& frame) { return frame.quads ? 0 : frame.divisor; }
+
 constexpr float kClear[3] = {0.10f, 0.10f, 0.11f};  // the window where neither the image nor a panel is
 
 constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
@@ -231,7 +234,7 @@ bool Viewer::poll_render_frame() {
   upload_pending_ = true;
   if (stats_.log && shown_.stats.serial != stats_.last_pass_serial && shown_.stats.pass_ms > 0) {
     stats_.last_pass_serial = shown_.stats.serial;
-    stats_.pass_mrays[shown_.divisor].push_back(shown_.stats.mrays_per_s);
+    stats_.pass_mrays[level_key(shown_)].push_back(shown_.stats.mrays_per_s);
   }
   return true;
 }
@@ -530,9 +533,9 @@ void Viewer::after_swap() {
     // held slider; not the refinement after it lets go.
     const bool hand_on = (client_ && client_->hand_on()) || interacting_ ||
                          edits_.while_active;
-    if (hand_on) ++stats_.frames_at_level[shown_.divisor];
-    // An edit is seen at full resolution once an image of it, or of a later edit, is.
-    while (shown_.divisor == 1 && !stats_.full_pending.empty() && stats_.full_pending.front().first <= drawn_generation_) {
+    if (hand_on) ++stats_.frames_at_level[level_key(shown_)];
+    // An edit is seen at full resolution once an exact image of it, or of a later edit, is.
+    while (level_key(shown_) == 1 && !stats_.full_pending.empty() && stats_.full_pending.front().first <= drawn_generation_) {
       stats_.edit_to_full_ms.push_back((now - stats_.full_pending.front().second) * 1e3);
       stats_.full_pending.pop_front();
     }
@@ -541,7 +544,10 @@ void Viewer::after_swap() {
   for (const auto& [generation, edit_time] : restart_times_) {
     if (generation != first_image_generation_) continue;
     stats_.last_latency_ms = (now - edit_time) * 1e3;
-    stats_.last_first_image = std::string(shown_.stats.live ? "live" : shown_.stats.reshaded ? "reshaded" : "traced") +
+    stats_.last_first_image = std::string(shown_.stats.live       ? "live"
+                                          : shown_.stats.reshaded ? "reshaded"
+                                          : shown_.quads          ? "quads"
+                                                                  : "traced") +
                               " 1/" + std::to_string(shown_.divisor);
     // The renderer's share: restart to publication of this image.
     if (stats_.log) {
@@ -583,6 +589,7 @@ void Viewer::write_stats_summary(const std::string& label) {
   };
   stats_.log << "levels " << label << " full=" << frames_at(1) << " half=" << frames_at(2) << " quarter=" << frames_at(4)
              << " eighth=" << frames_at(8) << "\n";
+  stats_.log << "levels " << label << " rung quads=" << frames_at(0) << "\n";
   // Cores taken since the reset: the UI thread's (drawing included, llvmpipe being on it) and
   // the whole previewer's.
   const CpuClock cpu = CpuClock::now();
@@ -599,7 +606,7 @@ void Viewer::write_stats_summary(const std::string& label) {
   const double full_median = full != stats_.pass_mrays.end() ? percentile(full->second, 0.5) : 0;
   for (const auto& [divisor, mrays] : stats_.pass_mrays) {
     const double median = percentile(mrays, 0.5);
-    stats_.log << "summary " << label << " passes 1/" << divisor << " n " << mrays.size() << " median_mrays " << median
+    stats_.log << "summary " << label << " passes " << (divisor == 0 ? "quads" : "1/" + std::to_string(divisor)) << " n " << mrays.size() << " median_mrays " << median
                << " of_full " << (full_median > 0 ? median / full_median : 0) << "\n";
   }
   stats_.log.flush();

@@ -248,9 +248,9 @@ class Viewer {
     std::string last_first_image;                       // how that image was made: "reshaded 1/1", "traced 1/8", "live 1/1"
     std::vector<double> latencies_ms;                   // for the stats log's summary (kept only with a log)
     std::vector<double> busy_frame_ms;                  // UI frame times while the renderer was working (same)
-    std::map<int, std::vector<double>> pass_mrays;      // Mrays/s of the passes taken, by level divisor (same)
+    std::map<int, std::vector<double>> pass_mrays;      // Mrays/s of the passes taken, by level divisor, 0: the quad-shaded rung (same)
     std::uint64_t last_pass_serial = 0;                 // the last of them
-    std::map<int, int> frames_at_level;                 // UI frames by the level divisor of the image on screen (same)
+    std::map<int, int> frames_at_level;                 // UI frames by the level divisor of the image on screen, 0: the quad-shaded rung (same)
     std::deque<std::pair<std::uint64_t, double>> full_pending;  // edits (generation, time) not yet seen at full resolution
     std::vector<double> edit_to_full_ms;                // edit to the first full-resolution image of it or a later one (same)
     CpuClock cpu_mark;                                  // the clocks at the last reset: the cores the UI and all took since

@@ -19,7 +19,7 @@ bool SnapshotA::take_when_ready(std::uint64_t renderer_generation, const Progres
     dropped_ = true;
     return false;
   }
-  const bool ready = first_full_ ? shown.generation == generation_ && shown.divisor == 1 : final;
+  const bool ready = first_full_ ? shown.generation == generation_ && shown.divisor == 1 && !shown.quads : final;
   if (!ready || shown.pixels.empty()) return false;
   image_ = shown;
   requested_ = false;

@@ -273,6 +273,7 @@ struct StatsView {
   double edit_to_image_ms = -1;   // last edit to the first image of it on screen; <0: none yet
   bool have_frame = false;        // an image is shown at all
   int level_divisor = 1;          // of the image shown
+  bool level_quads = false;       // the image shown is the quad-shaded live rung
   int image_width = 0;            // pixels of the image shown
   int image_height = 0;
   std::uint32_t spp = 0;          // samples per pixel of the image shown

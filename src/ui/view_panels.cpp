@@ -206,6 +206,7 @@ void stats_overlay(const StatsView& stats) {
   if (stats.have_frame) {
     char level[16] = "";
     if (stats.level_divisor > 1) std::snprintf(level, sizeof level, " (1/%d)", stats.level_divisor);
+    if (stats.level_quads) std::snprintf(level, sizeof level, " (quads)");
     ImGui::Text("%d\xC3\x97%d%s  %u/%d spp  %.1f ms/%s  %s", stats.image_width, stats.image_height, level, stats.spp,
                 stats.target_spp, stats.frame.pass_ms, stats.frame.reshaded ? "re-shade" : "pass", state);
   } else {

@@ -179,6 +179,48 @@ TEST(ProgressiveLevels, LiveStartIsTheFinestLevelThatFitsTheBudget) {
   EXPECT_EQ(levels[live_start_level(levels, times, 33)].divisor, 1);
 }
 
+// The live ladder holds the quad-shaded rung between 1/2 and the exact image (the order of their
+// measured errors), at full resolution; a window too small for coarse levels has no rung.
+TEST(ProgressiveLevels, TheLiveLadderHoldsTheQuadRungBeforeTheExactImage) {
+  const std::vector<ProgressiveLevel> live = make_live_levels(1280, 720);
+  ASSERT_EQ(live.size(), 5u);
+  const std::vector<int> divisors = {live[0].divisor, live[1].divisor, live[2].divisor, live[3].divisor, live[4].divisor};
+  EXPECT_EQ(divisors, (std::vector<int>{8, 4, 2, 1, 1}));
+  EXPECT_TRUE(live[3].quads);
+  EXPECT_FALSE(live[4].quads);
+  EXPECT_EQ(live[3].width, 1280);
+  EXPECT_EQ(live[3].height, 720);
+  for (const ProgressiveLevel& level : make_levels(1280, 720)) EXPECT_FALSE(level.quads);
+  EXPECT_EQ(make_live_levels(1, 1).size(), 1u);  // no coarse level, no rung
+  EXPECT_FALSE(make_live_levels(1, 1)[0].quads);
+}
+
+// The least error that fits: the exact image when it fits, else the rung when its measured time
+// fits, else 1/2. The rung's time is its own, not the exact image's.
+TEST(ProgressiveLevels, TheRungIsChosenWhenTheExactImageDoesNotFitButItDoes) {
+  const std::vector<ProgressiveLevel> live = make_live_levels(1280, 720);
+  LevelTimes times;
+  times.note(8, 0.7);
+  times.note(4, 2.5);
+  times.note(2, 10);
+  times.note(1, 45);  // the exact image: beyond a 24th of a second
+  // Not measured yet: expected as the 1/2 level's time times four (40 ms), which fits.
+  EXPECT_TRUE(live[live_start_level(live, times, 41.7)].quads);
+  times.note(1, 33, true);
+  EXPECT_DOUBLE_EQ(times.at(1, true), 33);
+  EXPECT_DOUBLE_EQ(times.at(1), 45);
+  EXPECT_TRUE(live[live_start_level(live, times, 41.7)].quads);
+  EXPECT_EQ(live[live_start_level(live, times, 30)].divisor, 2) << "neither fits 30 ms";
+  times.note(1, 30);
+  times.note(1, 31);  // the exact image fits now (median 31 ms): it wins over the rung
+  const ProgressiveLevel& best = live[live_start_level(live, times, 41.7)];
+  EXPECT_EQ(best.divisor, 1);
+  EXPECT_FALSE(best.quads);
+  times.forget(1, true);
+  EXPECT_DOUBLE_EQ(times.at(1, true), 0);
+  EXPECT_DOUBLE_EQ(times.at(1), 31);
+}
+
 // A level's expected time is the median of its last three passes: one slow pass does not move a
 // drag to a coarser level; a probe tries one level finer when it is expected within 1.5 budgets.
 TEST(ProgressiveLevels, OneSlowPassDoesNotDemoteAndAProbeTriesOneFiner) {

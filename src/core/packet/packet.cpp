@@ -209,22 +209,6 @@ packet::Spheres PacketTracer::Impl::primary_rays(const CameraFrame& frame, int x
   return finish_primary(frame, x0, y0, x1, y1, n);
 }
 
-packet::Spheres PacketTracer::Impl::primary_rays_at(const CameraFrame& frame, int x0, int y0, int x1, int y1,
-                                                    const int* xs, const int* ys, int n) {
-  primary.reserve_lanes(n);
-  primary.n = n;
-  fit(x_plus_u, padded(n));
-  fit(y_plus_v, padded(n));
-  for (int i = 0; i < padded(n); ++i) {
-    const int k = std::min(i, n - 1);  // padding lanes repeat the last pixel
-    double u, v;
-    sample_offset(xs[k], ys[k], 0, u, v, 0);
-    x_plus_u[at(i)] = xs[k] + u;
-    y_plus_v[at(i)] = ys[k] + v;
-  }
-  return finish_primary(frame, x0, y0, x1, y1, n);
-}
-
 packet::Spheres PacketTracer::Impl::finish_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1, int n) {
   const packet::CameraIn cam{frame.forward.x, frame.forward.y, frame.forward.z, frame.right.x,
                              frame.right.y,   frame.right.z,   frame.up.x,      frame.up.y,
@@ -461,78 +445,58 @@ void PacketTracer::Impl::aim_primary(Term term, const Vec3* eye, Terms* terms_ou
   primary_terms = terms_out;
 }
 
-void PacketTracer::Impl::mask_quads(const Level& lv, int width, int lanes, std::int64_t* surface,
-                                    std::uint8_t* shaded) const {
-  const int h = lanes / width;
-  for (int i = 0; i < lanes; ++i) {
-    const std::int32_t id = lv.id[at(i)];
-    surface[i] = id < 0 ? -1
-                        : static_cast<std::int64_t>(id) << 32 |
-                              static_cast<std::uint32_t>(material_of(id, lv.prim[at(i)]));
-    shaded[i] = 1;
-  }
-  for (int qy = 0; qy + 1 < h; qy += 2) {
-    for (int qx = 0; qx + 1 < width; qx += 2) {
-      const int a = qy * width + qx, b = a + 1, c = a + width, d = c + 1;
-      const std::int64_t s = surface[a];
-      if (s < 0 || surface[b] != s || surface[c] != s || surface[d] != s) continue;
-      if (info[at(static_cast<int>(static_cast<std::uint32_t>(s)))].bounces) continue;  // mirror or glass
-      for (const int k : {b, c, d}) shaded[k] = 0;
-    }
+void PacketTracer::find_surfaces(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::int64_t* surface,
+                                 RayCounts& counts) {
+  Impl& im = *impl_;
+  im.found.tested = im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
+  const int n = im.primary.n;
+  counts.primary += static_cast<std::uint64_t>(n);
+  Impl::Level& lv = im.levels[0];
+  im.find_hits(lv, im.primary, im.found.tested, &im.primary_loose);
+  Impl::Found& f = im.found;
+  f.n = n;
+  for (std::vector<double>* v : {&f.ox, &f.oy, &f.oz, &f.dx, &f.dy, &f.dz, &f.weight, &f.t, &f.b1, &f.b2}) fit(*v, n);
+  fit(f.id, n);
+  fit(f.prim, n);
+  const Impl::RayBatch& rays = im.primary;
+  for (int i = 0; i < n; ++i) {
+    const std::size_t u = at(i);
+    f.ox[u] = rays.ox[u], f.oy[u] = rays.oy[u], f.oz[u] = rays.oz[u];
+    f.dx[u] = rays.dx[u], f.dy[u] = rays.dy[u], f.dz[u] = rays.dz[u];
+    f.weight[u] = rays.weight[u];
+    f.t[u] = lv.t[u], f.id[u] = lv.id[u], f.prim[u] = lv.prim[u], f.b1[u] = lv.b1[u], f.b2[u] = lv.b2[u];
+    surface[i] = lv.id[u] < 0 ? -1
+                              : static_cast<std::int64_t>(lv.id[u]) << 32 |
+                                    static_cast<std::uint32_t>(im.material_of(lv.id[u], lv.prim[u]));
   }
 }
 
-void PacketTracer::render_quads_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, const Vec3* shading_eye,
-                                     Color* out, std::int64_t* surface, std::uint8_t* shaded, RayCounts& counts) {
+void PacketTracer::shade_found(const int* lanes, int m, const Vec3* shading_eye, Color* out, RayCounts& counts) {
+  if (m <= 0) return;
   Impl& im = *impl_;
-  // Every pixel's nearest hit first (which surface it shows), then the pixels to shade, traced
-  // as one batch of their own: the others cost no lane of the shading.
-  const packet::Spheres tested = im.primary_rays(frame, x0, y0, x1, y1, 0, 0);
-  const int n = im.primary.n, w = x1 - x0;
-  counts.primary += static_cast<std::uint64_t>(n);
-  im.find_hits(im.levels[0], im.primary, tested, &im.primary_loose);
-  im.mask_quads(im.levels[0], w, n, surface, shaded);
-  // The pixels to shade: their rays and hits moved to the front of the batch, in order.
+  const Impl::Found& f = im.found;
   Impl::Level& lv = im.levels[0];
   Impl::RayBatch& rays = im.primary;
-  thread_local std::vector<int> slot;
-  slot.clear();
-  for (int i = 0; i < n; ++i) {
-    if (!shaded[i]) continue;
-    if (surface[i] < 0) {
-      out[i] = im.scene.background;  // what trace() gives a ray that meets nothing
-      continue;
-    }
-    const std::size_t from = at(i), to = at(static_cast<int>(slot.size()));
-    rays.ox[to] = rays.ox[from], rays.oy[to] = rays.oy[from], rays.oz[to] = rays.oz[from];
-    rays.dx[to] = rays.dx[from], rays.dy[to] = rays.dy[from], rays.dz[to] = rays.dz[from];
-    rays.weight[to] = rays.weight[from];
-    lv.t[to] = lv.t[from], lv.id[to] = lv.id[from], lv.prim[to] = lv.prim[from];
-    lv.b1[to] = lv.b1[from], lv.b2[to] = lv.b2[from];
-    slot.push_back(i);
+  rays.reserve_lanes(m);
+  for (std::vector<double>* v : {&lv.t, &lv.b1, &lv.b2}) fit(*v, padded(m));
+  fit(lv.id, padded(m));
+  fit(lv.prim, padded(m));
+  // The lanes' rays and hits, in order, at the front of the batch; padding lanes meet nothing.
+  for (int j = 0; j < m; ++j) {
+    const std::size_t from = at(lanes[j]), to = at(j);
+    rays.ox[to] = f.ox[from], rays.oy[to] = f.oy[from], rays.oz[to] = f.oz[from];
+    rays.dx[to] = f.dx[from], rays.dy[to] = f.dy[from], rays.dz[to] = f.dz[from];
+    rays.weight[to] = f.weight[from];
+    lv.t[to] = f.t[from], lv.id[to] = f.id[from], lv.prim[to] = f.prim[from];
+    lv.b1[to] = f.b1[from], lv.b2[to] = f.b2[from];
   }
-  const int m = static_cast<int>(slot.size());
-  if (m == 0) return;
-  for (int i = m; i < padded(m); ++i) {  // padding lanes: no hit
-    lv.t[at(i)] = kInf;
-    lv.id[at(i)] = -1;
+  for (int j = m; j < padded(m); ++j) {
+    lv.t[at(j)] = kInf;
+    lv.id[at(j)] = -1;
   }
   rays.n = m;
-  thread_local std::vector<Color> values;
-  values.resize(static_cast<std::size_t>(padded(m)));
   im.aim_primary(Term::kFull, shading_eye, nullptr);
-  im.trace_level(0, rays, tested, values.data(), counts, TraceRecorder::Child::kReflection, true);
-  for (int j = 0; j < m; ++j) out[slot[static_cast<std::size_t>(j)]] = values[static_cast<std::size_t>(j)];
-}
-
-void PacketTracer::render_pixels(const CameraFrame& frame, int x0, int y0, int x1, int y1, const int* xs, const int* ys,
-                                 int n, const Vec3* shading_eye, Color* out, RayCounts& counts) {
-  if (n <= 0) return;
-  Impl& im = *impl_;
-  im.aim_primary(Term::kFull, shading_eye, nullptr);
-  const packet::Spheres tested = im.primary_rays_at(frame, x0, y0, x1, y1, xs, ys, n);
-  counts.primary += static_cast<std::uint64_t>(n);
-  im.trace_level(0, im.primary, tested, out, counts);
+  im.trace_level(0, rays, f.tested, out, counts, TraceRecorder::Child::kReflection, true);
 }
 
 void PacketTracer::render_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,

@@ -93,18 +93,13 @@ class PacketTracer {
                    std::uint32_t seed, Color* out, RayCounts& counts, Term term = Term::kFull,
                    const Vec3* shading_eye = nullptr, Terms* terms_out = nullptr);
 
-  // The quad-shaded rung's tile (core/render/quad_shading.h): the full image's sample 0 of pixels
-  // [x0, x1) x [y0, y1) (x0 and y0 even), every primary ray traced, but in each 2x2 quad whose
-  // four primary hits are on one surface of one material without mirror or glass only the
-  // top-left pixel shaded. Per pixel, row by row: `shaded` 1 where `out` holds render_tile's
-  // value (bit for bit), 0 where it holds nothing meaningful; `surface` which surface the pixel
-  // shows (-1: none): the same number for the same object and material within the scene.
-  void render_quads_tile(const CameraFrame& frame, int x0, int y0, int x1, int y1, const Vec3* shading_eye, Color* out,
-                         std::int64_t* surface, std::uint8_t* shaded, RayCounts& counts);
-  // render_tile's full-image value of sample 0 of the n pixels (xs[i], ys[i]), all within
-  // [x0, x1) x [y0, y1), into out[0 .. n).
-  void render_pixels(const CameraFrame& frame, int x0, int y0, int x1, int y1, const int* xs, const int* ys, int n,
-                     const Vec3* shading_eye, Color* out, RayCounts& counts);
+  // The quad-shaded rung's two steps (core/render/quad_shading.h), at sample 0 of the full
+  // image. find_surfaces: the nearest hits of pixels [x0, x1) x [y0, y1), row by row, kept; per
+  // pixel the surface it shows (-1: none; one number for one object and material, the material
+  // in the low 32 bits). shade_found: render_tile's value (bit for bit) of the pixels lanes[0 ..
+  // m) of the last find_surfaces, each of which has a hit, from their kept hits into out[0 .. m).
+  void find_surfaces(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::int64_t* surface, RayCounts& counts);
+  void shade_found(const int* lanes, int m, const Vec3* shading_eye, Color* out, RayCounts& counts);
 
   // render_tile of the full image at the pixel centres, telling `sink` of every tree as
   // trace_recorded tells its recorder: every light at every hit (muted or not, whatever the

@@ -64,6 +64,14 @@ struct PacketTracer::Impl {
   const Vec3* shading_eye = nullptr;
   Terms* primary_terms = nullptr;  // where the primary hits' five terms go (render_tile's terms_out)
   PacketTreeSink* sink = nullptr;  // recording the trees (record_tile)
+  // The primary rays and nearest hits of the last find_surfaces, by lane, for shade_found; and
+  // the spheres those rays can meet.
+  struct Found {
+    std::vector<double> ox, oy, oz, dx, dy, dz, weight, t, b1, b2;
+    std::vector<std::int32_t> id, prim;
+    packet::Spheres tested{};
+    int n = 0;
+  } found;
 
   explicit Impl(const PreparedScene& p);
 
@@ -144,22 +152,14 @@ struct PacketTracer::Impl {
   // the spheres they can meet.
   packet::Spheres primary_rays(const CameraFrame& frame, int x0, int y0, int x1, int y1, std::uint32_t sample_index,
                     std::uint32_t seed);
-  // The primary rays of sample 0 of the n pixels (xs[i], ys[i]) of region [x0, x1) x [y0, y1).
-  packet::Spheres primary_rays_at(const CameraFrame& frame, int x0, int y0, int x1, int y1, const int* xs, const int* ys,
-                                  int n);
   // The camera rays of the lanes' x + u, y + v, and what the region's primary rays can meet.
   packet::Spheres finish_primary(const CameraFrame& frame, int x0, int y0, int x1, int y1, int n);
   // What the primary hits give: `term`'s value, and with `terms_out` their five terms; V towards
   // `eye` (null: -D).
   void aim_primary(Term term, const Vec3* eye, Terms* terms_out);
-  // The quad-shaded rung (render_quads_tile): per lane of a tile `width` pixels wide, the surface
-  // its nearest hit is on (object and material; -1: none) and whether it is shaded: not the other three pixels of a
-  // 2x2 quad whose four hits share a surface and a material without children.
-  void mask_quads(const Level& lv, int width, int lanes, std::int64_t* surface, std::uint8_t* shaded) const;
-
   // Radiance of every ray of `rays` (at recursion depth `depth`) into out[0 .. rays.n); `tested`:
   // the spheres those rays can meet.
-  // `hits_found`: the level's nearest hits are already in place (the quad-shaded rung's batch).
+  // `hits_found`: the level's nearest hits are already in place (shade_found's batch).
   void trace_level(int depth, const RayBatch& rays, const packet::Spheres& tested, Color* out, RayCounts& counts,
                    TraceRecorder::Child kind = TraceRecorder::Child::kReflection, bool hits_found = false);
 

@@ -1,6 +1,7 @@
 #include "core/render/progressive.h"
 
 #include "core/packet/packet.h"
+#include "core/render/quad_shading.h"
 #include "core/render/ray_trees.h"
 #include "core/render/scene_changes.h"
 
@@ -47,6 +48,12 @@ bool carries_over(const ProgressiveSettings& was, const ProgressiveSettings& now
 // images (the indirect light is traced every time).
 bool trees_apply(const ProgressiveSettings& s) { return reshades(s.term) && !shows_indirect(s); }
 
+// Whether the quad-shaded rung can stand for what the settings show: the full image with ka·Ia
+// (render_quad_shaded draws nothing else), without the term images.
+bool quad_rung_applies(const ProgressiveSettings& s) {
+  return s.term == Term::kFull && !s.term_images && !shows_indirect(s);
+}
+
 }  // namespace
 
 
@@ -68,18 +75,28 @@ std::vector<ProgressiveLevel> make_levels(int width, int height) {
   return levels;
 }
 
-double LevelTimes::at(int divisor) const {
+std::vector<ProgressiveLevel> make_live_levels(int width, int height) {
+  std::vector<ProgressiveLevel> levels = make_levels(width, height);
+  if (levels.size() > 1) {
+    ProgressiveLevel rung = levels.back();
+    rung.quads = true;
+    levels.insert(levels.end() - 1, rung);
+  }
+  return levels;
+}
+
+double LevelTimes::at(int divisor, bool quads) const {
   static_assert(kKept == 3);
-  const std::array<double, kKept>& t = recent[slot(divisor)];  // newest first: zeros only at the end
+  const std::array<double, kKept>& t = recent[slot(divisor, quads)];  // newest first: zeros only at the end
   if (!(t[1] > 0)) return t[0];
   if (!(t[2] > 0)) return 0.5 * (t[0] + t[1]);
   return std::max(std::min(t[0], t[1]), std::min(std::max(t[0], t[1]), t[2]));  // the median
 }
 
-void LevelTimes::forget(int divisor) { recent[slot(divisor)] = {}; }
+void LevelTimes::forget(int divisor, bool quads) { recent[slot(divisor, quads)] = {}; }
 
-void LevelTimes::note(int divisor, double ms) {
-  std::array<double, kKept>& t = recent[slot(divisor)];
+void LevelTimes::note(int divisor, double ms, bool quads) {
+  std::array<double, kKept>& t = recent[slot(divisor, quads)];
   std::rotate(t.begin(), t.end() - 1, t.end());  // newest first: the oldest drops off
   t[0] = ms;
 }
@@ -92,7 +109,7 @@ std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const 
   std::vector<double> expected(levels.size(), 0.0);  // 0: nothing known at or below the level
   for (std::size_t i = 0; i < levels.size(); ++i) {
     const double px = static_cast<double>(levels[i].width) * levels[i].height;
-    double ms = times.at(levels[i].divisor);
+    double ms = times.at(levels[i].divisor, levels[i].quads);
     if (ms > 0) {
       known_ms = ms;
       known_px = px;
@@ -299,14 +316,18 @@ void ProgressiveRenderer::run() {
       options.threads = job.settings.threads;
       options.shading_eye = job.settings.shading_eye;
       options.ambient = job.settings.ambient;
-      pass = render_pass(*job.scene, options, job.accum, &cancel_);
+      pass = job.levels[job.level].quads ? render_quad_shaded(*job.scene, options, job.accum, &cancel_)
+                                         : render_pass(*job.scene, options, job.accum, &cancel_);
     }
     const double divisor_ms = pass.seconds * 1e3;
     const int divisor = job.levels[job.level].divisor;
+    const bool quads = job.levels[job.level].quads;
     if (!pass.completed) {
       // A first pass overtaken by the next restart took at least this long: while interacting
       // the next restart starts below it, or nothing would ever show.
-      if (!job.published_any && divisor_ms > job.level_times.at(divisor)) job.level_times.note(divisor, divisor_ms);
+      if (!job.published_any && divisor_ms > job.level_times.at(divisor, quads)) {
+        job.level_times.note(divisor, divisor_ms, quads);
+      }
       // Cancelled midway: a restart is pending and the accumulator is partly updated; the next
       // pass is a first one again, which writes every pixel.
       job.accum.reset_for_first_pass(job.levels[job.level].width, job.levels[job.level].height,
@@ -322,11 +343,13 @@ void ProgressiveRenderer::run() {
     // pass waits). A re-shade says nothing of a traced pass's time. A probe's pass is the
     // level's time now: the older ones were why it was not run.
     const double image_ms = divisor_ms + ms_between(publishing, std::chrono::steady_clock::now());
-    if (!job.reshaded && job.probing) job.level_times.forget(divisor);
-    if (!job.reshaded) job.level_times.note(divisor, image_ms);
+    if (!job.reshaded && job.probing) job.level_times.forget(divisor, quads);
+    if (!job.reshaded) job.level_times.note(divisor, image_ms, quads);
     job.probing = false;
     if (job.level + 1 < job.levels.size()) {
       ++job.level;
+      // The quad-shaded rung is a live start only: refining goes on to the exact image.
+      if (job.levels[job.level].quads) ++job.level;
       job.accum.reset_for_first_pass(job.levels[job.level].width, job.levels[job.level].height,
                                      job.settings.term_images);
       job.accum_live = false;
@@ -387,7 +410,7 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   if (job.levels.empty() || job.levels.back().width != width_ || job.levels.back().height != height_) {
     job.level_times = {};
   }
-  job.levels = make_levels(width_, height_);
+  job.levels = quad_rung_applies(settings_) ? make_live_levels(width_, height_) : make_levels(width_, height_);
   // An edit that changes no ray (or only shadow rays) is re-shaded at full resolution at once.
   job.trees_serve = job.scene && job.trees && trees_apply(settings_) &&
                     job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
@@ -437,6 +460,7 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   back_.width = job.accum.width;
   back_.height = job.accum.height;
   back_.divisor = job.levels[job.level].divisor;
+  back_.quads = job.levels[job.level].quads;
   back_.spp = job.accum.samples;
   back_.pixels.resize(job.accum.sum.size());
   const double inv_samples = 1.0 / static_cast<double>(job.accum.samples);

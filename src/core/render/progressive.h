@@ -78,6 +78,7 @@ struct ProgressiveFrame {
   int width = 0;                  // pixels across at this level
   int height = 0;                 // pixels down at this level
   int divisor = 1;                // 8, 4 or 2 for the coarse levels, 1 at full resolution
+  bool quads = false;             // the quad-shaded live rung (divisor 1), not the exact image
   std::uint32_t spp = 0;          // samples per pixel in `pixels`
   std::vector<glm::vec3> pixels;  // linear RGB mean, row-major from the top-left
   // With ProgressiveSettings::term_images: ambient, diffuse, specular, reflection and refraction
@@ -100,23 +101,35 @@ struct ProgressiveLevel {
   int divisor = 1;  // the image is 1/divisor of the full resolution along each axis
   int width = 0;    // pixels
   int height = 0;   // pixels
+  // The quad-shaded live rung (core/render/quad_shading.h): full resolution, every primary ray
+  // traced, the shading a quarter where it is smooth. Only a live start, never a refinement step.
+  bool quads = false;
 };
 // 1/8, 1/4, 1/2 and full resolution, leaving out coarse levels that would not be smaller than
 // the next one (a tiny window renders at full resolution at once).
 std::vector<ProgressiveLevel> make_levels(int width, int height);
+// The live ladder: make_levels with the quad-shaded rung before full resolution, so ordered by
+// the error of each image as shown against the exact one, the largest first (measured by
+// `phonglab-bench SCENE --live`: 1/8, 1/4, 1/2, the quad-shaded rung at a few hundredths of the
+// half level's, the exact image). A window too small for coarse levels has no rung either.
+std::vector<ProgressiveLevel> make_live_levels(int width, int height);
 
 // The last pass times measured at each level, by divisor. A level's expected time is the median
 // of its last three (the mean of two, or the one): one pass slowed by the machine does not move
 // a drag to a coarser level.
 struct LevelTimes {
   static constexpr std::size_t kKept = 3;
-  std::array<std::array<double, kKept>, 4> recent{};  // at 1/8, 1/4, 1/2 and full; newest first, 0: none
-  static std::size_t slot(int divisor) { return divisor >= 8 ? 0 : divisor >= 4 ? 1 : divisor >= 2 ? 2 : 3; }
-  // The expected time of a pass at `divisor`; 0 when none was measured.
-  double at(int divisor) const;
+  // At 1/8, 1/4, 1/2, the quad-shaded rung and full resolution; newest first, 0: none.
+  std::array<std::array<double, kKept>, 5> recent{};
+  static std::size_t slot(int divisor, bool quads) {
+    return divisor >= 8 ? 0 : divisor >= 4 ? 1 : divisor >= 2 ? 2 : quads ? 3 : 4;
+  }
+  // The expected time of a pass at `divisor` (the quad-shaded rung with `quads`); 0 when none
+  // was measured.
+  double at(int divisor, bool quads = false) const;
   // A pass at `divisor` took `ms`.
-  void note(int divisor, double ms);
-  void forget(int divisor);  // no pass at `divisor` measured yet
+  void note(int divisor, double ms, bool quads = false);
+  void forget(int divisor, bool quads = false);  // no pass at `divisor` measured yet
 };
 // The index into `levels` of the finest level whose pass is expected to take at most
 // `budget_ms`: its expected time, or, not measured yet, the next coarser measured level's

@@ -5,10 +5,13 @@
 // shadow rays and terms) at first. Each other pixel of such a quad is interpolated between the
 // shaded pixels of its surface at the corners of the cell around it (never across an edge),
 // unless those corners differ by more than two display codes (a shadow's edge, a highlight, a
-// terminator): then it is shaded itself. Quads on an edge, mirrors and glass are shaded whole.
-// Every shaded pixel is the exact image's bit for bit; the others are measured by
-// `phonglab-bench SCENE --live`. Shown while the hand moves; the exact image replaces it when
-// the hand stops.
+// terminator): then it is shaded itself, from the hit already found. Quads on an edge, mirrors
+// and glass are shaded whole. One pass, tile by tile: a tile also finds the hits of the next
+// tiles' corner pixels it interpolates towards and shades them (their values are the same
+// wherever they are shaded). Every shaded pixel is the exact image's bit for bit; the others are
+// measured by `phonglab-bench SCENE --live`. The progressive renderer starts a restart there
+// while the hand moves when the exact image does not fit the frame's budget and this does; the
+// exact image replaces it when the hand stops.
 #pragma once
 
 #include <atomic>
