@@ -26,6 +26,7 @@
 #include "core/render/render.h"
 #include "core/scene/camera.h"
 #include "io/diagnostic.h"
+#include "io/image_io.h"
 
 namespace {
 
@@ -57,6 +58,10 @@ constexpr const char* kUsage = R"(usage: phonglab-bench [--out DIR] [--quick] [-
   light-intensity slider (within 1e-12 of render_pass; default: plain frames).
   --formula: a term by a formula of your own (docs/formulas.md): the image
   with the formulas timed against the built-in re-shade of a kd edit.
+  --live: each live level of a camera orbit (1/8, 1/4, 1/2, the quad-shaded
+  rung, the exact image): its time and its error as shown against the exact
+  image (docs/speed.md); with --out DIR, the last frame's images as shown
+  (DIR/live-LEVEL.png).
   --check MISTAKE: a student's 8-bit image with that mistake (docs/checking.md)
   checked against every single mistake, timed against one 1-spp render
   (default 5 runs at 960 x 540).
@@ -241,7 +246,10 @@ int time_formula(const std::string& scene_arg, const LocalRules& formulas, int f
 // the previewer shows them) and the quad-shaded rung (exact visibility, a quarter of the
 // shading). Per level: the median time and the RMSE of the image as shown against the exact
 // image of the same camera, in display sRGB (0..1), and each as a ratio to the full pass's.
-int time_live_levels(const std::string& scene_arg, int frames, int width, int height, int threads) {
+// With `out_dir`: the last frame's image of each level as the hall sees it (a coarse level
+// widened into its blocks, 100 % zoom) as DIR/live-LEVEL.png, to be looked at side by side.
+int time_live_levels(const std::string& scene_arg, int frames, int width, int height, int threads,
+                     const std::optional<std::string>& out_dir) {
   std::optional<Scene> scene = load_or_report(scene_arg);
   if (!scene) return kExitBadInput;
   struct Level {
@@ -272,10 +280,20 @@ int time_live_levels(const std::string& scene_arg, int frames, int width, int he
       level.ms.push_back(pass.seconds * 1e3);
       level.shadow_rays += pass.rays.shadow;
       std::vector<std::uint8_t> shown(static_cast<std::size_t>(width) * height * 3);
+      Image widened{width, height, std::vector<glm::vec3>(static_cast<std::size_t>(width) * height)};
       for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
           const Color c = a.sum[static_cast<std::size_t>(y / d) * lw + x / d];
+          widened.at(x, y) = glm::vec3(c);
           for (int k = 0; k < 3; ++k) shown[(static_cast<std::size_t>(y) * width + x) * 3 + k] = srgb(static_cast<float>(c[k]));
+        }
+      }
+      if (out_dir && f + 1 == frames) {
+        const std::string path = *out_dir + "/live-" + level.name + ".png";
+        const std::string error = write_image(path, widened);
+        if (!error.empty()) {
+          std::fprintf(stderr, "phonglab-bench: %s\n", error.c_str());
+          return kExitBadInput;
         }
       }
       if (level.divisor == 1) exact = shown;
@@ -446,7 +464,7 @@ int run(Args& args) {
   }
   if (live) {
     return time_live_levels(*positional, frames.value_or(5), width.value_or(1280), height.value_or(720),
-                            threads.value_or(0));
+                            threads.value_or(0), out_dir);
   }
   if (reshade) {
     if (*reshade != "shading" && *reshade != "light" && *reshade != "head") {

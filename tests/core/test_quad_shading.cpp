@@ -1,4 +1,4 @@
-// The quad-shaded rung under study (src/experiments/quad_shading.h): the pixels it shades are the
+// The quad-shaded live rung (core/render/quad_shading.h): the pixels it shades are the
 // exact image's bit for bit, every pixel is within a few display codes of it, its error is under a
 // third of the half-resolution level's (the target of the camera-drag design), and it is the same
 // image for any thread count, traced in packets or by the scalar tracer.

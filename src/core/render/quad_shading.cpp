@@ -29,7 +29,6 @@ std::int64_t surface_of(const Hit& hit) {
   const auto kind = static_cast<std::int64_t>(hit.object.kind);
   return kind << 56 | static_cast<std::int64_t>(hit.object.index) << 32 | static_cast<std::uint32_t>(hit.material);
 }
-std::size_t material_of_surface(std::int64_t surface) { return static_cast<std::uint32_t>(surface); }
 
 // The image's tiles, row by row.
 struct Tiles {
@@ -138,52 +137,69 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
       out.resize(static_cast<std::size_t>(m));
       if (packets) packet_tracer_for(prepared).shade_found(lanes.data(), m, eye, out.data(), rays);
       else scalar->shade_found(lanes.data(), m, out.data(), rays);
-      for (int j = 0; j < m; ++j) value[static_cast<std::size_t>(lanes[static_cast<std::size_t>(j)])] = out[static_cast<std::size_t>(j)];
+      // As render_pass writes a first sample: NaN and infinities as 0 (counted once, where the
+      // pixel is the tile's own), before anything is interpolated from them.
+      for (int j = 0; j < m; ++j) {
+        const auto i = static_cast<std::size_t>(lanes[static_cast<std::size_t>(j)]);
+        Color c = out[static_cast<std::size_t>(j)];
+        if (!all_finite(c)) {
+          c = Color(0);
+          if (static_cast<int>(i % static_cast<std::size_t>(rw)) < x1 - x0 && static_cast<int>(i / static_cast<std::size_t>(rw)) < y1 - y0) {
+            nan_count.fetch_add(1, std::memory_order_relaxed);
+          }
+        }
+        value[i] = Color(0) + c;  // what render_pass adds to the empty sum
+      }
       lanes.clear();
     };
-    const auto list = [&](int x, int y) {
-      const std::size_t i = local(x, y);
-      if (surface[i] == kNoSurface) value[i] = scene.background;
+    const Color background = Color(0) + scene.background;
+    const auto list = [&](std::size_t i) {
+      if (surface[i] == kNoSurface) value[i] = background;
       else lanes.push_back(static_cast<int>(i));
     };
-    // A quad (top-left qx, qy) on one surface, of a material neither mirror nor glass.
-    const auto uniform = [&](int qx, int qy) {
-      if (qx + 1 >= w || qy + 1 >= h) return false;  // cut by the image's edge
-      const std::int64_t s = surface[local(qx, qy)];
-      return s != kNoSurface && surface[local(qx + 1, qy)] == s && surface[local(qx, qy + 1)] == s &&
-             surface[local(qx + 1, qy + 1)] == s && !has_children(scene.materials[material_of_surface(s)]);
-    };
+    // The quads (top-left qx, qy) on one surface, one flag each, row by row.
+    const int quads_across = (x1 - x0 + 1) / 2;
+    std::array<std::uint8_t, (kQuadTile / 2) * (kQuadTile / 2)> one_surface{};
     lanes.clear();
     for (int y = y0; y < ye; y += 2) {
       for (int x = x0; x < xe; x += 2) {
-        if (x >= x1 || y >= y1 || uniform(x, y)) {
-          list(x, y);  // a lattice point: its own quad's top-left, or a corner of the next tiles'
+        const std::size_t i = local(x, y);
+        if (x >= x1 || y >= y1) {
+          list(i);  // a corner of the next tiles' quads
           continue;
         }
-        for (int k = 0; k < 4; ++k) {
-          if (x + (k & 1) < x1 && y + (k >> 1) < y1) list(x + (k & 1), y + (k >> 1));
+        const std::int64_t s = surface[i];
+        const bool one = x + 1 < w && y + 1 < h && s != kNoSurface && surface[i + 1] == s &&
+                         surface[i + static_cast<std::size_t>(rw)] == s && surface[i + static_cast<std::size_t>(rw) + 1] == s;
+        one_surface[static_cast<std::size_t>((y - y0) / 2 * quads_across + (x - x0) / 2)] = one;
+        list(i);
+        if (one) continue;
+        for (int k = 1; k < 4; ++k) {  // cut by the image's edge or on more than one surface: shaded whole
+          if (x + (k & 1) < x1 && y + (k >> 1) < y1) list(local(x + (k & 1), y + (k >> 1)));
         }
       }
     }
     shade_listed();
-    // The display codes of the lattice points, each taken once.
+    // The display codes of the lattice points (sRGB, packed 8 bits a channel), each taken once.
     constexpr int kSide = kQuadTile / 2 + 1;
-    std::array<std::array<int, 3>, kSide * kSide> lattice;
-    std::array<bool, kSide * kSide> coded{};
-    const auto codes_at = [&](int sx, int sy, const Color& c) -> const std::array<int, 3>& {
-      const auto k = static_cast<std::size_t>((sy - y0) / 2 * kSide + (sx - x0) / 2);
-      if (!coded[k]) {
-        for (std::size_t ch = 0; ch < 3; ++ch) lattice[k][ch] = codes(static_cast<float>(c[static_cast<int>(ch)]));
-        coded[k] = true;
+    std::array<std::uint32_t, kSide * kSide> code{};
+    const int side_x = (xe - x0 + 1) / 2;
+    for (int y = y0; y < ye; y += 2) {
+      for (int x = x0; x < xe; x += 2) {
+        const Color& c = value[local(x, y)];
+        code[static_cast<std::size_t>((y - y0) / 2 * side_x + (x - x0) / 2)] =
+            static_cast<std::uint32_t>(codes(static_cast<float>(c.r))) | static_cast<std::uint32_t>(codes(static_cast<float>(c.g))) << 8 |
+            static_cast<std::uint32_t>(codes(static_cast<float>(c.b))) << 16;
       }
-      return lattice[k];
-    };
+    }
+    const auto channel = [](std::uint32_t packed, int c) { return static_cast<int>(packed >> (8 * c) & 0xff); };
     for (int qy = y0; qy < y1; qy += 2) {
       for (int qx = x0; qx < x1; qx += 2) {
-        if (!uniform(qx, qy)) continue;  // shaded whole
+        if (!one_surface[static_cast<std::size_t>((qy - y0) / 2 * quads_across + (qx - x0) / 2)]) continue;  // shaded whole
         // The shaded corners of the cell on the quad's surface, and whether they are within
         // kSmoothCodes of each other.
         const std::int64_t own = surface[local(qx, qy)];
+        const std::size_t lattice = static_cast<std::size_t>((qy - y0) / 2 * side_x + (qx - x0) / 2);
         Color corner[4];
         bool valid[4];
         int lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
@@ -192,13 +208,20 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
           valid[k] = sx < w && sy < h && surface[local(sx, sy)] == own;
           if (!valid[k]) continue;
           corner[k] = value[local(sx, sy)];
-          const std::array<int, 3>& code = codes_at(sx, sy, corner[k]);
-          for (std::size_t c = 0; c < 3; ++c) {
-            lo[c] = std::min(lo[c], code[c]);
-            hi[c] = std::max(hi[c], code[c]);
+          const std::uint32_t packed = code[lattice + static_cast<std::size_t>((k & 1) + (k >> 1) * side_x)];
+          for (int c = 0; c < 3; ++c) {
+            lo[c] = std::min(lo[c], channel(packed, c));
+            hi[c] = std::max(hi[c], channel(packed, c));
           }
         }
         const bool smooth = hi[0] - lo[0] <= kSmoothCodes && hi[1] - lo[1] <= kSmoothCodes && hi[2] - lo[2] <= kSmoothCodes;
+        if (smooth && valid[1] && valid[2] && valid[3]) {
+          // The loop below when every corner counts (its sums, term by term; the weights add to 1).
+          value[local(qx + 1, qy)] = Color(0) + 0.5 * corner[0] + 0.5 * corner[1];
+          value[local(qx, qy + 1)] = Color(0) + 0.5 * corner[0] + 0.5 * corner[2];
+          value[local(qx + 1, qy + 1)] = Color(0) + 0.25 * corner[0] + 0.25 * corner[1] + 0.25 * corner[2] + 0.25 * corner[3];
+          continue;
+        }
         for (int p = 1; p < 4; ++p) {
           const int x = qx + (p & 1), y = qy + (p >> 1);
           if (!smooth) {
@@ -219,17 +242,9 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
       }
     }
     shade_listed();
-    // The tile's pixels as render_pass writes a first sample: NaN and infinities as 0 (counted).
+    // The tile's pixels: every value above is as render_pass writes a first sample.
     for (int y = y0; y < y1; ++y) {
-      Color* row = accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
-      for (int x = x0; x < x1; ++x) {
-        Color c = value[local(x, y)];
-        if (!all_finite(c)) {
-          c = Color(0);
-          nan_count.fetch_add(1, std::memory_order_relaxed);
-        }
-        row[x] = Color(0) + c;  // what render_pass adds to the empty sum
-      }
+      std::copy_n(value.data() + local(x0, y), x1 - x0, accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x0));
     }
   });
   PassStats stats;

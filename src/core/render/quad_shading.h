@@ -1,12 +1,13 @@
 // The live rung with exact visibility and less shading (docs/speed.md, "The camera drag"): sample
 // 0 at every pixel centre, every pixel's primary ray traced (exact silhouettes, exactly which
-// surface each pixel shows); in a 2x2 quad whose four primary hits are on one surface, of one
-// material that neither reflects nor refracts, only the top-left pixel is shaded (its lights,
-// shadow rays and terms) at first. Each other pixel of such a quad is interpolated between the
+// surface each pixel shows); in a 2x2 quad whose four primary hits are on one surface (one
+// object and one material, mirrors and glass alike) only the top-left pixel is shaded (its
+// lights, shadow rays, terms and children) at first. Each other pixel of such a quad is interpolated between the
 // shaded pixels of its surface at the corners of the cell around it (never across an edge),
 // unless those corners differ by more than two display codes (a shadow's edge, a highlight, a
-// terminator): then it is shaded itself, from the hit already found. Quads on an edge, mirrors
-// and glass are shaded whole. One pass, tile by tile: a tile also finds the hits of the next
+// terminator, a reflected edge): then it is shaded itself, from the hit already found. Quads on
+// an edge are shaded whole. A shaded pixel's NaN or infinity is 0 (counted) before anything is
+// interpolated from it. One pass, tile by tile: a tile also finds the hits of the next
 // tiles' corner pixels it interpolates towards and shades them (their values are the same
 // wherever they are shaded). Every shaded pixel is the exact image's bit for bit; the others are
 // measured by `phonglab-bench SCENE --live`. The progressive renderer starts a restart there
