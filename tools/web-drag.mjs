@@ -1,11 +1,11 @@
 // The camera drag in the web page, as a student's hand makes it: a real mouse drag across the
 // image (60 moves, one a frame, for about a second), with every image the page shows counted by
-// its resolution (full, 1/2, 1/4, 1/8). Several pages side by side, alternating rounds, so a
+// level (full, the quad-shaded rung, 1/2, 1/4, 1/8). Several pages side by side, alternating rounds, so a
 // change of the machine's load hits them alike.
 //
 //   node tools/web-drag.mjs [--size WxH] [--scene NAME] [--rounds N] PAGE...
 //
-// Prints, per page, the shown images by level summed over the rounds, the share at full
+// Prints, per page, the shown images by level summed over the rounds, the share exact at full
 // resolution, and the images shown a second.
 import path from 'node:path';
 import { createRequire } from 'node:module';
@@ -31,7 +31,7 @@ for (let r = 0; r < rounds; ++r) {
     await page.setViewport({ width: width + 420, height: height + 200 });
     await page.goto(`file://${path.resolve(file)}?scene=${scene}&size=${size}&view=only`);
     await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
-    await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1; })()', { timeout: 60000 });
+    await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && !s.quads; })()', { timeout: 60000 });
     // Every image shown while the hand moves, by its level (the page counts frames it draws).
     await page.evaluate(() => {
       window.dragLog = [];
@@ -39,7 +39,8 @@ for (let r = 0; r < rounds; ++r) {
       const watch = () => {
         if (window.phonglab.frames !== seen) {
           seen = window.phonglab.frames;
-          window.dragLog.push(window.phonglab.state().divisor);
+          const s = window.phonglab.state();
+          window.dragLog.push(s.quads ? 0 : s.divisor);  // 0: the quad-shaded rung
         }
         if (!window.dragDone) requestAnimationFrame(watch);
       };
@@ -68,7 +69,7 @@ await browser.close();
 console.log(`${scene} ${size}, one thread (file://), ${rounds} rounds of a 60-move drag:`);
 for (const [i, file] of pages.entries()) {
   const t = totals[i];
-  const levels = [1, 2, 4, 8].map((d) => `${d === 1 ? 'full' : `1/${d}`}=${t.levels[d] || 0}`).join(' ');
+  const levels = [1, 0, 2, 4, 8].map((d) => `${d === 1 ? 'full' : d === 0 ? 'quads' : `1/${d}`}=${t.levels[d] || 0}`).join(' ');
   const full = t.images ? (100 * (t.levels[1] || 0)) / t.images : 0;
   console.log(`  ${file}: ${levels}; full on ${full.toFixed(0)} % of ${t.images} images, ${(t.images / t.seconds).toFixed(1)} images/s`);
 }

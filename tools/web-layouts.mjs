@@ -20,7 +20,7 @@ for (const [name, viewport, hash] of [
   await page.setViewport(viewport);
   await page.goto(`file://${path.resolve(page_path)}?scene=lecture&spp=4${hash}`);
   await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
-  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && s.spp >= 4; })()',
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && !s.quads && s.spp >= 4; })()',
                              { timeout: 300000 });
   await new Promise((resolve) => setTimeout(resolve, 300));
   const layout = await page.evaluate(() => {

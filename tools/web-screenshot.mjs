@@ -18,7 +18,7 @@ const box = await (await page.$('#image')).boundingBox();
 await page.keyboard.down('Shift');
 await page.mouse.click(box.x + 380, box.y + 250);
 await page.keyboard.up('Shift');
-await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && s.spp >= 16; })()',
+await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && !s.quads && s.spp >= 16; })()',
                            { timeout: 300000 });
 await new Promise((resolve) => setTimeout(resolve, 300));
 await page.screenshot({ path: out });

@@ -20,7 +20,7 @@ async function open(file) {
   const page = await browser.newPage();
   await page.goto(`file://${path.resolve(file)}?scene=${scene}&size=${size}&spp=1&view=only`);
   await page.waitForFunction('window.phonglab && window.phonglab.ready', { timeout: 60000 });
-  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1; })()',
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && !s.quads; })()',
                              { timeout: 120000 });
   return page;
 }

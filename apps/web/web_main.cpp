@@ -57,6 +57,7 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .function("imageHeight", &WebView::image_height)
       .function("spp", &WebView::spp)
       .function("divisor", &WebView::divisor)
+      .function("quads", &WebView::quads)
       .function("generation", &WebView::generation)
       .function("shownGeneration", &WebView::shown_generation)
       .function("pixels", &WebView::pixels)

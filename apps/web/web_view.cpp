@@ -17,6 +17,7 @@
 #include "core/scene/display8.h"
 #include "core/teaching/compare.h"
 #include "core/teaching/heat_map.h"
+#include "core/render/quad_shading.h"
 #include "core/teaching/ray_tree_view.h"
 #include "interaction/camera_control.h"
 #include "interaction/numbers.h"
@@ -111,18 +112,26 @@ void WebView::set_interacting(bool on) {
   if (live_shown_) {  // the hand stopped: the exact re-shade replaces the recombined image
     live_shown_ = false;
     next_ = FromTrees::kReshade;
-  } else if (level_ < 3 && accum_.samples > 0) {  // on to finer levels from the live one
-    ++level_;
-    accum_.samples = 0;
+  } else if (level_ < full_level() && accum_.samples > 0) {  // on to finer levels from the live one
+    next_level();
   }
+}
+
+void WebView::next_level() {
+  ++level_;
+  if (levels()[static_cast<std::size_t>(level_)].quads) ++level_;
+  accum_.samples = 0;
 }
 
 bool WebView::step() {
   if (!prepared_) begin_generation();
   if (next_ != FromTrees::kTrace) return shade_from_trees();
   if (interacting_ && accum_.samples > 0) return false;  // the hand is on: one pass at the live level
+  // A view changed without a restart (a lesson closed) may have changed the ladder under level_.
+  level_ = std::min(level_, full_level());
+  if (!interacting_ && levels()[static_cast<std::size_t>(level_)].quads && accum_.samples == 0) ++level_;
   // A difference against a first-full A compares like with like: the live image stays at A's sample.
-  if (level_ == 3 && accum_.samples >= static_cast<std::uint32_t>(target_spp())) return false;
+  if (level_ == full_level() && accum_.samples >= static_cast<std::uint32_t>(target_spp())) return false;
   const ProgressiveLevel level = levels()[static_cast<std::size_t>(level_)];
   if (accum_.width != level.width || accum_.height != level.height || accum_.samples == 0) {
     accum_.reset(level.width, level.height, view_.small_multiples || ambient_pair());
@@ -132,18 +141,17 @@ bool WebView::step() {
   options.ambient = view_.ambient;
   options.shading_eye = eye_;
   options.threads = threads_;
-  const PassStats pass = render_pass(*prepared_, options, accum_);
-  if (probing_) level_times_.forget(level.divisor);  // the probe's pass is the level's time now
+  const PassStats pass = level.quads ? render_quad_shaded(*prepared_, options, accum_) : render_pass(*prepared_, options, accum_);
+  if (probing_) level_times_.forget(level.divisor, level.quads);  // the probe's pass is the level's time now
   probing_ = false;
-  level_times_.note(level.divisor, pass.seconds * 1e3);
+  level_times_.note(level.divisor, pass.seconds * 1e3, level.quads);
   encode();
   const bool a_taken = a_.requested() && !a_.first_full() &&
                        a_.take_when_ready(static_cast<std::uint64_t>(generation_), shown_, finished());
   if (a_taken) encode();  // shown against the new A
-  if (level_ < 3 && !interacting_) {
-    ++level_;
-    accum_.samples = 0;
-  } else if (level_ == 3 && accum_.samples == 1 && !interacting_) {
+  if (level_ < full_level() && !interacting_) {
+    next_level();
+  } else if (level_ == full_level() && accum_.samples == 1 && !interacting_) {
     record_trees();
   }
   update_lesson();
@@ -154,12 +162,18 @@ int WebView::trace_width() const { return view_.small_multiples ? std::max(1, wi
 int WebView::trace_height() const { return view_.small_multiples ? std::max(1, height_ / kRows) : height_; }
 
 // The page's levels: 1/8, 1/4, 1/2 and full resolution of the image (of one cell of the small
-// multiples' grid).
+// multiples' grid), with the quad-shaded live rung before full resolution where it draws what
+// is shown (the full image with ka·Ia: the desktop's rule, core/render/progressive.h).
 std::vector<ProgressiveLevel> WebView::levels() const {
   const int cells_x = view_.small_multiples ? kColumns : 1, cells_y = view_.small_multiples ? kRows : 1;
   std::vector<ProgressiveLevel> out;
   for (const int divisor : kDivisors) {
     out.push_back({divisor, std::max(1, width_ / cells_x / divisor), std::max(1, height_ / cells_y / divisor)});
+  }
+  if (pass_term() == Term::kFull && !view_.small_multiples && constant_ambient()) {
+    ProgressiveLevel rung = out.back();
+    rung.quads = true;
+    out.insert(out.end() - 1, rung);
   }
   return out;
 }
@@ -195,7 +209,7 @@ void WebView::begin_generation() {
   }
   const bool linear = trees_->recombines(*prepared_, trace_width(), trace_height(), pass_term(), eye_, view_.small_multiples);
   next_ = interacting_ && linear ? FromTrees::kLive : FromTrees::kReshade;
-  level_ = 3;
+  level_ = full_level();
 }
 
 // As on the desktop: the Whitted image and its terms, not the indirect light (a random estimate
@@ -291,7 +305,7 @@ void WebView::set_small_multiples(bool on) {
 }
 
 bool WebView::finished() const {
-  return shown_generation_ == generation_ && shown_divisor_ == 1 && !live_shown_ &&
+  return shown_generation_ == generation_ && shown_divisor_ == 1 && !shown_quads_ && !live_shown_ &&
          shown_spp_ >= static_cast<std::uint32_t>(target_spp()) && !view_.small_multiples;
 }
 
@@ -574,7 +588,8 @@ void WebView::encode() {
   shown_width_ = accum_.width * (view_.small_multiples ? kColumns : 1);
   shown_height_ = accum_.height * (view_.small_multiples ? kRows : 1);
   shown_spp_ = accum_.samples;
-  shown_divisor_ = kDivisors[static_cast<std::size_t>(level_)];
+  shown_divisor_ = levels()[static_cast<std::size_t>(level_)].divisor;
+  shown_quads_ = levels()[static_cast<std::size_t>(level_)].quads;
   shown_generation_ = generation_;
   shown_.generation = static_cast<std::uint64_t>(generation_);
   shown_.width = shown_width_, shown_.height = shown_height_, shown_.divisor = shown_divisor_, shown_.spp = shown_spp_;

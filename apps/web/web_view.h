@@ -98,6 +98,7 @@ class WebView {
   int image_height() const { return shown_height_; }
   int spp() const { return static_cast<int>(shown_spp_); }
   int divisor() const { return shown_divisor_; }
+  bool quads() const { return shown_quads_; }        // the image is the quad-shaded live rung (divisor 1)
   bool live() const { return live_shown_; }          // the image is a linear edit's recombination
   bool reshaded() const { return reshaded_; }        // this generation's first sample was re-shaded
   int generation() const { return generation_; }             // restarts so far
@@ -179,6 +180,8 @@ class WebView {
   void edited_by_hand();
   void restart();
   std::vector<ProgressiveLevel> levels() const;
+  int full_level() const { return static_cast<int>(levels().size()) - 1; }
+  void next_level();  // on from level_ towards the exact image (past the rung: a live start only)
   int trace_width() const;   // the traced image's size at full resolution: one cell in the small multiples
   int trace_height() const;
   int live_level();
@@ -212,6 +215,7 @@ class WebView {
   int check_view_ = 0;
   std::optional<std::vector<glm::vec3>> check_view_pixels() const;
   int shown_width_ = 0, shown_height_ = 0, shown_divisor_ = 8;
+  bool shown_quads_ = false;
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1, images_ = 0;
   bool interacting_ = false;

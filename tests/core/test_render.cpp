@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/packet/packet.h"
+#include "core/render/quad_shading.h"
 #include "core/render/render.h"
 #include "core/base/threads.h"
 #include "tests/support/random_scenes.h"
@@ -237,6 +238,35 @@ TEST(Threads, ImageIsBitIdenticalForAnyThreadCount) {
       for (std::size_t i = 0; i < one.sum.size(); ++i) {
         ASSERT_EQ(one.sum[i], many.sum[i]) << "pixel " << i << ", " << threads << " threads, spp " << spp;
       }
+    }
+  }
+}
+
+// A first pass writes each pixel's mean as float too, tile by tile (what a viewer converts after
+// the pass, the same bits); a later pass leaves that image alone. Both tracers, the quad-shaded
+// rung too.
+TEST(Threads, AFirstPassWritesItsImageAsFloatsAsItGoes) {
+  const PreparedScene s = busy_scene();
+  constexpr int kW = 37, kH = 23;
+  const glm::vec3 untouched(-7.0f);
+  for (const bool packets : {false, true}) {
+    for (const bool quads : {false, true}) {
+      SCOPED_TRACE(std::string(packets ? "packets" : "scalar") + (quads ? ", quads" : ""));
+      std::vector<glm::vec3> floats(static_cast<std::size_t>(kW * kH), untouched);
+      RenderOptions options;
+      options.threads = 2;
+      options.packets = packets;
+      options.first_sample_image = floats.data();
+      Accumulator a;
+      a.reset(kW, kH);
+      if (quads) render_quad_shaded(s, options, a);
+      else render_pass(s, options, a);
+      for (std::size_t i = 0; i < floats.size(); ++i) {
+        ASSERT_EQ(floats[i], glm::vec3(a.sum[i] * (1.0 / a.samples))) << "pixel " << i;
+      }
+      std::fill(floats.begin(), floats.end(), untouched);
+      render_pass(s, options, a);  // a second sample: not a first pass
+      for (const glm::vec3& f : floats) ASSERT_EQ(f, untouched);
     }
   }
 }

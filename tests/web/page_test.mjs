@@ -46,7 +46,7 @@ async function open(query, address = url(query)) {
 // Waits until the page's image is of the view as it is now, at full resolution with `spp`
 // samples; returns its RGB bytes.
 async function image_at(page, spp) {
-  await page.waitForFunction(`(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && s.spp >= ${spp}; })()`,
+  await page.waitForFunction(`(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && !s.quads && s.spp >= ${spp}; })()`,
                              { timeout: 120000 });
   const rgba = await page.evaluate(() => Array.from(window.phonglab.view.pixels()));
   const rgb = Buffer.alloc(rgba.length / 4 * 3);
@@ -201,7 +201,7 @@ let one_thread_image;
   check(distance(c3) < distance(c2) - 1e-3, `two fingers moving apart dolly closer (${distance(c2).toFixed(3)} -> ${distance(c3).toFixed(3)})`);
   await (await page.$('#image')).click({ offset: { x: 5, y: 5 } });
   await page.keyboard.press('m');
-  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.multiples && s.current && s.divisor === 1; })()', { timeout: 60000 });
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.multiples && s.current && s.divisor === 1 && !s.quads; })()', { timeout: 60000 });
   const grid = await page.evaluate(() => window.phonglab.state());
   check(grid.width === 3 * Math.floor(320 / 3) && grid.height === 180, `M shows the five terms and the full image, 3 x 2 (${grid.width}x${grid.height})`);
   await page.screenshot({ path: path.join(out, 'multiples.png') });
@@ -325,7 +325,7 @@ let one_thread_image;
   await page.keyboard.press('3');  // the single view's trees recorded first: the grid must not re-shade them
   await image_at(page, 1);
   await page.keyboard.press('m');
-  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.multiples && s.current && s.divisor === 1; })()', { timeout: 60000 });
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.multiples && s.current && s.divisor === 1 && !s.quads; })()', { timeout: 60000 });
   const grid = await image_at(page, 1);
   const state = await page.evaluate(() => window.phonglab.state());
   const cw = 160, ch = 135;
@@ -459,7 +459,7 @@ let one_thread_image;
   const page = await open('scene=lecture&size=320x180&spp=3');
   await image_at(page, 3);
   await (await page.$('#one-spp')).click();
-  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && s.spp === 1; })()', { timeout: 60000 });
+  await page.waitForFunction('(() => { const s = window.phonglab.state(); return s.current && s.divisor === 1 && !s.quads && s.spp === 1; })()', { timeout: 60000 });
   await page.waitForTimeout(300);
   const downloads = path.join(out, 'downloads');
   mkdirSync(downloads, { recursive: true });

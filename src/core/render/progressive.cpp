@@ -241,6 +241,7 @@ struct ProgressiveRenderer::Job {
   bool live = false;            // the next pass recombines the stored trees' sums (a linear edit, hand on)
   bool live_shown = false;      // the image is the live one: the exact re-shade is owed
   bool accum_live = false;      // accum holds the image the trees last recombined, nothing since
+  bool image_converted = false; // the last pass wrote its image for the screen (back_.pixels) too
   LevelTimes level_times;       // the last passes at each level, for live_start_level
   std::chrono::steady_clock::time_point last_probe;  // the last restart started finer than fits (live_level)
   bool probing = false;         // this generation started finer than fits: its first pass's time stands alone
@@ -286,6 +287,7 @@ void ProgressiveRenderer::run() {
       job.accum_stale = false;
     }
     PassStats pass;
+    job.image_converted = false;
     if (job.live && job.interacting) {
       pass = job.trees->recombine(*job.scene, job.settings.term, job.settings.threads, job.accum, &cancel_,
                                   job.accum_live);
@@ -316,6 +318,12 @@ void ProgressiveRenderer::run() {
       options.threads = job.settings.threads;
       options.shading_eye = job.settings.shading_eye;
       options.ambient = job.settings.ambient;
+      // A first pass converts its image for the screen tile by tile, as it goes (publish's work).
+      if (job.accum.samples == 0) {
+        back_.pixels.resize(job.accum.sum.size());
+        options.first_sample_image = back_.pixels.data();
+      }
+      job.image_converted = options.first_sample_image != nullptr;
       pass = job.levels[job.level].quads ? render_quad_shaded(*job.scene, options, job.accum, &cancel_)
                                          : render_pass(*job.scene, options, job.accum, &cancel_);
     }
@@ -464,7 +472,10 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   back_.spp = job.accum.samples;
   back_.pixels.resize(job.accum.sum.size());
   const double inv_samples = 1.0 / static_cast<double>(job.accum.samples);
-  for (std::size_t i = 0; i < job.accum.sum.size(); ++i) back_.pixels[i] = glm::vec3(job.accum.sum[i] * inv_samples);
+  if (!job.image_converted) {
+    for (std::size_t i = 0; i < job.accum.sum.size(); ++i) back_.pixels[i] = glm::vec3(job.accum.sum[i] * inv_samples);
+  }
+  job.image_converted = false;
   for (std::size_t k = 0; k < kFiveTermMembers.size(); ++k) {
     std::vector<glm::vec3>& image = back_.terms[k];
     image.resize(job.accum.terms.size());

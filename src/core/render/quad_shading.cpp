@@ -244,7 +244,11 @@ PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions&
     shade_listed();
     // The tile's pixels: every value above is as render_pass writes a first sample.
     for (int y = y0; y < y1; ++y) {
-      std::copy_n(value.data() + local(x0, y), x1 - x0, accum.sum.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x0));
+      const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x0);
+      std::copy_n(value.data() + local(x0, y), x1 - x0, accum.sum.data() + row);
+      if (options.first_sample_image) {
+        for (int x = x0; x < x1; ++x) options.first_sample_image[row + static_cast<std::size_t>(x - x0)] = glm::vec3(value[local(x, y)]);
+      }
     }
   });
   PassStats stats;

@@ -157,12 +157,14 @@ PassStats render_pass(const PreparedScene& prepared, const RenderOptions& option
     // The first sample is written (0 + c, exactly what adding it to a cleared sum gives, -0
     // included), so the accumulator needs no clearing before it (reset_for_first_pass).
     const bool first = sample_index == 0;
+    glm::vec3* const floats = first ? options.first_sample_image : nullptr;
     const auto add = [&](Color* row, int x, Color c) {
       if (!all_finite(c)) {
         ++stats.nan_count;
         c = Color(0);
       }
       row[x] = (first ? Color(0) : row[x]) + c;
+      if (floats) floats[static_cast<std::size_t>(row - accum.sum.data()) + static_cast<std::size_t>(x)] = glm::vec3(row[x]);
     };
     const auto add_pixel_terms = [&](Terms& sum, const Terms& sample) {
       if (first) sum = Terms{};

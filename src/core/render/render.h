@@ -32,6 +32,10 @@ struct RenderOptions {
   // ka·Ia at every hit, or the indirect light's estimate with the scene's bounces (traced by the
   // scalar renderer: gather rays are incoherent).
   Ambient ambient = Ambient::kConstant;
+  // With a first pass (an accumulator at 0 samples): room for width x height floats, where each
+  // pixel's mean after the pass (its one sample, as float) is written as its tile finishes, so
+  // the conversion a viewer makes of the image overlaps the pass. Null: none.
+  glm::vec3* first_sample_image = nullptr;
 };
 
 // Sums of samples per pixel, row-major from the top-left, plus the sample count.
