@@ -27,7 +27,7 @@ done
 for f in "$OUT"/*.txt; do
   echo "== $(basename "$f" .txt)"
   for phase in material slider light drag camera; do
-    levels=$(grep "^levels $phase " "$f" | cut -d' ' -f3-)
+    levels=$(grep "^levels $phase " "$f" | cut -d' ' -f3- | paste -sd' ')  # with the rung's line, where logged
     full=$(grep "^summary $phase edit_to_full" "$f" | awk '{printf "%.0f / %.0f ms", $7, $9}')
     ui=$(grep "^summary $phase ui_frames" "$f" | awk '{printf "%.1f ms", $8}')
     cores=$(grep "^summary $phase cores" "$f" | awk '{printf "; cores: UI thread %.2f, all %.2f", $5, $7}')

@@ -18,7 +18,8 @@
 # For each phase: UI frame times (frames paced while rendering), the time from an edit to the
 # first image of it on screen (after the buffer swap) and to the first full-resolution image of
 # it or a later edit, the level of the image on screen at every UI frame while the hand is on
-# (`levels PHASE full=N half=N quarter=N eighth=N`), the cores taken (`cores ui U all A
+# (`levels PHASE full=N half=N quarter=N eighth=N`, `full` counting exact images only, and
+# `levels PHASE rung quads=N` for the quad-shaded live rung), the cores taken (`cores ui U all A
 # drawn_frames N`: the UI thread's share of a core, drawing included, the whole previewer's, and
 # the frames drawn, the others changing nothing), and the passes' Mrays/s by level. Figures
 # go to stdout; the raw log (every frame and latency) to BUILD_DIR/gui-bench/stats.log.
