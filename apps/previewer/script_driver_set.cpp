@@ -74,8 +74,7 @@ bool ScriptDriver::set_light_field(const std::vector<std::string>& w) {
 
 // `set camera position|look_at|up|fov V..`: refused when the camera would be invalid.
 bool ScriptDriver::set_camera_field(const std::vector<std::string>& w) {
-  Scene& scene = v_.doc_.scene();
-  Camera edit = scene.camera;
+  Camera edit = v_.session_.scene().camera;
   const std::string& field = w[2];
   Vec3 v;
   double fov = 0;
@@ -85,8 +84,7 @@ bool ScriptDriver::set_camera_field(const std::vector<std::string>& w) {
   else if (field == "fov" && w.size() == 4 && parse_double(w[3], fov)) edit.fov_y_deg = fov;
   else return false;
   if (!ui::camera_is_valid(edit)) return false;
-  scene.camera = edit;
-  v_.edits_.camera = true;
+  v_.move_camera(edit);
   return true;
 }
 

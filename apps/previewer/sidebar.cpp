@@ -135,7 +135,7 @@ void Sidebar::sidebar_show() {
 }
 
 void Sidebar::sidebar_materials() {
-  Scene& scene = v_.doc_.scene();
+  const Scene& scene = v_.session_.scene();
   if (v_.picked_text_.empty()) ImGui::TextDisabled("Click an object in the view to select its material.");
   else ImGui::TextDisabled("Clicked: %s", v_.picked_text_.c_str());
   // A coefficient edited in the panel reaches the renderer as a value: the panel edits a copy,
@@ -359,8 +359,8 @@ void Sidebar::sidebar_file() {
 }
 
 void Sidebar::sidebar_render() {
-  Scene& scene = v_.doc_.scene();
-  if (ui::shading_settings_panel(scene)) v_.edits_.scene = true;
+  Scene scene = v_.session_.scene();
+  if (ui::shading_settings_panel(scene)) v_.apply_edit({edit::SetScene{std::move(scene)}, ImGui::IsAnyItemActive()});
   ImGui::Separator();
   const int hardware = resolve_thread_count(0);
   if (ui::render_settings_panel(v_.render_settings_, hardware)) v_.edits_.settings = true;

@@ -321,17 +321,16 @@ void Viewer::note_restart(std::uint64_t generation, double edit_time) {
 }
 
 void Viewer::apply_edits(double frame_start) {
-  Scene& scene = doc_.scene();
   const ImGuiIO& io = ImGui::GetIO();
   if (edits_.frame_requested && viewport_.height > 0) {
     // Framed for the scene's own image: the view's fitting keeps that in any window.
+    const Scene& scene = session_.scene();
     const double framed = scene.height > 0 ? static_cast<double>(scene.width) / scene.height : 1;
-    if (ui::frame_scene(scene.camera, scene, framed)) edits_.camera = true;
+    Camera camera = scene.camera;
+    if (ui::frame_scene(camera, scene, framed)) move_camera(camera);
   }
-  if (edits_.reset_requested) {
-    scene.camera = doc_.loaded_camera();
-    edits_.camera = true;
-  }
+  if (edits_.reset_requested) move_camera(doc_.loaded_camera());
+  const Scene& scene = session_.scene();
   edits_.frame_requested = edits_.reset_requested = false;
   // Any change the lesson did not make itself leaves its step as written: exploring.
   if (lessons_.lesson() && !lesson_shell_.state().applied && (edits_.scene || edits_.camera || edits_.settings || edits_.view)) {
@@ -343,10 +342,7 @@ void Viewer::apply_edits(double frame_start) {
     dolly_limit_ = ui::dolly_limit(scene, doc_.loaded_camera());
     session_.reset_history();
     solo_ = ui::LightSolo{};
-  } else if (edits_.scene && !edits_.through_session) {
-    session_.edited_in_place();
   }
-  edits_.through_session = false;
   // One undo step per gesture: a slider drag, a light drag or an object drag commits when it ends.
   session_.settle(ImGui::IsAnyItemActive() || drag_.mode != DragMode::kNone);
 
@@ -614,7 +610,7 @@ void Viewer::write_stats_summary(const std::string& label) {
 
 void Viewer::apply_edit(const Edit& edit) {
   session_.apply(edit);
-  edits_.scene = edits_.through_session = true;  // a restart, as for any edit a panel reports
+  edits_.scene = true;  // a restart, as for any edit a panel reports
 }
 
 void Viewer::undo() {
@@ -631,7 +627,6 @@ void Viewer::restored() {
   if (selected_object_ >= ui::object_count(scene)) selected_object_ = -1;
   builder_.notice() = ui::EditNotice{};
   edits_.scene = true;
-  edits_.through_session = true;
 }
 
 }  // namespace phonglab

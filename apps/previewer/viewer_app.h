@@ -222,7 +222,6 @@ class Viewer {
   // What this frame's panels and input changed (apply_edits turns them into one restart).
   struct EditFlags {
     bool scene = false;            // materials, lights, shading: restart and mark unsaved
-    bool through_session = false;  // the session already knows of it (an Edit applied, undo, redo)
     bool camera = false;           // navigation: restart, not an unsaved change
     bool replaced = false;         // opened or reloaded
     bool settings = false;         // render settings panel

@@ -39,8 +39,7 @@ const char* object_kind_name(ObjectRef::Kind kind) {
 
 void Viewer::handle_viewport_input() {
   ImGuiIO& io = ImGui::GetIO();
-  Scene& scene = doc_.scene();
-  Camera& camera = scene.camera;
+  const Scene& scene = session_.scene();
   const Camera view = view_camera();
   // Where each button went down, from GLFW's event: ImGui 1.86 polls the cursor once a frame, so
   // a press followed by a quick move in the same frame would otherwise start where the pointer
@@ -115,9 +114,10 @@ void Viewer::handle_viewport_input() {
       }
       if (io.MouseWheel != 0) {
         const double factor = std::pow(kDollyPerWheelClick, static_cast<double>(io.MouseWheel));
+        Camera camera = scene.camera;
         if (schedule_.snapshot()) ui::dolly_in(*schedule_.snapshot(), camera, factor, dolly_limit_);  // never inside an object
         else ui::dolly(camera, factor, dolly_limit_);
-        edits_.camera = true;
+        move_camera(camera);
       }
     }
   } else if (ImGui::IsMouseDown(drag_.button)) {
@@ -233,7 +233,7 @@ void Viewer::handle_keys() {
 }
 
 void Viewer::shortcut(int key, bool shift) {
-  Scene& scene = doc_.scene();
+  const Scene& scene = session_.scene();
   if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
     const int digit = key - GLFW_KEY_1;  // 0 for the key 1
     if (shift) {

@@ -38,6 +38,11 @@ void SceneDocument::mark_saved() {
 
 void SceneDocument::update_dirty() { update_dirty(scene_content(scene_)); }
 
+void SceneDocument::restore_edits(Scene scene) {
+  scene_ = std::move(scene);
+  update_dirty();
+}
+
 void SceneDocument::adopt(const Scene& scene, const std::string& source) {
   scene_ = scene;
   loaded_camera_ = scene_.camera;

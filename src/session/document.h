@@ -49,8 +49,11 @@ class SceneDocument {
   // overwrites. Returns whether it counts as changed.
   bool edits_made_over(const std::string& base);
 
-  Scene& scene() { return scene_; }
+  // The scene; only the session writes it (its edits, undo and redo: Session).
   const Scene& scene() const { return scene_; }
+  // The scene becomes `scene`, edits made over the document's file (a recovery's restore):
+  // unsaved as far as it differs from what the file held.
+  void restore_edits(Scene scene);
   // Camera as loaded from the file (for Reset).
   const Camera& loaded_camera() const { return loaded_camera_; }
   // The embedded scene the document was opened from; empty for a file or a lesson's step.
@@ -74,6 +77,8 @@ class SceneDocument {
   bool loaded() const { return loaded_; }
 
  private:
+  friend class Session;  // the one writer of the scene
+  Scene& edited_scene() { return scene_; }
   bool write(const std::string& path);
   void mark_saved();                              // the scene as it is now is what the file holds
   std::optional<std::filesystem::file_time_type> current_mtime() const;

@@ -87,8 +87,7 @@ RecoveryKeeper::Restored RecoveryKeeper::restore(SceneDocument& doc, const ui::R
   const std::string dir = std::filesystem::path(entry.scene_path).parent_path().string();
   LoadResult r = load_scene_text(text.str(), entry.scene_path, dir, entry.embedded);
   if (!r.ok()) return Restored{r.error_text(), false};
-  doc.scene() = std::move(*r.scene);
-  doc.update_dirty();
+  doc.restore_edits(std::move(*r.scene));
   Restored out;
   if (!entry.embedded) out.changed_on_disk = doc.edits_made_over(entry.base);
   adopt(entry);

@@ -32,7 +32,7 @@ void Session::adopt(const Scene& scene, const std::string& source) {
 }
 
 Applied Session::apply(const Edit& e) {
-  Scene& scene = document_.scene();
+  Scene& scene = document_.edited_scene();
   const Scene before = scene;
   bool valid = true, navigation = false;
   std::visit(
@@ -66,7 +66,6 @@ Applied Session::apply(const Edit& e) {
   return applied;
 }
 
-void Session::edited_in_place() { edited(); }
 
 void Session::edited() {
   document_.update_dirty();
@@ -167,7 +166,7 @@ bool Session::undo() {
     }
     std::optional<Scene> scene = history_.undo(document_.scene());
     if (!scene) continue;  // beyond the scene history's bound
-    document_.scene() = std::move(*scene);
+    document_.edited_scene() = std::move(*scene);
     document_.update_dirty();
     redo_order_.push_back(step);
     return true;
@@ -190,7 +189,7 @@ bool Session::redo() {
     }
     std::optional<Scene> scene = history_.redo(document_.scene());
     if (!scene) continue;
-    document_.scene() = std::move(*scene);
+    document_.edited_scene() = std::move(*scene);
     document_.update_dirty();
     undo_order_.push_back(step);
     return true;

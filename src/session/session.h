@@ -68,9 +68,6 @@ class Session {
 
   // An edit. An index out of range changes nothing (changed = false).
   Applied apply(const Edit& edit);
-  // The shell changed scene_for_edit() in place (panels not yet turned into edits): the same
-  // bookkeeping as apply() of a scene edit.
-  void edited_in_place();
   // Once a UI frame: while no gesture holds them, the pending edits become one undo step.
   void settle(bool gesture_held);
   // The undo history starts anew from the scene as it is (a document replaced from outside).
@@ -86,7 +83,6 @@ class Session {
   bool edit_pending() const { return pending_; }  // edits wait for their gesture to end
 
   const Scene& scene() const { return document_.scene(); }
-  Scene& scene_for_edit() { return document_.scene(); }
   SceneDocument& document() { return document_; }
   const SceneDocument& document() const { return document_; }
   bool dirty() const { return document_.dirty(); }

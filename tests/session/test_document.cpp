@@ -12,6 +12,7 @@
 
 #include "io/scene/scene_io.h"
 #include "session/document.h"
+#include "tests/support/document_edits.h"
 
 namespace phonglab {
 namespace {
@@ -41,7 +42,7 @@ struct DocumentFiles : ::testing::Test {
   static void write_outside(const std::string& path, double kd) {
     SceneDocument other;
     ASSERT_TRUE(other.open(path));
-    other.scene().materials.at(0).kd = Color(kd);
+    test::edit_scene(other, [&](Scene& s) { s.materials.at(0).kd = Color(kd); });
     const auto before = fs::last_write_time(path);
     std::ofstream(path) << scene_to_json(other.scene(), fs::path(path).parent_path().string());
     fs::last_write_time(path, before + std::chrono::seconds(1));
@@ -93,11 +94,9 @@ TEST_F(DocumentFiles, NavigationIsNotAnUnsavedChangeButSaveWritesIt) {
   const std::string path = lecture_file();
   SceneDocument doc;
   ASSERT_TRUE(doc.open(path));
-  doc.scene().camera.position += Vec3(0, 2, 0);
-  doc.update_dirty();
+  test::edit_scene(doc, [&](Scene& s) { s.camera.position += Vec3(0, 2, 0); });
   EXPECT_FALSE(doc.dirty());
-  doc.scene().materials.at(0).kd = Color(0.125);
-  doc.update_dirty();
+  test::edit_scene(doc, [&](Scene& s) { s.materials.at(0).kd = Color(0.125); });
   EXPECT_TRUE(doc.dirty());
   ASSERT_EQ(doc.save(), SceneDocument::SaveResult::kSaved);
   EXPECT_FALSE(doc.dirty());
@@ -114,7 +113,7 @@ TEST_F(DocumentFiles, AChangeOnDiskIsNeverOverwrittenSilently) {
   EXPECT_FALSE(doc.changed_on_disk());
   write_outside(path, 0.75);
   EXPECT_TRUE(doc.changed_on_disk());
-  doc.scene().materials.at(0).kd = Color(0.25);
+  test::edit_scene(doc, [&](Scene& s) { s.materials.at(0).kd = Color(0.25); });
   EXPECT_EQ(doc.save(), SceneDocument::SaveResult::kChangedOnDisk);
   SceneDocument disk;
   ASSERT_TRUE(disk.open(path));
@@ -131,7 +130,7 @@ TEST_F(DocumentFiles, ReloadTakesTheFileAndKeepsTheViewWhenItsCameraStayed) {
   ASSERT_TRUE(doc.open(path));
   Camera view = doc.scene().camera;
   view.position += Vec3(3, 0, 0);
-  doc.scene().camera = view;
+  test::edit_scene(doc, [&](Scene& s) { s.camera = view; });
   write_outside(path, 0.5);
   ASSERT_TRUE(doc.reload(true));
   EXPECT_EQ(doc.scene().materials.at(0).kd, Color(0.5));
@@ -145,7 +144,7 @@ TEST_F(DocumentFiles, ReloadWithoutKeepingTheViewTakesTheFilesCamera) {
   SceneDocument doc;
   ASSERT_TRUE(doc.open(path));
   const Camera file_camera = doc.scene().camera;
-  doc.scene().camera.position += Vec3(3, 0, 0);
+  test::edit_scene(doc, [&](Scene& s) { s.camera.position += Vec3(3, 0, 0); });
   ASSERT_TRUE(doc.reload(false));
   EXPECT_EQ(doc.scene().camera, file_camera);
 }

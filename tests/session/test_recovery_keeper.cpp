@@ -12,6 +12,7 @@
 
 #include "io/scene/scene_io.h"
 #include "session/recovery_keeper.h"
+#include "tests/support/document_edits.h"
 
 namespace phonglab {
 namespace {
@@ -29,8 +30,7 @@ struct RecoveryFiles : ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir); }
   void edit(double kd) {
-    doc.scene().materials.at(0).kd = Color(kd);
-    doc.update_dirty();
+    test::edit_scene(doc, [&](Scene& s) { s.materials.at(0).kd = Color(kd); });
   }
   static std::string read(const std::string& path) {
     std::stringstream text;
@@ -102,8 +102,7 @@ TEST_F(RecoveryFiles, AKeptFileIsFoundForItsSourceOnly) {
 TEST_F(RecoveryFiles, ALessonsStepIsNobodysFile) {
   RecoveryKeeper keeper(dir.string());
   doc.adopt(doc.scene(), "a lesson's step");
-  doc.scene().materials.at(0).kd = Color(0.5);
-  doc.update_dirty();
+  test::edit_scene(doc, [&](Scene& s) { s.materials.at(0).kd = Color(0.5); });
   EXPECT_FALSE(RecoveryKeeper::source_of(doc));
   EXPECT_TRUE(keeper.write(doc).empty());
 }
@@ -150,8 +149,7 @@ TEST_F(RecoveryFiles, ARestoredSessionAsksBeforeItOverwritesAnOutsideChange) {
     SceneDocument first;
     ASSERT_TRUE(first.open(file));
     RecoveryKeeper keeper((dir / "recovery").string());
-    first.scene().materials.at(0).kd = Color(0.125);
-    first.update_dirty();
+    test::edit_scene(first, [&](Scene& s) { s.materials.at(0).kd = Color(0.125); });
     ASSERT_FALSE(keeper.write(first).empty());  // what a signal's write keeps
     if (outside_change) {
       Scene theirs = first.scene();
@@ -175,8 +173,7 @@ TEST_F(RecoveryFiles, ARestoredSessionAsksBeforeItOverwritesAnOutsideChange) {
       EXPECT_EQ(next.save(), SceneDocument::SaveResult::kChangedOnDisk);
       EXPECT_EQ(read(file), on_disk) << "the other program's change is still there";
       // The restored edits, rewritten, still carry the identity they were made over.
-      next.scene().materials.at(0).ks = Color(0.25);
-      next.update_dirty();
+      test::edit_scene(next, [&](Scene& s) { s.materials.at(0).ks = Color(0.25); });
       ASSERT_FALSE(next_keeper.write(next).empty());
       SceneDocument third;
       ASSERT_TRUE(third.open(file));

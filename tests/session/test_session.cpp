@@ -217,9 +217,12 @@ TEST_F(SessionOnLecture, TheHistoryIsBounded) {
   EXPECT_EQ(session.undo_count(), ui::SceneHistory::kMaxStates);
 }
 
-TEST_F(SessionOnLecture, EditsInPlaceFollowTheSameRules) {
-  session.scene_for_edit().ambient = Color(0.3);
-  session.edited_in_place();
+// A panel that edits the whole scene (the shading settings) hands the session a copy: the same
+// rules as any edit (the document has no other writer).
+TEST_F(SessionOnLecture, AWholeSceneEditFollowsTheSameRules) {
+  Scene edited = session.scene();
+  edited.ambient = Color(0.3);
+  session.apply({edit::SetScene{edited}, true});  // held: pending until the gesture ends
   EXPECT_TRUE(session.dirty());
   EXPECT_TRUE(session.edit_pending());
   session.settle(false);
