@@ -112,27 +112,20 @@ void WebView::set_interacting(bool on) {
   if (live_shown_) {  // the hand stopped: the exact re-shade replaces the recombined image
     live_shown_ = false;
     next_ = FromTrees::kReshade;
-  } else if (level_ < full_level() && accum_.samples > 0) {  // on to finer levels from the live one
-    next_level();
+  } else if (accum_.samples > 0 && ladder_.advance()) {  // on to finer levels from the live one
+    accum_.samples = 0;
   }
-}
-
-void WebView::next_level() {
-  ++level_;
-  if (levels()[static_cast<std::size_t>(level_)].quads) ++level_;
-  accum_.samples = 0;
 }
 
 bool WebView::step() {
   if (!prepared_) begin_generation();
   if (next_ != FromTrees::kTrace) return shade_from_trees();
   if (interacting_ && accum_.samples > 0) return false;  // the hand is on: one pass at the live level
-  // A view changed without a restart (a lesson closed) may have changed the ladder under level_.
-  level_ = std::min(level_, full_level());
-  if (!interacting_ && levels()[static_cast<std::size_t>(level_)].quads && accum_.samples == 0) ++level_;
+  // A view changed without a restart (a lesson closed) may change the ladder: it starts again.
+  if (ladder_.levels() != levels()) ladder_.begin(levels(), interacting_, live_budget_ms(ProgressiveSettings{}));
   // A difference against a first-full A compares like with like: the live image stays at A's sample.
-  if (level_ == full_level() && accum_.samples >= static_cast<std::uint32_t>(target_spp())) return false;
-  const ProgressiveLevel level = levels()[static_cast<std::size_t>(level_)];
+  if (ladder_.at_full() && accum_.samples >= static_cast<std::uint32_t>(target_spp())) return false;
+  const ProgressiveLevel level = ladder_.level();
   if (accum_.width != level.width || accum_.height != level.height || accum_.samples == 0) {
     accum_.reset(level.width, level.height, view_.small_multiples || ambient_pair());
   }
@@ -142,16 +135,14 @@ bool WebView::step() {
   options.shading_eye = eye_;
   options.threads = threads_;
   const PassStats pass = level.quads ? render_quad_shaded(*prepared_, options, accum_) : render_pass(*prepared_, options, accum_);
-  if (probing_) level_times_.forget(level.divisor, level.quads);  // the probe's pass is the level's time now
-  probing_ = false;
-  level_times_.note(level.divisor, pass.seconds * 1e3, level.quads);
+  ladder_.passed(pass.seconds * 1e3);
   encode();
   const bool a_taken = a_.requested() && !a_.first_full() &&
                        a_.take_when_ready(static_cast<std::uint64_t>(generation_), shown_, finished());
   if (a_taken) encode();  // shown against the new A
-  if (level_ < full_level() && !interacting_) {
-    next_level();
-  } else if (level_ == full_level() && accum_.samples == 1 && !interacting_) {
+  if (!interacting_ && ladder_.advance()) {
+    accum_.samples = 0;
+  } else if (ladder_.at_full() && accum_.samples == 1 && !interacting_) {
     record_trees();
   }
   update_lesson();
@@ -178,19 +169,6 @@ std::vector<ProgressiveLevel> WebView::levels() const {
   return out;
 }
 
-// Where a restart while the hand is on starts, by the desktop's rule (core/render/progressive.h):
-// the finest level whose measured pass fits a 24th of a second, one finer twice a second (a probe).
-int WebView::live_level() {
-  const double budget = live_budget_ms(ProgressiveSettings{});
-  const auto now = std::chrono::steady_clock::now();
-  const bool probe = now - last_probe_ >= std::chrono::milliseconds(500);
-  const std::size_t fits = live_start_level(levels(), level_times_, budget);
-  const std::size_t start = probe ? live_start_level(levels(), level_times_, budget, true) : fits;
-  probing_ = start != fits;
-  if (probing_) last_probe_ = now;
-  return static_cast<int>(start);
-}
-
 void WebView::begin_generation() {
   // With formulas, the equation traced with its hooks (src/check/rules.h): no trees to re-shade.
   const FormulaBook& formulas = session_.formulas();
@@ -209,7 +187,7 @@ void WebView::begin_generation() {
   }
   const bool linear = trees_->recombines(*prepared_, trace_width(), trace_height(), pass_term(), eye_, view_.small_multiples);
   next_ = interacting_ && linear ? FromTrees::kLive : FromTrees::kReshade;
-  level_ = full_level();
+  ladder_.to_full();
 }
 
 // As on the desktop: the Whitted image and its terms, not the indirect light (a random estimate
@@ -528,7 +506,9 @@ void WebView::apply(const Edit& e) {
 void WebView::restart() {
   ++generation_;
   prepared_.reset();
-  level_ = interacting_ ? live_level() : 0;
+  // While the hand is on, the desktop's rule (core/render/progressive.h): the least error whose
+  // measured pass fits a 24th of a second.
+  ladder_.begin(levels(), interacting_, live_budget_ms(ProgressiveSettings{}));
   accum_.samples = 0;
 }
 
@@ -588,8 +568,8 @@ void WebView::encode() {
   shown_width_ = accum_.width * (view_.small_multiples ? kColumns : 1);
   shown_height_ = accum_.height * (view_.small_multiples ? kRows : 1);
   shown_spp_ = accum_.samples;
-  shown_divisor_ = levels()[static_cast<std::size_t>(level_)].divisor;
-  shown_quads_ = levels()[static_cast<std::size_t>(level_)].quads;
+  shown_divisor_ = ladder_.empty() ? 1 : ladder_.level().divisor;
+  shown_quads_ = !ladder_.empty() && ladder_.level().quads;
   shown_generation_ = generation_;
   shown_.generation = static_cast<std::uint64_t>(generation_);
   shown_.width = shown_width_, shown_.height = shown_height_, shown_.divisor = shown_divisor_, shown_.spp = shown_spp_;

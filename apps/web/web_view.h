@@ -180,11 +180,8 @@ class WebView {
   void edited_by_hand();
   void restart();
   std::vector<ProgressiveLevel> levels() const;
-  int full_level() const { return static_cast<int>(levels().size()) - 1; }
-  void next_level();  // on from level_ towards the exact image (past the rung: a live start only)
   int trace_width() const;   // the traced image's size at full resolution: one cell in the small multiples
   int trace_height() const;
-  int live_level();
   void begin_generation();  // the view's scene prepared, and how its first sample is made
   bool trees_apply() const;
   // The indirect light beside ka·Ia, or their gap: the indirect term traced with the term images.
@@ -209,7 +206,7 @@ class WebView {
   std::shared_ptr<const PreparedScene> prepared_;
   Accumulator accum_;
   std::vector<unsigned char> rgba_;
-  int width_ = 640, height_ = 360, target_ = 16, level_ = 0, threads_ = 1;
+  int width_ = 640, height_ = 360, target_ = 16, threads_ = 1;
   int formula_view_ = 0;  // 0: yours (the formulas traced), 1: the reference
   std::optional<CheckResult> image_check_;  // a student's image, checked
   int check_view_ = 0;
@@ -219,9 +216,7 @@ class WebView {
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1, images_ = 0;
   bool interacting_ = false;
-  LevelTimes level_times_;  // the passes' times at each level, for the live level
-  std::chrono::steady_clock::time_point last_probe_{};
-  bool probing_ = false;
+  LevelLadder ladder_;  // the levels of the generation, where it stands, their measured times
   // The ray trees of the last traced full-resolution first sample, and how the next first sample
   // is made from them (kTrace: traced).
   enum class FromTrees { kTrace, kReshade, kLive };

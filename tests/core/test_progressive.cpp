@@ -221,6 +221,41 @@ TEST(ProgressiveLevels, TheRungIsChosenWhenTheExactImageDoesNotFitButItDoes) {
   EXPECT_DOUBLE_EQ(times.at(1), 31);
 }
 
+// The ladder both the render thread and the page follow: coarse to fine past the rung while the
+// hand is off; while it is on, the least error that fits, a probe one finer at most twice a
+// second, the probe's pass standing alone as its level's time.
+TEST(ProgressiveLevels, TheLadderStartsWhereTheTimesSayAndRefinesPastTheRung) {
+  LevelLadder ladder;
+  ladder.begin(make_live_levels(1280, 720), false, 41.7);
+  std::vector<int> walked = {ladder.level().divisor};
+  for (const double ms : {1.0, 3.0, 10.0}) {
+    ladder.passed(ms);
+    ASSERT_TRUE(ladder.advance());
+    EXPECT_FALSE(ladder.level().quads) << "the rung is a live start only";
+    walked.push_back(ladder.level().divisor);
+  }
+  EXPECT_EQ(walked, (std::vector<int>{8, 4, 2, 1}));
+  EXPECT_TRUE(ladder.at_full());
+  ladder.passed(50);  // the exact image: beyond the budget, within 1.5 budgets
+  EXPECT_FALSE(ladder.advance());
+  // The hand on: the rung is expected at four times the half level's 10 ms and fits; the first
+  // restart probes the exact image.
+  ladder.begin(make_live_levels(1280, 720), true, 41.7);
+  EXPECT_TRUE(ladder.at_full()) << "a probe one finer than fits";
+  ladder.passed(60);  // the probe's time stands alone: the exact image is now expected at 60 ms
+  ladder.begin(make_live_levels(1280, 720), true, 41.7);
+  EXPECT_TRUE(ladder.level().quads) << "no second probe within half a second";
+  EXPECT_TRUE(ladder.start().quads);
+  ladder.overtaken(45);  // overtaken after 45 ms: the rung takes at least that
+  ladder.begin(make_live_levels(1280, 720), true, 41.7);
+  EXPECT_EQ(ladder.level().divisor, 2);
+  EXPECT_FALSE(ladder.level().quads);
+  ladder.begin(make_live_levels(1280, 720), true, 41.7, true);
+  EXPECT_TRUE(ladder.at_full()) << "a re-shade starts at the exact image";
+  ladder.begin(make_live_levels(640, 360), true, 41.7);
+  EXPECT_EQ(ladder.level().divisor, 8) << "another size: nothing measured, the coarsest";
+}
+
 // A level's expected time is the median of its last three passes: one slow pass does not move a
 // drag to a coarser level; a probe tries one level finer when it is expected within 1.5 budgets.
 TEST(ProgressiveLevels, OneSlowPassDoesNotDemoteAndAProbeTriesOneFiner) {

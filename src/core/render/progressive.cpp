@@ -127,6 +127,46 @@ std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const 
   return start;
 }
 
+void LevelLadder::begin(std::vector<ProgressiveLevel> levels, bool interacting, double budget_ms, bool at_full) {
+  if (levels_.empty() || levels.empty() || levels_.back().width != levels.back().width ||
+      levels_.back().height != levels.back().height) {
+    times_ = {};
+  }
+  levels_ = std::move(levels);
+  probing_ = false;
+  index_ = 0;
+  if (at_full) {
+    to_full();
+  } else if (interacting && !levels_.empty()) {
+    const std::size_t fits = live_start_level(levels_, times_, budget_ms);
+    index_ = fits;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_probe_ >= kProbePeriod) {
+      index_ = live_start_level(levels_, times_, budget_ms, true);
+      probing_ = index_ != fits;
+      if (probing_) last_probe_ = now;
+    }
+  }
+  start_ = index_;
+}
+
+void LevelLadder::passed(double ms, bool traced) {
+  if (traced && probing_) times_.forget(level().divisor, level().quads);
+  if (traced) times_.note(level().divisor, ms, level().quads);
+  probing_ = false;
+}
+
+void LevelLadder::overtaken(double ms) {
+  if (ms > times_.at(level().divisor, level().quads)) times_.note(level().divisor, ms, level().quads);
+}
+
+bool LevelLadder::advance() {
+  if (at_full()) return false;
+  ++index_;
+  if (levels_[index_].quads && !at_full()) ++index_;
+  return true;
+}
+
 ProgressiveRenderer::ProgressiveRenderer(ProgressiveSettings settings, std::function<void()> on_frame)
     : settings_(settings), on_frame_(std::move(on_frame)) {
   thread_ = std::thread(&ProgressiveRenderer::run, this);
@@ -233,18 +273,13 @@ bool ProgressiveRenderer::wait_idle(std::chrono::milliseconds timeout) {
 struct ProgressiveRenderer::Job {
   std::uint64_t generation = 0;
   std::shared_ptr<const PreparedScene> scene;
-  std::vector<ProgressiveLevel> levels;
-  std::size_t level = 0;
-  std::size_t start_level = 0;  // where this generation started (finer while interacting: live_start_level)
+  LevelLadder ladder;           // the levels, where this generation started and stands, their times
   bool reshade = false;         // the next pass re-shades the stored trees instead of tracing
   bool reshaded = false;        // this generation's first image was re-shaded
   bool live = false;            // the next pass recombines the stored trees' sums (a linear edit, hand on)
   bool live_shown = false;      // the image is the live one: the exact re-shade is owed
   bool accum_live = false;      // accum holds the image the trees last recombined, nothing since
   bool image_converted = false; // the last pass wrote its image for the screen (back_.pixels) too
-  LevelTimes level_times;       // the last passes at each level, for live_start_level
-  std::chrono::steady_clock::time_point last_probe;  // the last restart started finer than fits (live_level)
-  bool probing = false;         // this generation started finer than fits: its first pass's time stands alone
   double live_ms = 1e9;         // the last live pass (wait_for_live_image); none yet: not quick
   Accumulator accum;
   std::uint64_t nan_count = 0;
@@ -282,7 +317,7 @@ void ProgressiveRenderer::run() {
     if (job.accum_stale) {
       // A live recombination, a re-shade or a traced first pass writes every pixel: no need to
       // clear them first (22 MB at 1280x720).
-      const ProgressiveLevel& lv = job.levels[job.level];
+      const ProgressiveLevel& lv = job.ladder.level();
       job.accum.reset_for_first_pass(lv.width, lv.height, job.settings.term_images);
       job.accum_stale = false;
     }
@@ -324,22 +359,17 @@ void ProgressiveRenderer::run() {
         options.first_sample_image = back_.pixels.data();
       }
       job.image_converted = options.first_sample_image != nullptr;
-      pass = job.levels[job.level].quads ? render_quad_shaded(*job.scene, options, job.accum, &cancel_)
+      pass = job.ladder.level().quads ? render_quad_shaded(*job.scene, options, job.accum, &cancel_)
                                          : render_pass(*job.scene, options, job.accum, &cancel_);
     }
-    const double divisor_ms = pass.seconds * 1e3;
-    const int divisor = job.levels[job.level].divisor;
-    const bool quads = job.levels[job.level].quads;
+    const double pass_ms = pass.seconds * 1e3;
     if (!pass.completed) {
       // A first pass overtaken by the next restart took at least this long: while interacting
       // the next restart starts below it, or nothing would ever show.
-      if (!job.published_any && divisor_ms > job.level_times.at(divisor, quads)) {
-        job.level_times.note(divisor, divisor_ms, quads);
-      }
+      if (!job.published_any) job.ladder.overtaken(pass_ms);
       // Cancelled midway: a restart is pending and the accumulator is partly updated; the next
       // pass is a first one again, which writes every pixel.
-      job.accum.reset_for_first_pass(job.levels[job.level].width, job.levels[job.level].height,
-                                     job.settings.term_images);
+      job.accum.reset_for_first_pass(job.ladder.level().width, job.ladder.level().height, job.settings.term_images);
       job.accum_live = false;
       continue;
     }
@@ -350,16 +380,9 @@ void ProgressiveRenderer::run() {
     // for the screen (which grows with the pixels too, and is the render thread's while the next
     // pass waits). A re-shade says nothing of a traced pass's time. A probe's pass is the
     // level's time now: the older ones were why it was not run.
-    const double image_ms = divisor_ms + ms_between(publishing, std::chrono::steady_clock::now());
-    if (!job.reshaded && job.probing) job.level_times.forget(divisor, quads);
-    if (!job.reshaded) job.level_times.note(divisor, image_ms, quads);
-    job.probing = false;
-    if (job.level + 1 < job.levels.size()) {
-      ++job.level;
-      // The quad-shaded rung is a live start only: refining goes on to the exact image.
-      if (job.levels[job.level].quads) ++job.level;
-      job.accum.reset_for_first_pass(job.levels[job.level].width, job.levels[job.level].height,
-                                     job.settings.term_images);
+    job.ladder.passed(pass_ms + ms_between(publishing, std::chrono::steady_clock::now()), !job.reshaded);
+    if (job.ladder.advance()) {
+      job.accum.reset_for_first_pass(job.ladder.level().width, job.ladder.level().height, job.settings.term_images);
       job.accum_live = false;
     } else if (!job.interacting) {
       record_trees(job);  // once per scene: at once if it has none that serve
@@ -374,15 +397,14 @@ bool ProgressiveRenderer::wait_for_work(Job& job) {
     if (generation_ != job.generation) start_generation_locked(job);
     job.settings = settings_;
     job.interacting = interacting_;
-    bool work = job.scene != nullptr && !job.levels.empty();
+    bool work = job.scene != nullptr && !job.ladder.empty();
     if (work) {
       // The first image of a generation is always rendered, even while interacting. While
       // interacting, no finer than the interactive divisor or the level it started at, and
       // nothing after a re-shaded image (the next edit comes soon).
-      const int cap = std::min(std::max(job.settings.interactive_divisor, 1), job.levels[job.start_level].divisor);
-      const bool capped =
-          interacting_ && job.published_any && (job.reshaded || job.levels[job.level].divisor < cap);
-      const bool coarse = job.level + 1 < job.levels.size();
+      const int cap = std::min(std::max(job.settings.interactive_divisor, 1), job.ladder.start().divisor);
+      const bool capped = interacting_ && job.published_any && (job.reshaded || job.ladder.level().divisor < cap);
+      const bool coarse = !job.ladder.at_full();
       const auto target = static_cast<std::uint32_t>(std::max(job.settings.target_spp, 1));
       const std::uint32_t samples = job.accum_stale ? 0 : job.accum.samples;
       work = job.republish || (!capped && (coarse || samples < target || job.live_shown));
@@ -399,7 +421,8 @@ bool ProgressiveRenderer::wait_for_work(Job& job) {
 }
 
 void ProgressiveRenderer::start_generation_locked(Job& job) {
-  const bool same_size = !job.levels.empty() && job.levels.back().width == width_ && job.levels.back().height == height_;
+  const bool same_size = !job.ladder.empty() && job.ladder.levels().back().width == width_ &&
+                         job.ladder.levels().back().height == height_;
   if (job.published_any && !job.accum_stale && job.accum.samples > 0 &&
       carries_over(job.settings, settings_, job.scene.get(), scene_.get(), same_size)) {
     job.generation = generation_;
@@ -415,10 +438,6 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   job.republish = false;
   job.generation = generation_;
   job.scene = scene_;
-  if (job.levels.empty() || job.levels.back().width != width_ || job.levels.back().height != height_) {
-    job.level_times = {};
-  }
-  job.levels = quad_rung_applies(settings_) ? make_live_levels(width_, height_) : make_levels(width_, height_);
   // An edit that changes no ray (or only shadow rays) is re-shaded at full resolution at once.
   job.trees_serve = job.scene && job.trees && trees_apply(settings_) &&
                     job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
@@ -432,13 +451,8 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   decided_generation_ = job.generation;  // wait_for_live_image
   decided_live_ms_ = job.live ? job.live_ms : -1.0;
   idle_cv_.notify_all();
-  job.probing = false;
-  if (job.reshade) {
-    job.level = job.levels.size() - 1;
-  } else {
-    job.level = interacting_ ? live_level(job) : 0;
-  }
-  job.start_level = job.level;
+  job.ladder.begin(quad_rung_applies(settings_) ? make_live_levels(width_, height_) : make_levels(width_, height_),
+                   interacting_, live_budget_ms(settings_), job.reshade);
   job.nan_count = 0;
   job.published_any = false;
   job.restart_time = restart_time_;
@@ -448,27 +462,13 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   job.accum_stale = true;  // made ready outside the lock (22 MB to clear at 1280x720)
 }
 
-// Where a restart while interacting starts: the finest level that fits the live budget, or,
-// twice a second, one finer (a probe: the finer level's time may be stale, measured before the
-// machine got quieter or on a view that cost more).
-std::size_t ProgressiveRenderer::live_level(Job& job) const {
-  const double budget = live_budget_ms(settings_);
-  const std::size_t fits = live_start_level(job.levels, job.level_times, budget);
-  const auto now = std::chrono::steady_clock::now();
-  if (now - job.last_probe < kProbePeriod) return fits;
-  const std::size_t probed = live_start_level(job.levels, job.level_times, budget, true);
-  job.probing = probed != fits;
-  if (job.probing) job.last_probe = now;
-  return probed;
-}
-
 // Builds the image outside the lock; publishing is then a swap.
 void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
   back_.generation = job.generation;
   back_.width = job.accum.width;
   back_.height = job.accum.height;
-  back_.divisor = job.levels[job.level].divisor;
-  back_.quads = job.levels[job.level].quads;
+  back_.divisor = job.ladder.level().divisor;
+  back_.quads = job.ladder.level().quads;
   back_.spp = job.accum.samples;
   back_.pixels.resize(job.accum.sum.size());
   const double inv_samples = 1.0 / static_cast<double>(job.accum.samples);
@@ -514,7 +514,7 @@ void ProgressiveRenderer::publish(Job& job, const PassStats& pass) {
 // size before. A restart cancels the recording.
 void ProgressiveRenderer::record_trees(Job& job) {
   const ProgressiveSettings& s = job.settings;
-  const ProgressiveLevel& full = job.levels.back();
+  const ProgressiveLevel& full = job.ladder.levels().back();
   if (s.tree_budget_bytes == 0 || !trees_apply(s)) return;
   if (job.trees_serve) return;
   const Job::Refusal here{full.width, full.height, s.tree_budget_bytes};

@@ -104,6 +104,7 @@ struct ProgressiveLevel {
   // The quad-shaded live rung (core/render/quad_shading.h): full resolution, every primary ray
   // traced, the shading a quarter where it is smooth. Only a live start, never a refinement step.
   bool quads = false;
+  friend bool operator==(const ProgressiveLevel&, const ProgressiveLevel&) = default;
 };
 // 1/8, 1/4, 1/2 and full resolution, leaving out coarse levels that would not be smaller than
 // the next one (a tiny window renders at full resolution at once).
@@ -141,6 +142,41 @@ struct LevelTimes {
 double live_budget_ms(const ProgressiveSettings& settings);
 std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms,
                              bool probe = false);
+
+// Where a generation stands on the ladder and where a restart starts: the one policy the
+// previewer's render thread and the page's frame loop both follow, each with a ladder of its own.
+class LevelLadder {
+ public:
+  static constexpr std::chrono::milliseconds kProbePeriod{500};
+  // A new generation over `levels` (the live ladder; the times measured so far are forgotten
+  // when its full resolution differs from the last one's). While `interacting` it starts at the
+  // least error whose expected time fits `budget_ms` (live_start_level), and at most twice a
+  // second one finer when that is expected within 1.5 budgets (a probe: its time may have been
+  // measured on a busier moment); else at the coarsest. `at_full`: at the exact image at once.
+  void begin(std::vector<ProgressiveLevel> levels, bool interacting, double budget_ms, bool at_full = false);
+  const std::vector<ProgressiveLevel>& levels() const { return levels_; }
+  bool empty() const { return levels_.empty(); }
+  const ProgressiveLevel& level() const { return levels_[index_]; }  // the current one
+  const ProgressiveLevel& start() const { return levels_[start_]; }  // where the generation started
+  bool at_full() const { return index_ + 1 == levels_.size(); }
+  // A completed pass at the current level took `ms` (`traced`: a re-shade says nothing of a
+  // traced pass's time). A probe's pass is the level's time now: the older ones were why it was not run.
+  void passed(double ms, bool traced = true);
+  // The generation's first pass, overtaken by the next restart after `ms`: the level takes at
+  // least that long, or a drag would never show anything.
+  void overtaken(double ms);
+  // On towards the exact image, past the quad-shaded rung (a live start only); false at it.
+  bool advance();
+  // To the exact image (a generation re-shaded from stored trees).
+  void to_full() { index_ = levels_.empty() ? 0 : levels_.size() - 1; }
+
+ private:
+  std::vector<ProgressiveLevel> levels_;
+  std::size_t index_ = 0, start_ = 0;
+  LevelTimes times_;
+  std::chrono::steady_clock::time_point last_probe_{};
+  bool probing_ = false;  // this generation started finer than fits: its first pass's time stands alone
+};
 
 class ProgressiveRenderer {
  public:
@@ -184,8 +220,6 @@ class ProgressiveRenderer {
   void run();
   bool wait_for_work(Job& job);  // false: stop
   void start_generation_locked(Job& job);
-  std::size_t live_level(Job& job) const;  // under the lock: the level a restart while interacting starts at
-  static constexpr std::chrono::milliseconds kProbePeriod{500};
   void publish(Job& job, const PassStats& pass);
   void record_trees(Job& job);
   std::uint64_t restart_locked();
