@@ -111,7 +111,7 @@ void WebView::set_interacting(bool on) {
   session_.settle(false);
   if (live_shown_) {  // the hand stopped: the exact re-shade replaces the recombined image
     live_shown_ = false;
-    next_ = FromTrees::kReshade;
+    next_ = RayTrees::Route::kReshade;
   } else if (accum_.samples > 0 && ladder_.advance()) {  // on to finer levels from the live one
     accum_.samples = 0;
   }
@@ -119,7 +119,7 @@ void WebView::set_interacting(bool on) {
 
 bool WebView::step() {
   if (!prepared_) begin_generation();
-  if (next_ != FromTrees::kTrace) return shade_from_trees();
+  if (next_ != RayTrees::Route::kTrace) return shade_from_trees();
   if (interacting_ && accum_.samples > 0) return false;  // the hand is on: one pass at the live level
   // A view changed without a restart (a lesson closed) may change the ladder: it starts again.
   if (ladder_.levels() != levels()) ladder_.begin(levels(), interacting_, live_budget_ms(ProgressiveSettings{}));
@@ -177,17 +177,14 @@ void WebView::begin_generation() {
                                                           make_rules_experiment(formulas.rules()))
                   : std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
   eye_ = view_shading_eye(*prepared_, view_, width_, height_);
-  next_ = FromTrees::kTrace;
+  next_ = RayTrees::Route::kTrace;
   live_shown_ = reshaded_ = false;
   // The trees are of the traced image's size: one cell of the grid in the small multiples, so a
   // switch between the grid and one image traces anew (re-shading trees of the other size into
   // this one's pixels drew stripes and stray discs).
-  if (!trees_ || !trees_apply() || trees_->scope_for(*prepared_, trace_width(), trace_height(), eye_) == EditScope::kRetrace) {
-    return;
-  }
-  const bool linear = trees_->recombines(*prepared_, trace_width(), trace_height(), pass_term(), eye_, view_.small_multiples);
-  next_ = interacting_ && linear ? FromTrees::kLive : FromTrees::kReshade;
-  ladder_.to_full();
+  if (!trees_ || !trees_apply()) return;
+  next_ = trees_->route(*prepared_, trace_width(), trace_height(), pass_term(), eye_, view_.small_multiples, interacting_);
+  if (next_ != RayTrees::Route::kTrace) ladder_.to_full();
 }
 
 // As on the desktop: the Whitted image and its terms, not the indirect light (a random estimate
@@ -198,7 +195,7 @@ bool WebView::trees_apply() const {
 
 bool WebView::shade_from_trees() {
   const int w = trace_width(), h = trace_height();
-  if (next_ == FromTrees::kLive) {
+  if (next_ == RayTrees::Route::kLive) {
     accum_.reset(w, h, false);
     live_shown_ = trees_->recombine(*prepared_, pass_term(), threads_, accum_).completed;
   }
@@ -208,7 +205,7 @@ bool WebView::shade_from_trees() {
     reshaded_ = true;
     if (!trees_->usable() || trees_->worn()) trees_.reset();  // the next traced image records anew
   }
-  next_ = FromTrees::kTrace;
+  next_ = RayTrees::Route::kTrace;
   encode();
   update_lesson();
   return true;

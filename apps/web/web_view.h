@@ -219,9 +219,8 @@ class WebView {
   LevelLadder ladder_;  // the levels of the generation, where it stands, their measured times
   // The ray trees of the last traced full-resolution first sample, and how the next first sample
   // is made from them (kTrace: traced).
-  enum class FromTrees { kTrace, kReshade, kLive };
   std::unique_ptr<RayTrees> trees_;
-  FromTrees next_ = FromTrees::kTrace;
+  RayTrees::Route next_ = RayTrees::Route::kTrace;
   bool live_shown_ = false, reshaded_ = false;
   StepView view_;                      // what the image shows (the term keys, a lesson's step)
   std::string step_scene_;             // the scene a lesson's step adopted (scene_label), "" for a file or an embedded scene

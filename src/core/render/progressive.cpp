@@ -439,14 +439,16 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   job.generation = generation_;
   job.scene = scene_;
   // An edit that changes no ray (or only shadow rays) is re-shaded at full resolution at once.
-  job.trees_serve = job.scene && job.trees && trees_apply(settings_) &&
-                    job.trees->scope_for(*job.scene, width_, height_, settings_.shading_eye) != EditScope::kRetrace;
-  job.reshade = job.trees_serve;
-  job.reshaded = job.reshade;
   // While the hand is on, a linear edit is recombined from the trees' sums (its exact re-shade
   // follows when the hand stops).
-  job.live = job.reshade && interacting_ &&
-             job.trees->recombines(*job.scene, width_, height_, settings_.term, settings_.shading_eye, settings_.term_images);
+  const RayTrees::Route route = job.scene && job.trees && trees_apply(settings_)
+                                    ? job.trees->route(*job.scene, width_, height_, settings_.term, settings_.shading_eye,
+                                                       settings_.term_images, interacting_)
+                                    : RayTrees::Route::kTrace;
+  job.trees_serve = route != RayTrees::Route::kTrace;
+  job.reshade = job.trees_serve;
+  job.reshaded = job.reshade;
+  job.live = route == RayTrees::Route::kLive;
   job.live_shown = false;
   decided_generation_ = job.generation;  // wait_for_live_image
   decided_live_ms_ = job.live ? job.live_ms : -1.0;

@@ -72,6 +72,16 @@ class RayTrees {
   // shadow rays towards it are cast again.
   bool recombines(const PreparedScene& scene, int width, int height, Term term, const std::optional<Vec3>& shading_eye,
                   bool term_images) const;
+  // How a first sample of `scene` (this size, eye and what is shown) is made from these trees:
+  // traced anew (kTrace: they cannot be re-shaded into it), re-shaded (kReshade), or, while the
+  // hand is on and the image is linear in the edit, recombined (kLive; its exact re-shade follows
+  // when the hand stops). The one rule the previewer's renderer and the page follow.
+  enum class Route { kTrace, kReshade, kLive };
+  Route route(const PreparedScene& scene, int width, int height, Term term, const std::optional<Vec3>& shading_eye,
+              bool term_images, bool interacting) const {
+    if (scope_for(scene, width, height, shading_eye) == EditScope::kRetrace) return Route::kTrace;
+    return interacting && recombines(scene, width, height, term, shading_eye, term_images) ? Route::kLive : Route::kReshade;
+  }
   // That image of `scene` (recombines()) into `accum`, empty at this size. The trees stay as
   // they are; the sums are computed on first use (one pass over the stored trees, like a
   // re-shade without shadow rays) and kept for the next edits of the same coefficients, so a
