@@ -161,12 +161,7 @@ std::vector<ProgressiveLevel> WebView::levels() const {
   for (const int divisor : kDivisors) {
     out.push_back({divisor, std::max(1, width_ / cells_x / divisor), std::max(1, height_ / cells_y / divisor)});
   }
-  if (pass_term() == Term::kFull && !view_.small_multiples && constant_ambient()) {
-    ProgressiveLevel rung = out.back();
-    rung.quads = true;
-    out.insert(out.end() - 1, rung);
-  }
-  return out;
+  return quad_rung_draws(pass_term(), view_.ambient, view_.small_multiples) ? with_quad_rung(std::move(out)) : out;
 }
 
 void WebView::begin_generation() {

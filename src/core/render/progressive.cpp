@@ -48,11 +48,6 @@ bool carries_over(const ProgressiveSettings& was, const ProgressiveSettings& now
 // images (the indirect light is traced every time).
 bool trees_apply(const ProgressiveSettings& s) { return reshades(s.term) && !shows_indirect(s); }
 
-// Whether the quad-shaded rung can stand for what the settings show: the full image with ka·Ia
-// (render_quad_shaded draws nothing else), without the term images.
-bool quad_rung_applies(const ProgressiveSettings& s) {
-  return s.term == Term::kFull && !s.term_images && !shows_indirect(s);
-}
 
 }  // namespace
 
@@ -75,8 +70,9 @@ std::vector<ProgressiveLevel> make_levels(int width, int height) {
   return levels;
 }
 
-std::vector<ProgressiveLevel> make_live_levels(int width, int height) {
-  std::vector<ProgressiveLevel> levels = make_levels(width, height);
+std::vector<ProgressiveLevel> make_live_levels(int width, int height) { return with_quad_rung(make_levels(width, height)); }
+
+std::vector<ProgressiveLevel> with_quad_rung(std::vector<ProgressiveLevel> levels) {
   if (levels.size() > 1) {
     ProgressiveLevel rung = levels.back();
     rung.quads = true;
@@ -453,7 +449,8 @@ void ProgressiveRenderer::start_generation_locked(Job& job) {
   decided_generation_ = job.generation;  // wait_for_live_image
   decided_live_ms_ = job.live ? job.live_ms : -1.0;
   idle_cv_.notify_all();
-  job.ladder.begin(quad_rung_applies(settings_) ? make_live_levels(width_, height_) : make_levels(width_, height_),
+  const bool rung = quad_rung_draws(settings_.term, settings_.ambient, settings_.term_images);
+  job.ladder.begin(rung ? make_live_levels(width_, height_) : make_levels(width_, height_),
                    interacting_, live_budget_ms(settings_), job.reshade);
   job.nan_count = 0;
   job.published_any = false;

@@ -114,6 +114,9 @@ std::vector<ProgressiveLevel> make_levels(int width, int height);
 // `phonglab-bench SCENE --live`: 1/8, 1/4, 1/2, the quad-shaded rung at a few hundredths of the
 // half level's, the exact image). A window too small for coarse levels has no rung either.
 std::vector<ProgressiveLevel> make_live_levels(int width, int height);
+// `levels` (coarse to fine) with the rung inserted before the last, exact one; unchanged when
+// there is only that.
+std::vector<ProgressiveLevel> with_quad_rung(std::vector<ProgressiveLevel> levels);
 
 // The last pass times measured at each level, by divisor. A level's expected time is the median
 // of its last three (the mean of two, or the one): one pass slowed by the machine does not move

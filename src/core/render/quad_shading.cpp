@@ -258,7 +258,7 @@ class QuadTile {
 
 PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
                              const std::atomic<bool>* cancel) {
-  if (options.term != Term::kFull || options.ambient != Ambient::kConstant) return render_pass(prepared, options, accum, cancel);
+  if (!quad_rung_draws(options.term, options.ambient, accum.has_terms())) return render_pass(prepared, options, accum, cancel);
   const auto start = std::chrono::steady_clock::now();
   const Scene& scene = prepared.scene();
   const CameraFrame frame = make_camera_frame(scene.camera, accum.width, accum.height);

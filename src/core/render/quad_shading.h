@@ -25,6 +25,12 @@ namespace phonglab {
 // 1). The full image only (another term is rendered exactly, by render_pass). Traced in packets
 // where the packet tracer serves the scene and options.packets allows; the same image either way
 // and for any thread count.
+// Whether the rung draws what is shown: the full image with ka·Ia (for `term` with `ambient`),
+// without the five term images beside it. The one rule the live ladders ask.
+inline bool quad_rung_draws(Term term, Ambient ambient, bool term_images) {
+  return term == Term::kFull && ambient_for(term, ambient) == Ambient::kConstant && !term_images;
+}
+
 PassStats render_quad_shaded(const PreparedScene& prepared, const RenderOptions& options, Accumulator& accum,
                              const std::atomic<bool>* cancel = nullptr);
 
