@@ -32,8 +32,8 @@
 namespace phonglab {
 
 void FileShell::request(FileShell::PendingAction action) {
-  v_.doc_.update_dirty();  // edits made earlier in this frame count
-  if (!v_.doc_.dirty()) {
+  s_.doc.update_dirty();  // edits made earlier in this frame count
+  if (!s_.doc.dirty()) {
     perform(action);
     return;
   }
@@ -43,10 +43,10 @@ void FileShell::request(FileShell::PendingAction action) {
 
 void FileShell::perform(const FileShell::PendingAction& action) {
   switch (action.kind) {
-    case FileShell::PendingAction::Kind::kQuit: v_.quit_ = true; break;
+    case FileShell::PendingAction::Kind::kQuit: s_.quit = true; break;
     case FileShell::PendingAction::Kind::kOpen: open_scene(action.arg); break;
     case FileShell::PendingAction::Kind::kReload: reload_scene(false); break;
-    case FileShell::PendingAction::Kind::kLesson: v_.lesson_shell_.start_lesson(); break;
+    case FileShell::PendingAction::Kind::kLesson: lesson_shell_.start_lesson(); break;
     case FileShell::PendingAction::Kind::kNone: break;
   }
 }
@@ -57,8 +57,8 @@ void FileShell::handle_guard_modal() {
   if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kOpen) view.action = "open " + dialogs_.pending.arg;
   if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kReload) view.action = "reload the file";
   if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kLesson) view.action = "open the lesson " + dialogs_.pending.arg;
-  view.can_save = !v_.doc_.file_path().empty() && !v_.doc_.opened_mesh();
-  view.changed_on_disk = !v_.doc_.file_path().empty() && v_.doc_.changed_on_disk();
+  view.can_save = !s_.doc.file_path().empty() && !s_.doc.opened_mesh();
+  view.changed_on_disk = !s_.doc.file_path().empty() && s_.doc.changed_on_disk();
   const ui::GuardChoice choice = ui::unsaved_changes_modal(dialogs_.open_guard, view, file_state_.path_field);
   if (dialogs_.open_guard) dialogs_.guard_visible = true;
   dialogs_.open_guard = false;
@@ -79,7 +79,7 @@ void FileShell::handle_guard_modal() {
 }
 
 void FileShell::handle_conflict_modal() {
-  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, v_.doc_.file_path());
+  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, s_.doc.file_path());
   if (dialogs_.open_conflict) dialogs_.conflict_visible = true;
   dialogs_.open_conflict = false;
   if (choice == ui::GuardChoice::kNone) return;
@@ -87,7 +87,7 @@ void FileShell::handle_conflict_modal() {
   FileShell::PendingAction after = std::move(dialogs_.after_save);
   dialogs_.after_save = FileShell::PendingAction{};
   if (choice == ui::GuardChoice::kOverwrite) {
-    if (finish_save(v_.doc_.save(true))) perform(after);
+    if (finish_save(s_.doc.save(true))) perform(after);
   } else if (choice == ui::GuardChoice::kReload) {
     reload_scene(false);  // the edits go, the file's version comes
     if (after.kind != FileShell::PendingAction::Kind::kReload) perform(after);
@@ -99,60 +99,60 @@ void FileShell::open_scene(const std::string& scene_arg) {
     file_state_.error_text = "Open: type a scene file path or an embedded scene name into the path field";
     return;
   }
-  if (!v_.doc_.open(scene_arg)) {
-    file_state_.error_text = v_.doc_.error_text();  // the old scene stays
+  if (!s_.doc.open(scene_arg)) {
+    file_state_.error_text = s_.doc.error_text();  // the old scene stays
     return;
   }
   document_replaced();
-  if (!v_.doc_.file_path().empty()) browser_.remember(v_.doc_.file_path());
-  file_state_.path_field = v_.doc_.file_path().empty() ? scene_arg : v_.doc_.file_path();
-  v_.tools_.probe().tree.reset();
+  if (!s_.doc.file_path().empty()) browser_.remember(s_.doc.file_path());
+  file_state_.path_field = s_.doc.file_path().empty() ? scene_arg : s_.doc.file_path();
+  tools_.probe().tree.reset();
   // A belongs to the scene it was taken of (a reload of the same file keeps it: before and after).
-  v_.tools_.compare().clear();
-  v_.instruments_.compare = 0;
+  tools_.compare().clear();
+  s_.instruments.compare = 0;
 }
 
 void FileShell::document_replaced() {
-  v_.session_.recovery().remove();  // the guard was passed: the last document's edits were saved or discarded
+  s_.session.recovery().remove();  // the guard was passed: the last document's edits were saved or discarded
   file_state_.error_text.clear();
-  file_state_.status = v_.doc_.status();
+  file_state_.status = s_.doc.status();
   file_state_.changed_on_disk = false;
-  v_.selected_object_ = -1;
-  v_.selected_material_ = 0;
-  v_.selected_light_ = v_.doc_.scene().lights.empty() ? -1 : 0;
-  v_.picked_text_.clear();
-  v_.drag_ = Viewer::Drag{};
-  v_.edits_.replaced = true;
+  s_.selected_object = -1;
+  s_.selected_material = 0;
+  s_.selected_light = s_.doc.scene().lights.empty() ? -1 : 0;
+  s_.picked_text.clear();
+  s_.drag = Drag{};
+  s_.edits.replaced = true;
 }
 
 void FileShell::reload_scene(bool keep_view) {
-  if (!v_.doc_.reload(keep_view)) {
-    file_state_.error_text = v_.doc_.error_text();
+  if (!s_.doc.reload(keep_view)) {
+    file_state_.error_text = s_.doc.error_text();
     return;
   }
-  v_.session_.recovery().remove();  // reloading discarded the edits (the guard asked first)
+  s_.session.recovery().remove();  // reloading discarded the edits (the guard asked first)
   file_state_.error_text.clear();
-  file_state_.status = v_.doc_.status();
+  file_state_.status = s_.doc.status();
   file_state_.changed_on_disk = false;
-  v_.selected_object_ = -1;
-  const int materials = static_cast<int>(v_.doc_.scene().materials.size());
-  v_.selected_material_ = std::clamp(v_.selected_material_, 0, std::max(materials - 1, 0));
-  if (v_.selected_light_ >= static_cast<int>(v_.doc_.scene().lights.size())) v_.selected_light_ = -1;
-  v_.drag_ = Viewer::Drag{};
-  v_.edits_.replaced = true;
+  s_.selected_object = -1;
+  const int materials = static_cast<int>(s_.doc.scene().materials.size());
+  s_.selected_material = std::clamp(s_.selected_material, 0, std::max(materials - 1, 0));
+  if (s_.selected_light >= static_cast<int>(s_.doc.scene().lights.size())) s_.selected_light = -1;
+  s_.drag = Drag{};
+  s_.edits.replaced = true;
 }
 
 void FileShell::save_scene(bool as) {
   if (as) {
-    const bool ok = v_.doc_.save_as(file_state_.path_field);
-    if (ok) browser_.remember(v_.doc_.file_path());
+    const bool ok = s_.doc.save_as(file_state_.path_field);
+    if (ok) browser_.remember(s_.doc.file_path());
     if (finish_save(ok ? SceneDocument::SaveResult::kSaved : SceneDocument::SaveResult::kFailed)) {
       perform(dialogs_.after_save);
     }
     dialogs_.after_save = FileShell::PendingAction{};
     return;
   }
-  const SceneDocument::SaveResult result = v_.doc_.save();
+  const SceneDocument::SaveResult result = s_.doc.save();
   if (result == SceneDocument::SaveResult::kChangedOnDisk) {
     dialogs_.open_conflict = true;  // the answer decides; dialogs_.after_save waits for it
     return;
@@ -163,38 +163,38 @@ void FileShell::save_scene(bool as) {
 
 bool FileShell::finish_save(SceneDocument::SaveResult result) {
   if (result != SceneDocument::SaveResult::kSaved) {
-    file_state_.error_text = v_.doc_.error_text();
+    file_state_.error_text = s_.doc.error_text();
     return false;
   }
   file_state_.error_text.clear();
-  file_state_.status = v_.doc_.status();
+  file_state_.status = s_.doc.status();
   file_state_.changed_on_disk = false;
   return true;
 }
 
 bool FileShell::begin_screenshot(Image& image) {
-  if (v_.shown_.pixels.empty()) {
+  if (s_.shown.pixels.empty()) {
     screenshot_state_.status = "no image yet";
     return false;
   }
-  image.width = v_.shown_.width;
-  image.height = v_.shown_.height;
+  image.width = s_.shown.width;
+  image.height = s_.shown.height;
   return true;
 }
 
 void FileShell::save_png(const std::string& path) {
   Image image;
   if (!begin_screenshot(image)) return;
-  image.pixels.reserve(v_.shown_.pixels.size());
+  image.pixels.reserve(s_.shown.pixels.size());
   // The heat map is written as shown: its colours, without exposure.
-  const bool heat = v_.tools_.heat_shown();
-  const std::vector<glm::vec3> source = heat ? v_.tools_.display_pixels() : v_.shown_.pixels;
-  const float exposure = heat ? 1.0f : std::exp2(v_.display_.exposure_ev);
+  const bool heat = tools_.heat_shown();
+  const std::vector<glm::vec3> source = heat ? tools_.display_pixels() : s_.shown.pixels;
+  const float exposure = heat ? 1.0f : std::exp2(s_.display.exposure_ev);
   for (const glm::vec3& p : source) {
     glm::vec3 v = glm::clamp(p * exposure, 0.0f, 1.0f);
     // Linear display shows the values themselves as 8-bit codes: pre-decode them so the
     // sRGB encoder of write_image gives those codes back.
-    if (!v_.display_.srgb) {
+    if (!s_.display.srgb) {
       for (int c = 0; c < 3; ++c) v[c] = static_cast<float>(srgb_to_linear(v[c]));
     }
     image.pixels.push_back(v);
@@ -205,7 +205,7 @@ void FileShell::save_png(const std::string& path) {
 void FileShell::save_pfm(const std::string& path) {
   Image image;
   if (!begin_screenshot(image)) return;
-  image.pixels = v_.shown_.pixels;
+  image.pixels = s_.shown.pixels;
   write_screenshot(path, image, "linear, ");
 }
 
@@ -213,14 +213,14 @@ void FileShell::write_screenshot(const std::string& path, const Image& image, co
   const std::string error = write_image(path, image);
   std::ostringstream status;
   if (error.empty()) {
-    status << "saved " << path << " (" << kind << image.width << "x" << image.height << ", " << v_.shown_.spp << " spp)";
+    status << "saved " << path << " (" << kind << image.width << "x" << image.height << ", " << s_.shown.spp << " spp)";
   } else {
     status << error;
   }
   screenshot_state_.status = status.str();
 }
 
-void FileShell::save_window_screenshot(const std::string& path, int fb_width, int fb_height) {
+bool FileShell::save_window_screenshot(const std::string& path, int fb_width, int fb_height) {
   const std::vector<unsigned char> rgb = read_framebuffer_rgb8(fb_width, fb_height);
   Image image;
   image.width = fb_width;
@@ -234,9 +234,10 @@ void FileShell::save_window_screenshot(const std::string& path, int fb_width, in
   const std::string error = write_image(path, image);
   if (!error.empty()) {
     std::cerr << "phonglab: screenshot: " << error << "\n";
-    v_.script_.fail();
-    v_.quit_ = true;
+    s_.quit = true;
+    return false;
   }
+  return true;
 }
 
 void FileShell::handle_file_browser() {

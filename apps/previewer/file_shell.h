@@ -1,8 +1,8 @@
 // The previewer's files: opening, reloading and saving the scene through the unsaved-changes and
 // changed-on-disk dialogs, the file browser, screenshots, and the offer of kept edits at start and
 // the exit on a signal. The document itself is the session's (SceneDocument, RecoveryKeeper); this
-// class holds the dialogs' and panels' state and reaches the rest of the shell through `Viewer&`
-// (a friend).
+// class holds the dialogs' and panels' state and reaches the shell's shared state (ShellState,
+// shell_state.h) and the components it works with, given by reference.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +17,9 @@
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class Instruments;
+class LessonShell;
 
 class FileShell {
  public:
@@ -45,7 +47,8 @@ class FileShell {
     bool after_lesson = false; // started with a lesson: the offer waits until it closes (never over a slide)
   };
 
-  explicit FileShell(Viewer& viewer) : v_(viewer) {}
+  FileShell(ShellState& shell, LessonShell& lesson_shell, Instruments& tools)
+      : s_(shell), lesson_shell_(lesson_shell), tools_(tools) {}
   FileShell(const FileShell&) = delete;
   FileShell& operator=(const FileShell&) = delete;
 
@@ -72,7 +75,8 @@ class FileShell {
   bool begin_screenshot(Image& image);     // the shown image's size, or false (and why) before the first
   void save_png(const std::string& path);  // what is shown, exposure and curve applied
   void save_pfm(const std::string& path);  // the linear image
-  void save_window_screenshot(const std::string& path, int fb_width, int fb_height);  // the whole window
+  // The whole window; false (said on stderr, and the shell quits) when it cannot be written.
+  bool save_window_screenshot(const std::string& path, int fb_width, int fb_height);
   void find_recovery();                    // at start: a recovery to offer
   void handle_recovery_modal();            // the offer and its answer
   bool handle_signal();                    // a signal arrived: the recovery written, the exit code set
@@ -83,7 +87,9 @@ class FileShell {
   void write_screenshot(const std::string& path, const Image& image, const char* kind);
   void restore_recovery(const ui::RecoveryEntry& entry);
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  LessonShell& lesson_shell_;
+  Instruments& tools_;
   ui::SceneFileState file_state_;
   ui::ScreenshotState screenshot_state_;
   Dialogs dialogs_;

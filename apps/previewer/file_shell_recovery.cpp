@@ -47,20 +47,20 @@ int pending_signal() { return g_signal.load(); }
 bool FileShell::handle_signal() {
   const int sig = pending_signal();
   if (sig == 0) return false;
-  v_.doc_.update_dirty();
-  if (v_.doc_.dirty()) {
-    const std::string path = v_.session_.recovery().write(v_.doc_);
+  s_.doc.update_dirty();
+  if (s_.doc.dirty()) {
+    const std::string path = s_.session.recovery().write(s_.doc);
     if (!path.empty()) std::cerr << "recovery: " << path << "\n";
   }
   recovery_.keep = true;
-  v_.exit_code_ = 128 + sig;
-  v_.quit_ = true;
+  s_.exit_code = 128 + sig;
+  s_.quit = true;
   return true;
 }
 
 void FileShell::find_recovery() {
   // On the document's scene, or with no SCENE given the newest of any scene.
-  recovery_.offer = v_.session_.recovery().find(v_.doc_, !v_.options_.scene_given);
+  recovery_.offer = s_.session.recovery().find(s_.doc, !s_.options.scene_given);
   recovery_.open_modal = recovery_.offer.has_value();
 }
 
@@ -88,17 +88,17 @@ void FileShell::handle_recovery_modal() {
 }
 
 void FileShell::restore_recovery(const ui::RecoveryEntry& entry) {
-  const auto source = RecoveryKeeper::source_of(v_.doc_);
+  const auto source = RecoveryKeeper::source_of(s_.doc);
   if (!source || source->first != entry.source || source->second != entry.embedded) {
     open_scene(entry.source);
-    const auto now_source = RecoveryKeeper::source_of(v_.doc_);
+    const auto now_source = RecoveryKeeper::source_of(s_.doc);
     if (!now_source || now_source->first != entry.source) {
       file_state_.error_text = "cannot restore: " + entry.source + " does not open (" + file_state_.error_text +
                                "); the kept edits stay in " + entry.scene_path;
       return;
     }
   }
-  const RecoveryKeeper::Restored r = v_.session_.recovery().restore(v_.doc_, entry);
+  const RecoveryKeeper::Restored r = s_.session.recovery().restore(s_.doc, entry);
   if (!r.error.empty()) {
     file_state_.error_text = r.error;
     return;
@@ -108,7 +108,7 @@ void FileShell::restore_recovery(const ui::RecoveryEntry& entry) {
     file_state_.status += "; " + entry.source +
                           " changed on disk since they were made: Save asks before it overwrites that change";
   }
-  v_.edits_.replaced = true;
+  s_.edits.replaced = true;
 }
 
 }  // namespace phonglab

@@ -32,7 +32,7 @@ FormulaShell::~FormulaShell() {
 }
 
 void FormulaShell::refresh_panel() {
-  const FormulaBook& book = v_.session_.formulas();
+  const FormulaBook& book = s_.session.formulas();
   for (int s = 0; s < kFormulaSlots; ++s) {
     const auto i = static_cast<std::size_t>(s);
     const FormulaBook::Slot& slot = book.slot(static_cast<FormulaSlot>(s));
@@ -44,7 +44,7 @@ void FormulaShell::refresh_panel() {
   panel_.image_verdict = image_result_ ? check_summary(*image_result_) : "checking against the reference...";
   panel_.image_matches = image_result_ && image_result_->match;
   panel_.image_probe.clear();
-  const auto& probed = v_.tools_.probe();
+  const auto& probed = tools_.probe();
   if (image_result_ && probed.tree && probed.x < image_result_->width && probed.y < image_result_->height) {
     const std::size_t i = static_cast<std::size_t>(probed.y) * image_result_->width + probed.x;
     const Color yours = image_result_->yours[i], reference = image_result_->reference[i];
@@ -67,24 +67,24 @@ void FormulaShell::refresh_panel() {
 
 void FormulaShell::sidebar_formulas() {
   // The boxes follow the session unless one is being typed in (undo, a script, a lesson).
-  if (!ImGui::IsAnyItemActive()) panel_.texts = v_.session_.formulas().texts();
+  if (!ImGui::IsAnyItemActive()) panel_.texts = s_.session.formulas().texts();
   refresh_panel();
-  panel_.hints_left = v_.lesson_shell_.exercise() ? v_.lesson_shell_.hints_left() : -1;
-  const auto& probe = v_.tools_.probe().tree;
-  panel_.probe = probe && v_.schedule_.snapshot()
-                     ? formula_probe_text(v_.schedule_.snapshot()->scene(), probe->root, v_.session_.formulas().rules())
+  panel_.hints_left = lesson_shell_.exercise() ? lesson_shell_.hints_left() : -1;
+  const auto& probe = tools_.probe().tree;
+  panel_.probe = probe && s_.schedule.snapshot()
+                     ? formula_probe_text(s_.schedule.snapshot()->scene(), probe->root, s_.session.formulas().rules())
                      : std::string();
   const ui::FormulaPanelEdits edits = ui::formula_panel(panel_);
-  if (edits.hint) v_.lesson_shell_.show_hint();
+  if (edits.hint) lesson_shell_.show_hint();
   if (edits.starter >= 0) {
     const auto slot = static_cast<FormulaSlot>(edits.starter);
     set_text(slot, std::string(reference_formula(slot)));
   }
   if (edits.slot >= 0) {
     const auto slot = static_cast<FormulaSlot>(edits.slot);
-    v_.session_.set_formula(slot, panel_.texts[static_cast<std::size_t>(edits.slot)], edits.held);
+    s_.session.set_formula(slot, panel_.texts[static_cast<std::size_t>(edits.slot)], edits.held);
   }
-  if (edits.view) v_.upload_pending_ = true;
+  if (edits.view) s_.upload_pending = true;
   if (edits.open_image) open_image(panel_.image_path);
   if (edits.close_image) close_image();
   if (edits.save_formulas) save_formulas(panel_.formulas_path);
@@ -94,14 +94,14 @@ void FormulaShell::sidebar_formulas() {
 std::string FormulaShell::formulas_path() const {
   if (!panel_.formulas_path.empty()) return panel_.formulas_path;
   // Beside the scene file, named after it; an embedded scene's in the working folder.
-  const std::filesystem::path scene(v_.doc_.file_path());
+  const std::filesystem::path scene(s_.doc.file_path());
   if (scene.empty()) return "formulas.json";
   return (scene.parent_path() / (scene.stem().string() + ".formulas.json")).string();
 }
 
 bool FormulaShell::save_formulas(const std::string& path) {
   panel_.formulas_path = path.empty() ? formulas_path() : path;
-  const std::string error = save_formula_file(panel_.formulas_path, v_.session_.formulas().texts());
+  const std::string error = save_formula_file(panel_.formulas_path, s_.session.formulas().texts());
   panel_.formulas_failed = !error.empty();
   panel_.formulas_status = error.empty() ? "saved to " + panel_.formulas_path : error;
   return error.empty();
@@ -116,8 +116,8 @@ bool FormulaShell::open_formulas(const std::string& path) {
     panel_.formulas_status = loaded.errors.empty() ? "cannot read " + panel_.formulas_path : loaded.errors.front().to_string();
     return false;
   }
-  v_.session_.set_formulas(*loaded.texts);
-  panel_.texts = v_.session_.formulas().texts();
+  s_.session.set_formulas(*loaded.texts);
+  panel_.texts = s_.session.formulas().texts();
   panel_.formulas_status = "opened " + panel_.formulas_path;
   refresh_panel();
   return true;
@@ -125,7 +125,7 @@ bool FormulaShell::open_formulas(const std::string& path) {
 
 void FormulaShell::set_text(FormulaSlot slot, const std::string& text) {
   panel_.texts[static_cast<std::size_t>(slot)] = text;
-  v_.session_.set_formula(slot, text, false);
+  s_.session.set_formula(slot, text, false);
   refresh_panel();
 }
 
@@ -133,18 +133,18 @@ bool FormulaShell::set_view(std::string_view name) {
   const std::optional<ui::FormulaView> view = ui::formula_view_from_name(name);
   if (!view) return false;
   panel_.view = *view;
-  v_.upload_pending_ = true;
+  s_.upload_pending = true;
   return true;
 }
 
 bool FormulaShell::sync_rules() {
-  const FormulaBook& book = v_.session_.formulas();
+  const FormulaBook& book = s_.session.formulas();
   // The reference view renders the equation's own terms; the difference view shows the check.
   const bool traced = book.any() && panel_.view != ui::FormulaView::kReference;
   if (traced == rules_sent_any_ && (!traced || book.version() == rules_version_)) return false;
   rules_sent_any_ = traced;
   rules_version_ = book.version();
-  v_.schedule_.set_rules(traced ? book.rules() : LocalRules{});
+  s_.schedule.set_rules(traced ? book.rules() : LocalRules{});
   return true;
 }
 
@@ -152,9 +152,9 @@ std::string FormulaShell::open_image(const std::string& path) {
   std::string error;
   const std::optional<ReadImage> read = read_image_file(path, &error);
   const std::string name = std::filesystem::path(path).filename().string();
-  if (read && (read->width != v_.schedule_.width() || read->height != v_.schedule_.height())) {
+  if (read && (read->width != s_.schedule.width() || read->height != s_.schedule.height())) {
     error = name + " is " + std::to_string(read->width) + "x" + std::to_string(read->height) + ", the view renders " +
-            std::to_string(v_.schedule_.width()) + "x" + std::to_string(v_.schedule_.height()) +
+            std::to_string(s_.schedule.width()) + "x" + std::to_string(s_.schedule.height()) +
             ": render yours at the view's size (phonglab-cli probe's command in the Probe panel names it)";
   }
   if (!error.empty()) {
@@ -180,11 +180,11 @@ std::string FormulaShell::open_image(const std::string& path) {
     };
     a.pixels[i] = glm::vec3(at(0), at(1), at(2));
   }
-  v_.tools_.compare().set_file_image(std::move(a), name);
-  v_.instruments_.compare = 2;  // |live - A|: where yours differs
+  tools_.compare().set_file_image(std::move(a), name);
+  s_.instruments.compare = 2;  // |live - A|: where yours differs
   panel_.view = ui::FormulaView::kDifference;
   unfold_ = true;
-  v_.upload_pending_ = true;
+  s_.upload_pending = true;
   return "";
 }
 
@@ -193,8 +193,8 @@ void FormulaShell::close_image() {
   image_result_.reset();
   image_name_.clear();
   image_check_pending_ = false;
-  if (!v_.tools_.compare().file_name().empty()) v_.tools_.compare().clear();
-  v_.upload_pending_ = true;
+  if (!tools_.compare().file_name().empty()) tools_.compare().clear();
+  s_.upload_pending = true;
 }
 
 void FormulaShell::poll_check() {
@@ -204,10 +204,10 @@ void FormulaShell::poll_check() {
     if (finished_ && finished_image_) image_result_ = std::move(finished_);
     else if (finished_) result_ = std::move(finished_);
     finished_.reset();
-    v_.upload_pending_ = true;
+    s_.upload_pending = true;
   }
-  const FormulaBook& book = v_.session_.formulas();
-  const std::shared_ptr<const PreparedScene>& snapshot = v_.schedule_.snapshot();
+  const FormulaBook& book = s_.session.formulas();
+  const std::shared_ptr<const PreparedScene>& snapshot = s_.schedule.snapshot();
   if (image_ && image_check_pending_ && !running_.load() && snapshot) {
     // The image against the view's scene at its own size: the reference the renderer's rules
     // would give without formulas.
@@ -232,15 +232,15 @@ void FormulaShell::poll_check() {
     checked_version_ = ~std::uint64_t{0};
     return;
   }
-  if (running_.load() || !snapshot || v_.schedule_.width() < 1 || v_.schedule_.height() < 1) return;
+  if (running_.load() || !snapshot || s_.schedule.width() < 1 || s_.schedule.height() < 1) return;
   if (checked_snapshot_ == snapshot.get() && checked_version_ == book.version()) return;
   if (checked_version_ != book.version()) result_.reset();  // the verdict says "checking" until the new one
   checked_snapshot_ = snapshot.get();
   checked_version_ = book.version();
   Scene scene = snapshot->scene();
-  const double scale = std::min(1.0, static_cast<double>(kCheckWidth) / v_.schedule_.width());
-  scene.width = std::max(1, static_cast<int>(v_.schedule_.width() * scale));
-  scene.height = std::max(1, static_cast<int>(v_.schedule_.height() * scale));
+  const double scale = std::min(1.0, static_cast<double>(kCheckWidth) / s_.schedule.width());
+  scene.width = std::max(1, static_cast<int>(s_.schedule.width() * scale));
+  scene.height = std::max(1, static_cast<int>(s_.schedule.height() * scale));
   LocalRules rules = book.rules();
   running_.store(true);
   finished_image_ = false;
@@ -257,11 +257,11 @@ void FormulaShell::poll_check() {
 }
 
 bool FormulaShell::check_settled() const {
-  const FormulaBook& book = v_.session_.formulas();
+  const FormulaBook& book = s_.session.formulas();
   if (image_ && (image_check_pending_ || !image_result_ || running_.load())) return false;
   if (!book.any()) return !running_.load() && !worker_.joinable();
   return !running_.load() && !worker_.joinable() && result_ && checked_version_ == book.version() &&
-         checked_snapshot_ == v_.schedule_.snapshot().get();
+         checked_snapshot_ == s_.schedule.snapshot().get();
 }
 
 std::optional<std::vector<glm::vec3>> FormulaShell::difference_pixels(int width, int height) const {
@@ -274,7 +274,7 @@ std::optional<std::vector<glm::vec3>> FormulaShell::difference_pixels(int width,
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(check->yours[i]);
     return out;
   }
-  if (!check && v_.session_.formulas().any() && result_) check = &*result_;
+  if (!check && s_.session.formulas().any() && result_) check = &*result_;
   if (panel_.view != ui::FormulaView::kDifference || !check) return std::nullopt;
   const CheckResult* result = check;
   const std::vector<Color> diff = check_difference_image(*result);

@@ -1,8 +1,8 @@
 // The Formula panel's shell (docs/formulas.md): the student's texts turned into the session's
-// formula edits, the snapshot traced with the formulas that render, which view is shown (yours,
-// the reference, the difference), and the check of yours against the reference, run beside the
-// renderer at a reduced size whenever the formulas or the view change. It reaches the shell
-// through `Viewer&` (a friend).
+// formula edits, the snapshot traced with the formulas that render, which view is shown (yours, the
+// reference, the difference), and the check of yours against the reference, run beside the renderer
+// at a reduced size whenever the formulas or the view change. It reaches the shell's shared state
+// (ShellState, shell_state.h) and the components it works with, given by reference.
 #pragma once
 
 #include <atomic>
@@ -21,11 +21,14 @@
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class Instruments;
+class LessonShell;
 
 class FormulaShell {
  public:
-  explicit FormulaShell(Viewer& viewer) : v_(viewer) {}
+  FormulaShell(ShellState& shell, LessonShell& lesson_shell, Instruments& tools)
+      : s_(shell), lesson_shell_(lesson_shell), tools_(tools) {}
   ~FormulaShell();
   FormulaShell(const FormulaShell&) = delete;
   FormulaShell& operator=(const FormulaShell&) = delete;
@@ -69,7 +72,9 @@ class FormulaShell {
   void refresh_panel();  // the texts and errors from the session
   std::string formulas_path() const;
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  LessonShell& lesson_shell_;
+  Instruments& tools_;
   ui::FormulaPanelState panel_;
   bool unfold_ = false;
   std::uint64_t rules_version_ = 0;

@@ -17,6 +17,8 @@ class FrameClient {
   virtual void restarted(std::uint64_t generation) = 0;
   // After the frame is drawn, before the swap: a path to save the window to, or "".
   virtual std::string screenshot_wanted() = 0;
+  // That screenshot could not be written (the shell has said why and quits).
+  virtual void screenshot_failed() = 0;
   // The client has more to do: the loop does not sleep idle.
   virtual bool busy() const = 0;
   // The client's hand is on the view (its input under way): the frame counts as interacting.

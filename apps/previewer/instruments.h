@@ -1,8 +1,8 @@
 // The teaching instruments' state and rules in the previewer: the probed pixel (its ray tree,
 // report and the indirect light's numbers), snapshot A and what the compare views show, the heat
 // map, "move your head" (its eye and pivot), the ambient views and the best constant ambient, and
-// the image that goes on screen from all of them. It reaches the rest of the shell through
-// `Viewer&` (a friend).
+// the image that goes on screen from all of them. It reaches the shell's shared state (ShellState,
+// shell_state.h) and the components it works with, given by reference.
 #pragma once
 
 #include <array>
@@ -20,7 +20,8 @@
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class FormulaShell;
 
 class Instruments {
  public:
@@ -35,7 +36,8 @@ class Instruments {
     IndirectProbe indirect;              // ka·Ia beside the indirect term's estimate at the pixel
     bool with_indirect = false;          // `indirect` was taken (an ambient view is on)
   };
-  explicit Instruments(Viewer& viewer) : v_(viewer) {}
+  Instruments(ShellState& shell, FormulaShell& formulas)
+      : s_(shell), formulas_(formulas) {}
   Instruments(const Instruments&) = delete;
   Instruments& operator=(const Instruments&) = delete;
 
@@ -71,7 +73,8 @@ class Instruments {
   std::optional<std::vector<glm::vec3>> ambient_view_pixels() const;  // the ambient views beside / difference
   CompareView compare_view() const;  // the panel's compare choice
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  FormulaShell& formulas_;
   ProbeState probed_;
   SnapshotA a_;
   std::optional<AmbientFit> ambient_fit_;

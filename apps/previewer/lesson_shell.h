@@ -1,7 +1,8 @@
 // Presenting a lesson in the previewer: what the session's LessonPresenter answers applied to the
 // shell (the step's scene adopted, its view set on the instruments, A taken for a compare), the
 // presenter's keys, presenter mode, the Lessons panel and the caption over the image. A class of
-// its own beside the shell; it reaches the shell's state through `Viewer&` (a friend).
+// its own beside the shell; it reaches the shell's shared state (ShellState, shell_state.h) and the
+// components it works with, given by reference.
 #pragma once
 
 #include <array>
@@ -16,7 +17,10 @@
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class FileShell;
+class FormulaShell;
+class Instruments;
 
 class LessonShell {
  public:
@@ -32,7 +36,8 @@ class LessonShell {
     std::string path_field;         // the panel's lesson file path
   };
 
-  explicit LessonShell(Viewer& viewer) : v_(viewer) {}
+  LessonShell(ShellState& shell, FileShell& files, FormulaShell& formulas, Instruments& tools)
+      : s_(shell), files_(files), formulas_(formulas), tools_(tools) {}
   LessonShell(const LessonShell&) = delete;
   LessonShell& operator=(const LessonShell&) = delete;
   LessonState& state() { return state_; }
@@ -77,7 +82,10 @@ class LessonShell {
   float caption_lines_height(const std::vector<CaptionLine>& lines, float width) const;
   float caption_pad() const;
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  FileShell& files_;
+  FormulaShell& formulas_;
+  Instruments& tools_;
   LessonState state_;
   struct StripKey {
     std::string lesson;  // its name and title: another lesson may take the same storage

@@ -76,37 +76,37 @@ ui::ScreenRect overlay_window(const char* id, ImVec2 pos, ImVec2 pivot, const st
 }  // namespace
 
 void Overlays::draw_overlays() {
-  v_.markers_.clear();
+  s_.markers.clear();
   // Last frame's boxes give the sizes for this frame's layout; this frame's replace them (so
   // dump_state lists the boxes on screen).
-  const std::map<std::string, ui::ScreenRect> last = std::move(v_.overlay_rects_);
-  v_.overlay_rects_.clear();
-  if (v_.viewport_.width < 1 || v_.viewport_.height < 1) return;
-  const float scale = v_.platform_.ui_scale();
+  const std::map<std::string, ui::ScreenRect> last = std::move(s_.overlay_rects);
+  s_.overlay_rects.clear();
+  if (s_.viewport.width < 1 || s_.viewport.height < 1) return;
+  const float scale = s_.platform.ui_scale();
   const float margin = 8 * scale;
   std::vector<ui::ScreenRect> taken;  // boxes and captions placed so far
-  const ImVec2 top_left(v_.viewport_.x + margin, v_.viewport_.y + margin);
-  const ImVec2 top_right(v_.viewport_.x + v_.viewport_.width - margin, v_.viewport_.y + margin);
+  const ImVec2 top_left(s_.viewport.x + margin, s_.viewport.y + margin);
+  const ImVec2 top_right(s_.viewport.x + s_.viewport.width - margin, s_.viewport.y + margin);
   // A lesson's caption takes the bottom of the view: the bottom boxes sit above it.
-  float bottom_y = v_.viewport_.y + v_.viewport_.height - margin;
-  if (const auto it = last.find("##lesson_caption"); it != last.end() && v_.lessons_.lesson()) bottom_y = it->second.min.y - margin;
-  const ImVec2 bottom_left(v_.viewport_.x + margin, bottom_y);
-  const ImVec2 bottom_right(v_.viewport_.x + v_.viewport_.width - margin, bottom_y);
+  float bottom_y = s_.viewport.y + s_.viewport.height - margin;
+  if (const auto it = last.find("##lesson_caption"); it != last.end() && s_.lessons.lesson()) bottom_y = it->second.min.y - margin;
+  const ImVec2 bottom_left(s_.viewport.x + margin, bottom_y);
+  const ImVec2 bottom_right(s_.viewport.x + s_.viewport.width - margin, bottom_y);
 
   // Corner boxes: stats top left, the ray-tree legend top right, the head plot bottom left (top
   // left when presenting), the heat scale bottom right.
-  if (v_.display_.show_stats && !v_.lesson_shell_.state().presenting) {
-    taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, v_.overlay_rects_, [&] { draw_stats(); }));
+  if (s_.display.show_stats && !lesson_shell_.state().presenting) {
+    taken.push_back(overlay_window("##stats", top_left, ImVec2(0, 0), taken, last, s_.overlay_rects, [&] { draw_stats(); }));
   }
   draw_ray_tree_lines();
-  if (v_.tools_.probe().tree && v_.rays_.overlay && v_.rays_.legend && !v_.tree_segments_.empty()) {
-    const bool blinn = v_.schedule_.snapshot() && v_.schedule_.snapshot()->scene().specular_model == SpecularModel::kBlinn;
+  if (tools_.probe().tree && s_.rays.overlay && s_.rays.legend && !s_.tree_segments.empty()) {
+    const bool blinn = s_.schedule.snapshot() && s_.schedule.snapshot()->scene().specular_model == SpecularModel::kBlinn;
     // The legend must not hide the tree it explains: top right, unless the probed point is there,
     // then bottom right, then bottom left.
     ImVec2 anchor = top_right, pivot(1, 0);
-    if (const auto it = last.find("##ray_tree_legend"); it != last.end() && v_.schedule_.width() > 0 && v_.schedule_.height() > 0) {
+    if (const auto it = last.find("##ray_tree_legend"); it != last.end() && s_.schedule.width() > 0 && s_.schedule.height() > 0) {
       const ImVec2 size = ui::size_of(it->second);
-      const ImVec2 hit = probe_point_in_cell(v_.cells().count() - 1);
+      const ImVec2 hit = probe_point_in_cell(cells(s_).count() - 1);
       const float keep = 40 * scale;  // the ring and the N, L, R, V arrows around it
       const ui::ScreenRect around{ImVec2(hit.x - keep, hit.y - keep), ImVec2(hit.x + keep, hit.y + keep)};
       const std::array<std::pair<ImVec2, ImVec2>, 3> places = {
@@ -120,31 +120,31 @@ void Overlays::draw_overlays() {
         }
       }
     }
-    taken.push_back(overlay_window("##ray_tree_legend", anchor, pivot, taken, last, v_.overlay_rects_,
-                                   [&] { ui::ray_tree_legend(v_.tree_segments_, blinn); }));
+    taken.push_back(overlay_window("##ray_tree_legend", anchor, pivot, taken, last, s_.overlay_rects,
+                                   [&] { ui::ray_tree_legend(s_.tree_segments, blinn); }));
   }
-  if (v_.instruments_.move_head && v_.schedule_.snapshot()) {
+  if (s_.instruments.move_head && s_.schedule.snapshot()) {
     // In presenter mode (no stats box) top left: the large caption leaves the bottom little room.
-    const bool top = v_.lesson_shell_.state().presenting;
+    const bool top = lesson_shell_.state().presenting;
     taken.push_back(overlay_window("##head_plot", top ? top_left : bottom_left, ImVec2(0, top ? 0.0f : 1.0f), taken, last,
-                                   v_.overlay_rects_, [&] { draw_head_plot(); }));
+                                   s_.overlay_rects, [&] { draw_head_plot(); }));
   }
-  if (v_.tools_.heat_shown() && v_.heat_max_ > 0) {
-    taken.push_back(overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), taken, last, v_.overlay_rects_,
-                                   [&] { ui::heat_legend(v_.heat_max_, 220 * scale); }));
-  } else if (v_.tools_.ambient_view_pixels_shown(ui::AmbientView::kDifference)) {
-    taken.push_back(overlay_window("##gap_legend", bottom_right, ImVec2(1, 1), taken, last, v_.overlay_rects_,
+  if (tools_.heat_shown() && s_.heat_max > 0) {
+    taken.push_back(overlay_window("##heat_legend", bottom_right, ImVec2(1, 1), taken, last, s_.overlay_rects,
+                                   [&] { ui::heat_legend(s_.heat_max, 220 * scale); }));
+  } else if (tools_.ambient_view_pixels_shown(ui::AmbientView::kDifference)) {
+    taken.push_back(overlay_window("##gap_legend", bottom_right, ImVec2(1, 1), taken, last, s_.overlay_rects,
                                    [&] { ui::ambient_gap_legend(kAmbientGapScale, 220 * scale); }));
   }
 
   // Captions at the top centre, each below whatever box it would overlap.
-  float y = v_.viewport_.y + margin;
-  const float wrap = std::max(v_.viewport_.width - 4 * margin, 1.0f);  // a caption never leaves the view
+  float y = s_.viewport.y + margin;
+  const float wrap = std::max(s_.viewport.width - 4 * margin, 1.0f);  // a caption never leaves the view
   for (const std::string& text : captions()) {
     const ImVec2 size = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
     const float pad = 5 * scale;
-    ui::ScreenRect r{ImVec2(v_.viewport_.x + (v_.viewport_.width - size.x) / 2 - pad, y),
-                     ImVec2(v_.viewport_.x + (v_.viewport_.width + size.x) / 2 + pad, y + size.y + 2 * pad)};
+    ui::ScreenRect r{ImVec2(s_.viewport.x + (s_.viewport.width - size.x) / 2 - pad, y),
+                     ImVec2(s_.viewport.x + (s_.viewport.width + size.x) / 2 + pad, y + size.y + 2 * pad)};
     while (const std::optional<float> bottom = blocked_until(r, taken)) {
       const float shift = *bottom + 4 * scale - r.min.y;
       r.min.y += shift;
@@ -156,111 +156,111 @@ void Overlays::draw_overlays() {
     y = r.max.y + 4 * scale;
   }
   draw_cell_labels_and_probe_ring();
-  v_.lesson_shell_.draw_lesson_caption();
+  lesson_shell_.draw_lesson_caption();
   draw_wipe_line();
   if (light_markers_shown()) draw_light_markers(taken);
   draw_selected_object();
-  if (v_.hovered_light_ >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+  if (s_.hovered_light >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
 
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  if (v_.shown_.pixels.empty()) {
+  if (s_.shown.pixels.empty()) {
     const char* text = "rendering...";
     const ImVec2 size = ImGui::CalcTextSize(text);
-    ui::text_on_plate(draw, ImVec2(v_.viewport_.x + (v_.viewport_.width - size.x) / 2, v_.viewport_.y + (v_.viewport_.height - size.y) / 2),
+    ui::text_on_plate(draw, ImVec2(s_.viewport.x + (s_.viewport.width - size.x) / 2, s_.viewport.y + (s_.viewport.height - size.y) / 2),
                       text, scale);
   }
-  if (!v_.sidebar_visible_ && !v_.lessons_.lesson()) {
+  if (!s_.sidebar_visible && !s_.lessons.lesson()) {
     // With the panels hidden, say how to get them back (bottom centre, clear of the corner boxes).
     const char* text = "H shows the panels  \xC2\xB7  F1 keys";
     const ImVec2 size = ImGui::CalcTextSize(text);
-    ui::text_on_plate(draw, ImVec2(v_.viewport_.x + (v_.viewport_.width - size.x) / 2, bottom_left.y - size.y - 4 * scale),
+    ui::text_on_plate(draw, ImVec2(s_.viewport.x + (s_.viewport.width - size.x) / 2, bottom_left.y - size.y - 4 * scale),
                       text, scale, 0.55f);
   }
-  if (v_.help_visible_) {
+  if (s_.help_visible) {
     // Over everything else, on purpose: it is asked for, and Esc closes it.
-    overlay_window("##keys", ImVec2(v_.viewport_.x + v_.viewport_.width / 2, v_.viewport_.y + v_.viewport_.height / 2),
-                   ImVec2(0.5f, 0.5f), {}, last, v_.overlay_rects_, [] { ui::keys_help(); }, 0.94f);
+    overlay_window("##keys", ImVec2(s_.viewport.x + s_.viewport.width / 2, s_.viewport.y + s_.viewport.height / 2),
+                   ImVec2(0.5f, 0.5f), {}, last, s_.overlay_rects, [] { ui::keys_help(); }, 0.94f);
   }
 }
 
 std::vector<std::string> Overlays::captions() const {
   std::vector<std::string> lines;
-  const bool blinn = v_.doc_.scene().specular_model == SpecularModel::kBlinn;
+  const bool blinn = s_.doc.scene().specular_model == SpecularModel::kBlinn;
   // What is on screen, when it is not the whole image: a projected slide must say so.
-  const std::string ambient = ui::ambient_view_caption(v_.render_settings_.ambient_view);
+  const std::string ambient = ui::ambient_view_caption(s_.render_settings.ambient_view);
   if (!ambient.empty()) {
     lines.push_back(ambient);
-  } else if (!v_.instruments_.small_multiples && v_.render_settings_.term != Term::kFull && !v_.tools_.heat_shown()) {
-    lines.push_back(ui::term_caption(v_.render_settings_.term, blinn));
+  } else if (!s_.instruments.small_multiples && s_.render_settings.term != Term::kFull && !tools_.heat_shown()) {
+    lines.push_back(ui::term_caption(s_.render_settings.term, blinn));
   }
-  if (v_.schedule_.snapshot() && v_.rays_.depth_cut) {
+  if (s_.schedule.snapshot() && s_.rays.depth_cut) {
     char caption[96];
-    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", v_.schedule_.snapshot()->scene().max_depth,
-                  v_.doc_.scene().max_depth);
+    std::snprintf(caption, sizeof caption, "recursion cut at depth %d (scene max depth %d)", s_.schedule.snapshot()->scene().max_depth,
+                  s_.doc.scene().max_depth);
     lines.emplace_back(caption);
   }
-  if (v_.instruments_.compare != 0) lines.push_back(v_.tools_.compare_caption());
+  if (s_.instruments.compare != 0) lines.push_back(tools_.compare_caption());
   return lines;
 }
 
 void Overlays::draw_stats() {
-  const ProgressiveStatus status = v_.renderer_.status();
+  const ProgressiveStatus status = s_.renderer.status();
   ui::StatsView stats;
   double sum = 0, slowest = 0;
-  for (const auto& [start, seconds] : v_.stats_.frame_times) {
+  for (const auto& [start, seconds] : s_.stats.frame_times) {
     sum += seconds;
     slowest = std::max(slowest, seconds);
   }
-  stats.ui_frame_ms = v_.stats_.frame_times.empty() ? -1 : sum / static_cast<double>(v_.stats_.frame_times.size()) * 1e3;
+  stats.ui_frame_ms = s_.stats.frame_times.empty() ? -1 : sum / static_cast<double>(s_.stats.frame_times.size()) * 1e3;
   stats.ui_frame_max_ms = slowest * 1e3;
-  stats.edit_to_image_ms = v_.stats_.last_latency_ms;
-  stats.have_frame = !v_.shown_.pixels.empty();
-  stats.level_divisor = v_.shown_.divisor;
-  stats.level_quads = v_.shown_.quads;
-  stats.image_width = v_.shown_.width;
-  stats.image_height = v_.shown_.height;
-  stats.spp = v_.shown_.spp;
-  stats.target_spp = v_.tools_.target_spp();
-  stats.frame = v_.shown_.stats;
+  stats.edit_to_image_ms = s_.stats.last_latency_ms;
+  stats.have_frame = !s_.shown.pixels.empty();
+  stats.level_divisor = s_.shown.divisor;
+  stats.level_quads = s_.shown.quads;
+  stats.image_width = s_.shown.width;
+  stats.image_height = s_.shown.height;
+  stats.spp = s_.shown.spp;
+  stats.target_spp = tools_.target_spp();
+  stats.frame = s_.shown.stats;
   stats.idle = status.idle;
-  stats.interacting = v_.interacting_ || v_.edits_.while_active;
-  stats.scene_error = v_.files_.file_state().error_text;
-  stats.details = v_.display_.stats_details;
+  stats.interacting = s_.interacting || s_.edits.while_active;
+  stats.scene_error = files_.file_state().error_text;
+  stats.details = s_.display.stats_details;
   ui::stats_overlay(stats);
 }
 
 void Overlays::draw_head_plot() {
   // "Move your head": the highlight against the head angle.
   ui::HeadPlotView plot;
-  plot.hit = v_.tools_.probe().tree ? &v_.tools_.probe().tree->root : nullptr;
-  plot.eye_at_zero = v_.schedule_.snapshot()->scene().camera.position;
-  plot.axis = glm::normalize(make_camera_frame(v_.schedule_.snapshot()->scene().camera, 1, 1).up);
-  if (v_.tools_.probe().tree && v_.tools_.probe().tree->root.hit && v_.tools_.probe().tree->root.material >= 0 &&
-      v_.tools_.probe().tree->root.material < static_cast<int>(v_.schedule_.snapshot()->scene().materials.size())) {
-    plot.shininess = v_.schedule_.snapshot()->scene().materials[static_cast<std::size_t>(v_.tools_.probe().tree->root.material)].n;
+  plot.hit = tools_.probe().tree ? &tools_.probe().tree->root : nullptr;
+  plot.eye_at_zero = s_.schedule.snapshot()->scene().camera.position;
+  plot.axis = glm::normalize(make_camera_frame(s_.schedule.snapshot()->scene().camera, 1, 1).up);
+  if (tools_.probe().tree && tools_.probe().tree->root.hit && tools_.probe().tree->root.material >= 0 &&
+      tools_.probe().tree->root.material < static_cast<int>(s_.schedule.snapshot()->scene().materials.size())) {
+    plot.shininess = s_.schedule.snapshot()->scene().materials[static_cast<std::size_t>(tools_.probe().tree->root.material)].n;
   }
-  plot.blinn = v_.schedule_.snapshot()->scene().specular_model == SpecularModel::kBlinn;
-  plot.angle_deg = v_.instruments_.head_angle_deg;
-  plot.width = 340 * v_.platform_.ui_scale();
+  plot.blinn = s_.schedule.snapshot()->scene().specular_model == SpecularModel::kBlinn;
+  plot.angle_deg = s_.instruments.head_angle_deg;
+  plot.width = 340 * s_.platform.ui_scale();
   ui::head_plot(plot);
 }
 
 ImVec2 Overlays::probe_point_in_cell(int cell) const {
   // The probed pixel's centre as cell `cell` shows it.
-  const Viewer::Cells c = v_.cells();
+  const Cells c = cells(s_);
   const ImVec2 origin = c.origin(cell);
-  return ImVec2(origin.x + (static_cast<float>(v_.tools_.probe().x) + 0.5f) / static_cast<float>(std::max(v_.schedule_.width(), 1)) * c.width,
-                origin.y + (static_cast<float>(v_.tools_.probe().y) + 0.5f) / static_cast<float>(std::max(v_.schedule_.height(), 1)) * c.height);
+  return ImVec2(origin.x + (static_cast<float>(tools_.probe().x) + 0.5f) / static_cast<float>(std::max(s_.schedule.width(), 1)) * c.width,
+                origin.y + (static_cast<float>(tools_.probe().y) + 0.5f) / static_cast<float>(std::max(s_.schedule.height(), 1)) * c.height);
 }
 
 void Overlays::draw_cell_labels_and_probe_ring() {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  const float scale = v_.platform_.ui_scale();
-  const Viewer::Cells c = v_.cells();
-  if (v_.instruments_.small_multiples) {
-    const bool blinn = v_.doc_.scene().specular_model == SpecularModel::kBlinn;
+  const float scale = s_.platform.ui_scale();
+  const Cells c = cells(s_);
+  if (s_.instruments.small_multiples) {
+    const bool blinn = s_.doc.scene().specular_model == SpecularModel::kBlinn;
     for (int cell = 0; cell < c.count(); ++cell) {
-      const Term term = cell < Viewer::kTermCells ? Viewer::kCellTerms[static_cast<std::size_t>(cell)] : Term::kFull;
+      const Term term = cell < kTermCells ? kCellTerms[static_cast<std::size_t>(cell)] : Term::kFull;
       const std::string label = ui::term_caption(term, blinn);
       const ImVec2 origin = c.origin(cell);
       ui::text_on_plate(draw, ImVec2(origin.x + 6 * scale, origin.y + c.height - ImGui::GetFontSize() - 8 * scale),
@@ -268,23 +268,23 @@ void Overlays::draw_cell_labels_and_probe_ring() {
     }
   }
   // The probed pixel: a ring with a gap in every cell, so the term images can be compared there.
-  if (!v_.tools_.probe().tree || v_.schedule_.width() <= 0 || v_.schedule_.height() <= 0) return;
+  if (!tools_.probe().tree || s_.schedule.width() <= 0 || s_.schedule.height() <= 0) return;
   for (int cell = 0; cell < c.count(); ++cell) ui::draw_probe_ring(draw, probe_point_in_cell(cell), scale);
 }
 
 std::optional<float> Overlays::wipe_line_x() const {
-  if (v_.tools_.ambient_view_pixels_shown(ui::AmbientView::kBeside)) return v_.viewport_.x + v_.instruments_.wipe * v_.viewport_.width;
-  if (v_.instruments_.compare != 1 || !v_.tools_.a_comparable() || v_.instruments_.small_multiples) return std::nullopt;
+  if (tools_.ambient_view_pixels_shown(ui::AmbientView::kBeside)) return s_.viewport.x + s_.instruments.wipe * s_.viewport.width;
+  if (s_.instruments.compare != 1 || !tools_.a_comparable() || s_.instruments.small_multiples) return std::nullopt;
   // compare_pixels shows A left of column wipe * width: the line is drawn at that edge.
-  return v_.viewport_.x + v_.instruments_.wipe * v_.viewport_.width;
+  return s_.viewport.x + s_.instruments.wipe * s_.viewport.width;
 }
 
 void Overlays::draw_wipe_line() {
   const std::optional<float> x = wipe_line_x();
   if (!x) return;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  const float scale = v_.platform_.ui_scale();
-  const float top = v_.viewport_.y, bottom = v_.viewport_.y + v_.viewport_.height, mid = (top + bottom) / 2;
+  const float scale = s_.platform.ui_scale();
+  const float top = s_.viewport.y, bottom = s_.viewport.y + s_.viewport.height, mid = (top + bottom) / 2;
   draw->AddLine(ImVec2(*x, top), ImVec2(*x, bottom), IM_COL32(0, 0, 0, 160), 4 * scale);
   draw->AddLine(ImVec2(*x, top), ImVec2(*x, bottom), IM_COL32(255, 255, 255, 230), 2 * scale);
   // A handle in the middle, with arrows: it can be dragged.
@@ -295,7 +295,7 @@ void Overlays::draw_wipe_line() {
   const float a = r * 0.55f;
   draw->AddTriangleFilled(ImVec2(*x - a * 1.6f, mid), ImVec2(*x - a * 0.4f, mid - a), ImVec2(*x - a * 0.4f, mid + a), arrow);
   draw->AddTriangleFilled(ImVec2(*x + a * 1.6f, mid), ImVec2(*x + a * 0.4f, mid + a), ImVec2(*x + a * 0.4f, mid - a), arrow);
-  const bool ambient = v_.tools_.ambient_view_pixels_shown(ui::AmbientView::kBeside);
+  const bool ambient = tools_.ambient_view_pixels_shown(ui::AmbientView::kBeside);
   const std::string left = ambient ? "ka\xC2\xB7" + ui::i_a() : "A";
   const char* right = ambient ? "indirect" : "live";
   ui::text_on_plate(draw, ImVec2(*x - ImGui::CalcTextSize(left.c_str()).x - 10 * scale, mid + r + 6 * scale), left.c_str(),
@@ -306,19 +306,19 @@ void Overlays::draw_wipe_line() {
 bool Overlays::light_markers_shown() const {
   // Hidden by the Display toggle, over the small multiples (the markers belong to the one full
   // view), and where a lesson's step asks where the lights are (until exploring).
-  if (!v_.display_.light_markers || v_.instruments_.small_multiples) return false;
-  return !v_.lessons_.lesson() || v_.lessons_.view().light_markers || v_.lessons_.exploring();
+  if (!s_.display.light_markers || s_.instruments.small_multiples) return false;
+  return !s_.lessons.lesson() || s_.lessons.view().light_markers || s_.lessons.exploring();
 }
 
 void Overlays::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
-  const Scene& scene = v_.doc_.scene();
-  const Camera view = v_.view_camera();
-  const float scale = v_.platform_.ui_scale();
+  const Scene& scene = s_.doc.scene();
+  const Camera view = view_camera(s_);
+  const float scale = s_.platform.ui_scale();
   const float radius = ui::light_marker_radius(scale);
-  const int view_w = static_cast<int>(std::lround(v_.viewport_.width));
-  const int view_h = static_cast<int>(std::lround(v_.viewport_.height));
-  const ImVec2 lo(v_.viewport_.x, v_.viewport_.y);
-  const ImVec2 hi(v_.viewport_.x + v_.viewport_.width, v_.viewport_.y + v_.viewport_.height);
+  const int view_w = static_cast<int>(std::lround(s_.viewport.width));
+  const int view_h = static_cast<int>(std::lround(s_.viewport.height));
+  const ImVec2 lo(s_.viewport.x, s_.viewport.y);
+  const ImVec2 hi(s_.viewport.x + s_.viewport.width, s_.viewport.y + s_.viewport.height);
   std::vector<ui::ScreenRect> occupied = taken;
   for (int i = 0; i < static_cast<int>(scene.lights.size()); ++i) {
     const Light& light = scene.lights[static_cast<std::size_t>(i)];
@@ -326,7 +326,7 @@ void Overlays::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
     const auto p = ui::project(view, light.position, view_w, view_h);
     if (!p) continue;  // behind the camera
     ui::LightMarker marker;
-    const ImVec2 at(v_.viewport_.x + static_cast<float>(p->x), v_.viewport_.y + static_cast<float>(p->y));
+    const ImVec2 at(s_.viewport.x + static_cast<float>(p->x), s_.viewport.y + static_cast<float>(p->y));
     const float inset = 2.5f * radius;
     marker.pos = ImVec2(std::clamp(at.x, lo.x + inset, std::max(lo.x + inset, hi.x - inset)),
                         std::clamp(at.y, lo.y + inset, std::max(lo.y + inset, hi.y - inset)));
@@ -342,60 +342,60 @@ void Overlays::draw_light_markers(const std::vector<ui::ScreenRect>& taken) {
     marker.color = ImVec4(static_cast<float>(light.intensity.x / m), static_cast<float>(light.intensity.y / m),
                           static_cast<float>(light.intensity.z / m), 1.0f);
     marker.enabled = light.enabled;
-    marker.selected = i == v_.selected_light_;
-    marker.hovered = i == v_.hovered_light_ || (v_.drag_.mode == Viewer::DragMode::kLight && v_.drag_.light == i);
+    marker.selected = i == s_.selected_light;
+    marker.hovered = i == s_.hovered_light || (s_.drag.mode == DragMode::kLight && s_.drag.light == i);
     marker.index = i;
     occupied.push_back(ui::ScreenRect{ImVec2(marker.pos.x - inset, marker.pos.y - inset),
                                       ImVec2(marker.pos.x + inset, marker.pos.y + inset)});
-    v_.markers_.push_back(marker);
+    s_.markers.push_back(marker);
   }
   // Labels last: each at the first place beside its marker that no box, marker or label holds.
-  for (ui::LightMarker& marker : v_.markers_) {
+  for (ui::LightMarker& marker : s_.markers) {
     marker.label_pos = ui::place_label(marker, radius, occupied, lo, hi);
     const ImVec2 size = ImGui::CalcTextSize("L00");
     occupied.push_back(ui::ScreenRect{marker.label_pos, ImVec2(marker.label_pos.x + size.x, marker.label_pos.y + size.y)});
   }
-  ui::draw_light_markers(v_.markers_, radius, scale);
+  ui::draw_light_markers(s_.markers, radius, scale);
 }
 
 void Overlays::draw_ray_tree_lines() {
   // The ray tree over the full image: the only cell, or the last of the small multiples.
-  v_.tree_segments_.clear();
-  if (!v_.tools_.probe().tree || !v_.rays_.overlay || !v_.schedule_.snapshot() || v_.schedule_.width() <= 0 || v_.schedule_.height() <= 0) return;
-  const Viewer::Cells c = v_.cells();
+  s_.tree_segments.clear();
+  if (!tools_.probe().tree || !s_.rays.overlay || !s_.schedule.snapshot() || s_.schedule.width() <= 0 || s_.schedule.height() <= 0) return;
+  const Cells c = cells(s_);
   const ImVec2 full_cell = c.origin(c.count() - 1);
   RayTreeViewOptions options;
-  options.shadow_rays = v_.rays_.shadow_rays;
-  options.secondary_rays = v_.rays_.secondary_rays;
-  options.arrows = v_.rays_.arrows;
+  options.shadow_rays = s_.rays.shadow_rays;
+  options.secondary_rays = s_.rays.secondary_rays;
+  options.arrows = s_.rays.arrows;
   // The probe was taken in schedule_.snapshot() at the render size: project with that camera and size.
-  const CameraFrame frame = make_camera_frame(v_.schedule_.snapshot()->scene().camera, v_.schedule_.width(), v_.schedule_.height());
-  v_.tree_segments_ = project_ray_tree(frame, ray_tree_segments(v_.schedule_.snapshot()->scene(), v_.tools_.probe().tree->root, options),
-                                    ray_tree_near(v_.schedule_.snapshot()->scene(), v_.tools_.probe().tree->root));
+  const CameraFrame frame = make_camera_frame(s_.schedule.snapshot()->scene().camera, s_.schedule.width(), s_.schedule.height());
+  s_.tree_segments = project_ray_tree(frame, ray_tree_segments(s_.schedule.snapshot()->scene(), tools_.probe().tree->root, options),
+                                    ray_tree_near(s_.schedule.snapshot()->scene(), tools_.probe().tree->root));
   int lit_lights = 0;
-  for (const ProbeLight& light : v_.tools_.probe().tree->root.lights) lit_lights += light.lit_side ? 1 : 0;
-  const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(v_.schedule_.width()),
-                                             c.height / static_cast<float>(v_.schedule_.height()))};
-  const bool blinn = v_.schedule_.snapshot()->scene().specular_model == SpecularModel::kBlinn;
-  ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), v_.tree_segments_, rect, v_.platform_.ui_scale(), blinn, lit_lights);
+  for (const ProbeLight& light : tools_.probe().tree->root.lights) lit_lights += light.lit_side ? 1 : 0;
+  const ui::ImageRect rect{full_cell, ImVec2(c.width / static_cast<float>(s_.schedule.width()),
+                                             c.height / static_cast<float>(s_.schedule.height()))};
+  const bool blinn = s_.schedule.snapshot()->scene().specular_model == SpecularModel::kBlinn;
+  ui::draw_ray_tree(ImGui::GetBackgroundDrawList(), s_.tree_segments, rect, s_.platform.ui_scale(), blinn, lit_lights);
 }
 
 // The selected object, marked where the view shows it: a sphere's outline (its silhouette's
 // radius at its centre's depth), and for every kind a square handle at its anchor to grab it by.
 void Overlays::draw_selected_object() {
-  const std::optional<ImVec2> at = v_.builder_.object_screen_point(v_.selected_object_);
+  const std::optional<ImVec2> at = builder_.object_screen_point(s_.selected_object);
   if (!at) return;
-  const Scene& scene = v_.doc_.scene();
-  const float scale = v_.platform_.ui_scale();
+  const Scene& scene = s_.doc.scene();
+  const float scale = s_.platform.ui_scale();
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const ImU32 colour = IM_COL32(255, 170, 40, 255);
-  const ObjectRef r = ui::object_at(scene, v_.selected_object_);
+  const ObjectRef r = ui::object_at(scene, s_.selected_object);
   if (r.kind == ObjectRef::Kind::kSphere) {
-    const Camera view = v_.view_camera();
+    const Camera view = view_camera(s_);
     const Sphere& sp = scene.spheres[static_cast<std::size_t>(r.index)];
     const double depth = ui::view_depth(view, sp.center);
     const double pixels_per_unit =
-        depth > 0 ? v_.viewport_.height / (2 * depth * std::tan(glm::radians(view.fov_y_deg) / 2)) : 0;
+        depth > 0 ? s_.viewport.height / (2 * depth * std::tan(glm::radians(view.fov_y_deg) / 2)) : 0;
     const auto radius = static_cast<float>(sp.radius * pixels_per_unit);
     if (radius > 2 && radius < 1e4f) draw->AddCircle(*at, radius, colour, 64, 2 * scale);
   }

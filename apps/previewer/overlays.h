@@ -2,7 +2,8 @@
 // box, the captions (the term shown, the depth cut, the compare), the "move your head" plot, the
 // small multiples' labels and the probed pixel's ring, the wipe line, the light markers and the
 // arrows to lights out of view, the probed pixel's ray tree, the selected object. It reads the
-// shell's state through `Viewer&` (a friend).
+// shell's shared state (ShellState, shell_state.h) and the components it works with, given by
+// reference.
 #pragma once
 
 #include <optional>
@@ -15,11 +16,16 @@
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class FileShell;
+class Instruments;
+class LessonShell;
+class SceneBuilder;
 
 class Overlays {
  public:
-  explicit Overlays(Viewer& viewer) : v_(viewer) {}
+  Overlays(ShellState& shell, SceneBuilder& builder, FileShell& files, LessonShell& lesson_shell, Instruments& tools)
+      : s_(shell), builder_(builder), files_(files), lesson_shell_(lesson_shell), tools_(tools) {}
   Overlays(const Overlays&) = delete;
   Overlays& operator=(const Overlays&) = delete;
 
@@ -38,7 +44,11 @@ class Overlays {
   void draw_ray_tree_lines();                    // the probed tree over the full image's cell
   void draw_selected_object();                   // its outline or handle where the view shows it
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  SceneBuilder& builder_;
+  FileShell& files_;
+  LessonShell& lesson_shell_;
+  Instruments& tools_;
 };
 
 }  // namespace phonglab

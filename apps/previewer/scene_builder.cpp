@@ -22,8 +22,8 @@ namespace phonglab {
 
 std::string SceneBuilder::place_meshes(Scene& scene) const {
   if (scene.meshes.empty()) return {};
-  const bool embedded = v_.doc_.file_path().empty();
-  const std::string dir = embedded ? "" : std::filesystem::path(v_.doc_.file_path()).parent_path().string();
+  const bool embedded = s_.doc.file_path().empty();
+  const std::string dir = embedded ? "" : std::filesystem::path(s_.doc.file_path()).parent_path().string();
   LoadResult loaded = reload_meshes(scene, dir, embedded);
   if (!loaded.ok()) {
     // "the edited scene:91:30: objects[7].file: bunny.obj:2: ...": the position is in text no
@@ -43,22 +43,38 @@ std::string SceneBuilder::refuse(std::string why) {
 }
 
 std::string SceneBuilder::edit_scene(const std::function<std::string(Scene&)>& edit, bool meshes_move) {
-  Scene scene = v_.doc_.scene();
+  Scene scene = s_.doc.scene();
   ui::complete_object_indices(scene);
   std::string error = edit(scene);
   if (error.empty() && meshes_move) error = place_meshes(scene);
   if (!error.empty()) return refuse(error);  // the scene stays as it was
   notice_ = ui::EditNotice{};
   // An object dragged is one undo step when the drag ends.
-  v_.apply_edit({edit::SetScene{std::move(scene)}, v_.drag_.mode != Viewer::DragMode::kNone || ImGui::IsAnyItemActive()});
+  apply_edit(s_, {edit::SetScene{std::move(scene)}, s_.drag.mode != DragMode::kNone || ImGui::IsAnyItemActive()});
   return {};
 }
 
+void SceneBuilder::undo() {
+  if (s_.session.undo()) restored();
+}
+
+void SceneBuilder::redo() {
+  if (s_.session.redo()) restored();
+}
+
+void SceneBuilder::restored() {
+  const Scene& scene = s_.session.scene();
+  s_.selected_light = std::min(s_.selected_light, static_cast<int>(scene.lights.size()) - 1);
+  if (s_.selected_object >= ui::object_count(scene)) s_.selected_object = -1;
+  notice_ = ui::EditNotice{};
+  s_.edits.scene = true;
+}
+
 void SceneBuilder::select_object(int object) {
-  const Scene& scene = v_.doc_.scene();
-  v_.selected_object_ = object >= 0 && object < ui::object_count(scene) ? object : -1;
-  const int material = v_.selected_object_ >= 0 ? ui::object_material(scene, v_.selected_object_) : -1;
-  if (material >= 0) v_.selected_material_ = material;
+  const Scene& scene = s_.doc.scene();
+  s_.selected_object = object >= 0 && object < ui::object_count(scene) ? object : -1;
+  const int material = s_.selected_object >= 0 ? ui::object_material(scene, s_.selected_object) : -1;
+  if (material >= 0) s_.selected_material = material;
 }
 
 std::string SceneBuilder::add_object(ObjectRef::Kind kind, const std::string& obj_path) {
@@ -76,13 +92,13 @@ std::string SceneBuilder::add_object(ObjectRef::Kind kind, const std::string& ob
       added = ui::append_mesh_object(s, std::move(mesh));
       std::string failed = place_meshes(s);
       if (!failed.empty()) return failed;
-      return ui::place_new_object(s, v_.view_camera(), v_.view_aspect(), added);
+      return ui::place_new_object(s, view_camera(s_), view_aspect(s_), added);
     }, true);
   } else {
     error = edit_scene([&](Scene& s) {
       // A material of its own, the selected one's copy (so it looks the same until edited): an
       // edit of the new object's material must not change the others'.
-      int material = v_.selected_material_;
+      int material = s_.selected_material;
       std::string failed;
       if (s.materials.empty()) {
         failed = ui::new_material(s, "default", material);
@@ -91,23 +107,23 @@ std::string SceneBuilder::add_object(ObjectRef::Kind kind, const std::string& ob
         failed = ui::duplicate_material(s, source, material);
       }
       if (!failed.empty()) return failed;
-      added = ui::add_primitive(s, kind, ui::placement_in_front_of(v_.view_camera()), material);
+      added = ui::add_primitive(s, kind, ui::placement_in_front_of(view_camera(s_)), material);
       if (added < 0) return std::string("only a sphere, a plane, a triangle or a mesh can be added");
-      return ui::place_new_object(s, v_.view_camera(), v_.view_aspect(), added);
+      return ui::place_new_object(s, view_camera(s_), view_aspect(s_), added);
     }, false);
   }
   if (error.empty()) {
     select_object(added);
-    notice_.text = "added " + ui::object_label(v_.doc_.scene(), added);
+    notice_.text = "added " + ui::object_label(s_.doc.scene(), added);
   }
   return error;
 }
 
 std::string SceneBuilder::delete_object(int object) {
-  const int count = ui::object_count(v_.doc_.scene());
+  const int count = ui::object_count(s_.doc.scene());
   const std::string error = edit_scene([&](Scene& s) { return ui::delete_object(s, object); }, false);
   if (!error.empty()) return error;
-  v_.selected_object_ = -1;
+  s_.selected_object = -1;
   notice_.text = count == 1 ? "deleted the last object: the scene is empty (Ctrl+Z brings it back)"
                                     : "deleted objects[" + std::to_string(object) + "]";
   return {};
@@ -121,14 +137,14 @@ std::string SceneBuilder::duplicate(int object) {
   if (error.empty()) {
     select_object(copy);
     notice_.text = "duplicated objects[" + std::to_string(object) + "] as " +
-                           ui::object_label(v_.doc_.scene(), copy) + ", in the same place: drag it away";
+                           ui::object_label(s_.doc.scene(), copy) + ", in the same place: drag it away";
   }
   return error;
 }
 
 std::string SceneBuilder::set_object(int object, const std::string& field, const std::vector<double>& values,
                                const std::string& text) {
-  const bool mesh = ui::object_at(v_.doc_.scene(), object).kind == ObjectRef::Kind::kMesh;
+  const bool mesh = ui::object_at(s_.doc.scene(), object).kind == ObjectRef::Kind::kMesh;
   const bool moves = mesh && (ui::moves_mesh_geometry(field) || field == "material");
   return edit_scene([&](Scene& s) { return ui::set_object_field(s, object, field, values, text); }, moves);
 }
@@ -136,7 +152,7 @@ std::string SceneBuilder::set_object(int object, const std::string& field, const
 std::string SceneBuilder::apply_material_preset(const std::string& name, const std::string& preset_name) {
   const ui::MaterialPreset* preset = ui::find_preset(preset_name);
   if (preset == nullptr) return refuse("no preset named '" + preset_name + "'");
-  int index = ui::find_material(v_.doc_.scene(), name);
+  int index = ui::find_material(s_.doc.scene(), name);
   Color scale(1);
   const std::string error = edit_scene([&](Scene& s) {
     if (index < 0) {  // a new material of that name, starting from the preset
@@ -147,9 +163,9 @@ std::string SceneBuilder::apply_material_preset(const std::string& name, const s
     return std::string();
   }, false);
   if (error.empty()) {
-    v_.selected_material_ = index;
+    s_.selected_material = index;
     // What the preset's ambient note means for this scene: in the Materials panel, not on stderr.
-    notice_ = ui::EditNotice{ui::preset_applied_text(*preset, scale, v_.doc_.scene().ambient), false, true};
+    notice_ = ui::EditNotice{ui::preset_applied_text(*preset, scale, s_.doc.scene().ambient), false, true};
   }
   return error;
 }
@@ -157,7 +173,7 @@ std::string SceneBuilder::apply_material_preset(const std::string& name, const s
 std::string SceneBuilder::add_material(const std::string& name) {
   int index = -1;
   const std::string error = edit_scene([&](Scene& s) { return ui::new_material(s, name, index); }, false);
-  if (error.empty()) v_.selected_material_ = index;
+  if (error.empty()) s_.selected_material = index;
   return error;
 }
 
@@ -168,33 +184,33 @@ std::string SceneBuilder::drop_file(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".json" || ext == ".JSON") {
     if (is_lesson_file(path)) {
-      v_.lesson_shell_.open_lesson(path);  // a lesson: opened as one (unsaved edits guarded as for Open)
+      lesson_shell_.open_lesson(path);  // a lesson: opened as one (unsaved edits guarded as for Open)
       return {};
     }
-    v_.files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
+    files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
     return {};
   }
   if (ext == ".png" || ext == ".PNG" || ext == ".ppm" || ext == ".PPM" || ext == ".pfm" || ext == ".PFM") {
     // A student's own render of the view: checked against the reference (docs/checking.md).
-    const std::string why = v_.formulas_.open_image(path);
-    v_.files_.file_state().error_text = why;  // a refusal where one looks; a check clears the last
+    const std::string why = formulas_.open_image(path);
+    files_.file_state().error_text = why;  // a refusal where one looks; a check clears the last
     return why;
   }
   // Said where one looks (the overlay's error line and the Scene file panel), not only in the
   // Objects panel, which may be folded.
   const std::string why = refuse("dropped '" + path + "': not a scene or a lesson (.json), a mesh (.obj), nor an image to check (.png, .ppm, .pfm)");
-  v_.files_.file_state().error_text = why;
+  files_.file_state().error_text = why;
   return why;
 }
 
 std::optional<ImVec2> SceneBuilder::object_screen_point(int object) const {
-  const Scene& scene = v_.doc_.scene();
+  const Scene& scene = s_.doc.scene();
   if (object < 0 || object >= ui::object_count(scene)) return std::nullopt;
-  const int w = std::max(1, static_cast<int>(std::lround(v_.viewport_.width)));
-  const int h = std::max(1, static_cast<int>(std::lround(v_.viewport_.height)));
-  const auto p = ui::project(v_.view_camera(), ui::object_anchor(scene, object), w, h);
+  const int w = std::max(1, static_cast<int>(std::lround(s_.viewport.width)));
+  const int h = std::max(1, static_cast<int>(std::lround(s_.viewport.height)));
+  const auto p = ui::project(view_camera(s_), ui::object_anchor(scene, object), w, h);
   if (!p) return std::nullopt;
-  return ImVec2(v_.viewport_.x + static_cast<float>(p->x), v_.viewport_.y + static_cast<float>(p->y));
+  return ImVec2(s_.viewport.x + static_cast<float>(p->x), s_.viewport.y + static_cast<float>(p->y));
 }
 
 }  // namespace phonglab
@@ -242,7 +258,7 @@ std::optional<std::string> SceneBuilder::script_scene_edit(const std::vector<std
   }
   if (name == "select_object") {
     if (w.size() != 2 || !object_word(1)) return "usage: select_object I";
-    if (index < -1 || index >= ui::object_count(v_.doc_.scene())) {
+    if (index < -1 || index >= ui::object_count(s_.doc.scene())) {
       refuse("no objects[" + w[1] + "]");
       return "";
     }

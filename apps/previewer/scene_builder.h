@@ -2,7 +2,8 @@
 // (each one undo step, through the session), meshes placed through the loader, dropped files, the
 // selection of an object and its material, and the scripts' scene commands. The rules are
 // src/interaction/scene_objects' (unit-tested); this class holds the panels' fields and the last
-// edit's notice, and reaches the rest of the shell through `Viewer&` (a friend).
+// edit's notice, and reaches the shell's shared state (ShellState, shell_state.h) and the
+// components it works with, given by reference.
 #pragma once
 
 #include <functional>
@@ -17,11 +18,15 @@
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class FileShell;
+class FormulaShell;
+class LessonShell;
 
 class SceneBuilder {
  public:
-  explicit SceneBuilder(Viewer& viewer) : v_(viewer) {}
+  SceneBuilder(ShellState& shell, FileShell& files, FormulaShell& formulas, LessonShell& lesson_shell)
+      : s_(shell), files_(files), formulas_(formulas), lesson_shell_(lesson_shell) {}
   SceneBuilder(const SceneBuilder&) = delete;
   SceneBuilder& operator=(const SceneBuilder&) = delete;
 
@@ -42,14 +47,20 @@ class SceneBuilder {
   std::string add_material(const std::string& name);
   std::string drop_file(const std::string& path);  // a .json opens (guarded), an .obj becomes a mesh object
   void select_object(int object);                // -1: none; selects its material too
+  void undo();                                   // Ctrl+Z: the scene before the last edit
+  void redo();                                   // Ctrl+Shift+Z
   std::optional<ImVec2> object_screen_point(int object) const;  // its anchor on screen
   std::optional<std::string> script_scene_command(const std::vector<std::string>& words);
   std::optional<std::string> script_scene_edit(const std::vector<std::string>& words);
   std::string refuse(std::string why);           // the notice says why nothing changed; returns it
 
  private:
+  void restored();  // after an undo or redo step: the selection kept in the scene, a restart
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  FileShell& files_;
+  FormulaShell& formulas_;
+  LessonShell& lesson_shell_;
   ui::EditNotice notice_;
   std::string mesh_path_field_;
   std::string material_name_field_;

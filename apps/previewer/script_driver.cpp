@@ -83,9 +83,9 @@ void ScriptDriver::fail_script(const ScriptCommand& command, const std::string& 
     return;
   }
   std::cerr << "phonglab: script line " << command.line << " (" << command.words.front() << "): " << message << "\n";
-  if (v_.stats_.log) v_.stats_.log << "script_error line " << command.line << ": " << message << "\n";
+  if (s_.stats.log) s_.stats.log << "script_error line " << command.line << ": " << message << "\n";
   run_.failed = true;
-  v_.quit_ = true;
+  s_.quit = true;
 }
 
 void ScriptDriver::push_drag(int button, ImVec2 from, ImVec2 to, int steps, bool shift, int held_key) {
@@ -127,8 +127,8 @@ void ScriptDriver::push_click(ImVec2 at, bool ctrl) {
 }
 
 bool ScriptDriver::push_item_input() {
-  const auto it = v_.item_locations_.rects.find(run_.item_action.name);
-  if (it == v_.item_locations_.rects.end()) return false;
+  const auto it = s_.item_locations.rects.find(run_.item_action.name);
+  if (it == s_.item_locations.rects.end()) return false;
   const ImVec2 at((it->second.min.x + it->second.max.x) / 2, (it->second.min.y + it->second.max.y) / 2);
   if (run_.item_action.kind == ItemAction::Kind::kDrag) {
     push_drag(0, at, ImVec2(at.x + static_cast<float>(run_.item_action.dx), at.y + static_cast<float>(run_.item_action.dy)),
@@ -173,19 +173,19 @@ void ScriptDriver::step_script(double now) {
     io.MouseWheel += step.wheel;
     if (step.key >= 0) io.KeysDown[step.key] = step.key_down;
     for (const char c : step.text) io.AddInputCharacter(static_cast<unsigned char>(c));
-    v_.platform_.note_event();
+    s_.platform.note_event();
   }
   if (run_.stop_at > 0 && now >= run_.stop_at) {
-    v_.quit_ = true;
+    s_.quit = true;
     return;
   }
   if (!run_.auto_answer.empty() && run_.input.empty()) {
     // `auto_modal`: a dialog that opens is answered with a click on its button, as a user would.
-    const FileShell::Dialogs& dialogs = v_.files_.dialogs();
+    const FileShell::Dialogs& dialogs = files_.dialogs();
     std::string name;
     if (dialogs.guard_visible) name = "guard." + run_.auto_answer;
     else if (dialogs.conflict_visible) name = "conflict.cancel";
-    else if (v_.files_.recovery().modal_visible) name = "recovery.later";
+    else if (files_.recovery().modal_visible) name = "recovery.later";
     if (!name.empty()) {
       const ItemAction saved = run_.item_action;
       run_.item_action = ItemAction{};
@@ -201,10 +201,10 @@ void ScriptDriver::step_script(double now) {
   }
   while (run_.index < run_.commands.size() && run_.wait == ScriptWait::kNone && !run_.failed) {
     const ScriptCommand& command = run_.commands[run_.index++];
-    if (v_.stats_.log) {
-      v_.stats_.log << "script " << now * 1e3;
-      for (const std::string& w : command.words) v_.stats_.log << " " << w;
-      v_.stats_.log << "\n";
+    if (s_.stats.log) {
+      s_.stats.log << "script " << now * 1e3;
+      for (const std::string& w : command.words) s_.stats.log << " " << w;
+      s_.stats.log << "\n";
     }
     if (!run_script_command(command, now)) return;
   }
@@ -217,11 +217,11 @@ bool ScriptDriver::script_wait_done(double now) {
     case ScriptWait::kFrames: done = --run_.frames_left <= 0; break;
     case ScriptWait::kIdle:
       // A lesson's compare is done once its A is taken and the step itself is final.
-      done = v_.image_is_final() && !v_.lessons_.awaiting_a() && !v_.lesson_shell_.state().applied &&
-             v_.formulas_.check_settled();
+      done = image_is_final(s_) && !s_.lessons.awaiting_a() && !lesson_shell_.state().applied &&
+             formulas_.check_settled();
       break;
     case ScriptWait::kImage:
-      done = !v_.upload_pending_ && v_.drawn_serial_ > 0 && v_.drawn_generation_ == v_.renderer_.status().generation;
+      done = !s_.upload_pending && s_.drawn_serial > 0 && s_.drawn_generation == s_.renderer.status().generation;
       break;
     case ScriptWait::kFile: {
       std::error_code ec;
@@ -239,7 +239,7 @@ bool ScriptDriver::script_wait_done(double now) {
       return false;
     case ScriptWait::kBench:
       if (run_.bench_waiting_image) {
-        if (!run_.bench_expect_restart && v_.drawn_generation_ >= run_.bench_generation && !v_.upload_pending_) {
+        if (!run_.bench_expect_restart && s_.drawn_generation >= run_.bench_generation && !s_.upload_pending) {
           run_.bench_waiting_image = false;
           run_.bench_gap_frames = kBenchGapFrames;
         }
@@ -248,16 +248,16 @@ bool ScriptDriver::script_wait_done(double now) {
       } else if (run_.bench_left > 0) {
         --run_.bench_left;
         run_.bench_sign = -run_.bench_sign;
-        const Scene& scene = v_.session_.scene();
+        const Scene& scene = s_.session.scene();
         if (run_.bench_kind == "camera") {
           Camera camera = scene.camera;
           ui::orbit(camera, 0.02 * run_.bench_sign, 0);
-          v_.move_camera(camera);
+          move_camera(s_, camera);
         } else if (!scene.materials.empty()) {
-          const int k = std::clamp(v_.selected_material_, 0, static_cast<int>(scene.materials.size()) - 1);
+          const int k = std::clamp(s_.selected_material, 0, static_cast<int>(scene.materials.size()) - 1);
           Material m = scene.materials[static_cast<std::size_t>(k)];
           m.kd *= run_.bench_sign > 0 ? 1.25 : 0.8;  // exact inverses in turn: the scene stays put
-          v_.apply_edit({edit::SetMaterial{k, m}});
+          apply_edit(s_, {edit::SetMaterial{k, m}});
         }
         run_.bench_waiting_image = true;
         run_.bench_expect_restart = true;
@@ -350,16 +350,16 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
     int index = -1;
     double dx = 0, dy = 0;
     int steps = 10;
-    const std::vector<Light>& lights = v_.doc_.scene().lights;
+    const std::vector<Light>& lights = s_.doc.scene().lights;
     if ((w.size() != 4 && w.size() != 5) || !parse_int(w[1], index) || !parse_double(w[2], dx) ||
         !parse_double(w[3], dy) || index < 0 || index >= static_cast<int>(lights.size()) ||
         (w.size() == 5 && (!parse_int(w[4], steps) || steps < 1))) {
       return step.fail("usage: drag_light I DX DY [STEPS]");
     }
     // Where its marker (or its arrow at the edge) was drawn last frame: what a user would grab.
-    const auto marker = std::find_if(v_.markers_.begin(), v_.markers_.end(),
+    const auto marker = std::find_if(s_.markers.begin(), s_.markers.end(),
                                      [&](const ui::LightMarker& m) { return m.index == index; });
-    if (marker == v_.markers_.end()) return step.fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
+    if (marker == s_.markers.end()) return step.fail("light " + w[1] + " has no marker (behind the camera, or not a point light)");
     const ImVec2 from = marker->pos;
     push_drag(0, from, ImVec2(from.x + static_cast<float>(dx), from.y + static_cast<float>(dy)), steps, false);
     return step.wait_for(ScriptWait::kInput, 99);
@@ -377,14 +377,14 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
       axis_key = w[4] == "v" ? GLFW_KEY_V : GLFW_KEY_X + (w[4][0] - 'x');
     }
     // No such object, or none to grab on screen: the program says so, as for a refused edit.
-    if (index < 0 || index >= ui::object_count(v_.doc_.scene())) {
-      v_.builder_.refuse("no objects[" + w[1] + "]");
+    if (index < 0 || index >= ui::object_count(s_.doc.scene())) {
+      builder_.refuse("no objects[" + w[1] + "]");
       return true;
     }
-    v_.builder_.select_object(index);
-    const std::optional<ImVec2> from = v_.builder_.object_screen_point(index);
+    builder_.select_object(index);
+    const std::optional<ImVec2> from = builder_.object_screen_point(index);
     if (!from) {
-      v_.builder_.refuse("objects[" + w[1] + "] is behind the camera: nothing to grab");
+      builder_.refuse("objects[" + w[1] + "] is behind the camera: nothing to grab");
       return true;
     }
     push_drag(0, *from, ImVec2(from->x + static_cast<float>(dx), from->y + static_cast<float>(dy)), 12, false, axis_key);
@@ -428,7 +428,7 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
     run_.input.push_back(release);
     // The press also arrives as a key event, as GLFW's callback delivers it (the viewer's
     // shortcuts read events; ImGui's widgets read the key state above).
-    v_.platform_.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
+    s_.platform.push_key_press(KeyPress{key, (press.ctrl ? GLFW_MOD_CONTROL : 0) | (press.shift ? GLFW_MOD_SHIFT : 0)});
     return step.wait_for(ScriptWait::kInput, 99);
   }
   if (name == "probe" || name == "ctrl_click") {
@@ -436,8 +436,8 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_double(w[1], x) || !parse_double(w[2], y)) return step.fail("usage: probe|ctrl_click X Y");
     const ImVec2 at(static_cast<float>(x), static_cast<float>(y));
     if (name == "probe") {
-      v_.tools_.probe_at(at);
-      if (!v_.tools_.probe().tree) return step.fail("nothing to probe (no scene yet)");
+      tools_.probe_at(at);
+      if (!tools_.probe().tree) return step.fail("nothing to probe (no scene yet)");
       return true;
     }
     push_click(at, true);
@@ -451,7 +451,7 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_int(w[1], width) || !parse_int(w[2], height) || width < 1 || height < 1) {
       return step.fail("usage: resize W H");
     }
-    glfwSetWindowSize(v_.platform_.window(), width, height);
+    glfwSetWindowSize(s_.platform.window(), width, height);
     return true;
   }
   return std::nullopt;
@@ -462,20 +462,20 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
   const std::vector<std::string>& w = step.w;
   const std::string& name = w[0];
   if (name == "undo" || name == "redo" || name == "snapshot_a") {
-    if (name == "undo") v_.undo();
-    else if (name == "redo") v_.redo();
-    else v_.tools_.snapshot_a();
+    if (name == "undo") builder_.undo();
+    else if (name == "redo") builder_.redo();
+    else tools_.snapshot_a();
     return true;
   }
   if (name == "check_image" || name == "close_image") {
     // check_image PATH: a student's image of the view checked (a refusal is in dump_state's
     // image_check_error, not a broken script); close_image: back to the live image.
     if (name == "close_image") {
-      v_.formulas_.close_image();
+      formulas_.close_image();
       return true;
     }
     if (w.size() != 2) return step.fail("usage: check_image PATH");
-    v_.formulas_.open_image(w[1]);
+    formulas_.open_image(w[1]);
     return true;
   }
   if (name == "save_formulas" || name == "open_formulas") {
@@ -483,15 +483,15 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
     // dump_state's formula_file_status, not a broken script).
     if (w.size() > 2) return step.fail("usage: " + name + " [PATH]");
     const std::string path = w.size() == 2 ? w[1] : "";
-    if (name == "save_formulas") v_.formulas_.save_formulas(path);
-    else v_.formulas_.open_formulas(path);
+    if (name == "save_formulas") formulas_.save_formulas(path);
+    else formulas_.open_formulas(path);
     return true;
   }
   if (name == "formula" || name == "formula_view") {
     // formula SLOT TEXT...: the slot's text as typed (the words joined by spaces; "" clears it);
     // formula_view yours|reference|difference.
     if (name == "formula_view") {
-      if (w.size() != 2 || !v_.formulas_.set_view(w[1])) return step.fail("usage: formula_view yours|reference|difference");
+      if (w.size() != 2 || !formulas_.set_view(w[1])) return step.fail("usage: formula_view yours|reference|difference");
       return true;
     }
     const std::optional<FormulaSlot> slot = w.size() >= 2 ? formula_slot_from_name(w[1]) : std::nullopt;
@@ -499,18 +499,18 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
     std::string text;
     for (std::size_t i = 2; i < w.size(); ++i) text += (i > 2 ? " " : "") + w[i];
     if (text == "\"\"") text.clear();
-    v_.formulas_.set_text(*slot, text);
+    formulas_.set_text(*slot, text);
     return true;
   }
   if (name == "solo") {
     int index = 0;
     if (w.size() != 2 || !parse_int(w[1], index) || index < 0 ||
-        index >= static_cast<int>(v_.doc_.scene().lights.size())) {
+        index >= static_cast<int>(s_.doc.scene().lights.size())) {
       return step.fail("usage: solo I");
     }
-    Scene soloed = v_.session_.scene();
-    ui::toggle_solo(soloed.lights, v_.solo_, index);
-    v_.apply_edit({edit::SetScene{std::move(soloed)}});
+    Scene soloed = s_.session.scene();
+    ui::toggle_solo(soloed.lights, s_.solo, index);
+    apply_edit(s_, {edit::SetScene{std::move(soloed)}});
     return true;
   }
   if (name == "set") {
@@ -524,7 +524,7 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
   if (name == "show_item") {
     // show_item NAME: scrolls the sidebar until the widget is in view (nothing is clicked).
     if (w.size() != 2) return step.fail("usage: show_item NAME");
-    v_.item_locations_.scroll_to = w[1];
+    s_.item_locations.scroll_to = w[1];
     run_.frames_left = 3;
     return step.wait_for(ScriptWait::kFrames, 99);
   }
@@ -547,7 +547,7 @@ std::optional<bool> ScriptDriver::script_item_command(ScriptStep& step) {
     }
     if (!ok) return step.fail("usage: click_item NAME | drag_item NAME DX DY [STEPS] | type_item NAME TEXT");
     run_.item_action = action;
-    v_.item_locations_.scroll_to = action.name;
+    s_.item_locations.scroll_to = action.name;
     run_.frames_left = 3;  // the scroll lands, the widget is drawn where it will be clicked
     return step.wait_for(ScriptWait::kItem, 99);
   }
@@ -560,8 +560,8 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
   const std::string& name = w[0];
   if (name == "figure") {
     if (w.size() != 2) return step.fail("usage: figure FILE.png");
-    v_.tools_.save_figure(w[1]);
-    if (v_.figure_status_.rfind("saved ", 0) != 0) return step.fail(v_.figure_status_);
+    tools_.save_figure(w[1]);
+    if (s_.figure_status.rfind("saved ", 0) != 0) return step.fail(s_.figure_status);
     return true;
   }
   if (name == "screenshot") {
@@ -574,33 +574,33 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
   }
   if (name == "save_png" || name == "save_pfm") {
     if (w.size() != 2) return step.fail("usage: save_png|save_pfm FILE");
-    if (name == "save_png") v_.files_.save_png(w[1]);
-    else v_.files_.save_pfm(w[1]);
-    if (v_.files_.screenshot_state().status.rfind("saved ", 0) != 0) return step.fail(v_.files_.screenshot_state().status);
+    if (name == "save_png") files_.save_png(w[1]);
+    else files_.save_pfm(w[1]);
+    if (files_.screenshot_state().status.rfind("saved ", 0) != 0) return step.fail(files_.screenshot_state().status);
     return true;
   }
   if (name == "open") {
     if (w.size() != 2) return step.fail("usage: open SCENE");
-    v_.files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, w[1]});
+    files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, w[1]});
     return true;
   }
   if (name == "save_as") {
     if (w.size() != 2) return step.fail("usage: save_as FILE");
-    v_.files_.file_state().path_field = w[1];
-    v_.files_.save_scene(true);
-    if (v_.doc_.dirty()) return step.fail(v_.files_.file_state().error_text);
+    files_.file_state().path_field = w[1];
+    files_.save_scene(true);
+    if (s_.doc.dirty()) return step.fail(files_.file_state().error_text);
     return true;
   }
   if (name == "close") {
-    glfwSetWindowShouldClose(v_.platform_.window(), GLFW_TRUE);  // as the window manager's close button
+    glfwSetWindowShouldClose(s_.platform.window(), GLFW_TRUE);  // as the window manager's close button
     return true;
   }
   if (name == "modal") {
     // The open dialog's button, clicked as a user would (its name as the dialog locates it).
     constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload (the recovery offer: restore|discard|later)";
     if (w.size() != 2) return step.fail(kUsage);
-    const FileShell::Dialogs& dialogs = v_.files_.dialogs();
-    const bool recovery = v_.files_.recovery().modal_visible && !dialogs.guard_visible && !dialogs.conflict_visible;
+    const FileShell::Dialogs& dialogs = files_.dialogs();
+    const bool recovery = files_.recovery().modal_visible && !dialogs.guard_visible && !dialogs.conflict_visible;
     if (!recovery && !dialogs.guard_visible && !dialogs.conflict_visible) {
       return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
     }
@@ -618,7 +618,7 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
     // The Save button, through the same checks: a file changed on disk opens its dialog, a
     // refusal (an embedded scene, an OBJ) shows in the Scene panel and in dump_state's error.
     if (w.size() != 1) return step.fail("usage: save");
-    v_.files_.save_scene(false);
+    files_.save_scene(false);
     return true;
   }
   if (name == "dump_state") {
@@ -645,18 +645,18 @@ std::optional<bool> ScriptDriver::script_other_command(ScriptStep& step) {
     return true;
   }
   if (name == "stats_reset") {
-    v_.stats_.busy_frame_ms.clear();
-    v_.stats_.latencies_ms.clear();
-    v_.stats_.pass_mrays.clear();
-    v_.stats_.frames_at_level.clear();
-    v_.stats_.full_pending.clear();
-    v_.stats_.edit_to_full_ms.clear();
-    v_.stats_.cpu_mark = CpuClock::now();
-    v_.stats_.frames_drawn = 0;
+    s_.stats.busy_frame_ms.clear();
+    s_.stats.latencies_ms.clear();
+    s_.stats.pass_mrays.clear();
+    s_.stats.frames_at_level.clear();
+    s_.stats.full_pending.clear();
+    s_.stats.edit_to_full_ms.clear();
+    s_.stats.cpu_mark = CpuClock::now();
+    s_.stats.frames_drawn = 0;
     return true;
   }
   if (name == "stats_summary") {
-    v_.write_stats_summary(w.size() > 1 ? w[1] : "script");
+    write_stats_summary(s_.stats, w.size() > 1 ? w[1] : "script");
     return true;
   }
   if (name == "fail") {
@@ -665,7 +665,7 @@ std::optional<bool> ScriptDriver::script_other_command(ScriptStep& step) {
     return step.fail(text.empty() ? "fail command reached" : text);
   }
   if (name == "quit") {
-    v_.quit_ = true;
+    s_.quit = true;
     return true;
   }
   if (name == "lenient") {
@@ -689,10 +689,10 @@ std::optional<bool> ScriptDriver::script_other_command(ScriptStep& step) {
 
 bool ScriptDriver::run_script_command(const ScriptCommand& command, double now) {
   ScriptStep step{*this, command, command.words, now};
-  if (const std::optional<std::string> error = v_.builder_.script_scene_command(command.words)) {
+  if (const std::optional<std::string> error = builder_.script_scene_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
-  if (const std::optional<std::string> error = v_.lesson_shell_.script_lesson_command(command.words)) {
+  if (const std::optional<std::string> error = lesson_shell_.script_lesson_command(command.words)) {
     return error->empty() ? true : step.fail(*error);
   }
   for (const auto group : {&ScriptDriver::script_wait_command, &ScriptDriver::script_input_command, &ScriptDriver::script_item_command,

@@ -1,7 +1,8 @@
-// The test scripts' driver: commands run from inside the previewer's main loop, real input
-// injected into ImGui as the window system's would be, waits on frames, the renderer, images and
-// files, and `dump_state` (docs/previewer.md lists the commands). The main loop calls it only
-// through `FrameClient`; the commands reach the shell's state through `Viewer&` (a friend).
+// The test scripts' driver: commands run from inside the previewer's main loop, real input injected
+// into ImGui as the window system's would be, waits on frames, the renderer, images and files, and
+// `dump_state` (docs/previewer.md lists the commands). The main loop calls it only through
+// `FrameClient`; the commands reach the shell's shared state (ShellState, shell_state.h) and the
+// components it works with, given by reference.
 #pragma once
 
 #include <cstdint>
@@ -19,7 +20,13 @@
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class FileShell;
+class FormulaShell;
+class Instruments;
+class LessonShell;
+class Overlays;
+class SceneBuilder;
 
 // One scripted frame of input, injected into ImGui as if it came from the window system.
 struct InputStep {
@@ -45,14 +52,15 @@ std::vector<ScriptCommand> parse_script(const std::string& text);
 
 class ScriptDriver : public FrameClient {
  public:
-  explicit ScriptDriver(Viewer& viewer) : v_(viewer) {}
+  ScriptDriver(ShellState& shell, SceneBuilder& builder, FileShell& files, FormulaShell& formulas, LessonShell& lesson_shell, Instruments& tools, Overlays& overlays)
+      : s_(shell), builder_(builder), files_(files), formulas_(formulas), lesson_shell_(lesson_shell), tools_(tools), overlays_(overlays) {}
   ScriptDriver(const ScriptDriver&) = delete;
   ScriptDriver& operator=(const ScriptDriver&) = delete;
 
   void load(std::vector<ScriptCommand> commands) { run_.commands = std::move(commands); }
   // The shell's frame (FrameClient): this frame's input injected and commands run until one
   // waits; a restart (the edit benchmark's, when it waits for one); the window screenshot asked
-  // for after this frame's drawing; commands or input still to come; the hand on (injected
+  // for after this frame's drawing (a screenshot that cannot be written fails the script); commands or input still to come; the hand on (injected
   // input under way, or the edit benchmark); exit status 3 when the script failed.
   void before_frame(double now) override { step_script(now); }
   void restarted(std::uint64_t generation) override {
@@ -61,10 +69,10 @@ class ScriptDriver : public FrameClient {
     run_.bench_expect_restart = false;
   }
   std::string screenshot_wanted() override { return std::exchange(run_.screenshot, std::string()); }
+  void screenshot_failed() override { run_.failed = true; }
   bool busy() const override { return run_.index < run_.commands.size() || !run_.input.empty(); }
   bool hand_on() const override { return !run_.input.empty() || run_.wait == ScriptWait::kBench; }
   int exit_status() const override { return run_.failed ? 3 : 0; }
-  void fail() { run_.failed = true; }  // the program fails the script
 
  private:
   // What the script is waiting for before its next command.
@@ -133,7 +141,13 @@ class ScriptDriver : public FrameClient {
     int bench_sign = 1;  // edits alternate direction so the scene stays put
   };
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  SceneBuilder& builder_;
+  FileShell& files_;
+  FormulaShell& formulas_;
+  LessonShell& lesson_shell_;
+  Instruments& tools_;
+  Overlays& overlays_;
   ScriptRun run_;
 };
 

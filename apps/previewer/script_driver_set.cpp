@@ -26,13 +26,13 @@ bool ScriptDriver::script_set(const std::vector<std::string>& w) {
 
 // `set material NAME ka|kd|ks|kr|kt|n|ior|fresnel V..`.
 bool ScriptDriver::set_material_field(const std::vector<std::string>& w) {
-  const Scene& scene = v_.session_.scene();
+  const Scene& scene = s_.session.scene();
   int index = -1;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     if (scene.materials[i].name == w[2]) index = static_cast<int>(i);
   }
   if (index < 0) return false;
-  v_.selected_material_ = index;
+  s_.selected_material = index;
   Material changed = scene.materials[static_cast<std::size_t>(index)];
   Material* m = &changed;
   const std::string& field = w[3];
@@ -50,13 +50,13 @@ bool ScriptDriver::set_material_field(const std::vector<std::string>& w) {
   } else {
     return false;
   }
-  v_.apply_edit({edit::SetMaterial{index, changed}});
+  apply_edit(s_, {edit::SetMaterial{index, changed}});
   return true;
 }
 
 // `set light I position|direction|intensity|enabled V..`.
 bool ScriptDriver::set_light_field(const std::vector<std::string>& w) {
-  const Scene& scene = v_.session_.scene();
+  const Scene& scene = s_.session.scene();
   int index = 0;
   if (!parse_int(w[2], index) || index < 0 || index >= static_cast<int>(scene.lights.size())) return false;
   Light light = scene.lights[static_cast<std::size_t>(index)];
@@ -67,14 +67,14 @@ bool ScriptDriver::set_light_field(const std::vector<std::string>& w) {
   else if (field == "intensity" && parse_vec3(w, 4, true, v)) light.intensity = v;
   else if (field == "enabled" && w.size() == 5) light.enabled = w[4] == "1" || w[4] == "true";
   else return false;
-  v_.selected_light_ = index;
-  v_.apply_edit({edit::SetLight{index, light}});
+  s_.selected_light = index;
+  apply_edit(s_, {edit::SetLight{index, light}});
   return true;
 }
 
 // `set camera position|look_at|up|fov V..`: refused when the camera would be invalid.
 bool ScriptDriver::set_camera_field(const std::vector<std::string>& w) {
-  Camera edit = v_.session_.scene().camera;
+  Camera edit = s_.session.scene().camera;
   const std::string& field = w[2];
   Vec3 v;
   double fov = 0;
@@ -84,7 +84,7 @@ bool ScriptDriver::set_camera_field(const std::vector<std::string>& w) {
   else if (field == "fov" && w.size() == 4 && parse_double(w[3], fov)) edit.fov_y_deg = fov;
   else return false;
   if (!ui::camera_is_valid(edit)) return false;
-  v_.move_camera(edit);
+  move_camera(s_, edit);
   return true;
 }
 
@@ -95,28 +95,28 @@ bool ScriptDriver::set_render_field(const std::vector<std::string>& w) {
   if (field == "term") {
     const std::optional<Term> term = term_from_name(w[3]);
     if (!term) return false;
-    v_.render_settings_.term = *term;
+    s_.render_settings.term = *term;
   } else if (field == "ambient") {
     const std::optional<ui::AmbientView> view = ui::ambient_view_from_name(w[3]);
     if (!view) return false;
-    v_.render_settings_.ambient_view = *view;
-    if (*view == ui::AmbientView::kBeside || *view == ui::AmbientView::kDifference) v_.instruments_.small_multiples = false;
+    s_.render_settings.ambient_view = *view;
+    if (*view == ui::AmbientView::kBeside || *view == ui::AmbientView::kDifference) s_.instruments.small_multiples = false;
   } else if (!parse_double(w[3], v)) {
     return false;
   } else if (field == "target_spp" && v >= 1) {
-    v_.render_settings_.target_spp = static_cast<int>(v);
+    s_.render_settings.target_spp = static_cast<int>(v);
   } else if (field == "resolution_scale" && v > 0 && v <= 1) {
-    v_.render_settings_.resolution_scale = static_cast<float>(v);
+    s_.render_settings.resolution_scale = static_cast<float>(v);
   } else if (field == "threads" && v >= 0) {
-    v_.render_settings_.threads = static_cast<int>(v);
+    s_.render_settings.threads = static_cast<int>(v);
   } else if (field == "live_images_per_s" && v >= 0 && v <= 1000) {
-    v_.render_settings_.live_images_per_s = static_cast<int>(v);
+    s_.render_settings.live_images_per_s = static_cast<int>(v);
   } else if (field == "tree_budget_mib" && v >= 0 && v <= 65536) {
-    v_.render_settings_.tree_budget_mib = static_cast<int>(v);
+    s_.render_settings.tree_budget_mib = static_cast<int>(v);
   } else {
     return false;
   }
-  v_.edits_.settings = true;
+  s_.edits.settings = true;
   return true;
 }
 
@@ -124,27 +124,27 @@ bool ScriptDriver::set_render_field(const std::vector<std::string>& w) {
 bool ScriptDriver::set_instrument(const std::vector<std::string>& w) {
   double v = 0;
   if (!parse_double(w[3], v)) return false;
-  if (w[2] == "probe_mode") v_.instruments_.probe_mode = v != 0;
-  else if (w[2] == "multiples") v_.instruments_.small_multiples = v != 0;
-  else if (w[2] == "compare" && v >= 0 && v <= 2) v_.instruments_.compare = static_cast<int>(v);
-  else if (w[2] == "wipe" && v >= 0 && v <= 1) v_.instruments_.wipe = static_cast<float>(v);
-  else if (w[2] == "gain" && v > 0) v_.instruments_.difference_gain = static_cast<float>(v);
-  else if (w[2] == "head") v_.instruments_.move_head = v != 0;
-  else if (w[2] == "head_angle" && v >= -90 && v <= 90) v_.instruments_.head_angle_deg = static_cast<float>(v);
-  else if (w[2] == "ray_tree") v_.rays_.overlay = v != 0;
-  else if (w[2] == "tree_shadows") v_.rays_.shadow_rays = v != 0;
-  else if (w[2] == "tree_secondary") v_.rays_.secondary_rays = v != 0;
-  else if (w[2] == "tree_arrows") v_.rays_.arrows = v != 0;
-  else if (w[2] == "tree_legend") v_.rays_.legend = v != 0;
+  if (w[2] == "probe_mode") s_.instruments.probe_mode = v != 0;
+  else if (w[2] == "multiples") s_.instruments.small_multiples = v != 0;
+  else if (w[2] == "compare" && v >= 0 && v <= 2) s_.instruments.compare = static_cast<int>(v);
+  else if (w[2] == "wipe" && v >= 0 && v <= 1) s_.instruments.wipe = static_cast<float>(v);
+  else if (w[2] == "gain" && v > 0) s_.instruments.difference_gain = static_cast<float>(v);
+  else if (w[2] == "head") s_.instruments.move_head = v != 0;
+  else if (w[2] == "head_angle" && v >= -90 && v <= 90) s_.instruments.head_angle_deg = static_cast<float>(v);
+  else if (w[2] == "ray_tree") s_.rays.overlay = v != 0;
+  else if (w[2] == "tree_shadows") s_.rays.shadow_rays = v != 0;
+  else if (w[2] == "tree_secondary") s_.rays.secondary_rays = v != 0;
+  else if (w[2] == "tree_arrows") s_.rays.arrows = v != 0;
+  else if (w[2] == "tree_legend") s_.rays.legend = v != 0;
   else if (w[2] == "depth_cut" && v >= -1 && v <= 100) {
     // -1 ends the cut; 0, 1, ... cut there (as the panel's box and slider).
-    v_.rays_.depth_cut = v >= 0;
-    if (v >= 0) v_.rays_.cut_depth = static_cast<int>(v);
-    v_.edits_.view = true;
+    s_.rays.depth_cut = v >= 0;
+    if (v >= 0) s_.rays.cut_depth = static_cast<int>(v);
+    s_.edits.view = true;
   }
-  else if (w[2] == "heat") v_.tools_.set_heat_map(v != 0);
+  else if (w[2] == "heat") tools_.set_heat_map(v != 0);
   else return false;
-  v_.upload_pending_ = v_.upload_pending_ || !v_.shown_.pixels.empty();
+  s_.upload_pending = s_.upload_pending || !s_.shown.pixels.empty();
   return true;
 }
 
@@ -152,13 +152,13 @@ bool ScriptDriver::set_instrument(const std::vector<std::string>& w) {
 bool ScriptDriver::set_display_field(const std::vector<std::string>& w) {
   double v = 0;
   if (!parse_double(w[3], v)) return false;
-  if (w[2] == "exposure") v_.display_.exposure_ev = static_cast<float>(v);
-  else if (w[2] == "srgb") v_.display_.srgb = v != 0;
-  else if (w[2] == "light_markers") v_.display_.light_markers = v != 0;
-  else if (w[2] == "stats") v_.display_.show_stats = v != 0;
-  else if (w[2] == "stats_details") v_.display_.stats_details = v != 0;
-  else if (w[2] == "sidebar") v_.sidebar_visible_ = v != 0;
-  else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) v_.display_.ui_size = static_cast<float>(v);
+  if (w[2] == "exposure") s_.display.exposure_ev = static_cast<float>(v);
+  else if (w[2] == "srgb") s_.display.srgb = v != 0;
+  else if (w[2] == "light_markers") s_.display.light_markers = v != 0;
+  else if (w[2] == "stats") s_.display.show_stats = v != 0;
+  else if (w[2] == "stats_details") s_.display.stats_details = v != 0;
+  else if (w[2] == "sidebar") s_.sidebar_visible = v != 0;
+  else if (w[2] == "ui_size" && v >= 0.5 && v <= 4) s_.display.ui_size = static_cast<float>(v);
   else return false;
   return true;
 }

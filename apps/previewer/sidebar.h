@@ -1,17 +1,23 @@
 // The previewer's panels down the right, in the order a lecture uses them: what is shown,
-// materials, objects, lights, the probe, the instruments, rays, camera, file, render settings.
-// Each draws ImGui widgets over the shell's state and turns what they change into session edits
-// or settings (src/ui holds the widgets themselves). It reaches the shell through `Viewer&` (a
-// friend).
+// materials, objects, lights, the probe, the instruments, rays, camera, file, render settings. Each
+// draws ImGui widgets over the shell's state and turns what they change into session edits or
+// settings (src/ui holds the widgets themselves). It reaches the shell's shared state (ShellState,
+// shell_state.h) and the components it works with, given by reference.
 #pragma once
 
 namespace phonglab {
 
-class Viewer;
+struct ShellState;
+class FileShell;
+class FormulaShell;
+class Instruments;
+class LessonShell;
+class SceneBuilder;
 
 class Sidebar {
  public:
-  explicit Sidebar(Viewer& viewer) : v_(viewer) {}
+  Sidebar(ShellState& shell, SceneBuilder& builder, FileShell& files, FormulaShell& formulas, LessonShell& lesson_shell, Instruments& tools)
+      : s_(shell), builder_(builder), files_(files), formulas_(formulas), lesson_shell_(lesson_shell), tools_(tools) {}
   Sidebar(const Sidebar&) = delete;
   Sidebar& operator=(const Sidebar&) = delete;
 
@@ -30,7 +36,12 @@ class Sidebar {
   void sidebar_file();
   void sidebar_render();
 
-  Viewer& v_;
+  ShellState& s_;  // the shell's shared state (shell_state.h)
+  SceneBuilder& builder_;
+  FileShell& files_;
+  FormulaShell& formulas_;
+  LessonShell& lesson_shell_;
+  Instruments& tools_;
   // The probe panel's tallest height for the pixel probed now: the panel keeps it while the same
   // pixel stays probed, so the widgets below never jump under the pointer when its text shortens
   // (a depth cut, fewer digits); a new pixel starts again.

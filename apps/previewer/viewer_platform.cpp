@@ -75,23 +75,20 @@ void push_bounded(std::vector<Event>& queue, const Event& event) {
 
 }  // namespace
 
-void record_cursor(GLFWwindow* window, double x, double y) {
-  auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window));
-  if (p == nullptr) return;
-  p->cursor_x_ = x;
-  p->cursor_y_ = y;
+void Platform::record_cursor(double x, double y) {
+  cursor_x_ = x;
+  cursor_y_ = y;
 }
 
-void record_mouse_press(GLFWwindow* window, int button, int action) {
-  auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(window));
-  if (p == nullptr || action != GLFW_PRESS || button < 0 || button > 2) return;
+void Platform::record_mouse_press(int button, int action) {
+  if (action != GLFW_PRESS || button < 0 || button > 2) return;
   MousePress press;
   press.button = button;
   // The cursor as the events so far left it (glfwGetCursorPos would ask the X server for where
   // the pointer is now, after moves not yet delivered).
-  press.x = p->cursor_x_;
-  press.y = p->cursor_y_;
-  push_bounded(p->mouse_presses_, press);
+  press.x = cursor_x_;
+  press.y = cursor_y_;
+  push_bounded(mouse_presses_, press);
 }
 
 namespace {
@@ -107,11 +104,11 @@ void install_activity_callbacks(Platform* platform) {
   glfwSetWindowUserPointer(w, platform);
   glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
     note(win);
-    record_cursor(win, x, y);
+    if (auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win))) p->record_cursor(x, y);
   });
   glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) {
     note(win);
-    record_mouse_press(win, button, action);
+    if (auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win))) p->record_mouse_press(button, action);
   });
   glfwSetScrollCallback(w, [](GLFWwindow* win, double, double) { note(win); });
   glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int mods) {

@@ -74,6 +74,9 @@ class Platform {
   std::vector<KeyPress> take_key_presses();
   // Queues a press as the key callback does (GLFW, and test scripts).
   void push_key_press(KeyPress press);
+  // The cursor callback's position, and a button callback's press where the cursor then was.
+  void record_cursor(double x, double y);
+  void record_mouse_press(int button, int action);
   // Mouse button presses since the last call, where the cursor was when each happened.
   std::vector<MousePress> take_mouse_presses();
   // The lesson captions' font: the UI font at kCaptionScale times its size (a projected hall
@@ -110,9 +113,6 @@ class Platform {
 
   double cursor_x_ = 0;  // the cursor as the last cursor event left it, window coordinates
   double cursor_y_ = 0;
-
-  friend void record_mouse_press(GLFWwindow* window, int button, int action);
-  friend void record_cursor(GLFWwindow* window, double x, double y);
 };
 
 }  // namespace phonglab
