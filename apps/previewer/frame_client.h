@@ -3,7 +3,6 @@
 // else of the client. Without a client (no --script), none of them runs.
 #pragma once
 
-#include <cstdint>
 #include <string>
 
 namespace phonglab {
@@ -13,8 +12,6 @@ class FrameClient {
   virtual ~FrameClient() = default;
   // Before the frame's ImGui frame: the client injects this frame's input and acts.
   virtual void before_frame(double now) = 0;
-  // The renderer restarted for an edit (its generation).
-  virtual void restarted(std::uint64_t generation) = 0;
   // After the frame is drawn, before the swap: a path to save the window to, or "".
   virtual std::string screenshot_wanted() = 0;
   // That screenshot could not be written (the shell has said why and quits).

@@ -239,6 +239,12 @@ bool ScriptDriver::script_wait_done(double now) {
       return false;
     case ScriptWait::kBench:
       if (run_.bench_waiting_image) {
+        // The edit's restart, read from the renderer (the edit may wait for the last image).
+        const std::uint64_t generation = s_.renderer.status().generation;
+        if (run_.bench_expect_restart && generation > run_.bench_before) {
+          run_.bench_generation = generation;
+          run_.bench_expect_restart = false;
+        }
         if (!run_.bench_expect_restart && s_.drawn_generation >= run_.bench_generation && !s_.upload_pending) {
           run_.bench_waiting_image = false;
           run_.bench_gap_frames = kBenchGapFrames;
@@ -248,6 +254,7 @@ bool ScriptDriver::script_wait_done(double now) {
       } else if (run_.bench_left > 0) {
         --run_.bench_left;
         run_.bench_sign = -run_.bench_sign;
+        run_.bench_before = s_.renderer.status().generation;
         const Scene& scene = s_.session.scene();
         if (run_.bench_kind == "camera") {
           Camera camera = scene.camera;

@@ -59,15 +59,10 @@ class ScriptDriver : public FrameClient {
 
   void load(std::vector<ScriptCommand> commands) { run_.commands = std::move(commands); }
   // The shell's frame (FrameClient): this frame's input injected and commands run until one
-  // waits; a restart (the edit benchmark's, when it waits for one); the window screenshot asked
+  // waits; the window screenshot asked
   // for after this frame's drawing (a screenshot that cannot be written fails the script); commands or input still to come; the hand on (injected
   // input under way, or the edit benchmark); exit status 3 when the script failed.
   void before_frame(double now) override { step_script(now); }
-  void restarted(std::uint64_t generation) override {
-    if (!run_.bench_expect_restart) return;
-    run_.bench_generation = generation;
-    run_.bench_expect_restart = false;
-  }
   std::string screenshot_wanted() override { return std::exchange(run_.screenshot, std::string()); }
   void screenshot_failed() override { run_.failed = true; }
   bool busy() const override { return run_.index < run_.commands.size() || !run_.input.empty(); }
@@ -136,8 +131,9 @@ class ScriptDriver : public FrameClient {
     int bench_gap_frames = 0;           // frames to wait after an image before the next edit
     std::string bench_kind;             // "material" or "camera"
     bool bench_waiting_image = false;   // an edit was made; its first image is not up yet
-    bool bench_expect_restart = false;  // the next restart is the bench's edit
-    std::uint64_t bench_generation = 0;
+    bool bench_expect_restart = false;  // the bench's edit waits for its restart: a generation after bench_before
+    std::uint64_t bench_before = 0;     // the renderer's generation when the edit was made
+    std::uint64_t bench_generation = 0; // the restart's generation, whose image the bench waits for
     int bench_sign = 1;  // edits alternate direction so the scene stays put
   };
 

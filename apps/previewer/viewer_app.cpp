@@ -278,7 +278,6 @@ void Viewer::note_restart(std::uint64_t generation, double edit_time) {
   if (s_.stats.log) s_.stats.full_pending.emplace_back(generation, edit_time);
   constexpr std::size_t kKeep = 256;  // a few seconds of drag frames; older ones never show
   while (restart_times_.size() > kKeep) restart_times_.pop_front();
-  if (client_) client_->restarted(generation);
 }
 
 void Viewer::apply_edits(double frame_start) {
@@ -346,15 +345,10 @@ void Viewer::apply_edits(double frame_start) {
   if (snapshot && !same_camera(view_camera(s_), snapshot->scene().camera)) s_.edits.camera = true;
   const bool dragging = s_.interacting || s_.edits.while_active;
   if (formulas_.sync_rules()) s_.edits.view = true;  // the formulas that render changed: a new snapshot
-  const RenderSchedule::Sent sent = s_.schedule.send_scene(
-      {s_.edits.scene || s_.edits.camera || s_.edits.replaced || s_.edits.view, s_.edits.replaced, dragging, width, height, frame_start},
-      [&] {
-        Scene snapshot_scene = scene;
-        snapshot_scene.camera = view_camera(s_);
-        // The depth cut changes what is rendered, never the scene: history and file keep max_depth.
-        apply_depth_cut(snapshot_scene, ui::depth_cut_of(s_.rays));
-        return snapshot_scene;
-      });
+  const RenderSchedule::Sent sent = s_.schedule.send_scene({s_.edits.scene || s_.edits.camera || s_.edits.replaced || s_.edits.view,
+                                                            s_.edits.replaced, dragging, width, height, frame_start,
+                                                            view_camera(s_), ui::depth_cut_of(s_.rays)},
+                                                           scene);
   // Latency counts from the oldest edit this snapshot carries.
   if (sent.scene) note_restart(sent.generation, sent.edit_time);
   if (sent.restarted && tools_.probe().tree) tools_.refresh_probe();

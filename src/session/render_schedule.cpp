@@ -1,5 +1,7 @@
 #include "session/render_schedule.h"
 
+#include "core/teaching/ray_tree_view.h"
+
 #include <utility>
 
 namespace phonglab {
@@ -21,7 +23,7 @@ std::uint64_t RenderSchedule::send_settings(ProgressiveSettings settings, bool s
   return generation;
 }
 
-RenderSchedule::Sent RenderSchedule::send_scene(const Frame& frame, const std::function<Scene()>& make_snapshot) {
+RenderSchedule::Sent RenderSchedule::send_scene(const Frame& frame, const Scene& scene) {
   const bool edited = frame.edited || !snapshot_;
   if (edited && !deferred_) deferred_since_ = frame.now;
   const bool scene_changed = edited || deferred_;
@@ -32,9 +34,12 @@ RenderSchedule::Sent RenderSchedule::send_scene(const Frame& frame, const std::f
   deferred_ = sent.deferred;
   if (!((scene_changed && !sent.deferred) || resized)) return sent;
   if (scene_changed) {
-    snapshot_ = rules_.any() ? std::make_shared<const PreparedScene>(make_snapshot(), PreparedScene::AccelFactory{},
+    Scene shown = scene;
+    if (frame.camera) shown.camera = *frame.camera;
+    apply_depth_cut(shown, frame.depth_cut);
+    snapshot_ = rules_.any() ? std::make_shared<const PreparedScene>(std::move(shown), PreparedScene::AccelFactory{},
                                                                      make_rules_experiment(rules_))
-                             : std::make_shared<const PreparedScene>(make_snapshot());
+                             : std::make_shared<const PreparedScene>(std::move(shown));
     sent.scene = true;
     sent.edit_time = deferred_since_;
   }

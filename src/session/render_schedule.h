@@ -9,7 +9,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 
@@ -50,6 +49,10 @@ class RenderSchedule {
     int width = 0;          // the render size, 0 x 0: nothing visible
     int height = 0;
     double now = 0;         // the frame's start, s
+    // The view the snapshot is rendered with: its camera (the window's fitting of the scene's;
+    // none: the scene's own) and the depth cut, which changes what is rendered, never the scene.
+    std::optional<Camera> camera;
+    std::optional<int> depth_cut;
   };
   struct Sent {
     bool scene = false;      // a new snapshot went out
@@ -58,9 +61,9 @@ class RenderSchedule {
     std::uint64_t generation = 0;
     double edit_time = 0;    // the oldest edit the snapshot carries (latency counts from it)
   };
-  // Sends the frame's scene side; `make_snapshot` gives the scene to render (the document's, with
-  // the view's camera and depth cut) and is called only when a snapshot goes out.
-  Sent send_scene(const Frame& frame, const std::function<Scene()>& make_snapshot);
+  // Sends the frame's scene side: when a snapshot goes out, it is `scene` (the session's) with the
+  // frame's view, prepared with the rules.
+  Sent send_scene(const Frame& frame, const Scene& scene);
   // The rules the snapshots are traced with (a student's formulas: src/check/rules.h); none:
   // the production renderer. A change counts as an edit of the next frame (frame.edited).
   void set_rules(const LocalRules& rules) { rules_ = rules; }

@@ -36,10 +36,9 @@ struct ScheduleOnMirrors : ::testing::Test {
   }
   RenderSchedule::Sent send(bool edited, bool dragging, double now, int width = 640, int height = 360,
                             bool replaced = false) {
-    return schedule.send_scene({edited, replaced, dragging, width, height, now}, [&] {
-      ++snapshots;
-      return scene;
-    });
+    const RenderSchedule::Sent sent = schedule.send_scene({edited, replaced, dragging, width, height, now, std::nullopt, std::nullopt}, scene);
+    if (sent.scene) ++snapshots;
+    return sent;
   }
   void wait_for_image() { ASSERT_TRUE(renderer.wait_idle(60s)); }
   // Until the first image of the last generation sent is in.
