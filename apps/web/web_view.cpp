@@ -17,7 +17,6 @@
 #include "core/scene/display8.h"
 #include "core/teaching/compare.h"
 #include "core/teaching/heat_map.h"
-#include "core/render/quad_shading.h"
 #include "core/teaching/ray_tree_view.h"
 #include "interaction/camera_control.h"
 #include "interaction/numbers.h"
@@ -27,7 +26,6 @@
 namespace phonglab {
 namespace {
 
-constexpr int kDivisors[] = {8, 4, 2, 1};
 constexpr int kColumns = 3, kRows = 2;  // the small multiples: the five terms, then the full image
 
 Color* colour(Material& m, const std::string& name) {
@@ -76,7 +74,7 @@ int WebView::view_term() const {
 void WebView::set_target(int spp) {
   const int before = target_;
   target_ = std::max(spp, 1);
-  if (target_ < before && accum_.samples > static_cast<std::uint32_t>(target_)) restart();
+  if (target_ < before && shown_spp_ > static_cast<std::uint32_t>(target_)) restart();
 }
 
 void WebView::set_size(int width, int height) {
@@ -107,44 +105,28 @@ void WebView::set_head_angle(double degrees) {
 
 void WebView::set_interacting(bool on) {
   interacting_ = on;
-  if (on) return;
-  session_.settle(false);
-  if (live_shown_) {  // the hand stopped: the exact re-shade replaces the recombined image
-    live_shown_ = false;
-    next_ = RayTrees::Route::kReshade;
-  } else if (accum_.samples > 0 && ladder_.advance()) {  // on to finer levels from the live one
-    accum_.samples = 0;
-  }
+  // The hand stopped: the gesture is one undo step; the scheduler replaces a live image by the
+  // exact re-shade, or goes on to finer levels from the live one.
+  if (!on) session_.settle(false);
 }
 
 bool WebView::step() {
-  if (!prepared_) begin_generation();
-  if (next_ != RayTrees::Route::kTrace) return shade_from_trees();
-  if (interacting_ && accum_.samples > 0) return false;  // the hand is on: one pass at the live level
   // A view changed without a restart (a lesson closed) may change the ladder: it starts again.
-  if (ladder_.levels() != levels()) ladder_.begin(levels(), interacting_, live_budget_ms(ProgressiveSettings{}));
-  // A difference against a first-full A compares like with like: the live image stays at A's sample.
-  if (ladder_.at_full() && accum_.samples >= static_cast<std::uint32_t>(target_spp())) return false;
-  const ProgressiveLevel level = ladder_.level();
-  if (accum_.width != level.width || accum_.height != level.height || accum_.samples == 0) {
-    accum_.reset(level.width, level.height, view_.small_multiples || ambient_pair());
+  if (!prepared_ || passes_.ladder().levels() != progressive_levels(trace_width(), trace_height(), settings())) {
+    begin_generation();
   }
-  RenderOptions options;
-  options.term = pass_term();
-  options.ambient = view_.ambient;
-  options.shading_eye = eye_;
-  options.threads = threads_;
-  const PassStats pass = level.quads ? render_quad_shaded(*prepared_, options, accum_) : render_pass(*prepared_, options, accum_);
-  ladder_.passed(pass.seconds * 1e3);
+  passes_.update(settings(), interacting_);
+  if (!passes_.wants_pass()) return false;
+  const auto start = std::chrono::steady_clock::now();
+  passes_.step();
+  shown_divisor_ = passes_.level().divisor;
+  shown_quads_ = passes_.level().quads;
   encode();
   const bool a_taken = a_.requested() && !a_.first_full() &&
                        a_.take_when_ready(static_cast<std::uint64_t>(generation_), shown_, finished());
   if (a_taken) encode();  // shown against the new A
-  if (!interacting_ && ladder_.advance()) {
-    accum_.samples = 0;
-  } else if (ladder_.at_full() && accum_.samples == 1 && !interacting_) {
-    record_trees();
-  }
+  // The level's time is what the student waits for: the pass and its image encoded.
+  passes_.shown(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   update_lesson();
   return true;
 }
@@ -152,16 +134,20 @@ bool WebView::step() {
 int WebView::trace_width() const { return view_.small_multiples ? std::max(1, width_ / kColumns) : width_; }
 int WebView::trace_height() const { return view_.small_multiples ? std::max(1, height_ / kRows) : height_; }
 
-// The page's levels: 1/8, 1/4, 1/2 and full resolution of the image (of one cell of the small
-// multiples' grid), with the quad-shaded live rung before full resolution where it draws what
-// is shown (the full image with ka·Ia: the desktop's rule, core/render/progressive.h).
-std::vector<ProgressiveLevel> WebView::levels() const {
-  const int cells_x = view_.small_multiples ? kColumns : 1, cells_y = view_.small_multiples ? kRows : 1;
-  std::vector<ProgressiveLevel> out;
-  for (const int divisor : kDivisors) {
-    out.push_back({divisor, std::max(1, width_ / cells_x / divisor), std::max(1, height_ / cells_y / divisor)});
-  }
-  return quad_rung_draws(pass_term(), view_.ambient, view_.small_multiples) ? with_quad_rung(std::move(out)) : out;
+// The page's generation, as the desktop's render thread has it (core/render/pass_scheduler.h): the
+// image of one cell of the small multiples' grid, the view's term and "move your head"'s eye.
+ProgressiveSettings WebView::settings() const {
+  ProgressiveSettings s;
+  s.term = pass_term();
+  s.ambient = view_.ambient;
+  s.term_images = view_.small_multiples || ambient_pair();
+  s.shading_eye = eye_;
+  s.threads = threads_;
+  // A difference against a first-full A compares like with like: the live image stays at A's sample.
+  s.target_spp = target_spp();
+  s.tree_budget_bytes = std::size_t{256} << 20;
+  s.refine_while_interacting = false;  // no restart cancels a pass here: one image per edit while the hand is on
+  return s;
 }
 
 void WebView::begin_generation() {
@@ -172,46 +158,9 @@ void WebView::begin_generation() {
                                                           make_rules_experiment(formulas.rules()))
                   : std::make_shared<const PreparedScene>(view_scene(session_.scene(), view_));
   eye_ = view_shading_eye(*prepared_, view_, width_, height_);
-  next_ = RayTrees::Route::kTrace;
-  live_shown_ = reshaded_ = false;
   // The trees are of the traced image's size: one cell of the grid in the small multiples, so a
-  // switch between the grid and one image traces anew (re-shading trees of the other size into
-  // this one's pixels drew stripes and stray discs).
-  if (!trees_ || !trees_apply()) return;
-  next_ = trees_->route(*prepared_, trace_width(), trace_height(), pass_term(), eye_, view_.small_multiples, interacting_);
-  if (next_ != RayTrees::Route::kTrace) ladder_.to_full();
-}
-
-// As on the desktop: the Whitted image and its terms, not the indirect light (a random estimate
-// per sample). The small multiples' grid is re-shaded whole (term images), never recombined.
-bool WebView::trees_apply() const {
-  return reshades(pass_term()) && ambient_for(pass_term(), view_.ambient) != Ambient::kIndirect;
-}
-
-bool WebView::shade_from_trees() {
-  const int w = trace_width(), h = trace_height();
-  if (next_ == RayTrees::Route::kLive) {
-    accum_.reset(w, h, false);
-    live_shown_ = trees_->recombine(*prepared_, pass_term(), threads_, accum_).completed;
-  }
-  if (!live_shown_) {  // the exact re-shade (or a sum the trees could not give)
-    accum_.reset(w, h, view_.small_multiples);
-    trees_->reshade(prepared_, pass_term(), eye_, threads_, accum_);
-    reshaded_ = true;
-    if (!trees_->usable() || trees_->worn()) trees_.reset();  // the next traced image records anew
-  }
-  next_ = RayTrees::Route::kTrace;
-  encode();
-  update_lesson();
-  return true;
-}
-
-// Once per view that the kept trees do not serve: sample 0 at full resolution again, its trees
-// kept (the new ones take over the old ones' memory).
-void WebView::record_trees() {
-  if (!trees_apply() || reshaded_) return;
-  constexpr std::size_t kBudget = std::size_t{256} << 20;
-  trees_ = RayTrees::record(prepared_, trace_width(), trace_height(), eye_, threads_, kBudget, nullptr, true, std::move(trees_));
+  // switch between the grid and one image traces anew.
+  passes_.begin(prepared_, trace_width(), trace_height(), settings(), interacting_);
 }
 
 emscripten::val WebView::pixels() const {
@@ -275,7 +224,7 @@ void WebView::set_small_multiples(bool on) {
 }
 
 bool WebView::finished() const {
-  return shown_generation_ == generation_ && shown_divisor_ == 1 && !shown_quads_ && !live_shown_ &&
+  return shown_generation_ == generation_ && shown_divisor_ == 1 && !shown_quads_ && !passes_.live_shown() &&
          shown_spp_ >= static_cast<std::uint32_t>(target_spp()) && !view_.small_multiples;
 }
 
@@ -295,7 +244,7 @@ std::string WebView::compare_caption() const {
 void WebView::set_compare(int mode, double wipe) {
   view_.compare = static_cast<CompareView>(std::clamp(mode, 0, 2));
   view_.wipe = std::clamp(wipe, 0.0, 1.0);
-  if (accum_.samples > 0) encode();  // the same live image, shown against A
+  if (shown_generation_ == generation_) encode();  // the same live image, shown against A
 }
 
 void WebView::set_depth_cut(int cut) {
@@ -448,7 +397,7 @@ std::string WebView::check_image_json(const std::string& path) {
   for (const Color& c : image_check_->yours) a.pixels.emplace_back(c);
   a_.set_file_image(std::move(a), path);
   check_view_ = 2;
-  if (accum_.samples > 0) encode();
+  if (shown_generation_ == generation_) encode();
   return check_to_json(*image_check_);
 }
 
@@ -456,12 +405,12 @@ void WebView::close_image() {
   image_check_.reset();
   check_view_ = 0;
   if (!a_.file_name().empty()) a_.clear();
-  if (accum_.samples > 0) encode();
+  if (shown_generation_ == generation_) encode();
 }
 
 void WebView::set_check_view(int view) {
   check_view_ = std::clamp(view, 0, 2);
-  if (accum_.samples > 0) encode();
+  if (shown_generation_ == generation_) encode();
 }
 
 std::optional<std::vector<glm::vec3>> WebView::check_view_pixels() const {
@@ -497,11 +446,7 @@ void WebView::apply(const Edit& e) {
 
 void WebView::restart() {
   ++generation_;
-  prepared_.reset();
-  // While the hand is on, the desktop's rule (core/render/progressive.h): the least error whose
-  // measured pass fits a 24th of a second.
-  ladder_.begin(levels(), interacting_, live_budget_ms(ProgressiveSettings{}));
-  accum_.samples = 0;
+  prepared_.reset();  // the next step begins the generation (the scheduler's ladder: the hand's budget)
 }
 
 PixelProbe WebView::probe_at(double u, double v) const {
@@ -514,22 +459,23 @@ PixelProbe WebView::probe_at(double u, double v) const {
 // The image as the desktop shows it: the accumulator's means, or the small multiples' grid (the
 // five terms in the equation's order, then the full image).
 std::vector<glm::vec3> WebView::live_pixels() const {
-  const int w = accum_.width, h = accum_.height;
+  const Accumulator& accum = passes_.accum();
+  const int w = accum.width, h = accum.height;
   if (!view_.small_multiples) {
     std::vector<glm::vec3> out(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) out[static_cast<std::size_t>(y * w + x)] = glm::vec3(accum_.mean(x, y));
+      for (int x = 0; x < w; ++x) out[static_cast<std::size_t>(y * w + x)] = glm::vec3(accum.mean(x, y));
     return out;
   }
   const int gw = w * kColumns;
   std::vector<glm::vec3> out(static_cast<std::size_t>(gw) * static_cast<std::size_t>(h * kRows));
-  const double inv = 1.0 / static_cast<double>(std::max(accum_.samples, 1u));
+  const double inv = 1.0 / static_cast<double>(std::max(accum.samples, 1u));
   for (int cell = 0; cell < kColumns * kRows; ++cell) {
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
         const std::size_t i = static_cast<std::size_t>(y * w + x);
-        const Color c = cell < 5 ? accum_.terms[i].*kFiveTermMembers[static_cast<std::size_t>(cell)] * inv
-                                 : accum_.mean(x, y);
+        const Color c = cell < 5 ? accum.terms[i].*kFiveTermMembers[static_cast<std::size_t>(cell)] * inv
+                                 : accum.mean(x, y);
         out[static_cast<std::size_t>((cell / kColumns * h + y) * gw + cell % kColumns * w + x)] = glm::vec3(c);
       }
     }
@@ -557,11 +503,10 @@ std::string WebView::bench(int frames) const {
 
 // 8-bit sRGB of the image (what `phonglab-cli render -o x.png` writes), against A in a compare.
 void WebView::encode() {
-  shown_width_ = accum_.width * (view_.small_multiples ? kColumns : 1);
-  shown_height_ = accum_.height * (view_.small_multiples ? kRows : 1);
-  shown_spp_ = accum_.samples;
-  shown_divisor_ = ladder_.empty() ? 1 : ladder_.level().divisor;
-  shown_quads_ = !ladder_.empty() && ladder_.level().quads;
+  const Accumulator& accum = passes_.accum();
+  shown_width_ = accum.width * (view_.small_multiples ? kColumns : 1);
+  shown_height_ = accum.height * (view_.small_multiples ? kRows : 1);
+  shown_spp_ = accum.samples;
   shown_generation_ = generation_;
   shown_.generation = static_cast<std::uint64_t>(generation_);
   shown_.width = shown_width_, shown_.height = shown_height_, shown_.divisor = shown_divisor_, shown_.spp = shown_spp_;
@@ -569,10 +514,10 @@ void WebView::encode() {
   std::vector<glm::vec3> live = shown_.pixels;
   heat_max_ = view_.term == Term::kRays ? phonglab::heat_max(live) : 0;
   if (view_.term == Term::kRays) live = heat_map_pixels(live, heat_max_);
-  if (ambient_pair() && accum_.has_terms()) {
+  if (ambient_pair() && accum.has_terms()) {
     std::vector<glm::vec3> ambient(live.size());
-    const double inv = 1.0 / static_cast<double>(std::max(accum_.samples, 1u));
-    for (std::size_t i = 0; i < ambient.size(); ++i) ambient[i] = glm::vec3(accum_.terms[i].ambient * inv);
+    const double inv = 1.0 / static_cast<double>(std::max(accum.samples, 1u));
+    for (std::size_t i = 0; i < ambient.size(); ++i) ambient[i] = glm::vec3(accum.terms[i].ambient * inv);
     live = ambient_shown_pixels(view_.ambient_shown, live, ambient, shown_width_, view_.wipe);
   }
   if (view_.compare != CompareView::kNone && a_.comparable(shown_, view_.compare, constant_ambient())) {

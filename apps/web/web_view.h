@@ -20,7 +20,6 @@
 
 #include "core/accel/prepared_scene.h"
 #include "core/render/progressive.h"
-#include "core/render/ray_trees.h"
 #include "core/render/render.h"
 #include "core/teaching/lesson.h"
 #include "check/check.h"
@@ -99,8 +98,8 @@ class WebView {
   int spp() const { return static_cast<int>(shown_spp_); }
   int divisor() const { return shown_divisor_; }
   bool quads() const { return shown_quads_; }        // the image is the quad-shaded live rung (divisor 1)
-  bool live() const { return live_shown_; }          // the image is a linear edit's recombination
-  bool reshaded() const { return reshaded_; }        // this generation's first sample was re-shaded
+  bool live() const { return passes_.live_shown(); }        // the image is a linear edit's recombination
+  bool reshaded() const { return passes_.reshaded(); }      // this generation's first sample was re-shaded
   int generation() const { return generation_; }             // restarts so far
   int shown_generation() const { return shown_generation_; }  // the one the image belongs to
   emscripten::val pixels() const;  // RGBA, image_width() x image_height()
@@ -179,18 +178,15 @@ class WebView {
   void apply(const Edit& e);
   void edited_by_hand();
   void restart();
-  std::vector<ProgressiveLevel> levels() const;
+  ProgressiveSettings settings() const;  // the generation's, from the view
   int trace_width() const;   // the traced image's size at full resolution: one cell in the small multiples
   int trace_height() const;
   void begin_generation();  // the view's scene prepared, and how its first sample is made
-  bool trees_apply() const;
   // The indirect light beside ka·Ia, or their gap: the indirect term traced with the term images.
   bool ambient_pair() const {
     return !view_.small_multiples && view_.ambient == Ambient::kIndirect && view_.ambient_shown != AmbientShown::kImage;
   }
   Term pass_term() const { return view_.small_multiples ? Term::kFull : ambient_pair() ? Term::kIndirect : view_.term; }
-  bool shade_from_trees();  // the first sample from the stored trees
-  void record_trees();
   PixelProbe probe_at(double u, double v) const;
   void encode();
   std::vector<glm::vec3> live_pixels() const;
@@ -204,7 +200,6 @@ class WebView {
 
   Session session_;
   std::shared_ptr<const PreparedScene> prepared_;
-  Accumulator accum_;
   std::vector<unsigned char> rgba_;
   int width_ = 640, height_ = 360, target_ = 16, threads_ = 1;
   int formula_view_ = 0;  // 0: yours (the formulas traced), 1: the reference
@@ -216,12 +211,7 @@ class WebView {
   std::uint32_t shown_spp_ = 0;
   int generation_ = 0, shown_generation_ = -1, images_ = 0;
   bool interacting_ = false;
-  LevelLadder ladder_;  // the levels of the generation, where it stands, their measured times
-  // The ray trees of the last traced full-resolution first sample, and how the next first sample
-  // is made from them (kTrace: traced).
-  std::unique_ptr<RayTrees> trees_;
-  RayTrees::Route next_ = RayTrees::Route::kTrace;
-  bool live_shown_ = false, reshaded_ = false;
+  PassScheduler passes_;  // the generation's passes, as the desktop's render thread has them
   StepView view_;                      // what the image shows (the term keys, a lesson's step)
   std::string step_scene_;             // the scene a lesson's step adopted (scene_label), "" for a file or an embedded scene
   std::optional<Vec3> eye_;            // "move your head"'s eye, from view_ at each restart

@@ -1,6 +1,7 @@
-// Progressive rendering for the previewer: a render thread that owns the accumulator and
-// refines an image coarse to fine (1/8, 1/4, 1/2, full resolution, then more samples per
-// pixel up to a target), restarting whenever it is handed a new scene snapshot.
+// Progressive rendering for the previewer: a render thread that runs the passes of an image
+// coarse to fine (1/8, 1/4, 1/2, full resolution, then more samples per pixel up to a target) as
+// the PassScheduler decides them (pass_scheduler.h, the page's scheduler too), restarting
+// whenever it is handed a new scene snapshot, and publishes each image.
 //
 // Restart protocol: set_scene / set_resolution / a term change bump a generation counter under
 // the lock, drop any published frame not yet taken and raise the cancel flag of the running
@@ -23,37 +24,11 @@
 #include <thread>
 #include <vector>
 
+#include "core/render/pass_scheduler.h"
 #include "core/render/render.h"
 #include "core/scene/scene.h"
 
 namespace phonglab {
-
-// What the renderer should produce; changing anything but `term` never restarts it.
-struct ProgressiveSettings {
-  int target_spp = 64;              // samples per pixel at full resolution, then idle
-  int threads = 0;                  // threads per pass; 0 = all hardware threads
-  Term term = Term::kFull;          // what the pixels show (a change restarts)
-  // Also the five term images, from the same samples (the small multiples: one trace, five
-  // sums; a change restarts).
-  bool term_images = false;
-  int interactive_divisor = 4;      // while interacting, refine no further than 1/this resolution
-  // While interacting, each restart starts at the finest level whose last measured pass fits
-  // 1/this of a second (the previewer holds a drag's next edit until the image is out, so a
-  // pass that long gives this many images a second); 0: always at the coarsest level.
-  double live_images_per_s = 24;
-  // Memory for the ray trees of the first sample (core/render/ray_trees.h), with which an edit
-  // that changes no ray is re-shaded instead of traced; 0: none kept. The default holds a
-  // 1920x1080 image of a scene like `lecture`.
-  std::size_t tree_budget_bytes = std::size_t{512} << 20;
-  bool lower_thread_priority = false;  // Linux: render at a higher nice value so the UI stays smooth
-  std::optional<Vec3> shading_eye;  // "move your head": RenderOptions::shading_eye (a change restarts)
-  // RenderOptions::ambient (a change restarts). The indirect light is traced every time (no ray
-  // trees); an edit of ka or Ia alone keeps what has converged, any other edit restarts (a kd,
-  // ks, light or geometry edit changes the light every surface gathers from every other).
-  Ambient ambient = Ambient::kConstant;
-};
-// Whether the settings show the indirect light (its full image or its term).
-inline bool shows_indirect(const ProgressiveSettings& s) { return ambient_for(s.term, s.ambient) == Ambient::kIndirect; }
 
 // Statistics of one published image.
 struct FrameStats {
@@ -94,91 +69,6 @@ struct ProgressiveStatus {
   std::uint64_t passes = 0;      // completed passes since construction
   std::uint64_t serial = 0;      // FrameStats::serial of the newest published image (0: none)
   std::uint64_t published_generation = 0;  // generation of the newest published image
-};
-
-// One step of the coarse-to-fine ladder.
-struct ProgressiveLevel {
-  int divisor = 1;  // the image is 1/divisor of the full resolution along each axis
-  int width = 0;    // pixels
-  int height = 0;   // pixels
-  // The quad-shaded live rung (core/render/quad_shading.h): full resolution, every primary ray
-  // traced, the shading a quarter where it is smooth. Only a live start, never a refinement step.
-  bool quads = false;
-  friend bool operator==(const ProgressiveLevel&, const ProgressiveLevel&) = default;
-};
-// 1/8, 1/4, 1/2 and full resolution, leaving out coarse levels that would not be smaller than
-// the next one (a tiny window renders at full resolution at once).
-std::vector<ProgressiveLevel> make_levels(int width, int height);
-// The live ladder: make_levels with the quad-shaded rung before full resolution, so ordered by
-// the error of each image as shown against the exact one, the largest first (measured by
-// `phonglab-bench SCENE --live`: 1/8, 1/4, 1/2, the quad-shaded rung at a few hundredths of the
-// half level's, the exact image). A window too small for coarse levels has no rung either.
-std::vector<ProgressiveLevel> make_live_levels(int width, int height);
-// `levels` (coarse to fine) with the rung inserted before the last, exact one; unchanged when
-// there is only that.
-std::vector<ProgressiveLevel> with_quad_rung(std::vector<ProgressiveLevel> levels);
-
-// The last pass times measured at each level, by divisor. A level's expected time is the median
-// of its last three (the mean of two, or the one): one pass slowed by the machine does not move
-// a drag to a coarser level.
-struct LevelTimes {
-  static constexpr std::size_t kKept = 3;
-  // At 1/8, 1/4, 1/2, the quad-shaded rung and full resolution; newest first, 0: none.
-  std::array<std::array<double, kKept>, 5> recent{};
-  static std::size_t slot(int divisor, bool quads) {
-    return divisor >= 8 ? 0 : divisor >= 4 ? 1 : divisor >= 2 ? 2 : quads ? 3 : 4;
-  }
-  // The expected time of a pass at `divisor` (the quad-shaded rung with `quads`); 0 when none
-  // was measured.
-  double at(int divisor, bool quads = false) const;
-  // A pass at `divisor` took `ms`.
-  void note(int divisor, double ms, bool quads = false);
-  void forget(int divisor, bool quads = false);  // no pass at `divisor` measured yet
-};
-// The index into `levels` of the finest level whose pass is expected to take at most
-// `budget_ms`: its expected time, or, not measured yet, the next coarser measured level's
-// time scaled by the ratio of their pixel counts. 0 (the coarsest) when none fits or nothing is
-// known. With `probe`, one level finer than that when it is expected within 1.5 budgets: its
-// time was measured a while ago, perhaps on a busier machine (ProgressiveRenderer probes so
-// twice a second while the hand is on).
-// The time a pass may take while interacting: 1 / live_images_per_s (0: none).
-double live_budget_ms(const ProgressiveSettings& settings);
-std::size_t live_start_level(const std::vector<ProgressiveLevel>& levels, const LevelTimes& times, double budget_ms,
-                             bool probe = false);
-
-// Where a generation stands on the ladder and where a restart starts: the one policy the
-// previewer's render thread and the page's frame loop both follow, each with a ladder of its own.
-class LevelLadder {
- public:
-  static constexpr std::chrono::milliseconds kProbePeriod{500};
-  // A new generation over `levels` (the live ladder; the times measured so far are forgotten
-  // when its full resolution differs from the last one's). While `interacting` it starts at the
-  // least error whose expected time fits `budget_ms` (live_start_level), and at most twice a
-  // second one finer when that is expected within 1.5 budgets (a probe: its time may have been
-  // measured on a busier moment); else at the coarsest. `at_full`: at the exact image at once.
-  void begin(std::vector<ProgressiveLevel> levels, bool interacting, double budget_ms, bool at_full = false);
-  const std::vector<ProgressiveLevel>& levels() const { return levels_; }
-  bool empty() const { return levels_.empty(); }
-  const ProgressiveLevel& level() const { return levels_[index_]; }  // the current one
-  const ProgressiveLevel& start() const { return levels_[start_]; }  // where the generation started
-  bool at_full() const { return index_ + 1 == levels_.size(); }
-  // A completed pass at the current level took `ms` (`traced`: a re-shade says nothing of a
-  // traced pass's time). A probe's pass is the level's time now: the older ones were why it was not run.
-  void passed(double ms, bool traced = true);
-  // The generation's first pass, overtaken by the next restart after `ms`: the level takes at
-  // least that long, or a drag would never show anything.
-  void overtaken(double ms);
-  // On towards the exact image, past the quad-shaded rung (a live start only); false at it.
-  bool advance();
-  // To the exact image (a generation re-shaded from stored trees).
-  void to_full() { index_ = levels_.empty() ? 0 : levels_.size() - 1; }
-
- private:
-  std::vector<ProgressiveLevel> levels_;
-  std::size_t index_ = 0, start_ = 0;
-  LevelTimes times_;
-  std::chrono::steady_clock::time_point last_probe_{};
-  bool probing_ = false;  // this generation started finer than fits: its first pass's time stands alone
 };
 
 class ProgressiveRenderer {
@@ -224,7 +114,6 @@ class ProgressiveRenderer {
   bool wait_for_work(Job& job);  // false: stop
   void start_generation_locked(Job& job);
   void publish(Job& job, const PassStats& pass);
-  void record_trees(Job& job);
   std::uint64_t restart_locked();
 
   mutable std::mutex mutex_;
