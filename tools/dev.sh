@@ -15,7 +15,7 @@ PACKAGES=(
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri
   xvfb xauth xdotool imagemagick fonts-dejavu-core desktop-file-utils man-db dpkg-dev
   clang libclang-rt-14-dev chromium shared-mime-info libxml2-utils emscripten
-  libsimde-dev g++-aarch64-linux-gnu qemu-user
+  libsimde-dev g++-aarch64-linux-gnu qemu-user universal-ctags
 )
 
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }

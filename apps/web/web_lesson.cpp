@@ -4,53 +4,53 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/web/web_view.h"
+#include "apps/web/web_lesson.h"
 #include "io/lesson_io.h"
 #include "io/probe_report.h"
 
 namespace phonglab {
 
-std::string WebView::open_lesson(const std::string& name) {
+std::string WebLesson::open_lesson(const std::string& name) {
   LessonLoad loaded = load_lesson_arg(name);
   if (!loaded.ok()) return loaded.error_text();
-  session_.lessons().offer(std::move(*loaded.lesson));
-  if (const auto show = session_.lessons().start()) present(*show);
+  s_.session.lessons().offer(std::move(*loaded.lesson));
+  if (const auto show = s_.session.lessons().start()) present(*show);
   return "";
 }
 
-bool WebView::lesson_next() {
-  const auto show = session_.lessons().next();
+bool WebLesson::lesson_next() {
+  const auto show = s_.session.lessons().next();
   if (show) present(*show);
   return show.has_value();
 }
 
-bool WebView::lesson_prev() {
-  const auto show = session_.lessons().prev();
+bool WebLesson::lesson_prev() {
+  const auto show = s_.session.lessons().prev();
   if (show) present(*show);
   return show.has_value();
 }
 
-bool WebView::lesson_show(int step) {
-  if (!session_.lessons().lesson()) return false;
-  present(session_.lessons().show({step, false}));
+bool WebLesson::lesson_show(int step) {
+  if (!s_.session.lessons().lesson()) return false;
+  present(s_.session.lessons().show({step, false}));
   return true;
 }
 
-void WebView::close_lesson() {
-  session_.lessons().close();
-  a_.clear();
-  view_ = StepView{};
-  view_probe_.clear();
-  if (session_.formulas().any()) {
-    session_.sync_exercise();  // an exercise's formula goes with the lesson
-    restart();
+void WebLesson::close_lesson() {
+  s_.session.lessons().close();
+  s_.a.clear();
+  s_.view = StepView{};
+  s_.view_probe.clear();
+  if (s_.session.formulas().any()) {
+    s_.session.sync_exercise();  // an exercise's formula goes with the lesson
+    image_.restart();
   }
 }
 
-bool WebView::lesson_hint() { return session_.show_hint(); }
+bool WebLesson::lesson_hint() { return s_.session.show_hint(); }
 
-std::string WebView::lesson_state() const {
-  const LessonPresenter& presenter = session_.lessons();
+std::string WebLesson::lesson_state() const {
+  const LessonPresenter& presenter = s_.session.lessons();
   const Lesson* lesson = presenter.lesson();
   if (!lesson) return "{}";
   const LessonPlace place = presenter.place();
@@ -64,9 +64,9 @@ std::string WebView::lesson_state() const {
                       {"question", step.question},
                       {"revealed", place.revealed},
                       {"exploring", presenter.exploring()},
-                      {"compare", a_.has_image() && view_.compare != CompareView::kNone}};
+                      {"compare", s_.a.has_image() && s_.view.compare != CompareView::kNone}};
   if (step.exercise) {
-    const int shown = std::min<int>(session_.hints_shown(), static_cast<int>(step.exercise->hints.size()));
+    const int shown = std::min<int>(s_.session.hints_shown(), static_cast<int>(step.exercise->hints.size()));
     j["exercise"] = {{"slot", step.exercise->slot},
                      {"task", step.exercise->task},
                      {"hints", std::vector<std::string>(step.exercise->hints.begin(), step.exercise->hints.begin() + shown)},
@@ -77,62 +77,62 @@ std::string WebView::lesson_state() const {
 
 // What the presenter answers for a place: A cleared, the step's scene adopted when it asks, its
 // view applied (a compare's source view first, for A).
-void WebView::present(const LessonPresenter::Show& show) {
-  a_.clear();
+void WebLesson::present(const LessonPresenter::Show& show) {
+  s_.a.clear();
   if (show.adopt_step) adopt_step(*show.adopt_step);
   apply_view(show.view);
-  session_.sync_exercise();  // an exercise step's starter in its slot, the formulas cleared elsewhere
-  restart();
-  if (session_.lessons().take_a_now()) a_.request(static_cast<std::uint64_t>(generation_), true);
+  s_.session.sync_exercise();  // an exercise step's starter in its slot, the formulas cleared elsewhere
+  image_.restart();
+  if (s_.session.lessons().take_a_now()) s_.a.request(static_cast<std::uint64_t>(s_.generation), true);
 }
 
-void WebView::adopt_step(int index) {
-  const Lesson& lesson = *session_.lessons().lesson();
+void WebLesson::adopt_step(int index) {
+  const Lesson& lesson = *s_.session.lessons().lesson();
   const LessonStep& step = lesson.steps[static_cast<std::size_t>(index)];
   char source[512];
   std::snprintf(source, sizeof source, "lesson '%s', step %d: %s", lesson.name.c_str(), index + 1, step.scene.c_str());
-  session_.adopt(step.prepared_scene, source);
-  step_scene_ = step.scene;
+  s_.session.adopt(step.prepared_scene, source);
+  s_.step_scene = step.scene;
 }
 
-void WebView::apply_view(const StepView& view) {
-  view_ = view;
-  view_.compare = CompareView::kNone;  // on once A is taken (update_lesson)
-  view_probe_.clear();
-  tree_pixel_.reset();
-  probe_pixel_.reset();
+void WebLesson::apply_view(const StepView& view) {
+  s_.view = view;
+  s_.view.compare = CompareView::kNone;  // on once A is taken (update_lesson)
+  s_.view_probe.clear();
+  s_.tree_pixel.reset();
+  s_.probe_pixel.reset();
   if (view.probe) {
-    const PreparedScene prepared(view_scene(session_.scene(), view));
-    if (const auto pixel = probe_in(session_.scene(), session_.scene().camera, view, width_, height_)) {
-      probe_pixel_ = pixel;  // marked while the question is asked too
-      if (view.ray_tree) tree_pixel_ = pixel;
-      const std::optional<Vec3> eye = view_shading_eye(prepared, view, width_, height_);
-      view_probe_ = probe_to_text(session_.scene(), probe_pixel(prepared, width_, height_, (*pixel)[0], (*pixel)[1], eye), 4);
+    const PreparedScene prepared(view_scene(s_.session.scene(), view));
+    if (const auto pixel = probe_in(s_.session.scene(), s_.session.scene().camera, view, s_.width, s_.height)) {
+      s_.probe_pixel = pixel;  // marked while the question is asked too
+      if (view.ray_tree) s_.tree_pixel = pixel;
+      const std::optional<Vec3> eye = view_shading_eye(prepared, view, s_.width, s_.height);
+      s_.view_probe = probe_to_text(s_.session.scene(), probe_pixel(prepared, s_.width, s_.height, (*pixel)[0], (*pixel)[1], eye), 4);
     }
   }
-  restart();
+  image_.restart();
 }
 
 // A compare: A is the source view's first full-resolution image; then the step's own view with
 // the compare on.
-void WebView::update_lesson() {
-  if (!a_.requested() || !a_.first_full() || view_.small_multiples) return;
-  if (!a_.take_when_ready(static_cast<std::uint64_t>(generation_), shown_, finished())) return;
-  if (const auto show = session_.lessons().a_taken()) {
+void WebLesson::update_lesson() {
+  if (!s_.a.requested() || !s_.a.first_full() || s_.view.small_multiples) return;
+  if (!s_.a.take_when_ready(static_cast<std::uint64_t>(s_.generation), s_.shown, image_.finished())) return;
+  if (const auto show = s_.session.lessons().a_taken()) {
     if (show->adopt_step) adopt_step(*show->adopt_step);
     apply_view(show->view);
-    view_.compare = show->view.compare;
+    s_.view.compare = show->view.compare;
   }
 }
 
-void WebView::edited_by_hand() {
+void WebLesson::edited_by_hand() {
   // Anything changed by hand while a step is shown leaves it as written: exploring; an A under
   // way no longer names the image it was asked of.
-  if (!session_.lessons().lesson()) return;
-  session_.lessons().explored();
-  if (a_.requested() && a_.first_full()) {
-    a_.clear();
-    session_.lessons().a_dropped();
+  if (!s_.session.lessons().lesson()) return;
+  s_.session.lessons().explored();
+  if (s_.a.requested() && s_.a.first_full()) {
+    s_.a.clear();
+    s_.session.lessons().a_dropped();
   }
 }
 
