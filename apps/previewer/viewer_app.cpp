@@ -345,10 +345,12 @@ void Viewer::apply_edits(double frame_start) {
   if (snapshot && !same_camera(view_camera(s_), snapshot->scene().camera)) s_.edits.camera = true;
   const bool dragging = s_.interacting || s_.edits.while_active;
   if (formulas_.sync_rules()) s_.edits.view = true;  // the formulas that render changed: a new snapshot
-  const RenderSchedule::Sent sent = s_.schedule.send_scene({s_.edits.scene || s_.edits.camera || s_.edits.replaced || s_.edits.view,
-                                                            s_.edits.replaced, dragging, width, height, frame_start,
-                                                            view_camera(s_), ui::depth_cut_of(s_.rays)},
-                                                           scene);
+  // The scene's own edits reach the schedule as the document's version; the frame says what
+  // changed in its view.
+  const RenderSchedule::Sent sent = s_.schedule.send_scene({s_.edits.camera || s_.edits.replaced || s_.edits.view, s_.edits.replaced,
+                                                            dragging, width, height, frame_start, view_camera(s_),
+                                                            ui::depth_cut_of(s_.rays)},
+                                                           scene, s_.doc.version());
   // Latency counts from the oldest edit this snapshot carries.
   if (sent.scene) note_restart(sent.generation, sent.edit_time);
   if (sent.restarted && tools_.probe().tree) tools_.refresh_probe();

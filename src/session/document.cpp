@@ -40,11 +40,13 @@ void SceneDocument::update_dirty() { update_dirty(scene_content(scene_)); }
 
 void SceneDocument::restore_edits(Scene scene) {
   scene_ = std::move(scene);
+  ++version_;
   update_dirty();
 }
 
 void SceneDocument::adopt(const Scene& scene, const std::string& source) {
   scene_ = scene;
+  ++version_;
   loaded_camera_ = scene_.camera;
   file_path_.clear();
   embedded_name_.clear();
@@ -65,6 +67,7 @@ bool SceneDocument::open(const std::string& scene_arg) {
     return false;
   }
   scene_ = std::move(*result.scene);
+  ++version_;
   loaded_camera_ = scene_.camera;
   if (find_embedded_scene(scene_arg) != nullptr) {
     file_path_.clear();
@@ -105,6 +108,7 @@ bool SceneDocument::reload(bool keep_view) {
   const Camera view = scene_.camera;
   const bool file_kept_its_camera = same_camera(result.scene->camera, loaded_camera_);
   scene_ = std::move(*result.scene);
+  ++version_;
   loaded_camera_ = scene_.camera;
   if (keep_view && file_kept_its_camera) scene_.camera = view;
   mark_saved();

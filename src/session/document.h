@@ -51,6 +51,10 @@ class SceneDocument {
 
   // The scene; only the session writes it (its edits, undo and redo: Session).
   const Scene& scene() const { return scene_; }
+  // Counts the changes the scene may have had (an edit, undo, redo, open, reload, a lesson's
+  // step adopted, a recovery restored): what the renderer's schedule compares with the snapshot
+  // it sent (RenderSchedule::send_scene), so no caller has to report an edit.
+  std::uint64_t version() const { return version_; }
   // The scene becomes `scene`, edits made over the document's file (a recovery's restore):
   // unsaved as far as it differs from what the file held.
   void restore_edits(Scene scene);
@@ -78,12 +82,16 @@ class SceneDocument {
 
  private:
   friend class Session;  // the one writer of the scene
-  Scene& edited_scene() { return scene_; }
+  Scene& edited_scene() {
+    ++version_;
+    return scene_;
+  }
   bool write(const std::string& path);
   void mark_saved();                              // the scene as it is now is what the file holds
   std::optional<std::filesystem::file_time_type> current_mtime() const;
 
   Scene scene_;
+  std::uint64_t version_ = 0;
   Camera loaded_camera_;
   std::string file_path_;
   std::string embedded_name_;

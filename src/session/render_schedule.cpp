@@ -23,8 +23,8 @@ std::uint64_t RenderSchedule::send_settings(ProgressiveSettings settings, bool s
   return generation;
 }
 
-RenderSchedule::Sent RenderSchedule::send_scene(const Frame& frame, const Scene& scene) {
-  const bool edited = frame.edited || !snapshot_;
+RenderSchedule::Sent RenderSchedule::send_scene(const Frame& frame, const Scene& scene, std::uint64_t version) {
+  const bool edited = frame.edited || !snapshot_ || version != sent_version_;
   if (edited && !deferred_) deferred_since_ = frame.now;
   const bool scene_changed = edited || deferred_;
   const bool resized = frame.width != width_ || frame.height != height_;
@@ -40,6 +40,7 @@ RenderSchedule::Sent RenderSchedule::send_scene(const Frame& frame, const Scene&
     snapshot_ = rules_.any() ? std::make_shared<const PreparedScene>(std::move(shown), PreparedScene::AccelFactory{},
                                                                      make_rules_experiment(rules_))
                              : std::make_shared<const PreparedScene>(std::move(shown));
+    sent_version_ = version;
     sent.scene = true;
     sent.edit_time = deferred_since_;
   }

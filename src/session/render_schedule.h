@@ -43,7 +43,7 @@ class RenderSchedule {
 
   // One UI frame's scene side.
   struct Frame {
-    bool edited = false;    // the scene, its camera or its view (the depth cut) changed, or none was sent yet
+    bool edited = false;    // the view changed (the window's camera, the depth cut, the formulas traced)
     bool replaced = false;  // another document: never deferred
     bool dragging = false;  // the hand is on (a drag, a slider held)
     int width = 0;          // the render size, 0 x 0: nothing visible
@@ -61,9 +61,10 @@ class RenderSchedule {
     std::uint64_t generation = 0;
     double edit_time = 0;    // the oldest edit the snapshot carries (latency counts from it)
   };
-  // Sends the frame's scene side: when a snapshot goes out, it is `scene` (the session's) with the
-  // frame's view, prepared with the rules.
-  Sent send_scene(const Frame& frame, const Scene& scene);
+  // Sends the frame's scene side: a snapshot when none was sent, the view changed or the scene
+  // did (its `version`, SceneDocument::version, differs from the last snapshot's): `scene` (the
+  // session's) with the frame's view, prepared with the rules.
+  Sent send_scene(const Frame& frame, const Scene& scene, std::uint64_t version);
   // The rules the snapshots are traced with (a student's formulas: src/check/rules.h); none:
   // the production renderer. A change counts as an edit of the next frame (frame.edited).
   void set_rules(const LocalRules& rules) { rules_ = rules; }
@@ -84,6 +85,7 @@ class RenderSchedule {
   int width_ = 0;
   int height_ = 0;
   std::uint64_t sent_generation_ = 0;
+  std::uint64_t sent_version_ = 0;  // the scene's version in the last snapshot
   std::optional<Vec3> eye_;
   bool multiples_sent_ = false;
   int target_spp_sent_ = 0;

@@ -21,7 +21,8 @@ struct ScheduleOnMirrors : ::testing::Test {
   Scene scene;
   ProgressiveRenderer renderer{settings()};
   RenderSchedule schedule{renderer};
-  int snapshots = 0;  // how often make_snapshot ran
+  int snapshots = 0;  // snapshots sent
+  std::uint64_t version = 0;  // the scene's version, as SceneDocument::version counts it
 
   static ProgressiveSettings settings() {
     ProgressiveSettings s;
@@ -36,7 +37,7 @@ struct ScheduleOnMirrors : ::testing::Test {
   }
   RenderSchedule::Sent send(bool edited, bool dragging, double now, int width = 640, int height = 360,
                             bool replaced = false) {
-    const RenderSchedule::Sent sent = schedule.send_scene({edited, replaced, dragging, width, height, now, std::nullopt, std::nullopt}, scene);
+    const RenderSchedule::Sent sent = schedule.send_scene({edited, replaced, dragging, width, height, now, std::nullopt, std::nullopt}, scene, version);
     if (sent.scene) ++snapshots;
     return sent;
   }
@@ -48,6 +49,19 @@ struct ScheduleOnMirrors : ::testing::Test {
     ASSERT_FALSE(schedule.image_pending());
   }
 };
+
+TEST_F(ScheduleOnMirrors, AnEditReachesTheRendererByTheScenesVersionAlone) {
+  send(false, false, 0.0);
+  wait_for_image();
+  EXPECT_FALSE(send(false, false, 0.1).scene);  // nothing changed
+  scene.materials[0].kd = Color(0.1, 0.5, 0.2);
+  ++version;                                   // the session's edit: no caller reports it
+  const RenderSchedule::Sent sent = send(false, false, 0.2);
+  EXPECT_TRUE(sent.scene);
+  ASSERT_NE(schedule.snapshot(), nullptr);
+  EXPECT_EQ(schedule.snapshot()->scene().materials[0].kd, Color(0.1, 0.5, 0.2));
+  EXPECT_FALSE(send(false, false, 0.3).scene);  // sent once
+}
 
 TEST_F(ScheduleOnMirrors, TheFirstFrameSendsASnapshotAndItsSize) {
   const RenderSchedule::Sent sent = send(false, false, 0.0);  // nothing sent yet: a snapshot all the same

@@ -41,6 +41,33 @@ TEST_F(SessionOnLecture, AKdEditChangesTheMaterialAndIsUnsaved) {
   EXPECT_TRUE(session.dirty());
 }
 
+TEST_F(SessionOnLecture, EveryChangeOfTheSceneMovesItsVersion) {
+  // What the renderer's schedule compares (RenderSchedule::send_scene): no change may go unseen.
+  std::uint64_t last = session.document().version();
+  const auto moved = [&] {
+    const std::uint64_t now = session.document().version();
+    const bool changed = now != last;
+    last = now;
+    return changed;
+  };
+  set_kd(0.25);
+  EXPECT_TRUE(moved()) << "an edit";
+  Camera camera = session.scene().camera;
+  camera.position.x += 1;
+  session.apply({edit::SetCamera{camera}});
+  EXPECT_TRUE(moved()) << "navigation";
+  ASSERT_TRUE(session.undo());
+  EXPECT_TRUE(moved()) << "undo";
+  ASSERT_TRUE(session.redo());
+  EXPECT_TRUE(moved()) << "redo";
+  session.adopt(session.scene(), "a lesson's step");
+  EXPECT_TRUE(moved()) << "a step adopted";
+  ASSERT_TRUE(session.open("mirrors"));
+  EXPECT_TRUE(moved()) << "another scene";
+  EXPECT_FALSE(session.open("no such scene"));
+  EXPECT_FALSE(moved()) << "a failed open keeps the scene";
+}
+
 TEST_F(SessionOnLecture, AKdEditInvalidatesShadingOnly) { EXPECT_EQ(set_kd(0.25).scope, EditScope::kShading); }
 
 TEST_F(SessionOnLecture, AKsOrShininessEditInvalidatesShadingOnly) {
