@@ -89,6 +89,7 @@ class ScriptDriver : public FrameClient {
   struct ScriptStep;  // one command being run (script_driver.cpp)
   std::optional<bool> script_wait_command(ScriptStep& step);
   std::optional<bool> script_input_command(ScriptStep& step);
+  std::optional<bool> script_drag_command(ScriptStep& step);  // script_driver_drag.cpp
   std::optional<bool> script_item_command(ScriptStep& step);
   std::optional<bool> script_file_command(ScriptStep& step);
   std::optional<bool> script_other_command(ScriptStep& step);

@@ -334,6 +334,105 @@ double typical_size(const Scene& s, const Camera& camera, int except) {
   return significant(size, 2);
 }
 
+namespace {
+
+// Where a placed object would be seen: inside the view (a margin of 2 % of the image), and not
+// hidden by a nearer object (its middle inside the rectangle that object's bounds cover on screen).
+class ViewChecks {
+ public:
+  ViewChecks(const Scene& s, const Camera& camera, double aspect, int object) : camera_(camera) {
+    const double framed = s.width > 0 && s.height > 0 ? static_cast<double>(s.width) / s.height : 1;
+    w_ = std::max(1, static_cast<int>(std::lround(1000 * (aspect > 0 && std::isfinite(aspect) ? aspect : framed))));
+    for (const int other : finite_objects(s, object)) seen_.push_back(on_screen(object_bounds(s, other), object_anchor(s, other)));
+  }
+  bool in_view(const Aabb& box) const {
+    for (int corner = 0; corner < 8; ++corner) {
+      const std::optional<ViewportPoint> at = project(camera_, corner_of(box, corner), w_, h_);
+      if (!at || at->x < 0.02 * w_ || at->x > 0.98 * w_ || at->y < 0.02 * h_ || at->y > 0.98 * h_) return false;
+    }
+    return true;
+  }
+  bool hidden(const Aabb& box) const {
+    const OnScreen me = on_screen(box, box.centroid());
+    return std::any_of(seen_.begin(), seen_.end(), [&](const OnScreen& o) { return o.depth < me.depth && o.covers(me.anchor); });
+  }
+
+ private:
+  struct OnScreen {
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300, depth = 0;
+    std::optional<ViewportPoint> anchor;
+    bool covers(const std::optional<ViewportPoint>& p) const { return p && p->x > x0 && p->x < x1 && p->y > y0 && p->y < y1; }
+  };
+  static Vec3 corner_of(const Aabb& box, int corner) {
+    return Vec3(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y, corner & 4 ? box.hi.z : box.lo.z);
+  }
+  OnScreen on_screen(const Aabb& box, const Vec3& anchor) const {
+    OnScreen o;
+    for (int corner = 0; corner < 8; ++corner) {
+      if (const std::optional<ViewportPoint> at = project(camera_, corner_of(box, corner), w_, h_)) {
+        o.x0 = std::min(o.x0, at->x), o.x1 = std::max(o.x1, at->x), o.y0 = std::min(o.y0, at->y), o.y1 = std::max(o.y1, at->y);
+      }
+    }
+    o.depth = view_depth(camera_, anchor);
+    o.anchor = project(camera_, anchor, w_, h_);
+    return o;
+  }
+
+  const Camera& camera_;
+  int w_ = 1;
+  int h_ = 1000;
+  std::vector<OnScreen> seen_;
+};
+
+// A mesh scaled to `size` (its largest side, to three significant digits): the factor, its
+// middle, half sides and largest half side, and how far above a floor of normal `n` (when there is
+// one) its middle stands for its lowest point to clear the floor.
+struct MeshFit {
+  double k = 1;
+  Vec3 middle{0};
+  Vec3 half{0};
+  double radius = 0;
+  double lift = 0;
+};
+MeshFit fit_mesh(const MeshGeometry& g, double size, const Vec3* n) {
+  MeshFit fit;
+  const Vec3 sides = g.bounds.hi - g.bounds.lo;
+  const double largest = std::max({sides.x, sides.y, sides.z});
+  fit.k = significant(largest > 0 && std::isfinite(largest) ? size / largest : 1, 3);
+  fit.middle = g.bounds.centroid();
+  fit.half = 0.5 * fit.k * sides;
+  fit.radius = std::max({fit.half.x, fit.half.y, fit.half.z});
+  fit.lift = fit.radius;
+  if (n != nullptr) {
+    double low = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : g.triangles) {
+      for (const Vec3& v : {t.v0, t.v1, t.v2}) low = std::min(low, glm::dot(v - fit.middle, *n));
+    }
+    fit.lift = std::isfinite(low) ? -fit.k * low + kMeshClearance * 2 * fit.radius : 0;  // floor_clearance
+  }
+  return fit;
+}
+
+// The search grid's points, nearest first: the right before the left, the nearer row before the
+// further.
+std::vector<std::pair<int, int>> search_grid() {
+  constexpr int kReach = 60;
+  std::vector<std::pair<int, int>> grid;
+  for (int j = -kReach; j <= kReach; ++j) {
+    for (int i = -kReach; i <= kReach; ++i) grid.emplace_back(i, j);
+  }
+  std::stable_sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) {
+    const int da = a.first * a.first + a.second * a.second, db = b.first * b.first + b.second * b.second;
+    if (da != db) return da < db;
+    if (std::abs(a.second) != std::abs(b.second)) return std::abs(a.second) < std::abs(b.second);
+    if (a.first != b.first) return a.first > b.first;
+    return a.second > b.second;
+  });
+  return grid;
+}
+
+}  // namespace
+
 std::string place_new_object(Scene& s, const Camera& camera, double aspect, int object) {
   complete_indices(s);
   const ObjectRef r = object_at(s, object);
@@ -368,21 +467,8 @@ std::string place_new_object(Scene& s, const Camera& camera, double aspect, int 
     half = Vec3(0);  // its corners' box, about p
     lift = 0;
   } else if (r.kind == Kind::kMesh) {
-    const MeshGeometry& g = *s.meshes[index].geometry;
-    const Vec3 sides = g.bounds.hi - g.bounds.lo;
-    const double largest = std::max({sides.x, sides.y, sides.z});
-    k = largest > 0 && std::isfinite(largest) ? size / largest : 1;
-    k = significant(k, 3);
-    mesh_middle = g.bounds.centroid();
-    half = 0.5 * k * sides;
-    radius = std::max({half.x, half.y, half.z});
-    if (floor) {
-      double low = std::numeric_limits<double>::infinity();
-      for (const Triangle& t : g.triangles) {
-        for (const Vec3& v : {t.v0, t.v1, t.v2}) low = std::min(low, glm::dot(v - mesh_middle, n));
-      }
-      lift = std::isfinite(low) ? -k * low + kMeshClearance * 2 * radius : 0;  // floor_clearance
-    }
+    const MeshFit fit = fit_mesh(*s.meshes[index].geometry, size, floor ? &n : nullptr);
+    k = fit.k, mesh_middle = fit.middle, half = fit.half, radius = fit.radius, lift = fit.lift;
   }
   if (!floor) lift = 0;
   const auto triangle_at = [&](const Vec3& p) {
@@ -420,54 +506,8 @@ std::string place_new_object(Scene& s, const Camera& camera, double aspect, int 
              o.lo.y < box.hi.y + gap && box.lo.z < o.hi.z + gap && o.lo.z < box.hi.z + gap;
     });
   };
-  const double framed = s.width > 0 && s.height > 0 ? static_cast<double>(s.width) / s.height : 1;
-  const int h = 1000, w = std::max(1, static_cast<int>(std::lround(1000 * (aspect > 0 && std::isfinite(aspect) ? aspect : framed))));
-  const auto in_view = [&](const Aabb& box) {
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 c(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y, corner & 4 ? box.hi.z : box.lo.z);
-      const std::optional<ViewportPoint> at = project(camera, c, w, h);
-      if (!at || at->x < 0.02 * w || at->x > 0.98 * w || at->y < 0.02 * h || at->y > 0.98 * h) return false;
-    }
-    return true;
-  };
-  // Whether a nearer object would hide it: its middle inside the rectangle that object's bounds
-  // cover on screen.
-  struct OnScreen {
-    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300, depth = 0;
-    std::optional<ViewportPoint> anchor;
-    bool covers(const std::optional<ViewportPoint>& p) const { return p && p->x > x0 && p->x < x1 && p->y > y0 && p->y < y1; }
-  };
-  const auto on_screen = [&](const Aabb& box, const Vec3& anchor) {
-    OnScreen o;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 c(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y, corner & 4 ? box.hi.z : box.lo.z);
-      if (const std::optional<ViewportPoint> at = project(camera, c, w, h)) {
-        o.x0 = std::min(o.x0, at->x), o.x1 = std::max(o.x1, at->x), o.y0 = std::min(o.y0, at->y), o.y1 = std::max(o.y1, at->y);
-      }
-    }
-    o.depth = view_depth(camera, anchor);
-    o.anchor = project(camera, anchor, w, h);
-    return o;
-  };
-  std::vector<OnScreen> seen;
-  for (const int other : finite_objects(s, object)) seen.push_back(on_screen(object_bounds(s, other), object_anchor(s, other)));
-  const auto hidden = [&](const Aabb& box) {
-    const OnScreen me = on_screen(box, box.centroid());
-    return std::any_of(seen.begin(), seen.end(), [&](const OnScreen& o) { return o.depth < me.depth && o.covers(me.anchor); });
-  };
-  // The grid's points, nearest first: the right before the left, the nearer row before the further.
-  constexpr int kReach = 60;
-  std::vector<std::pair<int, int>> grid;
-  for (int j = -kReach; j <= kReach; ++j) {
-    for (int i = -kReach; i <= kReach; ++i) grid.emplace_back(i, j);
-  }
-  std::stable_sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) {
-    const int da = a.first * a.first + a.second * a.second, db = b.first * b.first + b.second * b.second;
-    if (da != db) return da < db;
-    if (std::abs(a.second) != std::abs(b.second)) return std::abs(a.second) < std::abs(b.second);
-    if (a.first != b.first) return a.first > b.first;
-    return a.second > b.second;
-  });
+  const ViewChecks view(s, camera, aspect, object);
+  const std::vector<std::pair<int, int>> grid = search_grid();
   const auto point = [&](const std::pair<int, int>& g) {
     Vec3 p = base + (g.first * step) * across + (g.second * step) * along;
     p = Vec3(tidy_float(p.x), tidy_float(p.y), tidy_float(p.z));
@@ -482,7 +522,7 @@ std::string place_new_object(Scene& s, const Camera& camera, double aspect, int 
       if ((pass == 0 || pass == 2) && floor && g.second < 0) continue;
       const Vec3 p = point(g);
       const Aabb box = box_at(p);
-      if (free(box) && (pass == 4 || in_view(box)) && (pass >= 2 || !hidden(box))) {
+      if (free(box) && (pass == 4 || view.in_view(box)) && (pass >= 2 || !view.hidden(box))) {
         found = p;
         break;
       }
