@@ -18,7 +18,7 @@ constexpr int kColumns = 3, kRows = 2;  // the small multiples: the five terms, 
 void WebView::set_target(int spp) {
   const int before = s_.target;
   s_.target = std::max(spp, 1);
-  if (s_.target < before && shown_spp_ > static_cast<std::uint32_t>(s_.target)) restart();
+  if (s_.target < before && s_.shown.spp > static_cast<std::uint32_t>(s_.target)) restart();
 }
 
 void WebView::set_size(int width, int height) {
@@ -43,8 +43,8 @@ bool WebView::step() {
   if (!passes_.wants_pass()) return false;
   const auto start = std::chrono::steady_clock::now();
   passes_.step();
-  shown_divisor_ = passes_.level().divisor;
-  shown_quads_ = passes_.level().quads;
+  s_.shown.divisor = passes_.level().divisor;
+  s_.shown.quads = passes_.level().quads;
   encode();
   const bool a_taken = s_.a.requested() && !s_.a.first_full() &&
                        s_.a.take_when_ready(static_cast<std::uint64_t>(s_.generation), s_.shown, finished());
@@ -93,8 +93,8 @@ emscripten::val WebView::pixels() const {
 }
 
 bool WebView::finished() const {
-  return shown_generation_ == s_.generation && shown_divisor_ == 1 && !shown_quads_ && !passes_.live_shown() &&
-         shown_spp_ >= static_cast<std::uint32_t>(target_spp()) && !s_.view.small_multiples;
+  return shown_generation_ == s_.generation && s_.shown.divisor == 1 && !s_.shown.quads && !passes_.live_shown() &&
+         s_.shown.spp >= static_cast<std::uint32_t>(target_spp()) && !s_.view.small_multiples;
 }
 
 int WebView::target_spp() const {
@@ -158,12 +158,11 @@ std::string WebView::bench(int frames) const {
 // 8-bit sRGB of the image (what `phonglab-cli render -o x.png` writes), against A in a compare.
 void WebView::encode() {
   const Accumulator& accum = passes_.accum();
-  shown_width_ = accum.width * (s_.view.small_multiples ? kColumns : 1);
-  shown_height_ = accum.height * (s_.view.small_multiples ? kRows : 1);
-  shown_spp_ = accum.samples;
   shown_generation_ = s_.generation;
   s_.shown.generation = static_cast<std::uint64_t>(s_.generation);
-  s_.shown.width = shown_width_, s_.shown.height = shown_height_, s_.shown.divisor = shown_divisor_, s_.shown.spp = shown_spp_;
+  s_.shown.width = accum.width * (s_.view.small_multiples ? kColumns : 1);
+  s_.shown.height = accum.height * (s_.view.small_multiples ? kRows : 1);
+  s_.shown.spp = accum.samples;
   s_.shown.pixels = live_pixels();
   std::vector<glm::vec3> live = s_.shown.pixels;
   heat_max_ = s_.view.term == Term::kRays ? phonglab::heat_max(live) : 0;
@@ -172,10 +171,10 @@ void WebView::encode() {
     std::vector<glm::vec3> ambient(live.size());
     const double inv = 1.0 / static_cast<double>(std::max(accum.samples, 1u));
     for (std::size_t i = 0; i < ambient.size(); ++i) ambient[i] = glm::vec3(accum.terms[i].ambient * inv);
-    live = ambient_shown_pixels(s_.view.ambient_shown, live, ambient, shown_width_, s_.view.wipe);
+    live = ambient_shown_pixels(s_.view.ambient_shown, live, ambient, s_.shown.width, s_.view.wipe);
   }
   if (s_.view.compare != CompareView::kNone && s_.a.comparable(s_.shown, s_.view.compare, constant_ambient())) {
-    live = compare_pixels(live, s_.a.image().pixels, shown_width_, s_.view.compare, s_.view.wipe, s_.view.difference_gain);
+    live = compare_pixels(live, s_.a.image().pixels, s_.shown.width, s_.view.compare, s_.view.wipe, s_.view.difference_gain);
   }
   if (std::optional<std::vector<glm::vec3>> checked = formulas_.check_view_pixels()) live = std::move(*checked);
   const Display8Encoder& srgb = Display8Encoder::srgb();

@@ -55,11 +55,12 @@ class WebView final : public PageImage {
   // One pass: true when it made a new image (false: the target is reached, or the hand is on
   // and this edit's image is shown).
   bool step();
-  int image_width() const { return shown_width_; }
-  int image_height() const { return shown_height_; }
-  int spp() const { return static_cast<int>(shown_spp_); }
-  int divisor() const { return shown_divisor_; }
-  bool quads() const { return shown_quads_; }                // the image is the quad-shaded live rung (divisor 1)
+  // The image on screen (PageState::shown): its size, samples and level.
+  int image_width() const { return s_.shown.width; }
+  int image_height() const { return s_.shown.height; }
+  int spp() const { return static_cast<int>(s_.shown.spp); }
+  int divisor() const { return s_.shown.divisor; }
+  bool quads() const { return s_.shown.quads; }               // the image is the quad-shaded live rung (divisor 1)
   bool live() const { return passes_.live_shown(); }         // the image is a linear edit's recombination
   bool reshaded() const { return passes_.reshaded(); }       // this generation's first sample was re-shaded
   int generation() const { return s_.generation; }           // restarts so far
@@ -100,10 +101,8 @@ class WebView final : public PageImage {
   WebFormulas formulas_{s_, *this};
   PassScheduler passes_;  // the generation's passes, as the desktop's render thread has them
   std::vector<unsigned char> rgba_;
-  int shown_width_ = 0, shown_height_ = 0, shown_divisor_ = 8;
-  bool shown_quads_ = false;
-  std::uint32_t shown_spp_ = 0;
-  int shown_generation_ = -1, images_ = 0;
+  int shown_generation_ = -1;  // the generation of the image on screen (-1: none yet)
+  int images_ = 0;
   double heat_max_ = 0;
 };
 
