@@ -31,15 +31,10 @@
 
 namespace phonglab {
 
-void FileShell::request(FileShell::PendingAction action) {
-  s_.doc.update_dirty();  // edits made earlier in this frame count
-  if (!s_.doc.dirty()) {
-    perform(action);
-    return;
-  }
-  dialogs_.pending = std::move(action);
-  dialogs_.open_guard = true;
-}
+FileShell::FileShell(ShellState& shell, LessonShell& lesson_shell, Instruments& tools)
+    : s_(shell), lesson_shell_(lesson_shell), tools_(tools), flow_(shell.doc) {}
+
+void FileShell::request(FileShell::PendingAction action) { carry_out(flow_.request(std::move(action))); }
 
 void FileShell::perform(const FileShell::PendingAction& action) {
   switch (action.kind) {
@@ -51,46 +46,65 @@ void FileShell::perform(const FileShell::PendingAction& action) {
   }
 }
 
+void FileShell::carry_out(FileFlow::Outcome outcome) {
+  if (outcome.reload) reload_scene(false);  // the edits go, the file's version comes
+  if (outcome.saved) report_save(*outcome.saved);
+  perform(outcome.run);
+}
+
+namespace {
+
+FileFlow::Answer flow_answer(ui::GuardChoice choice) {
+  switch (choice) {
+    case ui::GuardChoice::kSave: return FileFlow::Answer::kSave;
+    case ui::GuardChoice::kSaveAs: return FileFlow::Answer::kSaveAs;
+    case ui::GuardChoice::kDiscard: return FileFlow::Answer::kDiscard;
+    case ui::GuardChoice::kOverwrite: return FileFlow::Answer::kOverwrite;
+    case ui::GuardChoice::kReload: return FileFlow::Answer::kReload;
+    case ui::GuardChoice::kCancel:
+    case ui::GuardChoice::kNone: break;
+  }
+  return FileFlow::Answer::kCancel;
+}
+
+}  // namespace
+
 void FileShell::handle_guard_modal() {
+  using Kind = FileShell::PendingAction::Kind;
+  const FileShell::PendingAction& waiting = flow_.waiting();
   ui::GuardView view;
   view.action = "quit";
-  if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kOpen) view.action = "open " + dialogs_.pending.arg;
-  if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kReload) view.action = "reload the file";
-  if (dialogs_.pending.kind == FileShell::PendingAction::Kind::kLesson) view.action = "open the lesson " + dialogs_.pending.arg;
-  view.can_save = !s_.doc.file_path().empty() && !s_.doc.opened_mesh();
-  view.changed_on_disk = !s_.doc.file_path().empty() && s_.doc.changed_on_disk();
-  const ui::GuardChoice choice = ui::unsaved_changes_modal(dialogs_.open_guard, view, file_state_.path_field);
-  if (dialogs_.open_guard) dialogs_.guard_visible = true;
-  dialogs_.open_guard = false;
+  if (waiting.kind == Kind::kOpen) view.action = "open " + waiting.arg;
+  if (waiting.kind == Kind::kReload) view.action = "reload the file";
+  if (waiting.kind == Kind::kLesson) view.action = "open the lesson " + waiting.arg;
+  view.can_save = flow_.can_save();
+  view.changed_on_disk = flow_.file_changed();
+  const bool open_now = flow_.question() == FileFlow::Question::kUnsavedChanges && !guard_visible();
+  const ui::GuardChoice choice = ui::unsaved_changes_modal(open_now, view, file_state_.path_field);
+  if (open_now) shown_ = FileFlow::Question::kUnsavedChanges;
   if (choice != ui::GuardChoice::kNone) {
-    dialogs_.guard_visible = false;
-    FileShell::PendingAction pending = std::move(dialogs_.pending);
-    dialogs_.pending = FileShell::PendingAction{};
-    if (choice == ui::GuardChoice::kSave || choice == ui::GuardChoice::kSaveAs) {
-      // A save that meets an outside change asks first; the action waits for that answer.
-      dialogs_.after_save = std::move(pending);
-      save_scene(choice == ui::GuardChoice::kSaveAs);
-    } else if (choice == ui::GuardChoice::kDiscard) {
-      perform(pending);
-    }
+    shown_ = FileFlow::Question::kNone;
+    // A save that meets an outside change asks first; the action waits for that answer.
+    carry_out(flow_.answer(flow_answer(choice), file_state_.path_field));
   }
   handle_conflict_modal();
   handle_file_browser();
 }
 
 void FileShell::handle_conflict_modal() {
-  const ui::GuardChoice choice = ui::changed_on_disk_modal(dialogs_.open_conflict, s_.doc.file_path());
-  if (dialogs_.open_conflict) dialogs_.conflict_visible = true;
-  dialogs_.open_conflict = false;
+  const bool open_now = flow_.question() == FileFlow::Question::kChangedOnDisk && !conflict_visible();
+  const ui::GuardChoice choice = ui::changed_on_disk_modal(open_now, s_.doc.file_path());
+  if (open_now) shown_ = FileFlow::Question::kChangedOnDisk;
   if (choice == ui::GuardChoice::kNone) return;
-  dialogs_.conflict_visible = false;
-  FileShell::PendingAction after = std::move(dialogs_.after_save);
-  dialogs_.after_save = FileShell::PendingAction{};
-  if (choice == ui::GuardChoice::kOverwrite) {
-    if (finish_save(s_.doc.save(true))) perform(after);
-  } else if (choice == ui::GuardChoice::kReload) {
-    reload_scene(false);  // the edits go, the file's version comes
-    if (after.kind != FileShell::PendingAction::Kind::kReload) perform(after);
+  shown_ = FileFlow::Question::kNone;
+  carry_out(flow_.answer(flow_answer(choice), file_state_.path_field));
+}
+
+void FileShell::poll_file() {
+  switch (flow_.poll(file_state_.auto_reload)) {
+    case FileFlow::OnDisk::kNothing: file_state_.changed_on_disk = false; break;
+    case FileFlow::OnDisk::kKeepEdits: file_state_.changed_on_disk = true; break;  // never throw away edits silently
+    case FileFlow::OnDisk::kReload: reload_scene(true); break;
   }
 }
 
@@ -142,34 +156,17 @@ void FileShell::reload_scene(bool keep_view) {
   s_.edits.replaced = true;
 }
 
-void FileShell::save_scene(bool as) {
-  if (as) {
-    const bool ok = s_.doc.save_as(file_state_.path_field);
-    if (ok) browser_.remember(s_.doc.file_path());
-    if (finish_save(ok ? SceneDocument::SaveResult::kSaved : SceneDocument::SaveResult::kFailed)) {
-      perform(dialogs_.after_save);
-    }
-    dialogs_.after_save = FileShell::PendingAction{};
-    return;
-  }
-  const SceneDocument::SaveResult result = s_.doc.save();
-  if (result == SceneDocument::SaveResult::kChangedOnDisk) {
-    dialogs_.open_conflict = true;  // the answer decides; dialogs_.after_save waits for it
-    return;
-  }
-  if (finish_save(result)) perform(dialogs_.after_save);
-  dialogs_.after_save = FileShell::PendingAction{};
-}
+void FileShell::save_scene(bool as) { carry_out(flow_.save(as, file_state_.path_field)); }
 
-bool FileShell::finish_save(SceneDocument::SaveResult result) {
-  if (result != SceneDocument::SaveResult::kSaved) {
+void FileShell::report_save(bool wrote) {
+  if (!wrote) {
     file_state_.error_text = s_.doc.error_text();
-    return false;
+    return;
   }
+  browser_.remember(s_.doc.file_path());
   file_state_.error_text.clear();
   file_state_.status = s_.doc.status();
   file_state_.changed_on_disk = false;
-  return true;
 }
 
 bool FileShell::begin_screenshot(Image& image) {

@@ -13,6 +13,7 @@
 #include "interaction/recovery.h"
 #include "io/image_io.h"
 #include "session/document.h"
+#include "session/file_flow.h"
 #include "ui/panels.h"
 
 namespace phonglab {
@@ -23,21 +24,8 @@ class LessonShell;
 
 class FileShell {
  public:
-  // An action that would lose unsaved edits, waiting for the modal's answer.
-  struct PendingAction {
-    enum class Kind : std::uint8_t { kNone, kQuit, kOpen, kReload, kLesson };
-    Kind kind = Kind::kNone;
-    std::string arg;  // kOpen: what to open; kLesson: the lesson's name (it waits in the session)
-  };
-  // The unsaved-changes and changed-on-disk dialogs and what waits for them.
-  struct Dialogs {
-    PendingAction pending;
-    bool open_guard = false;        // open the modal this frame
-    bool guard_visible = false;     // the modal is up
-    bool open_conflict = false;     // open the changed-on-disk dialog this frame
-    bool conflict_visible = false;  // it is up
-    PendingAction after_save;       // what runs once a save (through the dialogs) succeeds
-  };
+  // An action that would lose unsaved edits (the flow's: session/file_flow.h).
+  using PendingAction = FileFlow::Action;
   // The offer of kept edits and the exit on a signal (the files are the session's RecoveryKeeper).
   struct Recovery {
     std::optional<ui::RecoveryEntry> offer;  // found at start, waiting for an answer
@@ -47,8 +35,7 @@ class FileShell {
     bool after_lesson = false; // started with a lesson: the offer waits until it closes (never over a slide)
   };
 
-  FileShell(ShellState& shell, LessonShell& lesson_shell, Instruments& tools)
-      : s_(shell), lesson_shell_(lesson_shell), tools_(tools) {}
+  FileShell(ShellState& shell, LessonShell& lesson_shell, Instruments& tools);
   FileShell(const FileShell&) = delete;
   FileShell& operator=(const FileShell&) = delete;
 
@@ -56,8 +43,11 @@ class FileShell {
   const ui::SceneFileState& file_state() const { return file_state_; }
   ui::ScreenshotState& screenshot_state() { return screenshot_state_; }
   const ui::ScreenshotState& screenshot_state() const { return screenshot_state_; }
-  Dialogs& dialogs() { return dialogs_; }
-  const Dialogs& dialogs() const { return dialogs_; }
+  // The dialogs' decisions (what waits for which question); the modals draw its question.
+  const FileFlow& flow() const { return flow_; }
+  // Whether the unsaved-changes or the changed-on-disk dialog is up (drawn, not yet answered).
+  bool guard_visible() const { return shown_ == FileFlow::Question::kUnsavedChanges; }
+  bool conflict_visible() const { return shown_ == FileFlow::Question::kChangedOnDisk; }
   FileBrowser& browser() { return browser_; }
   const FileBrowser& browser() const { return browser_; }
   Recovery& recovery() { return recovery_; }
@@ -68,10 +58,11 @@ class FileShell {
   void handle_file_browser();              // draws the file browser and carries out its choice
   void request(PendingAction action);      // runs it, or asks first when there are unsaved edits
   void perform(const PendingAction& action);  // runs it
+  void poll_file();                        // a change on disk: reloaded, or flagged over unsaved edits
   void open_scene(const std::string& scene_arg);
   void document_replaced();                // a new document: its selection, status and recovery anew
   void reload_scene(bool keep_view);
-  void save_scene(bool as);                // Save (false) or Save as the path field (true), then dialogs_.after_save
+  void save_scene(bool as);                // Save (false) or Save as the path field (true), then what waited behind it
   bool begin_screenshot(Image& image);     // the shown image's size, or false (and why) before the first
   void save_png(const std::string& path);  // what is shown, exposure and curve applied
   void save_pfm(const std::string& path);  // the linear image
@@ -82,7 +73,8 @@ class FileShell {
   bool handle_signal();                    // a signal arrived: the recovery written, the exit code set
 
  private:
-  bool finish_save(SceneDocument::SaveResult result);  // reports the result; true when saved
+  void carry_out(FileFlow::Outcome outcome);  // what the flow left to the shell: reload, report the save, run
+  void report_save(bool wrote);               // the status or the document's error
   // Writes a screenshot and reports it in the Screenshot panel; `kind` prefixes the size.
   void write_screenshot(const std::string& path, const Image& image, const char* kind);
   void restore_recovery(const ui::RecoveryEntry& entry);
@@ -92,7 +84,8 @@ class FileShell {
   Instruments& tools_;
   ui::SceneFileState file_state_;
   ui::ScreenshotState screenshot_state_;
-  Dialogs dialogs_;
+  FileFlow flow_;
+  FileFlow::Question shown_ = FileFlow::Question::kNone;  // the question whose dialog is up
   FileBrowser browser_;  // the Open / Save-as file browser and the recent files
   Recovery recovery_;
 };

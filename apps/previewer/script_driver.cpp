@@ -174,10 +174,9 @@ void ScriptDriver::step_script(double now) {
   }
   if (!run_.auto_answer.empty() && run_.input.empty()) {
     // `auto_modal`: a dialog that opens is answered with a click on its button, as a user would.
-    const FileShell::Dialogs& dialogs = files_.dialogs();
     std::string name;
-    if (dialogs.guard_visible) name = "guard." + run_.auto_answer;
-    else if (dialogs.conflict_visible) name = "conflict.cancel";
+    if (files_.guard_visible()) name = "guard." + run_.auto_answer;
+    else if (files_.conflict_visible()) name = "conflict.cancel";
     else if (files_.recovery().modal_visible) name = "recovery.later";
     if (!name.empty()) {
       const ItemAction saved = run_.item_action;
@@ -520,18 +519,17 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
     // The open dialog's button, clicked as a user would (its name as the dialog locates it).
     constexpr const char* kUsage = "usage: modal save|save_as|discard|cancel|overwrite|reload (the recovery offer: restore|discard|later)";
     if (w.size() != 2) return step.fail(kUsage);
-    const FileShell::Dialogs& dialogs = files_.dialogs();
-    const bool recovery = files_.recovery().modal_visible && !dialogs.guard_visible && !dialogs.conflict_visible;
-    if (!recovery && !dialogs.guard_visible && !dialogs.conflict_visible) {
+    const bool recovery = files_.recovery().modal_visible && !files_.guard_visible() && !files_.conflict_visible();
+    if (!recovery && !files_.guard_visible() && !files_.conflict_visible()) {
       return step.fail("no unsaved-changes, changed-on-disk or recovery dialog is open");
     }
     const std::string& a = w[1];
     const bool known = recovery ? (a == "restore" || a == "discard" || a == "later")
-                       : dialogs.conflict_visible ? (a == "overwrite" || a == "reload" || a == "cancel")
-                                                  : (a == "save" || a == "save_as" || a == "discard" || a == "cancel");
+                       : files_.conflict_visible() ? (a == "overwrite" || a == "reload" || a == "cancel")
+                                                   : (a == "save" || a == "save_as" || a == "discard" || a == "cancel");
     if (!known) return step.fail(kUsage);
     run_.item_action = ItemAction{};
-    run_.item_action.name = (recovery ? "recovery." : dialogs.conflict_visible ? "conflict." : "guard.") + a;
+    run_.item_action.name = (recovery ? "recovery." : files_.conflict_visible() ? "conflict." : "guard.") + a;
     run_.frames_left = 1;
     return step.wait_for(ScriptWait::kItem, 99);
   }

@@ -228,7 +228,7 @@ void Viewer::wait_for_next_frame() {
   const double now = glfwGetTime();
   const bool script_running = client_ && client_->busy();
   const bool busy = !status.idle || s_.upload_pending || now - s_.platform.last_event_time() < kActivityWindow ||
-                    script_running || files_.dialogs().guard_visible || files_.browser().visible() || s_.drag.mode != DragMode::kNone;
+                    script_running || files_.guard_visible() || files_.browser().visible() || s_.drag.mode != DragMode::kNone;
   s_.stats.slept_idle = !busy;
   if (!busy) {
     // Nothing moves: sleep until an event, a new image (the render thread posts an empty
@@ -254,15 +254,7 @@ void Viewer::wait_for_next_frame() {
 void Viewer::poll_scene_file(double now) {
   if (now < next_file_poll_) return;
   next_file_poll_ = now + kFilePollPeriod;
-  if (s_.doc.file_path().empty() || !files_.file_state().auto_reload || !s_.doc.changed_on_disk()) {
-    files_.file_state().changed_on_disk = false;
-    return;
-  }
-  if (s_.doc.dirty()) {
-    files_.file_state().changed_on_disk = true;  // never throw away edits silently
-    return;
-  }
-  files_.reload_scene(true);
+  files_.poll_file();
 }
 
 void Viewer::layout() {
