@@ -1,6 +1,7 @@
 #include "interaction/scene_objects.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -746,10 +747,36 @@ std::string duplicate_material(Scene& s, int material, int& copy) {
   return {};
 }
 
+void own_edited_mtl_materials(const Scene& before, Scene& after) {
+  const std::size_t n = std::min(before.materials.size(), after.materials.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    Material& m = after.materials[i];
+    const Material& was = before.materials[i];
+    if (m.source.empty() || m.source != was.source || m.name != was.name) continue;
+    Material a = m, b = was;
+    a.source.clear();
+    b.source.clear();
+    if (!(a == b)) m.source.clear();  // the scene file's own from now on
+  }
+}
+
+std::string mtl_origin(const Scene& scene, int material) {
+  if (material < 0 || material >= static_cast<int>(scene.materials.size())) return {};
+  const Material& m = scene.materials[static_cast<std::size_t>(material)];
+  if (!m.source.empty()) return m.source;
+  for (const Mesh& mesh : scene.meshes) {
+    const std::string stem = std::filesystem::path(mesh.file).stem().string() + "/";
+    if (mesh.material_override.empty() && m.name.rfind(stem, 0) == 0) return mesh.file;
+  }
+  return {};
+}
+
 std::string rename_material(Scene& s, int material, const std::string& name) {
   if (material < 0 || material >= static_cast<int>(s.materials.size())) return "no such material";
   Material& m = s.materials[static_cast<std::size_t>(material)];
-  if (!m.source.empty()) return "'" + m.name + "' comes from " + m.source + "'s MTL file: rename it there";
+  if (const std::string origin = mtl_origin(s, material); !origin.empty()) {
+    return "'" + m.name + "' comes from " + origin + "'s MTL file: rename it there";
+  }
   if (name.empty()) return "a material needs a name";
   if (name == m.name) return {};
   if (find_material(s, name) >= 0) return "a material named '" + name + "' exists already";

@@ -127,6 +127,14 @@ std::string unused_material_name(const Scene& scene, const std::string& base);
 std::string new_material(Scene& scene, const std::string& name, int& index);
 std::string duplicate_material(Scene& scene, int material, int& copy);
 std::string rename_material(Scene& scene, int material, const std::string& name);
+// An MTL material whose coefficients an edit changed (`before` -> `after`, material by material)
+// becomes the scene file's own: saved in its "materials" under the MTL material's name, which
+// the mesh takes it by again when the file is read. Without it the edit would be shown, but
+// neither unsaved nor ever written. Undo gives the MTL's back.
+void own_edited_mtl_materials(const Scene& before, Scene& after);
+// The mesh file whose MTL material `material` stands for (an MTL material, or one edited and
+// owned by the scene file); empty for the scene file's other materials.
+std::string mtl_origin(const Scene& scene, int material);
 // Whether the object uses the material (a mesh through its override or its MTL's triangles),
 // and how many objects do.
 bool uses_material(const Scene& scene, int object, int material);

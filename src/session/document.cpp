@@ -118,8 +118,11 @@ bool SceneDocument::reload(bool keep_view) {
 }
 
 bool SceneDocument::write(const std::string& path) {
-  std::string dir = std::filesystem::path(path).parent_path().string();
-  const std::string error = write_file_atomically(path, scene_to_json(scene_, dir.empty() ? "." : dir));
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  const std::string dir = parent.empty() ? std::string(".") : parent.string();
+  // An embedded scene's meshes go beside it first: the file then opens anywhere.
+  std::string error = write_embedded_meshes(scene_, dir);
+  if (error.empty()) error = write_file_atomically(path, scene_to_json(scene_, dir));
   if (!error.empty()) {
     error_text_ = error;
     return false;

@@ -1,5 +1,7 @@
 #include "session/session.h"
 
+#include "interaction/scene_objects.h"
+
 #include <type_traits>
 #include <utility>
 
@@ -53,6 +55,7 @@ Applied Session::apply(const Edit& e) {
       },
       e.change);
   if (!valid) return {};
+  ui::own_edited_mtl_materials(before, scene);  // an MTL material's edit is saved like any other
   Applied applied;
   applied.scope = edit_scope(before, scene);
   // A rename changes no pixel but the file; navigation changes pixels but not the file.

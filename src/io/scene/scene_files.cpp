@@ -91,9 +91,12 @@ glm::dmat3 rotation_of(const MeshTransform& t) {
 
 
 // Reads an OBJ (and its MTL) and places it in the world. MTL materials get indices from
-// `material_base` on; with `override_material` >= 0 every face uses that instead.
+// `material_base` on, except those the scene file defines itself under the MTL material's name
+// ("stem/name": an MTL material edited and saved), whose faces use the scene's; with
+// `override_material` >= 0 every face uses that instead.
 MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshTransform& transform,
-                   NsMapping ns, int override_material, int material_base) {
+                   NsMapping ns, int override_material, int material_base,
+                   const std::unordered_map<std::string, int>& defined) {
   MeshLoad out;
   std::string error;
   const std::optional<std::string> text = files.read(file, error);
@@ -117,9 +120,17 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
     return out;
   }
   const std::string stem = std::filesystem::path(file).stem().string();
+  std::vector<int> slot(obj.materials.size(), override_material);  // each MTL material's index in the scene
   if (override_material < 0) {
-    for (Material& m : obj.materials) {
+    int next = material_base;
+    for (std::size_t j = 0; j < obj.materials.size(); ++j) {
+      Material& m = obj.materials[j];
       m.name = stem + "/" + m.name;
+      if (const auto own = defined.find(m.name); own != defined.end()) {
+        slot[j] = own->second;  // the scene file's own version of it
+        continue;
+      }
+      slot[j] = next++;
       m.source = file;
       out.materials.push_back(std::move(m));
     }
@@ -184,7 +195,7 @@ MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshT
       std::swap(t.v1, t.v2);
       std::swap(t.n1, t.n2);
     }
-    t.material = override_material >= 0 ? override_material : material_base + t.material;
+    t.material = slot[static_cast<std::size_t>(t.material)];
     return t;
   };
   // triangle_bounds(make(i)) without making the Triangle: its corners grown in the same order.

@@ -61,7 +61,7 @@ LoadResult load_obj_scene(const std::string& path) {
   const std::string dir = std::filesystem::path(path).parent_path().string();
   const SceneFiles files{dir.empty() ? "." : dir, false};
   const std::string name = std::filesystem::path(path).filename().string();
-  MeshLoad loaded = load_mesh(files, name, MeshTransform{}, NsMapping::kAsIs, -1, 0);
+  MeshLoad loaded = load_mesh(files, name, MeshTransform{}, NsMapping::kAsIs, -1, 0, {});
   LoadResult r;
   // The mesh's own problems name the OBJ by the path it was opened with, an MTL's the MTL's path.
   const auto diagnostic = [&](Diagnostic d) {

@@ -64,6 +64,13 @@ std::string scene_to_plain_json(const Scene& scene, const std::string& save_dir 
 // half-written file. Returns an empty string on success, else the error.
 std::string write_file_atomically(const std::string& path, const std::string& text);
 
+// Writes the embedded mesh files (each OBJ and the MTL files it names) that the scene's meshes
+// name without a file on disk (an embedded scene's, a lesson step's) into `dir`, where a scene
+// saved there looks for them: a saved copy of the Cornell box opens again anywhere. A file
+// already there with the same bytes stays; one with other bytes is never overwritten (the
+// error says so, and the scene should be saved elsewhere). Empty on success, else the error.
+std::string write_embedded_meshes(const Scene& scene, const std::string& dir);
+
 // A number as scene files write it: the shortest decimal that reads back to the same double, in
 // plain or exponent notation, whichever is shorter (plain on a tie): 40, 0.04, 1e-05, as
 // std::to_chars writes it. Computed with printf alone, so WebAssembly (whose libc++ has no

@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -76,7 +77,8 @@ std::string os_reason(int err);
 std::optional<std::string> read_text_file(const std::string& path, std::size_t limit, std::string& error);
 glm::dmat3 rotation_of(const MeshTransform& t);
 MeshLoad load_mesh(const SceneFiles& files, const std::string& file, const MeshTransform& transform,
-                   NsMapping ns, int override_material, int material_base);
+                   NsMapping ns, int override_material, int material_base,
+                   const std::unordered_map<std::string, int>& defined);
 
 // Pass 4 and the whole load: diagnostics from issues, and one text to a LoadResult.
 std::vector<Diagnostic> to_diagnostics(std::string_view t, std::vector<Issue> issues,

@@ -324,7 +324,7 @@ class Validator : private SceneMembers {
     }
     if (!ok || file == nullptr) return;
     MeshLoad loaded = load_mesh(files_, mesh.file, mesh.transform, ns, override_material,
-                                static_cast<int>(s.materials.size()));
+                                static_cast<int>(s.materials.size()), material_index_);
     for (const Diagnostic& w : loaded.warnings) warnings_.add({index_.begin(file->node), file->path, w.to_string()});
     if (!loaded.errors.empty()) {
       for (const Diagnostic& problem : loaded.errors) report(*file, problem.to_string());

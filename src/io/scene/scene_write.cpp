@@ -376,3 +376,60 @@ std::string write_file_atomically(const std::string& given, const std::string& t
 
 
 }  // namespace phonglab
+
+namespace phonglab {
+
+namespace {
+
+// The names after `mtllib` in an OBJ's text.
+std::vector<std::string> mtl_names(std::string_view obj) {
+  std::vector<std::string> names;
+  std::size_t at = 0;
+  while (at < obj.size()) {
+    std::size_t end = obj.find('\n', at);
+    if (end == std::string_view::npos) end = obj.size();
+    std::string_view line = obj.substr(at, end - at);
+    at = end + 1;
+    if (line.rfind("mtllib", 0) != 0 || line.size() < 7 || (line[6] != ' ' && line[6] != '\t')) continue;
+    std::istringstream words{std::string(line.substr(7))};
+    for (std::string name; words >> name;) names.push_back(name);
+  }
+  return names;
+}
+
+// Writes one embedded file to `target` unless the same bytes are there already.
+std::string write_embedded(const std::string& target, const std::string& text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(target, ec)) {
+    std::string error;
+    const std::optional<std::string> there = read_text_file(target, text.size() + 1, error);
+    if (there && *there == text) return {};
+    return target + ": exists with other contents, which were kept: save the scene in another folder";
+  }
+  fs::create_directories(fs::path(target).parent_path(), ec);
+  if (ec) return target + ": cannot create its folder: " + ec.message();
+  return write_file_atomically(target, text);
+}
+
+}  // namespace
+
+std::string write_embedded_meshes(const Scene& scene, const std::string& dir) {
+  namespace fs = std::filesystem;
+  for (const Mesh& mesh : scene.meshes) {
+    if (!mesh.resolved_path.empty()) continue;  // read from disk: named relative to the saved file
+    const std::optional<std::string> obj = embedded_file(mesh.file);
+    if (!obj) continue;  // not an embedded file either: the scene names it as it was written
+    const fs::path folder = fs::path(dir) / fs::path(mesh.file).parent_path();
+    if (std::string error = write_embedded((fs::path(dir) / mesh.file).string(), *obj); !error.empty()) return error;
+    const std::string obj_folder = fs::path(mesh.file).parent_path().generic_string();
+    for (const std::string& mtl : mtl_names(*obj)) {
+      const std::optional<std::string> text = embedded_file(obj_folder.empty() ? mtl : obj_folder + "/" + mtl);
+      if (!text) continue;  // the loader warns about a missing MTL when the scene is read
+      if (std::string error = write_embedded((folder / mtl).string(), *text); !error.empty()) return error;
+    }
+  }
+  return {};
+}
+
+}  // namespace phonglab
