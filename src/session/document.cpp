@@ -122,7 +122,15 @@ bool SceneDocument::write(const std::string& path) {
   const std::string dir = parent.empty() ? std::string(".") : parent.string();
   // An embedded scene's meshes go beside it first: the file then opens anywhere.
   std::string error = write_embedded_meshes(scene_, dir);
-  if (error.empty()) error = write_file_atomically(path, scene_to_json(scene_, dir));
+  if (error.empty()) {
+    // They are files on disk now, named from wherever the scene is written next (a recovery).
+    for (Mesh& mesh : scene_.meshes) {
+      if (mesh.resolved_path.empty() && embedded_file(mesh.file)) {
+        mesh.resolved_path = std::filesystem::absolute(std::filesystem::path(dir) / mesh.file).lexically_normal().string();
+      }
+    }
+    error = write_file_atomically(path, scene_to_json(scene_, dir));
+  }
   if (!error.empty()) {
     error_text_ = error;
     return false;

@@ -73,6 +73,19 @@ TEST_F(MtlEdits, SaveWritesTheEditAndTheFileReadAgainGivesTheMeshThatMaterialOnc
   const std::string path = (dir / "walls.json").string();
   ASSERT_TRUE(session.document().save_as(path)) << session.document().error_text();
   EXPECT_FALSE(session.dirty());
+  // Edited again and kept by a recovery (written in the state folder): it loads back there too.
+  set_wall_kd(Color(0.3, 0.2, 0.1));
+  RecoveryKeeper keeper((dir / "state").string());
+  ASSERT_FALSE(keeper.write(session.document()).empty()) << keeper.error();
+  const auto entry = keeper.find(session.document(), false);
+  ASSERT_TRUE(entry);
+  SceneDocument restored;
+  ASSERT_TRUE(restored.open(path));
+  ASSERT_EQ(keeper.restore(restored, *entry).error, "");
+  const int kept = ui::find_material(restored.scene(), "CornellBox-Original/backWall");
+  ASSERT_GE(kept, 0);
+  EXPECT_EQ(restored.scene().materials.at(static_cast<std::size_t>(kept)).kd, Color(0.3, 0.2, 0.1));
+  ASSERT_TRUE(session.undo());
 
   Session again{""};
   ASSERT_TRUE(again.open(path)) << again.document().error_text();
