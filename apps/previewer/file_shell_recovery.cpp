@@ -103,11 +103,7 @@ void FileShell::restore_recovery(const ui::RecoveryEntry& entry) {
     file_state_.error_text = r.error;
     return;
   }
-  file_state_.status = "restored the unsaved edits kept in " + entry.scene_path;
-  if (r.changed_on_disk) {
-    file_state_.status += "; " + entry.source +
-                          " changed on disk since they were made: Save asks before it overwrites that change";
-  }
+  file_state_.status = r.status;
   s_.edits.replaced = true;
 }
 

@@ -7,6 +7,7 @@
 #include "apps/previewer/viewer_app.h"
 #include "io/formula_file.h"
 #include "io/image_read.h"
+#include "session/student_image.h"
 
 namespace phonglab {
 
@@ -149,38 +150,19 @@ bool FormulaShell::sync_rules() {
 }
 
 std::string FormulaShell::open_image(const std::string& path) {
-  std::string error;
-  const std::optional<ReadImage> read = read_image_file(path, &error);
-  const std::string name = std::filesystem::path(path).filename().string();
-  if (read && (read->width != s_.schedule.width() || read->height != s_.schedule.height())) {
-    error = name + " is " + std::to_string(read->width) + "x" + std::to_string(read->height) + ", the view renders " +
-            std::to_string(s_.schedule.width()) + "x" + std::to_string(s_.schedule.height()) +
-            ": render yours at the view's size (phonglab-cli probe's command in the Probe panel names it)";
+  OpenedStudentImage opened = open_student_image(path, s_.schedule.width(), s_.schedule.height(),
+                                                 "phonglab-cli probe's command in the Probe panel names it");
+  if (!opened.image) {
+    image_error_ = opened.error;  // the last image, if any, stays
+    return opened.error;
   }
-  if (!error.empty()) {
-    image_error_ = error;  // the last image, if any, stays
-    return error;
-  }
-  image_ = student_image(*read);
-  image_name_ = name;
+  image_ = std::move(opened.image);
+  image_name_ = opened.name;
   image_error_.clear();
   image_result_.reset();
   image_check_pending_ = true;
   // A of the compare: the student's image as linear values, as the screen shows a render.
-  ProgressiveFrame a;
-  a.width = image_->width;
-  a.height = image_->height;
-  a.spp = 1;
-  a.pixels.resize(static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height));
-  const bool codes = image_->units == StudentImage::Units::kCodes8;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    const auto at = [&](std::size_t c) {
-      const double v = image_->rgb[3 * i + c];
-      return static_cast<float>(codes ? srgb_to_linear(v / 255) : v);
-    };
-    a.pixels[i] = glm::vec3(at(0), at(1), at(2));
-  }
-  tools_.compare().set_file_image(std::move(a), name);
+  tools_.compare().set_file_image(compare_frame(*image_), image_name_);
   s_.instruments.compare = 2;  // |live - A|: where yours differs
   panel_.view = ui::FormulaView::kDifference;
   unfold_ = true;

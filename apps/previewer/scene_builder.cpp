@@ -9,6 +9,8 @@
 #include "apps/previewer/script_words.h"
 #include "apps/previewer/scene_builder.h"
 
+#include "session/dropped_file.h"
+
 #include "apps/previewer/viewer_app.h"
 #include "core/accel/accel.h"
 #include "interaction/camera_control.h"
@@ -178,27 +180,24 @@ std::string SceneBuilder::add_material(const std::string& name) {
 }
 
 std::string SceneBuilder::drop_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return refuse("dropped '" + path + "': not a file");
-  if (is_obj_path(path)) return add_object(ObjectRef::Kind::kMesh, path);
-  const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".json" || ext == ".JSON") {
-    if (is_lesson_file(path)) {
-      lesson_shell_.open_lesson(path);  // a lesson: opened as one (unsaved edits guarded as for Open)
+  const DroppedFile dropped = classify_drop(path);
+  switch (dropped.kind) {
+    case DroppedFile::Kind::kMesh: return add_object(ObjectRef::Kind::kMesh, path);
+    case DroppedFile::Kind::kLesson: lesson_shell_.open_lesson(path); return {};  // unsaved edits guarded as for Open
+    case DroppedFile::Kind::kScene:
+      files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
       return {};
+    case DroppedFile::Kind::kImage: {
+      // A student's own render of the view: checked against the reference (docs/checking.md).
+      const std::string why = formulas_.open_image(path);
+      files_.file_state().error_text = why;  // a refusal where one looks; a check clears the last
+      return why;
     }
-    files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kOpen, path});  // through the unsaved-changes guard
-    return {};
-  }
-  if (ext == ".png" || ext == ".PNG" || ext == ".ppm" || ext == ".PPM" || ext == ".pfm" || ext == ".PFM") {
-    // A student's own render of the view: checked against the reference (docs/checking.md).
-    const std::string why = formulas_.open_image(path);
-    files_.file_state().error_text = why;  // a refusal where one looks; a check clears the last
-    return why;
+    case DroppedFile::Kind::kRefused: break;
   }
   // Said where one looks (the overlay's error line and the Scene file panel), not only in the
   // Objects panel, which may be folded.
-  const std::string why = refuse("dropped '" + path + "': not a scene or a lesson (.json), a mesh (.obj), nor an image to check (.png, .ppm, .pfm)");
+  const std::string why = refuse(dropped.refusal);
   files_.file_state().error_text = why;
   return why;
 }

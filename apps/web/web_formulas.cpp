@@ -1,5 +1,7 @@
 #include "apps/web/web_formulas.h"
 
+#include "session/student_image.h"
+
 #include <algorithm>
 
 #include "io/check_report.h"
@@ -54,23 +56,13 @@ std::string WebFormulas::check_formulas_json() {
 }
 
 std::string WebFormulas::check_image_json(const std::string& path) {
-  std::string error;
-  const std::optional<ReadImage> read = read_image_file(path, &error);
-  if (read && (read->width != s_.width || read->height != s_.height)) {
-    error = path + " is " + std::to_string(read->width) + "x" + std::to_string(read->height) + ", the view renders " +
-            std::to_string(s_.width) + "x" + std::to_string(s_.height) + ": render yours at the view's size";
-  }
-  if (!error.empty()) return nlohmann::json{{"error", error}}.dump();
+  OpenedStudentImage opened = open_student_image(path, s_.width, s_.height);
+  if (!opened.image) return nlohmann::json{{"error", opened.error}}.dump();
   Scene scene = view_scene(s_.session.scene(), s_.view);
   CheckOptions options;
   options.threads = s_.threads;
-  s_.image_check = check_image(scene, student_image(*read), options);
-  ProgressiveFrame a;
-  a.width = s_.image_check->width;
-  a.height = s_.image_check->height;
-  a.spp = 1;
-  for (const Color& c : s_.image_check->yours) a.pixels.emplace_back(c);
-  s_.a.set_file_image(std::move(a), path);
+  s_.image_check = check_image(scene, *opened.image, options);
+  s_.a.set_file_image(compare_frame(*opened.image), opened.name);
   s_.check_view = 2;
   image_.reshow();
   return check_to_json(*s_.image_check);

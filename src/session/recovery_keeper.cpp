@@ -86,10 +86,14 @@ RecoveryKeeper::Restored RecoveryKeeper::restore(SceneDocument& doc, const ui::R
   text << in.rdbuf();
   const std::string dir = std::filesystem::path(entry.scene_path).parent_path().string();
   LoadResult r = load_scene_text(text.str(), entry.scene_path, dir, entry.embedded);
-  if (!r.ok()) return Restored{r.error_text(), false};
+  if (!r.ok()) return Restored{r.error_text(), false, {}};
   doc.restore_edits(std::move(*r.scene));
   Restored out;
   if (!entry.embedded) out.changed_on_disk = doc.edits_made_over(entry.base);
+  out.status = "restored the unsaved edits kept in " + entry.scene_path;
+  if (out.changed_on_disk) {
+    out.status += "; " + entry.source + " changed on disk since they were made: Save asks before it overwrites that change";
+  }
   adopt(entry);
   return out;
 }

@@ -47,6 +47,7 @@ class RecoveryKeeper {
   struct Restored {
     std::string error;           // empty on success
     bool changed_on_disk = false;  // the file changed since the edits were made
+    std::string status;            // what the restore did, as the Scene file panel says it
   };
   Restored restore(SceneDocument& doc, const ui::RecoveryEntry& entry);
 

@@ -168,6 +168,11 @@ TEST_F(RecoveryFiles, ARestoredSessionAsksBeforeItOverwritesAnOutsideChange) {
     ASSERT_TRUE(restored.error.empty()) << restored.error;
     EXPECT_EQ(next.scene().materials.at(0).kd, Color(0.125));
     EXPECT_EQ(restored.changed_on_disk, outside_change);
+    EXPECT_EQ(restored.status, "restored the unsaved edits kept in " + entry->scene_path +
+                                   (outside_change ? "; " + file +
+                                                         " changed on disk since they were made: Save asks before it "
+                                                         "overwrites that change"
+                                                   : ""));
     EXPECT_EQ(next.changed_on_disk(), outside_change);
     if (outside_change) {
       EXPECT_EQ(next.save(), SceneDocument::SaveResult::kChangedOnDisk);
