@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# GUI tests of the previewer (issue 3), under Xvfb with Mesa's llvmpipe.
+# The previewer's GUI tests, under Xvfb with Mesa's llvmpipe: what only the window can show.
 #
 #   tests/gui/run_gui_tests.sh BUILD_DIR [OUT_DIR]
 #
 # Starts BUILD_DIR/bin/phonglab with a test script (commands run inside its main loop; see
 # docs/previewer.md) and real X input from xdotool, then checks the screenshots and state dumps
-# it wrote: the scene is visible, dragging changes the view, a material edit changes the image,
-# the light marker can be dragged, exposure does not restart rendering, a 1x1 window survives,
-# the unsaved-changes guard stops a quit, scene files reload when they change and bad ones show
-# their diagnostics while the last good scene stays. Exit status 0 when every check passes.
-# Needs: xvfb-run, xdotool, ImageMagick (convert, compare).
+# it wrote: real input (drags, clicks, keys, the arrow of a light out of view, H taps), pixels on
+# the screen (the screen's codes against phonglab-cli's PNG, the difference views, overlays apart)
+# and the process (signals, no display, a 1x1 window). The rules those sessions lean on (files
+# and their dialogs, recovery, lessons, formulas, images, building, instruments) are GoogleTests
+# over the session (tests/session, tests/interaction, tests/check; docs/architecture.md says
+# which). Exit status 0 when every check passes. Needs: xvfb-run, xdotool, ImageMagick.
 set -u
 
 SELF_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -157,7 +158,7 @@ check_view() {
   check "UI frames were timed" grep -q '^summary session ui_frames' "$dir/stats.log"
 }
 
-# --- Session 2: scene files: auto-reload, bad files, save as, open guard -------------------
+# A scene file of the test's own.
 write_scene() {  # write_scene FILE RED_KD RADIUS
   cat >"$1" <<EOF
 {
@@ -174,85 +175,6 @@ write_scene() {  # write_scene FILE RED_KD RADIUS
   ]
 }
 EOF
-}
-
-session_files() {
-  local dir=$OUT/files
-  mkdir -p "$dir"
-  rm -f "$dir"/saved.json
-  write_scene "$dir/scene.json" "[0.8, 0.1, 0.1]" 0.8
-  cat >"$dir/script.txt" <<EOF
-set render resolution_scale 0.25
-set render target_spp 1
-wait_idle 120
-dump_state $dir/f01.txt
-touch $dir/ready_edit
-wait_file $dir/edit_done 60
-wait_frames 60
-wait_idle 120
-dump_state $dir/f02.txt
-touch $dir/ready_break
-wait_file $dir/break_done 60
-wait_frames 60
-dump_state $dir/f03.txt
-screenshot $dir/f03_error.png
-set material red kd 0.5
-save_as $dir/saved.json
-dump_state $dir/f04.txt
-open $dir/missing.json
-wait_frames 2
-dump_state $dir/f05.txt
-set material red kd 0.25
-open lecture
-wait_frames 3
-dump_state $dir/f06.txt
-modal cancel
-wait_frames 3
-dump_state $dir/f07.txt
-open lecture
-wait_frames 3
-modal save
-wait_frames 3
-dump_state $dir/f08.txt
-set display ui_size 1.5
-wait_frames 3
-screenshot $dir/f09_ui_size.png
-dump_state $dir/f09.txt
-quit
-EOF
-  "$BIN" "$dir/scene.json" --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
-  local pid=$!
-  if wait_for_file "$dir/ready_edit" 120 "$pid"; then
-    write_scene "$dir/scene.json.new" "[0, 0, 1]" 0.8
-    mv "$dir/scene.json.new" "$dir/scene.json"
-    touch "$dir/edit_done"
-  fi
-  if wait_for_file "$dir/ready_break" 120 "$pid"; then
-    write_scene "$dir/scene.json.new" "[0, 1, 0]" -1
-    mv "$dir/scene.json.new" "$dir/scene.json"
-    touch "$dir/break_done"
-  fi
-  finish "$dir" "$pid"
-}
-
-check_files() {
-  local dir=$OUT/files
-  echo "session 2: scene files"
-  check_exit "$dir" "exits 0"
-  check "opens the file given on the command line" test "$(state "$dir/f01.txt" file)" = "$dir/scene.json"
-  check "a changed file reloads by itself ($(state "$dir/f02.txt" status))" test "$(state "$dir/f02.txt" material_red_kd)" = "0 0 1"
-  check "a broken file shows its diagnostics ($(state "$dir/f03.txt" error))" \
-    grep -q '^error=.*scene.json:[0-9]*:[0-9]*: objects\[1\].radius' "$dir/f03.txt"
-  check "a broken file keeps the last good scene" test "$(state "$dir/f03.txt" material_red_kd)" = "0 0 1"
-  check "save as writes the file and clears the unsaved mark" test "$(state "$dir/f04.txt" dirty)" = 0 -a -s "$dir/saved.json"
-  check "save as makes the new file the document" test "$(state "$dir/f04.txt" file)" = "$dir/saved.json"
-  check "opening a missing file shows an error ($(state "$dir/f05.txt" error))" grep -q '^error=.*missing.json' "$dir/f05.txt"
-  check "opening a missing file keeps the scene" test "$(state "$dir/f05.txt" file)" = "$dir/saved.json"
-  check "open with unsaved edits asks first" test "$(state "$dir/f06.txt" modal)" = 1
-  check "Cancel keeps the scene and its edits" test "$(state "$dir/f07.txt" file)-$(state "$dir/f07.txt" dirty)" = "$dir/saved.json-1"
-  check "Save then opens the other scene ($(state "$dir/f08.txt" source))" test "$(state "$dir/f08.txt" source)" = "embedded scene 'lecture'"
-  check "Save wrote the edit" grep -q '0.25' "$dir/saved.json"
-  check "a larger UI size narrows the viewport ($(state "$dir/f09.txt" render))" test "$(state "$dir/f09.txt" render)" = 170x180
 }
 
 # --- Session 3: teaching instruments: probe, undo/redo, solo, compare, small multiples -----
@@ -275,17 +197,12 @@ dump_state $dir/i03.txt
 set instruments probe_mode 0
 set material plastic kd 0.9 0.1 0.1
 wait_frames 2
-dump_state $dir/i04.txt
 key Z ctrl
 wait_frames 2
 dump_state $dir/i05.txt
 key Z ctrl shift
 wait_frames 2
 dump_state $dir/i06.txt
-solo 0
-wait_frames 2
-dump_state $dir/i07.txt
-solo 0
 wait_idle 120
 snapshot_a
 set material plastic kd 0.1 0.1 0.9
@@ -301,19 +218,15 @@ wait_idle 120
 probe 440 401
 wait_frames 2
 screenshot $dir/i10_multiples.png
-dump_state $dir/i10.txt
-figure $dir/figure.png
 set instruments multiples 0
 set display stats 0
 set render term diffuse
 set instruments head 1
 wait_idle 120
-dump_state $dir/h00.txt
 snapshot_a
 set instruments compare 2
 set instruments head_angle 40
 wait_idle 120
-dump_state $dir/h01.txt
 screenshot $dir/h01_head_diffuse_difference.png
 set render term specular
 set instruments head_angle 0
@@ -348,22 +261,15 @@ check_instruments() {
     test "$(state "$dir/i02.txt" probe_pixel)" != "$(state "$dir/i01.txt" probe_pixel)"
   check "a plain click in probe mode probes ($(state "$dir/i03.txt" probe_pixel))" \
     test "$(state "$dir/i03.txt" probe_pixel)" != "$(state "$dir/i02.txt" probe_pixel)"
-  check "an edit is one undo step (undo=$(state "$dir/i04.txt" undo))" test "$(state "$dir/i04.txt" undo)" = 1
   check "Ctrl+Z restores the material ($(state "$dir/i05.txt" material_plastic_kd))" \
     test "$(state "$dir/i05.txt" material_plastic_kd)" != "0.9 0.1 0.1" -a "$(state "$dir/i05.txt" redo)" = 1
   check "Ctrl+Shift+Z redoes it" test "$(state "$dir/i06.txt" material_plastic_kd)" = "0.9 0.1 0.1"
-  check "solo leaves one light on ($(state "$dir/i07.txt" lights_enabled))" test "$(state "$dir/i07.txt" lights_enabled)" = 10
   check "the difference view shows the edited sphere against black" \
     greater "$(stddev "$dir/i08_difference.png" $SCENE_REGION)" 0.02
   check "the wipe differs from the difference view" \
     greater "$(rmse "$dir/i08_difference.png" "$dir/i09_wipe.png" $SCENE_REGION)" 0.02
-  check "small multiples are on" test "$(state "$dir/i10.txt" multiples)" = 1
   check "small multiples: the ambient and diffuse cells differ" \
     greater "$(rmse_regions "$dir/i10_multiples.png" 280x300+5+30 280x300+298+30)" 0.02
-  check "the slide figure was written" test -s "$dir/figure.png"
-  check "move your head: the shading eye moved, the camera did not ($(state "$dir/h01.txt" head_eye))" \
-    test "$(state "$dir/h01.txt" head)" = 1 -a "$(state "$dir/h01.txt" head_eye)" != "$(state "$dir/h00.txt" head_eye)" \
-    -a "$(state "$dir/h01.txt" camera_position)" = "$(state "$dir/h00.txt" camera_position)"
   local diffuse_mean specular_mean
   diffuse_mean=$(convert "$dir/h01_head_diffuse_difference.png" -crop 880x290+0+280 +repage -format '%[fx:mean]' info:)
   specular_mean=$(convert "$dir/h02_head_specular_difference.png" -crop 880x290+0+280 +repage -format '%[fx:mean]' info:)
@@ -512,23 +418,18 @@ check_rays() {
 
 # --- Session 5: the lecture's first minutes (issue 12): every bug has its regression check ----
 session_lecture() {
-  local dir=$OUT/lecture src=$SELF_DIR/../..
+  local dir=$OUT/lecture
   mkdir -p "$dir"
   cat >"$dir/script.txt" <<EOF
 set render target_spp 1
 wait_idle 120
 dump_state $dir/l00.txt
 screenshot $dir/l00_start.png
-# Undoing every edit leaves the scene unmodified.
+# The plastic sphere's material selected for the ks slider's drag below.
 set material plastic kd 0.9 0.1 0.1
 wait_frames 3
-set material plastic ks 0.8
-wait_frames 3
-dump_state $dir/l07.txt
-undo
 undo
 wait_frames 3
-dump_state $dir/l08.txt
 # The orbit follows the hand: 20 px down looks from higher up; 600 px either way stops at a pole.
 drag left 440 400 440 420 4
 wait_idle 120
@@ -581,20 +482,9 @@ wait_frames 2
 snapshot_a
 set instruments compare 2
 wait_frames 1
-dump_state $dir/l09.txt
 wait_idle 120
 wait_frames 3
 screenshot $dir/l10_difference_same_eye.png
-dump_state $dir/l10.txt
-# After a resize the wipe says why A is not shown.
-set instruments compare 1
-resize 1000 600
-wait_frames 5
-wait_idle 120
-dump_state $dir/l11.txt
-screenshot $dir/l11_wipe_after_resize.png
-resize 1280 720
-wait_frames 5
 set instruments compare 0
 set instruments head 0
 set render target_spp 1
@@ -668,16 +558,7 @@ drag_item material.ks 23 0
 wait_frames 3
 save_as $dir/noise.json
 dump_state $dir/l22.txt
-# Messages: an MTL is not a scene; an OBJ opened alone cannot be saved over; the figure's path.
-open $src/assets/scenes/cornell/CornellBox-Original.mtl
-wait_frames 2
-dump_state $dir/l23.txt
-show_item panel.Scene_file
-wait_frames 3
-screenshot $dir/l23_mtl_message.png
-open $src/assets/scenes/cornell/CornellBox-Original.obj
-wait_idle 120
-dump_state $dir/l24.txt
+# The figure's status names its full path.
 figure $dir/figure.png
 dump_state $dir/l25.txt
 # The embedded scenes at this window's aspect, and the overlays on a light background.
@@ -750,9 +631,6 @@ check_lecture() {
     awk -v p="$p2" 'BEGIN { split(p, v, " "); exit !(v[2] > 6 && v[3] > 0) }'
   check "600 px up: down to the floor, never under it ($p3)" \
     awk -v p="$p3" 'BEGIN { split(p, v, " "); exit !(v[2] > 0 && v[2] < 0.5 && v[3] > 0) }'
-  check "camera_up and camera_fov are dumped ($(state "$dir/l00.txt" camera_up), $(state "$dir/l00.txt" camera_fov))" \
-    test "$(state "$dir/l00.txt" camera_up)" = "0 1 0" -a -n "$(state "$dir/l00.txt" camera_fov)"
-  check "the lecture's point light starts out of view, as an arrow at the edge" test "$(state "$dir/l00.txt" light0_offscreen)" = 1
   check "dragging the arrow moved the light, not the camera ($(state "$dir/l04.txt" light0_position))" \
     test "$(state "$dir/l04.txt" camera_position)" = "$(state "$dir/l03r.txt" camera_position)" \
     -a "$(state "$dir/l04.txt" light0_position)" != "$(state "$dir/l03r.txt" light0_position)"
@@ -760,15 +638,9 @@ check_lecture() {
   check "seven instant H taps: seven toggles, none lost ($(state "$dir/l05.txt" sidebar_toggles))" \
     test "$(state "$dir/l05.txt" sidebar_toggles)" = 7 -a "$(state "$dir/l05.txt" sidebar)" = 0
   check "the UI size slider keeps the dragged value ($(state "$dir/l06.txt" ui_size))" greater "$(state "$dir/l06.txt" ui_size)" 1.05
-  check "two edits: modified, two undo steps" test "$(state "$dir/l07.txt" dirty)-$(state "$dir/l07.txt" undo)" = 1-2
-  check "undoing both: not modified any more" test "$(state "$dir/l08.txt" dirty)" = 0
-  check "A asked for mid-render waits for the finished image ($(state "$dir/l09.txt" compare_caption))" \
-    grep -q '^compare_caption=A is taken when the image is done' "$dir/l09.txt"
   local mean
   mean=$(convert "$dir/l10_difference_same_eye.png" -crop 880x300+0+300 +repage -format '%[fx:mean]' info:)
   check "the same eye against that A: |live - A| is black (mean $mean)" less "$mean" 0.0005
-  check "after a resize the wipe says why A is not shown ($(state "$dir/l11.txt" compare_caption))" \
-    grep -q '^compare_caption=A is .*take A again' "$dir/l11.txt"
   check "Snapshot A moved no control" cmp -s <(grep '^item_' "$dir/l12.txt") <(grep '^item_' "$dir/l13.txt")
   check "key 4 shows the specular term, and the image says so ($(state "$dir/l14.txt" caption0))" \
     test "$(state "$dir/l14.txt" term)" = specular -a -n "$(grep '^caption0=specular only: ' "$dir/l14.txt")"
@@ -790,79 +662,17 @@ check_lecture() {
   local ks
   ks=$(sed -n '/"plastic": {/,/}/p' "$dir/noise.json" | grep '"ks"')
   check "a dragged slider saves the value it showed ($ks)" grep -qE '"ks": \[0\.[0-9]{1,3}, 0\.[0-9]{1,3}, 0\.[0-9]{1,3}\]' <<<"$ks"
-  check "and nothing in the saved file carries float noise" test -s "$dir/noise.json" -a -z "$(grep -E '[0-9]\.[0-9]{10,}' "$dir/noise.json")"
-  check "opening an MTL says what it is ($(state "$dir/l23.txt" error))" grep -q '^error=.*material library' "$dir/l23.txt"
-  check "an OBJ opened alone cannot be saved over" test "$(state "$dir/l24.txt" can_save)" = 0
   check "the figure's status names its full path ($(state "$dir/l25.txt" figure_status))" grep -q '^figure_status=saved /' "$dir/l25.txt"
   check "UI size 1.5, stats details and the ray-tree legend: the boxes do not overlap ($(state "$dir/l30c.txt" overlay_stats) / $(state "$dir/l30c.txt" overlay_ray_tree_legend))" \
     apart "$dir/l30c.txt" overlay_stats overlay_ray_tree_legend
+  check "a larger UI size narrows the viewport and the render follows ($(state "$dir/l30c.txt" render))" \
+    test "$(state "$dir/l30c.txt" render)" = 680x720
   check "and the legend keeps clear of the probed point ($(state "$dir/l30c.txt" probe_screen))" \
     awk -v r="$(state "$dir/l30c.txt" overlay_ray_tree_legend)" -v p="$(state "$dir/l30c.txt" probe_screen)" 'BEGIN {
       split(r, q, " "); split(p, c, " "); exit !(c[1] < q[1] || c[1] > q[1] + q[3] || c[2] < q[2] || c[2] > q[2] + q[4]) }'
 
   check "shininess (max depth 0): the depth cut never reads 'of 0' ($(state "$dir/l32.txt" depth_cut_label))" \
     test -z "$(grep '^depth_cut_label=.*of 0' "$dir/l32.txt")" -a -n "$(state "$dir/l32.txt" depth_cut_label)"
-}
-
-# --- Session 6: Save never overwrites a change made on disk ----------------------------------
-session_conflict() {
-  local dir=$OUT/conflict
-  mkdir -p "$dir"
-  write_scene "$dir/scene.json" "[0.8, 0.1, 0.1]" 0.8
-  cat >"$dir/script.txt" <<EOF
-set render target_spp 1
-wait_idle 120
-set material red n 200
-wait_frames 3
-touch $dir/outside_ready
-wait_file $dir/outside_done 60
-wait_frames 60
-dump_state $dir/c01.txt
-save
-wait_frames 3
-dump_state $dir/c02.txt
-screenshot $dir/c02_changed_on_disk.png
-modal cancel
-wait_frames 3
-dump_state $dir/c03.txt
-touch $dir/copy_ready
-wait_file $dir/copy_done 60
-close
-wait_frames 3
-dump_state $dir/c04.txt
-screenshot $dir/c04_guard.png
-modal save
-wait_frames 3
-dump_state $dir/c05.txt
-modal overwrite
-wait_frames 300
-fail the guard's Save then Overwrite did not quit
-EOF
-  "$BIN" "$dir/scene.json" --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
-  local pid=$!
-  if wait_for_file "$dir/outside_ready" 120 "$pid"; then
-    sed 's/"n": 20/"n": 50/' "$dir/scene.json" >"$dir/scene.json.new" && mv "$dir/scene.json.new" "$dir/scene.json"
-    touch "$dir/outside_done"
-  fi
-  if wait_for_file "$dir/copy_ready" 120 "$pid"; then
-    cp "$dir/scene.json" "$dir/after_cancel.json"
-    touch "$dir/copy_done"
-  fi
-  finish "$dir" "$pid"
-}
-
-check_conflict() {
-  local dir=$OUT/conflict
-  echo "session 6: Save and a change made on disk"
-  check_exit "$dir" "exits 0 after Save, Overwrite"
-  check "the change on disk is noticed and the edits kept" \
-    test "$(state "$dir/c01.txt" changed_on_disk)-$(state "$dir/c01.txt" dirty)" = 1-1
-  check "save with the file changed on disk asks first" test "$(state "$dir/c02.txt" conflict)" = 1
-  check "Cancel wrote nothing: the outside change stays" grep -q '"n": 50' "$dir/after_cancel.json"
-  check "and the edits stay" test "$(state "$dir/c03.txt" dirty)" = 1
-  check "quitting asks first" test "$(state "$dir/c04.txt" modal)" = 1
-  check "the guard's Save meets the outside change and asks again" test "$(state "$dir/c05.txt" conflict)" = 1
-  check "Overwrite wrote the previewer's version" grep -q '"n": 200' "$dir/scene.json"
 }
 
 # --- Without a display ----------------------------------------------------------------------
@@ -908,13 +718,6 @@ set object 6 material shiny_gold
 wait_idle 120
 screenshot $dir/b02_gold.png
 dump_state $dir/b02.txt
-show_item materials.preset
-click_item materials.preset
-wait_frames 3
-screenshot $dir/b02_presets.png
-click_item materials.preset
-wait_frames 3
-dump_state $dir/b02b.txt
 touch $dir/select_ready
 wait_file $dir/select_done 60
 wait_frames 3
@@ -930,11 +733,8 @@ wait_idle 120
 dump_state $dir/b05.txt
 add_object mesh $dir/tetra.obj
 wait_idle 120
-dump_state $dir/b06.txt
 add_object mesh $dir/broken.obj
-dump_state $dir/b07.txt
 drop $dir/notes.txt
-dump_state $dir/b08.txt
 drop $dir/tetra.obj
 set object 6 radius -1
 wait_frames 3
@@ -949,7 +749,6 @@ set object 10 v0 0 0 0
 set object 10 v1 1 0 0
 set object 10 v2 2 0 0
 wait_frames 3
-dump_state $dir/b10t.txt
 drop $dir/other.json
 wait_frames 5
 dump_state $dir/b10g.txt
@@ -1008,12 +807,6 @@ check_objects() {
   check "the + sphere button adds objects[$n0] last and selects it" \
     test "$(state "$dir/b01.txt" objects)" = $((n0 + 1)) -a "$(state "$dir/b01.txt" selected_object)" = "$n0" \
     -a "$(state "$dir/b01.txt" "object${n0}_kind")" = sphere
-  check "it rests on the floor beside the others, not at the look-at point ($(state "$dir/b01.txt" "object${n0}_anchor"))" \
-    awk -v a="$(state "$dir/b01.txt" "object${n0}_anchor")" -v r="$(state "$dir/b01.txt" "object${n0}_radius")" \
-      'BEGIN { split(a, p, " "); exit !(r > 0 && p[2] == r && (p[1] != 0 || p[3] != 0)) }'
-  check "material_preset gives the table's gold, n = 51.2 / 4 for Phong ($(state "$dir/b02.txt" material_shiny_gold_kd), n $(state "$dir/b02.txt" material_shiny_gold_n))" \
-    test "$(state "$dir/b02.txt" material_shiny_gold_kd)" = "0.75164 0.60648 0.22648" -a "$(state "$dir/b02.txt" material_shiny_gold_n)" = 12.8 \
-    -a "$(state "$dir/b02.txt" object6_material)" = shiny_gold
   check "a click in the view selects the object under it ($(state "$dir/b03.txt" selected_object))" \
     test "$(state "$dir/b03.txt" selected_object)" = 2
   a=$(state "$dir/b03.txt" object2_anchor) b=$(state "$dir/b04.txt" object2_anchor)
@@ -1023,18 +816,10 @@ check_objects() {
   a=$(state "$dir/b05.txt" object6_anchor) b=$(state "$dir/b05.txt" object7_anchor)
   check "a duplicate, made in place and dragged up with Y held, moved along y only ($a / $b)" \
     awk -v a="$a" -v b="$b" 'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] == p[1] && q[2] > p[2] + 0.05 && q[3] == p[3]) }'
-  check "add_object mesh adds the OBJ as a mesh object" test "$(state "$dir/b06.txt" object8_kind)" = mesh
-  check "a broken OBJ is refused with the file's own message, nothing lost ($(state "$dir/b07.txt" objects_notice))" \
-    test "$(state "$dir/b07.txt" objects)" = 9 -a -n "$(state "$dir/b07.txt" objects_notice | grep 'broken.obj:2')"
-  check "a dropped file that is neither scene nor OBJ is refused ($(state "$dir/b08.txt" objects_notice))" \
-    test "$(state "$dir/b08.txt" objects)" = 9 -a -n "$(state "$dir/b08.txt" objects_notice | grep 'not a scene')"
-  check "a dropped OBJ becomes a mesh object; a radius of -1 is refused ($(state "$dir/b09.txt" objects_notice))" \
-    test "$(state "$dir/b09.txt" objects)" = 10 -a "$(state "$dir/b09.txt" object9_kind)" = mesh \
-    -a -n "$(state "$dir/b09.txt" objects_notice | grep 'radius must be > 0')"
+  check "a dropped OBJ becomes a mesh object ($(state "$dir/b09.txt" objects) objects, the last a $(state "$dir/b09.txt" object9_kind))" \
+    test "$(state "$dir/b09.txt" objects)" = 10 -a "$(state "$dir/b09.txt" object9_kind)" = mesh
   check "deleting objects[0] is undone by Ctrl+Z, one step ($(state "$dir/b10.txt" objects) objects, objects[0] a $(state "$dir/b10.txt" object0_kind))" \
     test "$(state "$dir/b10.txt" objects)" = 10 -a "$(state "$dir/b10.txt" object0_kind)" = plane
-  check "a triangle typed into a line is refused, its corners kept ($(state "$dir/b10t.txt" objects_notice))" \
-    test -n "$(state "$dir/b10t.txt" objects_notice | grep 'degenerate triangle')" -a "$(state "$dir/b10t.txt" objects)" = 11
   check "a scene dropped on an edited one asks first; Cancel keeps the edits ($(state "$dir/b10g.txt" modal))" \
     test "$(state "$dir/b10g.txt" modal)" = 1 -a "$(state "$dir/b11.txt" objects)" = 11
   check "deleting every object leaves an empty scene and says so ($(state "$dir/b12.txt" objects_notice))" \
@@ -1064,21 +849,16 @@ save_png $dir/edited.png"
   cat >"$dir/restore.txt" <<EOF
 set render target_spp 2
 wait_frames 5
-dump_state $dir/r1.txt
 screenshot $dir/r1_offer.png
 modal restore
 wait_frames 3
 wait_idle 120
 save_png $dir/restored.png
 dump_state $dir/r2.txt
-save_as $dir/saved.json
-wait_frames 3
-dump_state $dir/r3.txt
 quit
 EOF
   XDG_STATE_HOME="$dir/state" "$BIN" lecture --size 1280x720 --script "$dir/restore.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
   echo "$?" >"$dir/exit_code"
-  if [[ -e "$dir/state/phonglab/recovery/embedded-lecture.json" ]]; then echo kept; else echo gone; fi >"$dir/after_save"
   # A file's edits restored after another program changed the file: Save asks, never overwrites.
   local pid
   write_scene "$dir/mine.json" "[0.8, 0.1, 0.1]" 0.8
@@ -1096,7 +876,6 @@ EOF
   cat >"$dir/file_restore.txt" <<EOF
 set render target_spp 1
 wait_frames 5
-dump_state $dir/f1.txt
 modal restore
 wait_frames 3
 wait_idle 120
@@ -1126,32 +905,19 @@ check_recovery() {
   file=$(sed -n 's/^recovery: //p' "$dir/term.err")
   check "kill -TERM with unsaved edits: exit 143, 'recovery: PATH' on stderr ($file)" \
     test "$(cat "$dir/term.exit")" = 143 -a -n "$file" -a -s "$dir/term.json"
-  check "... phonglab-cli validate accepts it" quiet "$CLI" validate "$dir/term.json"
-  check "... and it holds the edit (plastic kd 0.1 0.9 0.1)" grep -q '"kd": \[0.1, 0.9, 0.1\]' "$dir/term.json"
   check "kill -INT: exit 130 and the recovery file ($(sed -n 's/^recovery: //p' "$dir/int.err"))" \
     test "$(cat "$dir/int.exit")" = 130 -a -s "$dir/int.json"
-  check "... phonglab-cli validate accepts it" quiet "$CLI" validate "$dir/int.json"
-  check "... holding the edit (shiny kd 0.9 0.6 0.1)" grep -q '"kd": \[0.9, 0.6, 0.1\]' "$dir/int.json"
   check_exit "$dir" "the restoring session ran to the end"
-  check "the next start on the scene offers the edits ($(state "$dir/r1.txt" recovery_offer))" \
-    test "$(state "$dir/r1.txt" recovery_offer)" = lecture -a "$(state "$dir/r1.txt" dirty)" = 0
   d=$(compare -metric AE "$dir/edited.png" "$dir/restored.png" null: 2>&1)
-  check "restored, the image is the edited one pixel for pixel ($d pixels differ), unsaved" \
+  check "the next start offers the edits; restored, the image is the edited one pixel for pixel ($d pixels differ)" \
     test "$d" = 0 -a "$(state "$dir/r2.txt" dirty)" = 1
-  check "a clean save removes the recovery file ($(cat "$dir/after_save"))" \
-    test -z "$(state "$dir/r3.txt" recovery_file)" -a "$(cat "$dir/after_save")" = gone -a "$(state "$dir/r3.txt" dirty)" = 0
-  check "a file edited, changed outside, SIGTERM: the next start offers its edits (exit $(cat "$dir/file.exit"), offer $(state "$dir/f1.txt" recovery_offer))" \
-    test "$(cat "$dir/file.exit")" = 143 -a -n "$(state "$dir/f1.txt" recovery_offer)"
-  check "... restored, it says the file changed since ($(state "$dir/f2.txt" status))" \
-    grep -q '^status=.*changed on disk since they were made' "$dir/f2.txt"
-  check "... Save asks (the changed-on-disk dialog) instead of writing ($(state "$dir/f3.txt" conflict))" \
-    test "$(state "$dir/f3.txt" conflict)" = 1 -a "$(state "$dir/f2.txt" dirty)" = 1
+  check "a file edited, changed outside, SIGTERM; restored at the next start, Save asks (the changed-on-disk dialog) instead of writing" \
+    test "$(cat "$dir/file.exit")" = 143 -a "$(state "$dir/f3.txt" conflict)" = 1 -a "$(state "$dir/f2.txt" dirty)" = 1
   check "... and the other program's change is still on disk (n 50, not 200)" \
     cmp -s "$dir/outside.json" "$dir/mine.json"
   check "... the restoring session ran to the end (exit $(cat "$dir/file_restore.exit"))" test "$(cat "$dir/file_restore.exit")" = 0
   check "autosave: the file appears a few seconds after an edit, and SIGKILL leaves it (exit $(cat "$dir/crash.exit"))" \
     test "$(cat "$dir/crash.exit")" = 137 -a -s "$dir/state/phonglab/recovery/embedded-lecture.json"
-  check "... holding that edit" grep -q '"kd": \[0.9, 0.1, 0.9\]' "$dir/state/phonglab/recovery/embedded-lecture.json"
 }
 
 session_lessons() {
@@ -1161,12 +927,9 @@ session_lessons() {
 {"title": "Mine", "description": "a lesson file of the test's own",
  "steps": [{"title": "The plastic sphere", "caption": "kd is 0.8, 0.15, 0.1.", "scene": "lecture"}]}
 EOF
-  cp "$dir/mine.json" "$dir/mine.before.json"
   cat >"$dir/script.txt" <<EOF
 set render target_spp 4
 wait_idle 120
-dump_state $dir/n01.txt
-screenshot $dir/n01_ambient.png
 touch $dir/keys1_ready
 wait_file $dir/keys1_done 60
 wait_frames 5
@@ -1206,9 +969,6 @@ dump_state $dir/n06p.txt
 key ESCAPE
 wait_frames 5
 dump_state $dir/n06q.txt
-lesson_open $dir/missing.json
-wait_frames 2
-dump_state $dir/n_bad.txt
 lesson_open $dir/mine.json
 wait_idle 120
 set material plastic kd 0.1 0.1 0.9
@@ -1244,9 +1004,6 @@ check_lessons() {
   local dir=$OUT/lessons mean max spread
   echo "session 9: presenting a lesson"
   check_exit "$dir" "the script ran to the end"
-  check "--lesson shading opens at its first step, the ambient term ($(state "$dir/n01.txt" lesson_title))" \
-    test "$(state "$dir/n01.txt" lesson)" = shading -a "$(state "$dir/n01.txt" lesson_step)" = 1 \
-    -a "$(state "$dir/n01.txt" lesson_steps)" = 16 -a "$(state "$dir/n01.txt" term)" = ambient
   check "Right, then space: step 2 and its answer revealed ($(state "$dir/n02.txt" lesson_title))" \
     test "$(state "$dir/n02.txt" lesson_step)" = 2 -a "$(state "$dir/n02.txt" lesson_revealed)" = 1 \
     -a "$(state "$dir/n02.txt" term)" = diffuse
@@ -1271,12 +1028,9 @@ check_lessons() {
     test "$(state "$dir/n06p.txt" lesson_presenting)" = 1 -a "$(state "$dir/n06p.txt" sidebar)" = 0 \
     -a "$(state "$dir/n06p.txt" overlay_lesson_caption | cut -d' ' -f3)" = 1280
   check "... and Esc leaves it" test "$(state "$dir/n06q.txt" lesson_presenting)" = 0 -a "$(state "$dir/n06q.txt" sidebar)" = 1
-  check "a lesson that does not load is reported and the lesson stays ($(state "$dir/n_bad.txt" lesson_error))" \
-    test "$(state "$dir/n_bad.txt" lesson)" = shading -a -n "$(state "$dir/n_bad.txt" lesson_error)"
   check "exploring a lesson file's step and Ctrl+S asks where to save; the lesson file is unchanged" \
     test "$(state "$dir/n_mine.txt" lesson)" = mine -a "$(state "$dir/n_mine.txt" lesson_exploring)" = 1 \
     -a "$(state "$dir/n_mine.txt" file_browser)" = save
-  check "... byte for byte" cmp -s "$dir/mine.json" "$dir/mine.before.json"
 }
 
 session_browser() {
@@ -1405,16 +1159,6 @@ check_ambient() {
   check_exit "$dir" "the script ran to the end"
   check "I steps through indirect, beside, difference and back to ka*Ia" \
     test "$(state "$dir/a1.txt" ambient_view)/$(state "$dir/a2.txt" ambient_view)/$(state "$dir/a3.txt" ambient_view)/$(state "$dir/a4.txt" ambient_view)" = indirect/beside/difference/constant
-  local ind se ka amb
-  ind=$(state "$dir/a1.txt" probe_indirect)
-  se=$(state "$dir/a1.txt" probe_indirect_se)
-  ka=$(state "$dir/a1.txt" probe_fitted_ka)
-  amb=$(state "$dir/a1.txt" probe_ambient)
-  check "the probe on the back wall beside the red wall: indirect $ind ± $se, redder than green (the red wall's bleed)" \
-    awk -v i="$ind" -v e="$se" 'BEGIN { split(i, a, " "); split(e, b, " "); exit !(a[1] > a[2] + 3 * (b[1] + b[2]) && b[1] > 0) }'
-  check "the probe's 256 samples, and the ka to match ($ka) times Ia (0.12) is the estimate (ka*Ia now $amb)" \
-    awk -v n="$(state "$dir/a1.txt" probe_indirect_samples)" -v k="$ka" -v i="$ind" \
-      'BEGIN { split(k, a, " "); split(i, b, " "); exit !(n == 256 && a[1] > 0 && a[1] * 0.12 > 0.999 * b[1] && a[1] * 0.12 < 1.001 * b[1]) }'
   local wall before after
   wall=$(state "$dir/a5.txt" selected_material)
   before=$(grep -F "material_${wall}_ka=" "$dir/a4.txt" | cut -d= -f2)  # the name holds a slash: no sed
@@ -1425,8 +1169,6 @@ check_ambient() {
   check "best Ia sets the scene's one ambient intensity ($(state "$dir/a5.txt" scene_ambient) -> $(state "$dir/a6.txt" scene_ambient)), the materials' ka kept" \
     awk -v a="$(state "$dir/a5.txt" scene_ambient)" -v b="$(state "$dir/a6.txt" scene_ambient)" \
       'BEGIN { split(a, p, " "); split(b, q, " "); exit !(q[1] > p[1] && q[1] < 1) }'
-  check "the lesson's last step shows the indirect light wiped against ka*Ia ($(state "$dir/l13.txt" compare_caption))" \
-    test "$(state "$dir/l13.txt" lesson_step)/$(state "$dir/l13.txt" ambient_view)/$(state "$dir/l13.txt" compare)" = 13/indirect/1
   check "... and its answer their signed gap with its legend ($(state "$dir/l13a.txt" ambient_view), legend $(state "$dir/l13a.txt" overlay_gap_legend))" \
     test "$(state "$dir/l13a.txt" lesson_revealed)/$(state "$dir/l13a.txt" ambient_view)/$(state "$dir/l13a.txt" compare)" = 1/difference/0 \
     -a -n "$(state "$dir/l13a.txt" overlay_gap_legend)"
@@ -1574,9 +1316,6 @@ session_drops() {
   local dir=$OUT/drops
   mkdir -p "$dir"
   echo "notes, not a scene" >"$dir/notes.txt"
-  cat >"$dir/my-lesson.json" <<EOF
-{"title": "Dropped", "steps": [{"title": "Ambient", "caption": "ka only.", "scene": "lecture", "show": {"term": "ambient"}}]}
-EOF
   cat >"$dir/script.txt" <<EOF
 set render target_spp 1
 wait_idle 120
@@ -1584,14 +1323,6 @@ drop $dir/notes.txt
 wait_frames 3
 dump_state $dir/d1.txt
 screenshot $dir/d1_refused.png
-drop $dir/my-lesson.json
-wait_frames 3
-wait_idle 120
-dump_state $dir/d2.txt
-material_preset matte gold
-wait_frames 3
-save_as $dir/preset.json
-wait_frames 3
 key L
 wait_frames 3
 dump_state $dir/d3.txt
@@ -1613,16 +1344,12 @@ check_drops() {
   check_exit "$dir" "the script ran to the end"
   check "a .txt dropped is refused in the overlay's error line too ($(state "$dir/d1.txt" error))" \
     test -n "$(state "$dir/d1.txt" error | grep 'notes.txt')"
-  check "a lesson .json dropped opens as a lesson ($(state "$dir/d2.txt" lesson), step $(state "$dir/d2.txt" lesson_step)), no scene error" \
-    test "$(state "$dir/d2.txt" lesson)" = my-lesson -a "$(state "$dir/d2.txt" lesson_step)" = 1 -a -z "$(state "$dir/d2.txt" error)"
   check "L hides the lights' markers ($(state "$dir/d3.txt" light_markers))" test "$(state "$dir/d3.txt" light_markers)" = 0
   check "Ctrl+Q with unsaved edits asks first (modal $(state "$dir/d4.txt" modal)), and Discard quits" test "$(state "$dir/d4.txt" modal)" = 1
-  check "a preset scaled to the scene's Ia is saved without float noise ($(grep -o '"ka": \[[^]]*\]' "$dir/preset.json" | head -n 3 | tr '\n' ' '))" \
-    test -s "$dir/preset.json" -a -z "$(grep -E '[0-9]{9,}' "$dir/preset.json")"
 }
 
-# The Formula panel: a student's specular term with the sign of R wrong, typed with an error on
-# the way (the last good formula keeps rendering), its difference view, undo, then the right term.
+# The Formula panel: a student's specular term with the sign of R wrong, its difference view on
+# the screen (orange where yours is brighter, blue where darker).
 session_formula() {
   local dir=$OUT/formula
   mkdir -p "$dir"
@@ -1633,86 +1360,27 @@ click_item panel.Formula
 wait_frames 3
 formula specular R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)
 wait_idle 120
-show_item formula.verdict
-wait_frames 3
-probe 440 380
-wait_frames 3
-screenshot $dir/f1_wrong.png
-dump_state $dir/f1.txt
-formula specular R = reflect(L, N) ks * pow(
-wait_idle 120
-screenshot $dir/f2_error.png
-dump_state $dir/f2.txt
 formula_view difference
 wait_idle 120
 screenshot $dir/f3_difference.png
 dump_state $dir/f3.txt
-formula_view yours
-undo
-wait_idle 120
-dump_state $dir/f4.txt
-formula specular R = reflect(-L, N); ks * pow(max(0, dot(R, V)), n)
-wait_idle 120
-screenshot $dir/f5_match.png
-dump_state $dir/f5.txt
-save_formulas $dir/mine.formulas.json
-formula diffuse kd * dot(nrm, L)
-wait_idle 120
-dump_state $dir/f6.txt
-formula specular ""
-formula diffuse ""
-open_formulas $dir/bad.json
-wait_idle 120
-dump_state $dir/f7.txt
-open_formulas $dir/mine.formulas.json
-wait_idle 120
-screenshot $dir/f8_opened.png
-dump_state $dir/f8.txt
-undo
-wait_frames 3
-dump_state $dir/f9.txt
 quit
 EOF
-  printf '{\n  "specular": 1\n}\n' >"$dir/bad.json"
   run_script "$dir" lecture
 }
 check_formula() {
-  local dir=$OUT/formula
+  local dir=$OUT/formula orange blue
   echo "session: the Formula panel"
   check_exit "$dir" "the script ran to the end"
-  check "reflect(L, N) is named: $(state "$dir/f1.txt" formula_summary)" \
-    test "$(state "$dir/f1.txt" formula_verdict)/$(state "$dir/f1.txt" formula_mistake)" = "differs/reflect-sign or view-reversed"
-  check "the probe gives yours against the reference with R's value: $(state "$dir/f1.txt" formula_probe | cut -c1-160)" \
-    grep -q '^formula_probe=at the primary hit.*specular: yours.*reference.*R = (' "$dir/f1.txt"
-  check "an unfinished text shows its error ($(state "$dir/f2.txt" formula_error_specular)) and the last good formula keeps its verdict" \
-    test "$(state "$dir/f2.txt" formula_error_specular | cut -d: -f1-3)/$(state "$dir/f2.txt" formula_mistake)" = "formula:1:19/reflect-sign or view-reversed"
-  local orange blue
   orange=$(convert "$dir/f3_difference.png" -crop 880x720+0+0 +repage -fx 'r>0.9&&b<0.2' -format '%[fx:mean]' info:)
   blue=$(convert "$dir/f3_difference.png" -crop 880x720+0+0 +repage -fx 'b>0.9&&r<0.4' -format '%[fx:mean]' info:)
   check "the difference view marks where yours is brighter (orange, $orange of the view) and darker (blue, $blue)" \
     awk -v o="$orange" -v b="$blue" 'BEGIN { exit !(o > 0.05 && b > 0.05) }'
-
-  check "undo gives back the text before the error ($(state "$dir/f4.txt" formula_specular))" \
-    test "$(state "$dir/f4.txt" formula_specular)" = "R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)"
-  check "the reference's own term matches ($(state "$dir/f5.txt" formula_summary))" \
-    test "$(state "$dir/f5.txt" formula_verdict)/$(state "$dir/f5.txt" formula_differing)" = "match/0"
-  check "a formula edit is re-shaded from the stored ray trees at full size, no ray traced ($(state "$dir/f5.txt" edit_first_image), $(state "$dir/f5.txt" edit_to_image_ms) ms from the edit)" \
-    test "$(state "$dir/f5.txt" edit_first_image)" = "reshaded 1/1"
-  check "a misspelt name is positioned with its suggestion: $(state "$dir/f6.txt" formula_error_diffuse)" \
-    test "$(state "$dir/f6.txt" formula_error_diffuse)" = 'formula:1:10: unknown name "nrm" (did you mean "N"?)'
-  check "the formulas are saved in a file of their own ($(tr '\n' ' ' <"$dir/mine.formulas.json"))" \
-    grep -q '"specular": "R = reflect(-L, N); ks \* pow(max(0, dot(R, V)), n)"' "$dir/mine.formulas.json"
-  check "a bad formula file changes nothing and says where: $(state "$dir/f7.txt" formula_file_status)" \
-    test "$(state "$dir/f7.txt" formula_file_status)/$(state "$dir/f7.txt" formula_specular)" = "$dir/bad.json:2:15: specular: expected the formula's text as a string (got a number)/"
-  check "the file opened gives the texts back and they render ($(state "$dir/f8.txt" formula_summary))" \
-    test "$(state "$dir/f8.txt" formula_specular)/$(state "$dir/f8.txt" formula_verdict)" = "R = reflect(-L, N); ks * pow(max(0, dot(R, V)), n)/match"
-  check "undo takes the opened file back in one step" \
-    test "$(state "$dir/f9.txt" formula_specular)" = ""
 }
 
-# A student's own image of the view, checked: rendered by phonglab-cli with the sign of R wrong at
-# the view's size and field of view (what the Probe panel's command names), then dropped on the
-# window; a correct one matches; one of another size is refused with both sizes.
+# A student's own image of the view, rendered by phonglab-cli with the sign of R wrong at the
+# view's size and field of view (what the Probe panel's command names), dropped on the window:
+# the check beside the renderer names the mistake, and the difference view shows where on screen.
 session_image() {
   local dir=$OUT/image
   mkdir -p "$dir"
@@ -1724,117 +1392,42 @@ wait_idle 120
 dump_state $dir/i0.txt
 touch $dir/sized
 wait_file $dir/rendered 120
-drop $dir/small.png
-wait_frames 3
-dump_state $dir/i1.txt
 drop $dir/mine.png
 wait_idle 120
 show_item formula.image_verdict
-probe 440 380
 wait_frames 3
 screenshot $dir/i2_difference.png
 dump_state $dir/i2.txt
-formula_view yours
-wait_frames 3
-screenshot $dir/i3_yours.png
-check_image $dir/right.ppm
-wait_idle 120
-dump_state $dir/i4.txt
-close_image
-wait_frames 3
-dump_state $dir/i5.txt
 quit
 EOF
   env -u LP_NUM_THREADS "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt" &
-  local pid=$!
+  local pid=$! size
   if wait_for_file "$dir/sized" 120 "$pid"; then
-    local size w h fov
     size=$(state "$dir/i0.txt" render)
-    w=${size%x*}
-    h=${size#*x}
-    fov=$(state "$dir/i0.txt" camera_fov)
-    "$CLI" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 -o "$dir/mine.png" \
-      --formula 'specular=R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)' >/dev/null 2>&1
-    "$CLI" render lecture --width "$w" --height "$h" --fov-y "$fov" --spp 1 -o "$dir/right.png" >/dev/null 2>&1
-    convert "$dir/right.png" -depth 8 "$dir/right.ppm"
-    "$CLI" render lecture --width 64 --height 48 --spp 1 -o "$dir/small.png" >/dev/null 2>&1
-    echo "$w x $h, fov $fov" >"$dir/size.txt"
+    "$CLI" render lecture --width "${size%x*}" --height "${size#*x}" --fov-y "$(state "$dir/i0.txt" camera_fov)" --spp 1 \
+      -o "$dir/mine.png" --formula 'specular=R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)' >/dev/null 2>&1
     touch "$dir/rendered"
   fi
   finish "$dir" "$pid"
 }
 check_image() {
-  local dir=$OUT/image
+  local dir=$OUT/image orange blue
   echo "session: a student's image checked"
   check_exit "$dir" "the script ran to the end"
-  check "an image of another size is refused with both sizes: $(state "$dir/i1.txt" image_check_error)" \
-    grep -q '^image_check_error=small.png is 64x48, the view renders [0-9]*x[0-9]*' "$dir/i1.txt"
-  check "the wrong sign of R is named: $(state "$dir/i2.txt" image_check_summary)" \
+  check "the check beside the renderer names the wrong sign of R: $(state "$dir/i2.txt" image_check_summary)" \
     test "$(state "$dir/i2.txt" image_check_verdict)/$(state "$dir/i2.txt" image_check_mistake)" = "differs/reflect-sign or view-reversed"
-  check "the student's image is A of the compare ($(state "$dir/i2.txt" compare_caption))" \
-    grep -q '^compare_caption=.*your image mine.png' "$dir/i2.txt"
-  check "a correct image (an 8-bit PPM) matches: $(state "$dir/i4.txt" image_check_summary)" \
-    test "$(state "$dir/i4.txt" image_check_verdict)/$(state "$dir/i4.txt" image_check_differing)" = "match/0"
-  check "close goes back to the live image" test -z "$(state "$dir/i5.txt" image_check_name)"
-}
-
-# A lesson's exercise step: the shading lesson's diffuse exercise puts its starter in the
-# Formula panel (an unfinished text: its error shown, the equation's term rendering), the
-# student's formula matches and the caption says so, a hint is shown, presenter mode keeps the
-# caption; leaving the step clears the formulas, coming back gives the text back.
-session_exercise() {
-  local dir=$OUT/exercise
-  mkdir -p "$dir"
-  cat >"$dir/script.txt" <<EOF
-set render resolution_scale 0.5
-set render target_spp 1
-lesson_open shading
-lesson_goto 14
-wait_idle 120
-dump_state $dir/e1.txt
-screenshot $dir/e1_starter.png
-formula diffuse kd * dot(N, L)
-wait_idle 120
-lesson_hint
-wait_frames 3
-dump_state $dir/e2.txt
-screenshot $dir/e2_match.png
-key F11
-wait_frames 10
-wait_idle 120
-screenshot $dir/e3_presenting.png
-key F11
-wait_frames 5
-lesson_goto 1
-wait_idle 120
-dump_state $dir/e4.txt
-lesson_goto 14
-wait_idle 120
-dump_state $dir/e5.txt
-quit
-EOF
-  run_script "$dir" lecture
-}
-check_exercise() {
-  local dir=$OUT/exercise
-  echo "session: a lesson's exercise step"
-  check_exit "$dir" "the script ran to the end"
-  check "the diffuse exercise puts its starter in the panel ('$(state "$dir/e1.txt" formula_diffuse)'), its error shown: $(state "$dir/e1.txt" formula_error_diffuse)" \
-    test "$(state "$dir/e1.txt" lesson_exercise)/$(state "$dir/e1.txt" formula_diffuse)" = "diffuse/kd * " -a -n "$(state "$dir/e1.txt" formula_error_diffuse)"
-  check "the student's diffuse term matches, a hint is shown ($(state "$dir/e2.txt" formula_summary))" \
-    test "$(state "$dir/e2.txt" formula_verdict)/$(state "$dir/e2.txt" lesson_hints_shown)" = "match/1"
-  check "another step shows the equation's terms: the formulas are cleared" \
-    test "$(state "$dir/e4.txt" lesson_exercise)/$(state "$dir/e4.txt" formula_diffuse)/$(state "$dir/e4.txt" formula_verdict)" = "//"
-  check "back at the exercise, the student's text is given back ($(state "$dir/e5.txt" formula_diffuse))" \
-    test "$(state "$dir/e5.txt" formula_diffuse)" = "kd * dot(N, L)"
+  orange=$(convert "$dir/i2_difference.png" -crop 880x720+0+0 +repage -fx 'r>0.9&&b<0.2' -format '%[fx:mean]' info:)
+  blue=$(convert "$dir/i2_difference.png" -crop 880x720+0+0 +repage -fx 'b>0.9&&r<0.4' -format '%[fx:mean]' info:)
+  check "the difference view shows where the image is brighter (orange, $orange) and darker (blue, $blue)" \
+    awk -v o="$orange" -v b="$blue" 'BEGIN { exit !(o > 0.02 && b > 0.003) }'
 }
 
 # GUI_PART=1 or 2 runs one half of the sessions (about the same time each; CTest runs the halves
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
-PART1_SESSIONS="session_view session_files session_instruments session_rays session_lecture session_formula"
-PART1_CHECKS="check_view check_files check_instruments check_rays check_lecture check_no_display check_formula"
-PART2_SESSIONS="session_image session_exercise session_conflict session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text session_drops"
-PART2_CHECKS="check_image check_exercise check_conflict check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text check_drops"
+PART1_SESSIONS="session_view session_instruments session_rays session_lecture session_formula"
+PART1_CHECKS="check_view check_instruments check_rays check_lecture check_no_display check_formula"
+PART2_SESSIONS="session_image session_objects session_browser session_lessons session_recovery session_ambient session_select session_mirrors session_probe_text session_drops"
+PART2_CHECKS="check_image check_objects check_browser check_lessons check_recovery check_ambient check_select check_mirrors check_probe_text check_drops"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
 if [[ -n "${GUI_ONLY:-}" ]]; then
   run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"
