@@ -17,6 +17,7 @@
 #include "io/image_io.h"
 #include "io/image_read.h"
 #include "io/scene/scene_io.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -26,20 +27,16 @@ namespace fs = std::filesystem;
 constexpr int kWidth = 160, kHeight = 90;
 
 struct StudentImageFiles : ::testing::Test {
-  fs::path dir;
+  test::TestFolder temp{"phonglab-student-image-check"};
+  const fs::path dir = temp.path();
   Scene lecture;
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-student-image-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
     LoadResult loaded = load_scene_arg("lecture");
     ASSERT_TRUE(loaded.ok()) << loaded.error_text();
     lecture = *loaded.scene;
     lecture.width = kWidth;
     lecture.height = kHeight;
   }
-  void TearDown() override { fs::remove_all(dir); }
   // phonglab-cli render lecture --width W --height H --spp 1 [--formula 'specular=TEXT'] -o PATH.
   std::string render_png(const std::string& name, const std::string& specular) const {
     LocalRules rules;

@@ -13,6 +13,7 @@
 #include "io/scene/scene_io.h"
 #include "session/document.h"
 #include "tests/support/document_edits.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -21,14 +22,8 @@ namespace fs = std::filesystem;
 
 // A folder of its own for each test, removed after it.
 struct DocumentFiles : ::testing::Test {
-  fs::path dir;
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-document-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  test::TestFolder temp{"phonglab-document"};
+  const fs::path dir = temp.path();
   // The embedded lecture scene written as a file; its path.
   std::string lecture_file(const std::string& name = "scene.json") const {
     SceneDocument doc;

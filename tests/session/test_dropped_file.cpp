@@ -9,6 +9,7 @@
 #include <string>
 
 #include "session/dropped_file.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -17,14 +18,8 @@ namespace fs = std::filesystem;
 using Kind = DroppedFile::Kind;
 
 struct Drops : ::testing::Test {
-  fs::path dir;
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-drops-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  test::TestFolder temp{"phonglab-drops"};
+  const fs::path dir = temp.path();
   std::string file(const std::string& name, const std::string& text) const {
     const std::string path = (dir / name).string();
     std::ofstream(path) << text;

@@ -15,6 +15,7 @@
 #include "session/document.h"
 #include "session/file_flow.h"
 #include "tests/support/document_edits.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -27,23 +28,19 @@ using Question = FileFlow::Question;
 
 // The lecture scene written as a file in a folder of the test's own, opened as the document.
 struct FlowOnAFile : ::testing::Test {
-  fs::path dir;
+  test::TestFolder temp{"phonglab-file-flow"};
+  const fs::path dir = temp.path();
   std::string path;
   SceneDocument doc;
   FileFlow flow{doc};
 
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-file-flow-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
     path = (dir / "scene.json").string();
     SceneDocument writer;
     ASSERT_TRUE(writer.open("lecture"));
     ASSERT_TRUE(writer.save_as(path));
     ASSERT_TRUE(doc.open(path));
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   // The first material's kd as the document holds it, edited without a save.
   void edit_kd(double kd) {

@@ -25,6 +25,7 @@
 #include "io/formula_file.h"
 #include "session/render_schedule.h"
 #include "session/session.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -38,15 +39,11 @@ constexpr const char* kUnfinished = "R = reflect(L, N) ks * pow(";
 
 struct FormulaPanel : ::testing::Test {
   Session session{""};
-  fs::path dir;
+  test::TestFolder temp{"phonglab-formula-panel"};
+  const fs::path dir = temp.path();
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-formula-panel-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
     ASSERT_TRUE(session.open("lecture"));
   }
-  void TearDown() override { fs::remove_all(dir); }
   const FormulaBook::Slot& slot(FormulaSlot s) const { return session.formulas().slot(s); }
   // The check beside the renderer, at a reduced size of the view (the previewer's is at most
   // 480 wide; phonglab-cli check's tests use 160 x 90).

@@ -14,6 +14,7 @@
 #include "interaction/scene_objects.h"
 #include "io/lesson_io.h"
 #include "session/session.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -21,14 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct LessonsOpened : ::testing::Test {
-  fs::path dir;
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-lesson-files-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  test::TestFolder temp{"phonglab-lesson-files"};
+  const fs::path dir = temp.path();
   std::string write(const std::string& name, const std::string& text) const {
     const std::string path = (dir / name).string();
     std::ofstream(path, std::ios::binary) << text;

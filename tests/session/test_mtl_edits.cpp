@@ -13,6 +13,7 @@
 #include "interaction/scene_objects.h"
 #include "io/scene/scene_io.h"
 #include "session/session.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -20,21 +21,17 @@ namespace {
 namespace fs = std::filesystem;
 
 struct MtlEdits : ::testing::Test {
-  fs::path dir;
+  test::TestFolder temp{"phonglab-mtl-edits"};
+  const fs::path dir = temp.path();
   Session session{""};  // no recovery files
   int wall = -1;
 
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-mtl-edits-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
     ASSERT_TRUE(session.open("cornell"));
     wall = ui::find_material(session.scene(), "CornellBox-Original/backWall");
     ASSERT_GE(wall, 0);
     ASSERT_FALSE(session.scene().materials[static_cast<std::size_t>(wall)].source.empty()) << "the MTL's";
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   Material wall_material() const { return session.scene().materials.at(static_cast<std::size_t>(wall)); }
   Applied set_wall_kd(const Color& kd) {

@@ -17,6 +17,7 @@
 #include "interaction/scene_objects.h"
 #include "io/scene/scene_io.h"
 #include "session/session.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -24,16 +25,12 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RecoveryEdits : ::testing::Test {
-  fs::path dir;
+  test::TestFolder temp{"phonglab-recovery-edits"};
+  const fs::path dir = temp.path();
   std::string folder;  // the recovery folder
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-recovery-edits-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
     folder = (dir / "state" / "phonglab" / "recovery").string();
   }
-  void TearDown() override { fs::remove_all(dir); }
   static std::string read(const std::string& path) {
     std::stringstream text;
     text << std::ifstream(path).rdbuf();

@@ -13,6 +13,7 @@
 #include "io/scene/scene_io.h"
 #include "session/recovery_keeper.h"
 #include "tests/support/document_edits.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -20,15 +21,12 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RecoveryFiles : ::testing::Test {
-  fs::path dir;
+  test::TestFolder temp{"phonglab-recovery", false};
+  const fs::path dir = temp.path();
   SceneDocument doc;
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-recovery-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
     ASSERT_TRUE(doc.open("lecture"));
   }
-  void TearDown() override { fs::remove_all(dir); }
   void edit(double kd) {
     test::edit_scene(doc, [&](Scene& s) { s.materials.at(0).kd = Color(kd); });
   }

@@ -16,6 +16,7 @@
 #include "interaction/scene_objects.h"
 #include "io/scene/scene_io.h"
 #include "session/session.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -43,18 +44,14 @@ std::string first_line(const std::string& text) { return text.substr(0, text.fin
 
 // A folder of its own for each test, removed after it; the session keeps no recovery files.
 struct SceneFileDocument : ::testing::Test {
-  fs::path dir;
+  test::TestFolder temp{"phonglab-scene-files"};
+  const fs::path dir = temp.path();
   std::string scene;  // dir/scene.json
   Session session{""};
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-scene-files-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
     scene = (dir / "scene.json").string();
     std::ofstream(scene) << scene_text("[0.8, 0.1, 0.1]", "0.8");
   }
-  void TearDown() override { fs::remove_all(dir); }
   // Another program replaces the file (written beside it, then renamed over it, as the GUI test
   // does), its modification time a second later (file systems with coarse times see it too).
   void replace_outside(const std::string& red_kd, const std::string& radius) const {

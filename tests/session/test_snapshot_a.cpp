@@ -1,6 +1,7 @@
 // Snapshot A of the A/B compare (src/session/snapshot_a.h): taken only from the image it names,
 // dropped when an edit comes first, compared like with like, and a presented lesson's difference
-// held at A's samples.
+// held at A's samples; A from a student's image file (FormulaShell::open_image), compared whatever
+// the samples and closed back to the live image.
 #include <gtest/gtest.h>
 
 #include "session/snapshot_a.h"
@@ -85,6 +86,38 @@ TEST(SnapshotA, ClearingForgetsAAndTheRequest) {
   EXPECT_FALSE(a.has_image());
   EXPECT_FALSE(a.requested());
   EXPECT_EQ(a.caption(frame(3, 1, 8), CompareView::kWipe, true, 64, 4), "no A yet: Snapshot A keeps the finished image");
+}
+
+// A from a file.
+TEST(SnapshotAFromAFile, TheStudentsImageIsAOfTheCompareWhateverTheSamples) {
+  SnapshotA a;
+  a.request(3, false);  // an A asked of the renderer is replaced by the file's
+  a.set_file_image(frame(0, 1, 1), "mine.png");
+  EXPECT_EQ(a.file_name(), "mine.png");
+  ASSERT_TRUE(a.has_image());
+  EXPECT_FALSE(a.requested());
+  EXPECT_TRUE(a.comparable(frame(0, 1, 64), CompareView::kDifference, true)) << "the student's samples are the pixel centres";
+  EXPECT_EQ(a.caption(frame(0, 1, 64), CompareView::kDifference, true, 64, 4),
+            "|live - A|: A, your image mine.png, against the live image");
+  EXPECT_EQ(a.caption(frame(0, 1, 64), CompareView::kWipe, true, 64, 4), "wipe: A, your image mine.png, against the live image");
+  EXPECT_EQ(a.target_spp(64, true, CompareView::kDifference, true), 64) << "the live image converges as usual";
+}
+
+TEST(SnapshotAFromAFile, AViewOfAnotherSizeSaysBothSizes) {
+  SnapshotA a;
+  a.set_file_image(frame(0, 1, 1, 8, 4), "mine.png");
+  EXPECT_FALSE(a.comparable(frame(0, 1, 1, 16, 8), CompareView::kDifference, true));
+  EXPECT_EQ(a.caption(frame(0, 1, 1, 16, 8), CompareView::kDifference, true, 64, 4),
+            "A is your image 8x4, the view is now 16x8: open it at the view's size");
+}
+
+TEST(SnapshotAFromAFile, ClosingTheImageGoesBackToTheLiveImage) {
+  SnapshotA a;
+  a.set_file_image(frame(0, 1, 1), "mine.png");
+  a.clear();  // FormulaShell::close_image: A was the file's
+  EXPECT_EQ(a.file_name(), "");
+  EXPECT_FALSE(a.has_image());
+  EXPECT_EQ(a.caption(frame(0, 1, 64), CompareView::kWipe, true, 64, 4), "no A yet: Snapshot A keeps the finished image");
 }
 
 }  // namespace

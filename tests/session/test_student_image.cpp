@@ -12,6 +12,7 @@
 
 #include "core/scene/math.h"
 #include "session/student_image.h"
+#include "tests/support/test_folder.h"
 
 namespace phonglab {
 namespace {
@@ -19,14 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct OpeningAStudentImage : ::testing::Test {
-  fs::path dir;
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("phonglab-student-image-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  test::TestFolder temp{"phonglab-student-image"};
+  const fs::path dir = temp.path();
   // A binary PPM (maxval 255) of w x h whose pixel i is codes (i, 2i, 3i) mod 256.
   std::string ppm(const std::string& name, int w, int h) const {
     const std::string path = (dir / name).string();
