@@ -95,7 +95,7 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
       << "stats_details=" << (s_.display.stats_details ? 1 : 0) << "\n"
       << "camera_notice=" << s_.camera_notice << "\n"
       << "camera_distance=" << glm::length(scene.camera.position - scene.camera.look_at) << "\n"
-      << "can_save=" << (!s_.doc.file_path().empty() && !s_.doc.opened_mesh() ? 1 : 0) << "\n"
+      << "can_save=" << (files_.flow().can_save() ? 1 : 0) << "\n"
       << "figure_status=" << s_.figure_status << "\n"
       << "compare_caption=" << (s_.instruments.compare != 0 ? tools_.compare_caption() : "") << "\n"
       << "captions=" << caption_lines.size() << "\n";

@@ -207,8 +207,7 @@ void Viewer::handle_keys() {
       if (press.key == GLFW_KEY_S) {
         // Ctrl+S saves the document's file; with none to save to (an embedded scene, an OBJ), or
         // with Shift, it asks where.
-        const bool can_save = !s_.doc.file_path().empty() && !s_.doc.opened_mesh();
-        if (shift || !can_save) files_.browser().open(true, s_.doc.file_path());
+        if (shift || !files_.flow().can_save()) files_.browser().open(true, s_.doc.file_path());
         else files_.save_scene(false);
       }
       continue;

@@ -13,6 +13,11 @@ FileFlow::Outcome FileFlow::request(Action action) {
 }
 
 FileFlow::Outcome FileFlow::save(bool as, const std::string& path) {
+  if (question_ != Question::kNone) return {};  // the open question is answered first
+  return save_now(as, path);
+}
+
+FileFlow::Outcome FileFlow::save_now(bool as, const std::string& path) {
   question_ = Question::kNone;
   if (as) return finish_save(doc_.save_as(path));
   const SceneDocument::SaveResult result = doc_.save();
@@ -35,7 +40,7 @@ FileFlow::Outcome FileFlow::answer(Answer answer, const std::string& path) {
   if (question_ == Question::kUnsavedChanges) {
     switch (answer) {
       case Answer::kSave:
-      case Answer::kSaveAs: return save(answer == Answer::kSaveAs, path);  // the action waits behind the save
+      case Answer::kSaveAs: return save_now(answer == Answer::kSaveAs, path);  // the action waits behind the save
       case Answer::kDiscard: {
         question_ = Question::kNone;
         return Outcome{false, std::nullopt, std::exchange(waiting_, Action{})};

@@ -44,7 +44,8 @@ class FileFlow {
   // for the unsaved-changes question. Edits made before the call count.
   Outcome request(Action action);
   // Save (to the document's file) or Save as `path`; what waited behind it runs once it wrote.
-  // A Save that meets a change made on disk writes nothing and asks.
+  // A Save that meets a change made on disk writes nothing and asks. While a question is open it
+  // does nothing (Ctrl+S under the dialog): the question is answered first.
   Outcome save(bool as, const std::string& path);
   // The open question's answer; `path` is where Save as writes. An answer that does not belong
   // to the question (or no question) changes nothing.
@@ -62,6 +63,7 @@ class FileFlow {
   OnDisk poll(bool auto_reload) const;
 
  private:
+  Outcome save_now(bool as, const std::string& path);  // save(), what waits behind it kept
   Outcome finish_save(bool wrote);
 
   SceneDocument& doc_;

@@ -179,6 +179,17 @@ TEST_F(FlowOnAFile, ReloadTakesTheFilesVersionAndRunsWhatWaitedUnlessItWasTheRel
   }
 }
 
+TEST_F(FlowOnAFile, ASaveWhileAQuestionIsOpenWaitsForTheAnswer) {
+  edit_kd(0.25);
+  flow.request(kQuit);
+  const FileFlow::Outcome outcome = flow.save(false, "");  // Ctrl+S under the dialog
+  EXPECT_FALSE(outcome.saved);
+  EXPECT_EQ(outcome.run.kind, Kind::kNone) << "the quit still waits for its answer";
+  EXPECT_EQ(flow.question(), Question::kUnsavedChanges);
+  EXPECT_EQ(flow.waiting(), kQuit);
+  EXPECT_NE(kd_on_disk(path), 0.25);
+}
+
 TEST_F(FlowOnAFile, AnAnswerThatIsNotTheQuestionsChangesNothing) {
   EXPECT_EQ(flow.answer(Answer::kDiscard, "").run.kind, Kind::kNone);
   edit_kd(0.25);
