@@ -96,7 +96,7 @@ test_all() {
   # build (100 -> 54 s on this 2-core machine) and shortens this one.
   CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DPHONGLAB_SANITIZE='address;undefined' -DPHONGLAB_FUZZ=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UNITY_BUILD=ON >/dev/null
-  cmake --build build-asan --parallel "$(nproc)" --target phonglab phonglab-cli phonglab_tests phonglab_float_loop \
+  cmake --build build-asan --parallel "$(nproc)" --target phonglab phonglab-cli phonglab_tests phonglab_shell_tests phonglab_float_loop \
     phonglab_fuzz_scene phonglab_fuzz_obj phonglab_fuzz_lesson phonglab_fuzz_formula phonglab_fuzz_formula_file phonglab_fuzz_image
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure --parallel "$(nproc)")
 

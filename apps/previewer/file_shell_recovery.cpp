@@ -37,7 +37,7 @@ void start_signal_watcher() {
       int sig = 0;
       if (sigwait(&set, &sig) != 0) continue;
       if (g_signal.exchange(sig) != 0) _exit(128 + sig);  // asked twice: no more waiting
-      glfwPostEmptyEvent();  // GLFW allows it from any thread
+      Platform::wake();  // from the signal thread: the loop handles it
     }
   }).detach();
 }

@@ -371,7 +371,7 @@ std::optional<bool> ScriptDriver::script_input_command(ScriptStep& step) {
     if (w.size() != 3 || !parse_int(w[1], width) || !parse_int(w[2], height) || width < 1 || height < 1) {
       return step.fail("usage: resize W H");
     }
-    glfwSetWindowSize(s_.platform.window(), width, height);
+    s_.platform.set_window_size(width, height);
     return true;
   }
   return std::nullopt;
@@ -512,7 +512,7 @@ std::optional<bool> ScriptDriver::script_file_command(ScriptStep& step) {
     return true;
   }
   if (name == "close") {
-    glfwSetWindowShouldClose(s_.platform.window(), GLFW_TRUE);  // as the window manager's close button
+    s_.platform.request_close();  // as the window manager's close button
     return true;
   }
   if (name == "modal") {

@@ -48,8 +48,8 @@ void ScriptDriver::write_document_state(std::ostream& out) const {
   const ProgressiveStatus status = s_.renderer.status();
   const bool have_material = s_.selected_material >= 0 && s_.selected_material < static_cast<int>(scene.materials.size());
   int window_w = 0, window_h = 0, fb_w = 0, fb_h = 0;
-  glfwGetWindowSize(s_.platform.window(), &window_w, &window_h);
-  glfwGetFramebufferSize(s_.platform.window(), &fb_w, &fb_h);
+  s_.platform.window_size(window_w, window_h);
+  s_.platform.framebuffer_size(fb_w, fb_h);
   std::string first_error_line = files_.file_state().error_text.substr(0, files_.file_state().error_text.find('\n'));
   const std::vector<std::string> caption_lines = overlays_.captions();
   out << "source=" << s_.doc.source() << "\n"

@@ -99,17 +99,19 @@ int run_viewer(const ViewerOptions& options) {
 
 Viewer::Viewer(Platform& platform, const ViewerOptions& options)
     // The render thread only wakes the event loop; the UI takes the image itself.
-    : s_(platform, options, progressive_settings(ui::RenderSettings{}, false), [] { glfwPostEmptyEvent(); }) {}
+    : s_(platform, options, progressive_settings(ui::RenderSettings{}, false), [] { Platform::wake(); }) {}
 
 Viewer::~Viewer() = default;
 
 std::string Viewer::init() {
   ImGui::GetIO().UserData = &s_.item_locations;
-  std::string error = s_.image_view.init(glfwGetProcAddress);
-  if (!error.empty()) return error;
-  for (ImageView& view : term_views_) {
-    error = view.init(glfwGetProcAddress);
+  if (!s_.platform.headless()) {
+    std::string error = s_.image_view.init(glfwGetProcAddress);
     if (!error.empty()) return error;
+    for (ImageView& view : term_views_) {
+      error = view.init(glfwGetProcAddress);
+      if (!error.empty()) return error;
+    }
   }
   if (!s_.doc.open(s_.options.scene_arg)) {
     // The UI starts anyway, on the default scene, with the file's diagnostics on show.
@@ -145,12 +147,11 @@ std::string Viewer::init() {
 }
 
 int Viewer::run() {
-  GLFWwindow* window = s_.platform.window();
-  s_.stats.last_frame_start = glfwGetTime();
+  s_.stats.last_frame_start = s_.platform.now();
   while (!s_.quit) {
     wait_for_next_frame();
     if (files_.handle_signal()) break;
-    const double frame_start = glfwGetTime();
+    const double frame_start = s_.platform.now();
     const double frame_seconds = frame_start - s_.stats.last_frame_start;
     s_.stats.last_frame_start = frame_start;
     // Frames after an idle sleep say nothing about drawing speed.
@@ -168,20 +169,19 @@ int Viewer::run() {
     float presenter = 1;
     if (lesson_shell_.state().presenting) {
       int window_w = 0, window_h = 0;
-      glfwGetWindowSize(window, &window_w, &window_h);
+      s_.platform.window_size(window_w, window_h);
       presenter = std::max(1.0f, static_cast<float>(window_h) / 1080.0f * kPresenterScale);
     }
     s_.platform.set_user_scale(s_.display.ui_size * presenter);
     s_.platform.update_scale();
-    if (glfwWindowShouldClose(window)) {
+    if (s_.platform.take_close_request()) {
       // Closing goes through the unsaved-changes guard like any other way of quitting.
-      glfwSetWindowShouldClose(window, GLFW_FALSE);
       files_.request(FileShell::PendingAction{FileShell::PendingAction::Kind::kQuit, {}});
     }
     poll_scene_file(frame_start);
 
     int fb_width = 0, fb_height = 0;
-    glfwGetFramebufferSize(window, &fb_width, &fb_height);
+    s_.platform.framebuffer_size(fb_width, fb_height);
     if (fb_width <= 0 || fb_height <= 0) continue;  // minimised: nothing to draw, keep running
 
     s_.platform.begin_backend_frame();
@@ -200,9 +200,13 @@ int Viewer::run() {
     // A frame that would draw the same pixels as the one on screen is not drawn: software GL
     // spends the UI thread's time (and the machine's memory traffic) on every copy and swap.
     const std::string shot = client_ ? client_->screenshot_wanted() : "";
-    if (frame_changed(fb_width, fb_height) || !shot.empty()) {
+    if (s_.platform.headless()) {
+      take_images();  // what drawing would show, without GL
+      s_.upload_pending = false;
+      if (!shot.empty() && client_) client_->screenshot_failed();  // no window to read back
+    } else if (frame_changed(fb_width, fb_height) || !shot.empty()) {
       draw_gl(fb_width, fb_height, shot);
-      glfwSwapBuffers(window);
+      s_.platform.swap_buffers();
       ++s_.stats.frames_drawn;
     }
     after_swap();
@@ -225,7 +229,7 @@ bool Viewer::poll_render_frame() {
 
 void Viewer::wait_for_next_frame() {
   const ProgressiveStatus status = s_.renderer.status();
-  const double now = glfwGetTime();
+  const double now = s_.platform.now();
   const bool script_running = client_ && client_->busy();
   const bool busy = !status.idle || s_.upload_pending || now - s_.platform.last_event_time() < kActivityWindow ||
                     script_running || files_.guard_visible() || files_.browser().visible() || s_.drag.mode != DragMode::kNone;
@@ -233,7 +237,7 @@ void Viewer::wait_for_next_frame() {
   if (!busy) {
     // Nothing moves: sleep until an event, a new image (the render thread posts an empty
     // event) or the next file poll.
-    glfwWaitEventsTimeout(kIdleWait);
+    s_.platform.wait_events(kIdleWait);
     poll_render_frame();
     return;
   }
@@ -242,13 +246,13 @@ void Viewer::wait_for_next_frame() {
     poll_render_frame();
     // The first image after an edit goes up at once: that is the latency users feel.
     const bool first_image = s_.upload_pending && s_.shown.generation != s_.drawn_generation;
-    const double t = glfwGetTime();
+    const double t = s_.platform.now();
     const double early = s_.stats.last_frame_start + kEarlyFrameGap;
     if (first_image && t >= early) break;
     if (t >= deadline) break;
-    glfwWaitEventsTimeout(first_image ? early - t : deadline - t);
+    s_.platform.wait_events(first_image ? early - t : deadline - t);
   }
-  glfwPollEvents();
+  s_.platform.poll_events();
 }
 
 void Viewer::poll_scene_file(double now) {
@@ -350,7 +354,7 @@ void Viewer::apply_edits(double frame_start) {
   // A live edit (a slider held, a light dragged) shows in the UI frame that made it: its image
   // takes a few milliseconds, far less than the wait for the next frame. The frame waits only
   // as long as its period leaves after drawing, and only when the last live image took no longer.
-  const auto left = std::chrono::duration<double>(frame_start + kFramePeriod - kDrawTime - glfwGetTime());
+  const auto left = std::chrono::duration<double>(frame_start + kFramePeriod - kDrawTime - s_.platform.now());
   const auto wait = std::min(std::chrono::duration_cast<std::chrono::milliseconds>(left), kLiveImageWait);
   if (sent.scene && dragging && wait.count() > 0 &&
       s_.renderer.wait_for_live_image(s_.schedule.sent_generation(), wait, wait)) {
@@ -367,15 +371,18 @@ float Viewer::image_exposure_ev() const {
   return tools_.heat_shown() ? 0.0f : s_.display.exposure_ev;
 }
 
+void Viewer::take_images() {
+  if (!s_.upload_pending) return;
+  s_.heat_max = tools_.heat_shown() ? heat_max(s_.shown.pixels) : 0;
+  if (s_.shown.generation != s_.drawn_generation) first_image_generation_ = s_.shown.generation;
+  s_.drawn_generation = s_.shown.generation;
+  s_.drawn_serial = s_.shown.stats.serial;
+}
+
 void Viewer::upload_images(int view_w, int view_h) {
   const float exposure_ev = image_exposure_ev();
   const bool has_frame = s_.shown.width > 0 && s_.shown.height > 0;
-  if (s_.upload_pending) {
-    s_.heat_max = tools_.heat_shown() ? heat_max(s_.shown.pixels) : 0;
-    if (s_.shown.generation != s_.drawn_generation) first_image_generation_ = s_.shown.generation;
-    s_.drawn_generation = s_.shown.generation;
-    s_.drawn_serial = s_.shown.stats.serial;
-  }
+  take_images();
   // A new image, or new display settings for the one on screen: encoded and uploaded again. A
   // coarse level filling the view is widened into its blocks: the blit is then a plain copy.
   if (has_frame && (s_.upload_pending || !s_.image_view.shows(exposure_ev, s_.display.srgb))) {
@@ -472,7 +479,7 @@ void Viewer::draw_gl(int fb_width, int fb_height, const std::string& screenshot)
 }
 
 void Viewer::after_swap() {
-  const double now = glfwGetTime();
+  const double now = s_.platform.now();
   if (s_.stats.log && s_.drawn_generation != 0) {
     // Levels are counted while the hand is on: scripted input or edits under way, a drag, a
     // held slider; not the refinement after it lets go.
@@ -511,7 +518,7 @@ void Viewer::update_title() {
   std::string title = "phonglab - " + s_.doc.source() + (s_.doc.dirty() ? " *" : "");
   if (title == title_) return;
   title_ = std::move(title);
-  glfwSetWindowTitle(s_.platform.window(), title_.c_str());
+  s_.platform.set_title(title_);
 }
 
 }  // namespace phonglab

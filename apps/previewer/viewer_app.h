@@ -74,6 +74,8 @@ class Viewer {
   void handle_keys();                      // this frame's key presses (GLFW events, none lost)
   void shortcut(int key, bool shift);      // what a plain (or shifted) key does over the view
   void apply_edits(double frame_start);    // at most one restart for everything this frame changed
+  // A new image from the renderer taken as the one on screen (its generation, the heat map's top).
+  void take_images();
   // Encodes and uploads a new image (or the one on screen under new display settings).
   void upload_images(int view_w, int view_h);
   void draw_gl(int fb_width, int fb_height, const std::string& screenshot);  // upload, image, ImGui, the screenshot wanted

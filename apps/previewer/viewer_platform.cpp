@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <thread>
 #include <utility>
 
 #include <backends/imgui_impl_glfw.h>
@@ -52,7 +55,13 @@ std::string glfw_error_text() {
   return description != nullptr ? description : "GLFW error " + std::to_string(code);
 }
 
+// Whether GLFW runs (a window was made): only then can another thread post it an event.
+std::atomic<bool> glfw_running{false};
+// The headless platform's clock starts with the process's first use of it.
+const auto kHeadlessEpoch = std::chrono::steady_clock::now();
+
 float window_content_scale(GLFWwindow* window) {
+  if (window == nullptr) return 1.0f;  // headless
   float x = 1, y = 1;
   glfwGetWindowContentScale(window, &x, &y);
   const float s = std::max(x, y);
@@ -99,8 +108,7 @@ void refresh(GLFWwindow* win) {
   if (auto* p = static_cast<Platform*>(glfwGetWindowUserPointer(win))) p->want_refresh();
 }
 
-void install_activity_callbacks(Platform* platform) {
-  GLFWwindow* w = platform->window();
+void install_activity_callbacks(Platform* platform, GLFWwindow* w) {
   glfwSetWindowUserPointer(w, platform);
   glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
     note(win);
@@ -135,7 +143,66 @@ void install_activity_callbacks(Platform* platform) {
 
 }  // namespace
 
-void Platform::note_event() { last_event_time_ = glfwGetTime(); }
+void Platform::note_event() { last_event_time_ = now(); }
+
+double Platform::now() const {
+  if (window_ != nullptr) return glfwGetTime();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - kHeadlessEpoch).count();
+}
+
+void Platform::window_size(int& width, int& height) const {
+  if (window_ != nullptr) return glfwGetWindowSize(window_, &width, &height);
+  width = headless_size_[0];
+  height = headless_size_[1];
+}
+
+void Platform::framebuffer_size(int& width, int& height) const {
+  if (window_ != nullptr) return glfwGetFramebufferSize(window_, &width, &height);
+  width = headless_size_[0];
+  height = headless_size_[1];
+}
+
+void Platform::set_window_size(int width, int height) {
+  if (window_ != nullptr) return glfwSetWindowSize(window_, width, height);
+  headless_size_[0] = std::max(width, 0);
+  headless_size_[1] = std::max(height, 0);
+  want_refresh();
+  note_event();
+}
+
+void Platform::request_close() {
+  if (window_ != nullptr) return glfwSetWindowShouldClose(window_, GLFW_TRUE);  // as the window manager's button
+  close_requested_ = true;
+}
+
+bool Platform::take_close_request() {
+  if (window_ == nullptr) return std::exchange(close_requested_, false);
+  if (glfwWindowShouldClose(window_) == 0) return false;
+  glfwSetWindowShouldClose(window_, GLFW_FALSE);  // the loop decides (through the unsaved-changes guard)
+  return true;
+}
+
+void Platform::set_title(const std::string& title) {
+  if (window_ != nullptr) glfwSetWindowTitle(window_, title.c_str());
+}
+
+void Platform::wait_events(double timeout) {
+  if (window_ != nullptr) return glfwWaitEventsTimeout(timeout);
+  // Nothing wakes a headless loop: it looks again every few milliseconds.
+  std::this_thread::sleep_for(std::chrono::duration<double>(std::clamp(timeout, 0.0, 0.005)));
+}
+
+void Platform::poll_events() {
+  if (window_ != nullptr) glfwPollEvents();
+}
+
+void Platform::swap_buffers() {
+  if (window_ != nullptr) glfwSwapBuffers(window_);
+}
+
+void Platform::wake() {
+  if (glfw_running) glfwPostEmptyEvent();  // GLFW allows it from any thread
+}
 
 bool Platform::take_refresh() { return std::exchange(refresh_, false); }
 
@@ -196,7 +263,8 @@ std::unique_ptr<Platform> Platform::create(const PlatformOptions& options, std::
     return nullptr;
   }
   glfwSwapInterval(1);  // vsync where there is one; the main loop paces itself otherwise
-  install_activity_callbacks(p.get());
+  glfw_running = true;
+  install_activity_callbacks(p.get(), p->window_);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -212,13 +280,30 @@ std::unique_ptr<Platform> Platform::create(const PlatformOptions& options, std::
   return p;
 }
 
+std::unique_ptr<Platform> Platform::create_headless(const PlatformOptions& options) {
+  std::unique_ptr<Platform> p(new Platform());
+  p->headless_size_[0] = std::max(options.width, 1);
+  p->headless_size_[1] = std::max(options.height, 1);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  p->imgui_ready_ = true;
+  p->apply_scale(1.0f);
+  return p;
+}
+
 Platform::~Platform() {
   if (imgui_ready_) {
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
+    if (window_ != nullptr) {
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui_ImplGlfw_Shutdown();
+    }
     ImGui::DestroyContext();
   }
-  if (window_ != nullptr) glfwDestroyWindow(window_);
+  if (window_ != nullptr) {
+    glfw_running = false;
+    glfwDestroyWindow(window_);
+  }
   if (glfw_ready_) glfwTerminate();
 }
 
@@ -246,7 +331,9 @@ void Platform::apply_scale(float scale) {
   }
   // The first time, the backend builds the font texture with its other GL objects on the
   // first frame; later, the texture is replaced here.
-  if (fonts_built_) {
+  if (window_ == nullptr) {
+    io.Fonts->Build();  // headless: the atlas without a texture
+  } else if (fonts_built_) {
     ImGui_ImplOpenGL3_DestroyFontsTexture();
     ImGui_ImplOpenGL3_CreateFontsTexture();
   }
@@ -276,6 +363,11 @@ void Platform::update_scale() {
 
 void Platform::set_fullscreen(bool on) {
   if (on == fullscreen_) return;
+  if (window_ == nullptr) {  // headless: the window is the size it is
+    fullscreen_ = on;
+    note_event();
+    return;
+  }
   GLFWmonitor* monitor = glfwGetPrimaryMonitor();
   const GLFWvidmode* mode = monitor != nullptr ? glfwGetVideoMode(monitor) : nullptr;
   if (on && mode == nullptr) return;  // no monitor to fill
@@ -291,6 +383,13 @@ void Platform::set_fullscreen(bool on) {
 }
 
 void Platform::begin_backend_frame() {
+  if (window_ == nullptr) {
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(static_cast<float>(headless_size_[0]), static_cast<float>(headless_size_[1]));
+    io.DisplayFramebufferScale = ImVec2(1, 1);
+    io.DeltaTime = 1.0f / 60.0f;
+    return;
+  }
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
 }

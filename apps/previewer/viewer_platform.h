@@ -51,12 +51,31 @@ class Platform {
   // Opens the window and sets up ImGui. Nothing (and `error` explains) when there is no
   // display or no GL 3.3 core context.
   static std::unique_ptr<Platform> create(const PlatformOptions& options, std::string& error);
+  // No window and no GL: ImGui's frames at the size given, its fonts built, a clock of its own;
+  // what the shell's tests run it on (tests/shell). The window calls below then act on that size.
+  static std::unique_ptr<Platform> create_headless(const PlatformOptions& options);
   // Shuts ImGui down, destroys the window, terminates GLFW.
   ~Platform();
   Platform(const Platform&) = delete;
   Platform& operator=(const Platform&) = delete;
 
-  GLFWwindow* window() const { return window_; }
+  bool headless() const { return window_ == nullptr; }
+  // Seconds on the window system's clock (glfwGetTime), or the headless platform's own.
+  double now() const;
+  // The window's size in screen coordinates, and its framebuffer's in pixels.
+  void window_size(int& width, int& height) const;
+  void framebuffer_size(int& width, int& height) const;
+  void set_window_size(int width, int height);
+  // The window's close button (or a script's `close`): asked for, then taken once by the loop.
+  void request_close();
+  bool take_close_request();
+  void set_title(const std::string& title);
+  // Waits for events (or the timeout, seconds), handles those pending, shows the drawn frame.
+  void wait_events(double timeout);
+  void poll_events();
+  void swap_buffers();
+  // Wakes the loop's wait from any thread (the render thread's new image, a signal).
+  static void wake();
   // UI scale: the monitor's (1 on a standard display, 2 on a HiDPI one) times the user's.
   float ui_scale() const { return ui_scale_; }
   // Rebuilds fonts and style when the window moved to a monitor of another scale or the
@@ -66,7 +85,7 @@ class Platform {
   void set_user_scale(float factor) { user_scale_ = factor; }
   // Starts an ImGui frame (backends first). Call ImGui::NewFrame() after injecting any input.
   void begin_backend_frame();
-  // glfwGetTime() of the last input or window event: the main loop idles when it is old.
+  // now() of the last input or window event: the main loop idles when it is old.
   double last_event_time() const { return last_event_time_; }
   // Records an event now (GLFW callbacks, and script input that bypasses GLFW).
   void note_event();
@@ -96,7 +115,9 @@ class Platform {
   Platform() = default;
   void apply_scale(float scale);
 
-  GLFWwindow* window_ = nullptr;
+  GLFWwindow* window_ = nullptr;  // null: headless
+  int headless_size_[2] = {0, 0};
+  bool close_requested_ = false;  // headless: request_close() not yet taken
   bool glfw_ready_ = false;
   bool imgui_ready_ = false;
   float ui_scale_ = 0;
