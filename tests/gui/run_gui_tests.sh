@@ -1058,93 +1058,6 @@ check_mirrors() {
     test "$(cat "$dir/term.exit")" = 143 -a "$(cat "$dir/term.ms")" -lt 1500
 }
 
-# --- The second rehearsal: the probe panel's text, and the sidebar under the pointer ----------
-session_probe_text() {
-  local dir=$OUT/probe_text
-  mkdir -p "$dir"
-  cat >"$dir/script.txt" <<EOF
-set render target_spp 1
-wait_idle 120
-probe 520 440
-wait_frames 3
-wait_idle 120
-click_item panel.Rays
-wait_frames 3
-show_item rays.depth_cut
-wait_frames 3
-dump_state $dir/p1.txt
-screenshot $dir/p1.png
-click_item rays.depth_cut
-wait_frames 3
-wait_idle 120
-wait_frames 3
-dump_state $dir/p2.txt
-screenshot $dir/p2_cut.png
-show_item probe.spec_factor
-wait_frames 3
-dump_state $dir/p3.txt
-screenshot $dir/p3_probe_rows.png
-quit
-EOF
-  run_script "$dir" lecture
-}
-
-check_probe_text() {
-  local dir=$OUT/probe_text y1 y2
-  echo "session: the probe panel's text and the sidebar under the pointer"
-  check_exit "$dir" "the script ran to the end"
-  y1=$(state "$dir/p1.txt" item_rays.depth_cut | cut -d' ' -f2)
-  y2=$(state "$dir/p2.txt" item_rays.depth_cut | cut -d' ' -f2)
-  check "ticking 'cut recursion at depth' with a deep probe leaves the checkbox where it was (y $y1 -> $y2; cut $(state "$dir/p2.txt" depth_cut))" \
-    test -n "$y1" -a "$y1" = "$y2" -a "$(state "$dir/p2.txt" depth_cut)" != -1
-  check "the probe names the same pixel for phonglab-cli ($(state "$dir/p1.txt" probe_cli))" \
-    test -n "$(state "$dir/p1.txt" probe_cli | grep '^phonglab-cli probe lecture --pixel 520,440 ')"
-  local cli_total
-  cli_total=$($CLI $(state "$dir/p1.txt" probe_cli | cut -d' ' -f2-) --json 2>/dev/null |
-    python3 -c 'import json, sys; print(" ".join("%g" % v for v in json.load(sys.stdin)["total"]))')
-  check "... and the CLI's total there is the previewer's ($cli_total against $(state "$dir/p1.txt" probe_total))" \
-    test -n "$cli_total" -a "$cli_total" = "$(state "$dir/p1.txt" probe_total)"
-  check "the specular factor's value stands apart from its label ($(state "$dir/p3.txt" item_probe.spec_factor_label) | $(state "$dir/p3.txt" item_probe.spec_factor))" \
-    apart "$dir/p3.txt" item_probe.spec_factor_label item_probe.spec_factor
-}
-
-# --- The second rehearsal: drops said where one looks, a lesson dropped opens as a lesson ------
-session_drops() {
-  local dir=$OUT/drops
-  mkdir -p "$dir"
-  echo "notes, not a scene" >"$dir/notes.txt"
-  cat >"$dir/script.txt" <<EOF
-set render target_spp 1
-wait_idle 120
-drop $dir/notes.txt
-wait_frames 3
-dump_state $dir/d1.txt
-screenshot $dir/d1_refused.png
-key L
-wait_frames 3
-dump_state $dir/d3.txt
-set material matte kd 0.5 0.5 0.5
-wait_frames 3
-key Q ctrl
-wait_frames 3
-dump_state $dir/d4.txt
-modal discard
-wait_frames 300
-fail Ctrl+Q and Discard did not quit
-EOF
-  run_script "$dir" lecture
-}
-
-check_drops() {
-  local dir=$OUT/drops
-  echo "session: drops said where one looks; a lesson dropped; a preset's numbers"
-  check_exit "$dir" "the script ran to the end"
-  check "a .txt dropped is refused in the overlay's error line too ($(state "$dir/d1.txt" error))" \
-    test -n "$(state "$dir/d1.txt" error | grep 'notes.txt')"
-  check "L hides the lights' markers ($(state "$dir/d3.txt" light_markers))" test "$(state "$dir/d3.txt" light_markers)" = 0
-  check "Ctrl+Q with unsaved edits asks first (modal $(state "$dir/d4.txt" modal)), and Discard quits" test "$(state "$dir/d4.txt" modal)" = 1
-}
-
 # The Formula panel: a student's specular term with the sign of R wrong, its difference view on
 # the screen (orange where yours is brighter, blue where darker).
 session_formula() {
@@ -1223,8 +1136,8 @@ check_image() {
 # side by side as previewer_gui_1 and previewer_gui_2); unset, all of them.
 PART1_SESSIONS="session_view session_instruments session_rays session_lecture session_formula"
 PART1_CHECKS="check_view check_instruments check_rays check_lecture check_no_display check_formula"
-PART2_SESSIONS="session_image session_objects session_browser session_lessons session_recovery session_ambient session_mirrors session_probe_text session_drops"
-PART2_CHECKS="check_image check_objects check_browser check_lessons check_recovery check_ambient check_mirrors check_probe_text check_drops"
+PART2_SESSIONS="session_image session_objects session_browser session_lessons session_recovery session_ambient session_mirrors"
+PART2_CHECKS="check_image check_objects check_browser check_lessons check_recovery check_ambient check_mirrors"
 # GUI_ONLY="recovery ambient" runs those sessions alone (while working on them).
 if [[ -n "${GUI_ONLY:-}" ]]; then
   run_gui_script "GUI tests ($GUI_ONLY)" 1280x720x24 "$(printf 'session_%s ' $GUI_ONLY)" "$(printf 'check_%s ' $GUI_ONLY)"
