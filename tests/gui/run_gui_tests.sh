@@ -807,34 +807,20 @@ check_lessons() {
 
 session_browser() {
   local dir=$OUT/browser
-  mkdir -p "$dir/scenes/sub" "$dir/state"
+  mkdir -p "$dir/scenes/sub" "$dir/state/phonglab"
   cp "$SELF_DIR/../../assets/scenes/glass.json" "$dir/scenes/sub/glass.json"
+  cp "$SELF_DIR/../../assets/scenes/glass.json" "$dir/scenes/sub/copy.json"
+  printf '%s\n' "$dir/scenes/sub/copy.json" "$dir/scenes/sub/glass.json" >"$dir/state/phonglab/recent"
   cat >"$dir/script.txt" <<EOF
 set render target_spp 1
 wait_idle 120
 key O ctrl
 wait_frames 5
-dump_state $dir/f1.txt
 type_item browser.name $dir/scenes/sub
 wait_frames 3
-dump_state $dir/f2.txt
-screenshot $dir/f2_browser.png
-click_item browser.entry.glass.json
-wait_frames 2
-click_item browser.accept
-wait_idle 120
-dump_state $dir/f3.txt
-key S ctrl shift
-wait_frames 5
-type_item browser.name copy.json
-wait_idle 120
-dump_state $dir/f4.txt
-key O ctrl
-wait_frames 5
 screenshot $dir/f5_recent.png
 key ESCAPE
 wait_frames 3
-dump_state $dir/f5.txt
 quit
 EOF
   XDG_STATE_HOME="$dir/state" "$BIN" lecture --size 1280x720 --script "$dir/script.txt" >"$dir/stdout.txt" 2>"$dir/stderr.txt"
@@ -843,20 +829,10 @@ EOF
 
 check_browser() {
   local dir=$OUT/browser
-  echo "session 8: the file browser"
+  echo "session 8: the file browser on the screen (its use: tests/shell/test_browser_input.cpp)"
   check_exit "$dir" "the script ran to the end"
-  check "Ctrl+O opens the browser in the working folder ($(state "$dir/f1.txt" file_browser_folder))" \
-    test "$(state "$dir/f1.txt" file_browser)" = open
-  check "a folder typed into its field is listed ($(state "$dir/f2.txt" file_browser_folder))" \
-    test "$(state "$dir/f2.txt" file_browser_folder)" = "$dir/scenes/sub" -a "$(state "$dir/f2.txt" file_browser)" = open
-  check "a click on a file and Open open it ($(state "$dir/f3.txt" source))" \
-    test "$(state "$dir/f3.txt" source)" = "$dir/scenes/sub/glass.json" -a -z "$(state "$dir/f3.txt" file_browser)"
-  check "Ctrl+Shift+S with a typed name saves there ($(state "$dir/f4.txt" status))" \
-    test "$(state "$dir/f4.txt" source)" = "$dir/scenes/sub/copy.json" -a -s "$dir/scenes/sub/copy.json"
-  check "the recent files list both, newest first, and is kept for the next session" \
-    test "$(state "$dir/f4.txt" recent0)" = "$dir/scenes/sub/copy.json" -a "$(state "$dir/f4.txt" recent1)" = "$dir/scenes/sub/glass.json" \
-    -a "$(head -n 1 "$dir/state/phonglab/recent")" = "$dir/scenes/sub/copy.json"
-  check "Esc closes the browser" test -z "$(state "$dir/f5.txt" file_browser)"
+  check "the browser is drawn over the view: its list is not the scene ($(stddev "$dir/f5_recent.png" 500x300+270+180))" \
+    greater "$(stddev "$dir/f5_recent.png" 500x300+270+180)" 0.01
 }
 
 # --- What ambient stands in for: the I key's four views, the probe's indirect numbers --------
