@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 
 #include "apps/previewer/viewer_app.h"
 
@@ -38,6 +40,25 @@ std::map<std::string, std::string> read_state(const std::string& path) {
     if (eq != std::string::npos) values.emplace(line.substr(0, eq), line.substr(eq + 1));
   }
   return values;
+}
+
+std::array<double, 3> vec3_of(const std::string& text) {
+  std::array<double, 3> v{};
+  std::istringstream in(text);
+  in >> v[0] >> v[1] >> v[2];
+  return v;
+}
+
+bool rects_apart(const std::string& a, const std::string& b) {
+  double ax = 0, ay = 0, aw = 0, ah = 0, bx = 0, by = 0, bw = 0, bh = 0;
+  std::istringstream(a) >> ax >> ay >> aw >> ah;
+  std::istringstream(b) >> bx >> by >> bw >> bh;
+  return ax + aw <= bx || bx + bw <= ax || ay + ah <= by || by + bh <= ay;
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace phonglab::test

@@ -3,6 +3,7 @@
 // given; what a script's dump_state writes read back as key=value pairs.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 
@@ -21,5 +22,12 @@ ShellRun run_shell(const TestFolder& folder, const std::string& scene, const std
 
 // A dump_state file's values by key.
 std::map<std::string, std::string> read_state(const std::string& path);
+
+// A dump_state vector ("x y z") as three numbers.
+std::array<double, 3> vec3_of(const std::string& text);
+// Whether two dump_state rectangles ("x y w h") do not overlap.
+bool rects_apart(const std::string& a, const std::string& b);
+// A file's bytes (empty when it cannot be read).
+std::string file_bytes(const std::string& path);
 
 }  // namespace phonglab::test

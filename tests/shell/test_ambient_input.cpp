@@ -12,13 +12,6 @@
 namespace phonglab {
 namespace {
 
-std::array<double, 3> vec3(const std::string& text) {
-  std::array<double, 3> v{};
-  std::istringstream in(text);
-  in >> v[0] >> v[1] >> v[2];
-  return v;
-}
-
 TEST(AmbientInput, TheIKeysViewsAndTheFitButtons) {
   test::TestFolder folder("phonglab-shell-ambient");
   const std::string d = folder.path().string() + "/";
@@ -60,14 +53,14 @@ quit
   auto a5 = test::read_state(d + "a5.txt");
   const std::string wall = a5["selected_material"];
   ASSERT_FALSE(wall.empty());
-  const auto before = vec3(a4["material_" + wall + "_ka"]);
-  const auto after = vec3(a5["material_" + wall + "_ka"]);
+  const auto before = test::vec3_of(a4["material_" + wall + "_ka"]);
+  const auto after = test::vec3_of(a5["material_" + wall + "_ka"]);
   EXPECT_GT(after[0], before[0]) << "best ka raises " << wall << "'s ka";
   for (const double c : after) EXPECT_LE(c, 1) << "but not past 1";
   EXPECT_FALSE(a5["item_materials.fit_ka_over"].empty()) << "and says the fit wants more";
   EXPECT_EQ(a5["dirty"], "1") << "an MTL material's edit is unsaved like any other";
   auto a6 = test::read_state(d + "a6.txt");
-  const double ia_before = vec3(a5["scene_ambient"])[0], ia_after = vec3(a6["scene_ambient"])[0];
+  const double ia_before = test::vec3_of(a5["scene_ambient"])[0], ia_after = test::vec3_of(a6["scene_ambient"])[0];
   EXPECT_GT(ia_after, ia_before) << "best Ia sets the scene's one ambient intensity";
   EXPECT_LT(ia_after, 1);
   EXPECT_EQ(a6["material_" + wall + "_ka"], a5["material_" + wall + "_ka"]) << "the materials' ka kept";

@@ -18,18 +18,6 @@
 namespace phonglab {
 namespace {
 
-std::array<double, 3> vec3(const std::string& text) {
-  std::array<double, 3> v{};
-  std::istringstream in(text);
-  in >> v[0] >> v[1] >> v[2];
-  return v;
-}
-
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(BuildingInput, ObjectsAddedMovedDroppedDeletedAndSavedAsTheCliRendersThem) {
   test::TestFolder folder("phonglab-shell-building");
   const std::string d = folder.path().string() + "/";
@@ -94,8 +82,8 @@ quit
   EXPECT_EQ(b01["selected_object"], std::to_string(n0)) << "and selects it";
   EXPECT_EQ(b01["object" + std::to_string(n0) + "_kind"], "sphere");
   auto b05 = test::read_state(d + "b05.txt");
-  const auto original = vec3(b05["object6_anchor"]);
-  const auto duplicate = vec3(b05["object7_anchor"]);
+  const auto original = test::vec3_of(b05["object6_anchor"]);
+  const auto duplicate = test::vec3_of(b05["object7_anchor"]);
   EXPECT_EQ(duplicate[0], original[0]) << "a duplicate, made in place and dragged up with Y held, moves along y only";
   EXPECT_GT(duplicate[1], original[1] + 0.05);
   EXPECT_EQ(duplicate[2], original[2]);
@@ -120,9 +108,9 @@ quit
                           " --spp 1 -o " + d + "cli_built.pfm")
                 .exit_code,
             0);
-  const std::string ours = bytes_of(d + "built.pfm");
+  const std::string ours = test::file_bytes(d + "built.pfm");
   EXPECT_FALSE(ours.empty());
-  EXPECT_TRUE(ours == bytes_of(d + "cli_built.pfm")) << "the CLI renders the saved scene to the previewer's image, bit for bit";
+  EXPECT_TRUE(ours == test::file_bytes(d + "cli_built.pfm")) << "the CLI renders the saved scene to the previewer's image, bit for bit";
 }
 
 }  // namespace

@@ -19,28 +19,6 @@ using test::read_state;
 using test::run_shell;
 using test::TestFolder;
 
-// "x y z" as three numbers.
-std::array<double, 3> vec3(const std::string& text) {
-  std::array<double, 3> v{};
-  std::istringstream in(text);
-  in >> v[0] >> v[1] >> v[2];
-  return v;
-}
-
-// "x y w h" rectangles that do not overlap.
-bool apart(const std::string& a, const std::string& b) {
-  double ax = 0, ay = 0, aw = 0, ah = 0, bx = 0, by = 0, bw = 0, bh = 0;
-  std::istringstream(a) >> ax >> ay >> aw >> ah;
-  std::istringstream(b) >> bx >> by >> bw >> bh;
-  return ax + aw <= bx || bx + bw <= ax || ay + ah <= by || by + bh <= ay;
-}
-
-std::string read_file(const std::string& path) {
-  std::stringstream text;
-  text << std::ifstream(path).rdbuf();
-  return text.str();
-}
-
 TEST(LectureInput, TheOrbitFollowsTheHandAndStopsAtThePoles) {
   TestFolder folder("phonglab-shell-orbit");
   const std::string d = folder.path().string() + "/";
@@ -64,10 +42,10 @@ dump_state )" + d + R"(up600.txt
 quit
 )");
   ASSERT_EQ(run.exit_status, 0);
-  const auto start = vec3(read_state(d + "start.txt")["camera_position"]);
-  const auto down20 = vec3(read_state(d + "down20.txt")["camera_position"]);
-  const auto above = vec3(read_state(d + "down600.txt")["camera_position"]);
-  const auto below = vec3(read_state(d + "up600.txt")["camera_position"]);
+  const auto start = test::vec3_of(read_state(d + "start.txt")["camera_position"]);
+  const auto down20 = test::vec3_of(read_state(d + "down20.txt")["camera_position"]);
+  const auto above = test::vec3_of(read_state(d + "down600.txt")["camera_position"]);
+  const auto below = test::vec3_of(read_state(d + "up600.txt")["camera_position"]);
   EXPECT_GT(down20[1], start[1]) << "a 20 px drag down looks from higher up";
   EXPECT_GT(above[1], 6) << "600 px down: above the scene";
   EXPECT_GT(above[2], 0) << "stopped at the pole, not over it";
@@ -188,7 +166,7 @@ quit
   EXPECT_LT(std::stod(read_state(d + "l20.txt")["camera_distance"]), 1000) << "200 wheel clicks out stop at the dolly limit";
   EXPECT_EQ(std::stod(read_state(d + "l21.txt")["material_plastic_n"]), 4 * std::stod(l00["material_plastic_n"]))
       << "Blinn-Phong offers n x 4";
-  const std::string saved = read_file(d + "noise.json");
+  const std::string saved = test::file_bytes(d + "noise.json");
   const std::size_t plastic = saved.find("\"plastic\": {");
   ASSERT_NE(plastic, std::string::npos);
   const std::string block = saved.substr(plastic, saved.find('}', plastic) - plastic);
@@ -220,10 +198,10 @@ quit
 )");
   ASSERT_EQ(run.exit_status, 0);
   auto glass = read_state(d + "glass.txt");
-  EXPECT_TRUE(apart(glass["overlay_stats"], glass["overlay_ray_tree_legend"]))
+  EXPECT_TRUE(test::rects_apart(glass["overlay_stats"], glass["overlay_ray_tree_legend"]))
       << "UI size 1.5, stats details and the ray-tree legend: " << glass["overlay_stats"] << " / "
       << glass["overlay_ray_tree_legend"];
-  EXPECT_TRUE(apart(glass["overlay_ray_tree_legend"], glass["probe_screen"] + " 1 1")) << "the legend keeps clear of the probed point";
+  EXPECT_TRUE(test::rects_apart(glass["overlay_ray_tree_legend"], glass["probe_screen"] + " 1 1")) << "the legend keeps clear of the probed point";
   EXPECT_EQ(glass["render"], "170x180") << "a larger UI size narrows the viewport, and the render follows";
   const std::string label = read_state(d + "shininess.txt")["depth_cut_label"];
   EXPECT_FALSE(label.empty());

@@ -17,14 +17,6 @@
 namespace phonglab {
 namespace {
 
-// "x y w h" rectangles that do not overlap.
-bool apart(const std::string& a, const std::string& b) {
-  double ax = 0, ay = 0, aw = 0, ah = 0, bx = 0, by = 0, bw = 0, bh = 0;
-  std::istringstream(a) >> ax >> ay >> aw >> ah;
-  std::istringstream(b) >> bx >> by >> bw >> bh;
-  return ax + aw <= bx || bx + bw <= ax || ay + ah <= by || by + bh <= ay;
-}
-
 // The second word of a rectangle's text: its top.
 std::string top_of(const std::string& rect) {
   std::istringstream in(rect);
@@ -78,7 +70,7 @@ quit
     total += text;
   }
   EXPECT_EQ(total, p1["probe_total"]) << "the CLI's total at the probe's pixel is the previewer's (" << command << ")";
-  EXPECT_TRUE(apart(p3["item_probe.spec_factor_label"], p3["item_probe.spec_factor"]))
+  EXPECT_TRUE(test::rects_apart(p3["item_probe.spec_factor_label"], p3["item_probe.spec_factor"]))
       << "the specular factor's value stands apart from its label: " << p3["item_probe.spec_factor_label"] << " | "
       << p3["item_probe.spec_factor"];
 }

@@ -17,11 +17,6 @@
 namespace phonglab {
 namespace {
 
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(RaysInput, TheTreesTheDepthCutAndTheHeatMapAreTheClis) {
   test::TestFolder folder("phonglab-shell-rays");
   const std::string d = folder.path().string() + "/";
@@ -86,9 +81,9 @@ quit
   ASSERT_EQ(test::run_cli("render " + view + " --max-depth 0 -o " + d + "cli_cut0.pfm").exit_code, 0);
   ASSERT_EQ(test::run_cli("render " + view + " --max-depth 1 -o " + d + "cli_cut1.pfm").exit_code, 0);
   ASSERT_EQ(test::run_cli("render " + view + " -o " + d + "cli_full.pfm").exit_code, 0);
-  EXPECT_TRUE(bytes_of(d + "cut0.pfm") == bytes_of(d + "cli_cut0.pfm")) << "cut at depth 0: the CLI's --max-depth 0, bit for bit";
-  EXPECT_TRUE(bytes_of(d + "cut1.pfm") == bytes_of(d + "cli_cut1.pfm")) << "cut at depth 1: the CLI's --max-depth 1, bit for bit";
-  EXPECT_TRUE(bytes_of(d + "cut_off.pfm") == bytes_of(d + "cli_full.pfm")) << "ending the cut gives the scene's own image back";
+  EXPECT_TRUE(test::file_bytes(d + "cut0.pfm") == test::file_bytes(d + "cli_cut0.pfm")) << "cut at depth 0: the CLI's --max-depth 0, bit for bit";
+  EXPECT_TRUE(test::file_bytes(d + "cut1.pfm") == test::file_bytes(d + "cli_cut1.pfm")) << "cut at depth 1: the CLI's --max-depth 1, bit for bit";
+  EXPECT_TRUE(test::file_bytes(d + "cut_off.pfm") == test::file_bytes(d + "cli_full.pfm")) << "ending the cut gives the scene's own image back";
 
   auto r08 = test::read_state(d + "r08.txt");
   EXPECT_EQ(r08["term"], "rays") << "the heat map shows the rays view";
@@ -98,7 +93,7 @@ quit
   ASSERT_TRUE(std::regex_search(heat.out, top, std::regex(R"(heat map: 0 \(black\) \.\. ([0-9.e+]+) \(pale yellow\))"))) << heat.out;
   EXPECT_EQ(r08["heat_max"], top[1].str()) << "its scale tops at the image's maximum, as phonglab-cli's";
   ASSERT_EQ(test::run_cli("render " + view + " --term rays -o " + d + "cli_rays.pfm").exit_code, 0);
-  EXPECT_TRUE(bytes_of(d + "rays.pfm") == bytes_of(d + "cli_rays.pfm")) << "its counts are phonglab-cli's --term rays, bit for bit";
+  EXPECT_TRUE(test::file_bytes(d + "rays.pfm") == test::file_bytes(d + "cli_rays.pfm")) << "its counts are phonglab-cli's --term rays, bit for bit";
   std::string error;
   const auto shown = read_image_file(d + "heat_shown.png", &error);
   const auto cli = read_image_file(d + "cli_heat.png", &error);
