@@ -217,8 +217,8 @@ void FileShell::write_screenshot(const std::string& path, const Image& image, co
   screenshot_state_.status = status.str();
 }
 
-bool FileShell::save_window_screenshot(const std::string& path, int fb_width, int fb_height) {
-  const std::vector<unsigned char> rgb = read_framebuffer_rgb8(fb_width, fb_height);
+bool FileShell::save_window_screenshot(const std::string& path, const std::vector<unsigned char>& rgb, int fb_width,
+                                       int fb_height) {
   Image image;
   image.width = fb_width;
   image.height = fb_height;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "apps/previewer/file_browser.h"
 #include "interaction/recovery.h"
@@ -66,8 +67,9 @@ class FileShell {
   bool begin_screenshot(Image& image);     // the shown image's size, or false (and why) before the first
   void save_png(const std::string& path);  // what is shown, exposure and curve applied
   void save_pfm(const std::string& path);  // the linear image
-  // The whole window; false (said on stderr, and the shell quits) when it cannot be written.
-  bool save_window_screenshot(const std::string& path, int fb_width, int fb_height);
+  // The whole window's pixels (RGB, 8 bits a channel, rows from the top) as a PNG; false (said
+  // on stderr, and the shell quits) when it cannot be written.
+  bool save_window_screenshot(const std::string& path, const std::vector<unsigned char>& rgb, int fb_width, int fb_height);
   void find_recovery();                    // at start: a recovery to offer
   void handle_recovery_modal();            // the offer and its answer
   bool handle_signal();                    // a signal arrived: the recovery written, the exit code set

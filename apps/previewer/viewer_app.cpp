@@ -31,7 +31,6 @@ namespace {
 // The stats log's key for the level of an image: its divisor, 0 for the quad-shaded live rung.
 int level_key(const ProgressiveFrame& frame) { return frame.quads ? 0 : frame.divisor; }
 
-constexpr float kClear[3] = {0.10f, 0.10f, 0.11f};  // the window where neither the image nor a panel is
 
 constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
 constexpr double kEarlyFrameGap = 0.004;    // a new edit's first image may go up this soon after a frame
@@ -201,9 +200,9 @@ int Viewer::run() {
     // spends the UI thread's time (and the machine's memory traffic) on every copy and swap.
     const std::string shot = client_ ? client_->screenshot_wanted() : "";
     if (s_.platform.headless()) {
-      take_images();  // what drawing would show, without GL
+      if (!shot.empty()) draw_software(fb_width, fb_height, shot);  // what the window would show, drawn on the CPU
+      take_images();
       s_.upload_pending = false;
-      if (!shot.empty() && client_) client_->screenshot_failed();  // no window to read back
     } else if (frame_changed(fb_width, fb_height) || !shot.empty()) {
       draw_gl(fb_width, fb_height, shot);
       s_.platform.swap_buffers();
@@ -379,15 +378,12 @@ void Viewer::take_images() {
   s_.drawn_serial = s_.shown.stats.serial;
 }
 
-void Viewer::upload_images(int view_w, int view_h) {
+void Viewer::upload_images(const DisplayBlocks& blocks) {
   const float exposure_ev = image_exposure_ev();
   const bool has_frame = s_.shown.width > 0 && s_.shown.height > 0;
   take_images();
-  // A new image, or new display settings for the one on screen: encoded and uploaded again. A
-  // coarse level filling the view is widened into its blocks: the blit is then a plain copy.
+  // A new image, or new display settings for the one on screen: encoded and uploaded again.
   if (has_frame && (s_.upload_pending || !s_.image_view.shows(exposure_ev, s_.display.srgb))) {
-    DisplayBlocks blocks;
-    if (!s_.instruments.small_multiples && s_.shown.divisor > 1) blocks = {s_.shown.divisor, view_w, view_h};
     s_.image_view.upload(s_.shown.width, s_.shown.height, tools_.display_pixels(), exposure_ev, s_.display.srgb, blocks);
   }
   // The small multiples' cells: the five term images of the same samples, when it has them.
@@ -422,59 +418,63 @@ bool Viewer::frame_changed(int fb_width, int fb_height) {
 }
 
 void Viewer::draw_gl(int fb_width, int fb_height, const std::string& screenshot) {
-  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
-  const int view_w = static_cast<int>(std::lround(s_.viewport.width * scale.x));
-  const int view_h = static_cast<int>(std::lround(s_.viewport.height * scale.y));
-  const int view_x = static_cast<int>(std::lround(s_.viewport.x * scale.x));
-  const int view_y = fb_height - view_h - static_cast<int>(std::lround(s_.viewport.y * scale.y));  // GL counts from the bottom
-  upload_images(view_w, view_h);
+  const ScreenPlan plan = plan_screen(s_, fb_width, fb_height, ImGui::GetIO().DisplayFramebufferScale,
+                                      ImGui::GetStyle().Colors[ImGuiCol_WindowBg]);
+  upload_images(plan.view_blocks);
   glViewport(0, 0, fb_width, fb_height);
-  // The sidebar, when shown, runs from the view's right edge to the window's (Sidebar::draw_sidebar).
-  const int panel_x = static_cast<int>(std::lround(s_.viewport.width * scale.x));
-  const bool panel = s_.sidebar_visible && panel_x < fb_width;
-  // The image copied over the whole view, up to the panel or the window's edge, leaves nothing to clear.
-  const bool covered = !s_.instruments.small_multiples && view_x == 0 && view_y == 0 && view_h == fb_height &&
-                       view_w == (panel ? panel_x : fb_width) && s_.image_view.width() == view_w &&
-                       s_.image_view.height() == view_h;
-  if (!covered) {
-    glClearColor(kClear[0], kClear[1], kClear[2], 1.0f);
+  if (plan.clear) {
+    glClearColor(plan.clear_color.r, plan.clear_color.g, plan.clear_color.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
   }
-  if (panel) {
-    // The panel's background as ImGui would blend it over the clear colour (Sidebar draws none).
-    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  const auto gl_y = [fb_height](const ui::PixelRect& r) { return fb_height - r.y - r.height; };  // GL counts from the bottom
+  if (plan.panel) {
     glEnable(GL_SCISSOR_TEST);
-    glScissor(panel_x, 0, fb_width - panel_x, fb_height);
-    glClearColor(bg.x * bg.w + kClear[0] * (1 - bg.w), bg.y * bg.w + kClear[1] * (1 - bg.w),
-                 bg.z * bg.w + kClear[2] * (1 - bg.w), 1.0f);
+    glScissor(plan.panel_rect.x, gl_y(plan.panel_rect), plan.panel_rect.width, plan.panel_rect.height);
+    glClearColor(plan.panel_color.r, plan.panel_color.g, plan.panel_color.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
   }
-  if (s_.instruments.small_multiples) {
-    // 3 x 2 cells, top row first; GL rows count from the bottom.
-    const int cell_w = view_w / kMultiplesColumns;
-    const int cell_h = view_h / kMultiplesRows;
-    for (int cell = 0; cell < kMultiplesColumns * kMultiplesRows; ++cell) {
-      const int x = view_x + (cell % kMultiplesColumns) * cell_w;
-      const int y = view_y + (kMultiplesRows - 1 - cell / kMultiplesColumns) * cell_h;
-      if (cell == kTermCells) {
-        s_.image_view.draw(x, y, cell_w, cell_h, s_.shown.divisor > 1);
-        continue;
-      }
-      const auto i = static_cast<std::size_t>(cell);
-      if (term_views_[i].has_image()) {
-        term_views_[i].draw(x, y, cell_w, cell_h, s_.shown.divisor > 1);
-      }
-    }
-  } else {
-    // Coarse levels as crisp blocks; a reduced-resolution final image is smoothed.
-    const bool nearest = s_.shown.divisor > 1 || s_.image_view.width() == view_w;
-    s_.image_view.draw(view_x, view_y, view_w, view_h, nearest);
+  for (const ScreenPlan::Image& image : plan.images) {
+    ImageView& view = image.source < 0 ? s_.image_view : term_views_[static_cast<std::size_t>(image.source)];
+    view.draw(image.rect.x, gl_y(image.rect), image.rect.width, image.rect.height, image.nearest);
   }
   glViewport(0, 0, fb_width, fb_height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (!screenshot.empty()) {
-    if (!files_.save_window_screenshot(screenshot, fb_width, fb_height) && client_) client_->screenshot_failed();
+    if (!files_.save_window_screenshot(screenshot, read_framebuffer_rgb8(fb_width, fb_height), fb_width, fb_height) && client_) {
+      client_->screenshot_failed();
+    }
+  }
+}
+
+// The headless screen: what draw_gl would put in the window, drawn on the CPU (ui::SoftwareScreen).
+void Viewer::draw_software(int fb_width, int fb_height, const std::string& screenshot) {
+  const ScreenPlan plan = plan_screen(s_, fb_width, fb_height, ImGui::GetIO().DisplayFramebufferScale,
+                                      ImGui::GetStyle().Colors[ImGuiCol_WindowBg]);
+  take_images();
+  ui::SoftwareScreen screen(fb_width, fb_height);
+  if (plan.clear) screen.fill({0, 0, fb_width, fb_height}, plan.clear_color);
+  if (plan.panel) screen.fill(plan.panel_rect, plan.panel_color);
+  std::vector<unsigned char> codes;
+  for (const ScreenPlan::Image& image : plan.images) {
+    const bool view = image.source < 0;
+    const std::vector<glm::vec3> pixels = view ? tools_.display_pixels() : s_.shown.terms[static_cast<std::size_t>(image.source)];
+    const DisplayBlocks blocks = view ? plan.view_blocks : DisplayBlocks{1, s_.shown.width, s_.shown.height};
+    const float exposure_ev = view ? image_exposure_ev() : s_.display.exposure_ev;
+    codes.resize(static_cast<std::size_t>(blocks.width) * static_cast<std::size_t>(blocks.height) * 4);
+    const Display8Encoder& encoder = s_.display.srgb ? Display8Encoder::srgb() : Display8Encoder::linear();
+    if (pixels.empty() || !encoder.encode_bgra_blocks(pixels.data(), s_.shown.width, s_.shown.height, std::exp2(exposure_ev),
+                                                      blocks, false, codes.data())) {
+      continue;  // no image yet (or no term images): the cell stays as cleared
+    }
+    screen.blit(codes.data(), blocks.width, blocks.height, image.rect, image.nearest);
+  }
+  unsigned char* atlas = nullptr;
+  int atlas_w = 0, atlas_h = 0;
+  ImGui::GetIO().Fonts->GetTexDataAsRGBA32(&atlas, &atlas_w, &atlas_h);
+  screen.draw(*ImGui::GetDrawData(), atlas, atlas_w, atlas_h);
+  if (!files_.save_window_screenshot(screenshot, screen.rgb(), fb_width, fb_height) && client_) {
+    client_->screenshot_failed();
   }
 }
 

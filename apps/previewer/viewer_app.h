@@ -26,6 +26,7 @@
 #include "apps/previewer/overlays.h"
 #include "apps/previewer/sidebar.h"
 #include "apps/previewer/lesson_shell.h"
+#include "apps/previewer/screen_plan.h"
 #include "apps/previewer/script_driver.h"
 #include "apps/previewer/viewer_gl.h"
 #include "apps/previewer/viewer_platform.h"
@@ -77,8 +78,9 @@ class Viewer {
   // A new image from the renderer taken as the one on screen (its generation, the heat map's top).
   void take_images();
   // Encodes and uploads a new image (or the one on screen under new display settings).
-  void upload_images(int view_w, int view_h);
+  void upload_images(const DisplayBlocks& blocks);  // the view's image widened into `blocks`, the small multiples'
   void draw_gl(int fb_width, int fb_height, const std::string& screenshot);  // upload, image, ImGui, the screenshot wanted
+  void draw_software(int fb_width, int fb_height, const std::string& screenshot);  // headless: the screenshot drawn on the CPU
   // The exposure the image on screen is encoded with (none for the heat map's final colours).
   float image_exposure_ev() const;
   // Whether the image on screen (or a term image) must be encoded and uploaded again.

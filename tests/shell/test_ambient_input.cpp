@@ -1,7 +1,7 @@
 // What ambient stands in for, through the shell's keys and buttons, headless: I steps through the
 // indirect light, beside, difference and back to ka·Ia; on the Cornell box's back wall "best ka"
 // raises its ka but not past 1 and says the fit wants more, and "best Iₐ" sets the scene's one
-// ambient intensity. (The four views as the screen shows them are the Xvfb session's.)
+// ambient intensity. (The four views as the screen shows them: test_screen_teaching.cpp.)
 #include <gtest/gtest.h>
 
 #include <sstream>

@@ -1,7 +1,7 @@
 // The teaching instruments driven through the shell's input, headless: the probe at a window
 // pixel is the shown linear pixel exactly (also with the head moved), Ctrl+click and probe mode
 // probe elsewhere, Ctrl+Z and Ctrl+Shift+Z undo and redo an edit. (The compare views, the small
-// multiples and the two-eye differences on the screen are the Xvfb session's.)
+// multiples and the two-eye differences on the screen: test_screen_views.cpp.)
 #include <gtest/gtest.h>
 
 #include <string>

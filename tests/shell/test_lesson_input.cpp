@@ -1,8 +1,8 @@
 // Presenting a lesson through the shell's keys and panels, headless: a term key on a step is
 // exploring and Back shows the step as written; the move-your-head question's answer is shown as
 // the compare view; exploring a lesson file's step and Ctrl+S asks where to save (the lesson file
-// is nobody's scene file). (The real keys, presenter mode and the images on the screen are the
-// Xvfb session's.)
+// is nobody's scene file). (The images on the screen: test_screen_teaching.cpp; the real keys and
+// presenter mode: the Xvfb session's.)
 #include <gtest/gtest.h>
 
 #include <fstream>

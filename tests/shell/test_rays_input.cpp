@@ -1,8 +1,8 @@
 // The ray tree overlay, the depth cut and the heat map through the shell, headless: the probed
 // trees' segments and blocked shadow rays, the cut renders with the cut depth and is not an edit,
 // the images at cut 0 and 1 and the scene's own are phonglab-cli's bit for bit, the heat map's
-// scale, counts and PNG are the CLI's. (The overlay and the cut as they look on the screen, and
-// the screen's codes against the CLI's PNG, are the Xvfb session's.)
+// scale, counts and PNG are the CLI's. (The overlay and the cut as they look on the screen:
+// test_screen_views.cpp; the GL window's codes against the CLI's PNG: the Xvfb session's.)
 #include <gtest/gtest.h>
 
 #include <fstream>
