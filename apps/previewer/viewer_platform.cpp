@@ -284,6 +284,8 @@ std::unique_ptr<Platform> Platform::create_headless(const PlatformOptions& optio
   std::unique_ptr<Platform> p(new Platform());
   p->headless_size_[0] = std::max(options.width, 1);
   p->headless_size_[1] = std::max(options.height, 1);
+  p->headless_screen_[0] = options.screen_width;
+  p->headless_screen_[1] = options.screen_height;
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -377,7 +379,15 @@ void Platform::update_scale() {
 
 void Platform::set_fullscreen(bool on) {
   if (on == fullscreen_) return;
-  if (window_ == nullptr) {  // headless: the window is the size it is
+  if (window_ == nullptr) {  // headless: the monitor's size given, and back
+    if (headless_screen_[0] > 0 && headless_screen_[1] > 0) {
+      if (on) {
+        windowed_[2] = headless_size_[0], windowed_[3] = headless_size_[1];
+        headless_size_[0] = headless_screen_[0], headless_size_[1] = headless_screen_[1];
+      } else {
+        headless_size_[0] = windowed_[2], headless_size_[1] = windowed_[3];
+      }
+    }
     fullscreen_ = on;
     note_event();
     return;

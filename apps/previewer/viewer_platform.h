@@ -44,6 +44,9 @@ struct PlatformOptions {
   int width = 1280;          // window size in screen coordinates
   int height = 720;
   std::string title = "phonglab";
+  // Headless: the primary monitor's size that full screen (presenter mode) fills; 0 keeps the window's.
+  int screen_width = 0;
+  int screen_height = 0;
 };
 
 class Platform {
@@ -117,6 +120,7 @@ class Platform {
 
   GLFWwindow* window_ = nullptr;  // null: headless
   int headless_size_[2] = {0, 0};
+  int headless_screen_[2] = {0, 0};  // the monitor full screen fills headless (0: the window's size)
   bool close_requested_ = false;  // headless: request_close() not yet taken
   bool glfw_ready_ = false;
   bool imgui_ready_ = false;

@@ -1,4 +1,4 @@
-# The helpers of the previewer's Xvfb test scripts (run_gui_tests.sh, run_hall_tests.sh): checks,
+# The helpers of the previewer's Xvfb test scripts (run_gui_tests.sh, soak.sh): checks,
 # dump_state values, image regions compared with ImageMagick, waiting for a session's files.
 # Sourced, not run.
 

@@ -16,7 +16,7 @@
 
 namespace phonglab::test {
 
-ShellRun run_shell(const TestFolder& folder, const std::string& scene, const std::string& script, int width, int height) {
+ShellRun run_shell(const TestFolder& folder, const std::string& scene, const std::string& script, const ShellOptions& shell) {
   const std::string script_path = (folder.path() / "script.txt").string();
   std::string text = script;
   const std::string out = folder.path().string() + "/";
@@ -26,14 +26,20 @@ ShellRun run_shell(const TestFolder& folder, const std::string& scene, const std
   std::ofstream(script_path) << text;
   setenv("XDG_STATE_HOME", (folder.path() / "state").c_str(), 1);  // nothing of the user's read or written
   ViewerOptions options;
-  options.scene_arg = scene;
-  options.scene_given = true;
-  options.width = width;
-  options.height = height;
+  if (shell.lesson.empty()) {
+    options.scene_arg = scene;
+    options.scene_given = true;
+  }
+  options.lesson_arg = shell.lesson;
+  options.stats_log_path = shell.stats_log;
+  options.width = shell.width;
+  options.height = shell.height;
   options.script_path = script_path;
   PlatformOptions platform_options;
-  platform_options.width = width;
-  platform_options.height = height;
+  platform_options.width = shell.width;
+  platform_options.height = shell.height;
+  platform_options.screen_width = shell.screen_width;
+  platform_options.screen_height = shell.screen_height;
   const std::unique_ptr<Platform> platform = Platform::create_headless(platform_options);
   ShellRun run;
   {

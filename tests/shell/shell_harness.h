@@ -17,11 +17,19 @@ struct ShellRun {
   int exit_status = -1;  // the previewer's: 0, or 3 when a script command failed
 };
 
-// Runs `script` (the previewer's script commands, docs/previewer.md) on `scene` in a window of
-// `width` x `height`, with the state folder (recovery, recent files) inside `folder`; "$OUT/" in
-// the script stands for `folder`'s path.
-ShellRun run_shell(const TestFolder& folder, const std::string& scene, const std::string& script, int width = 1280,
-                   int height = 720);
+struct ShellOptions {
+  int width = 1280;  // the window's size
+  int height = 720;
+  int screen_width = 0;  // the monitor full screen fills (presenter mode); 0: the window's size
+  int screen_height = 0;
+  std::string lesson;     // presented from the start (--lesson), with no scene named on the command line
+  std::string stats_log;  // --stats-log
+};
+
+// Runs `script` (the previewer's script commands, docs/previewer.md) on `scene`, with the state
+// folder (recovery, recent files) inside `folder`; "$OUT/" in the script stands for `folder`'s path.
+ShellRun run_shell(const TestFolder& folder, const std::string& scene, const std::string& script,
+                   const ShellOptions& options = {});
 
 // A dump_state file's values by key.
 std::map<std::string, std::string> read_state(const std::string& path);
