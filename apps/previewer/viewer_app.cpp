@@ -31,7 +31,6 @@ namespace {
 // The stats log's key for the level of an image: its divisor, 0 for the quad-shaded live rung.
 int level_key(const ProgressiveFrame& frame) { return frame.quads ? 0 : frame.divisor; }
 
-
 constexpr double kFramePeriod = 1.0 / 60;   // UI pacing where vsync does not block (Xvfb, some drivers)
 constexpr double kEarlyFrameGap = 0.004;    // a new edit's first image may go up this soon after a frame
 // A live image is waited for in its edit's own frame up to this long (when the last one was as quick):

@@ -31,6 +31,15 @@ namespace {
 
 using State = std::map<std::string, std::string>;
 
+// The shading lesson presented from the start, the monitor a hall's 1920x1080 projector.
+test::ShellOptions shading_on_the_halls_screen() {
+  test::ShellOptions options;
+  options.lesson = "shading";
+  options.screen_width = 1920;
+  options.screen_height = 1080;
+  return options;
+}
+
 TEST(Hall, TheInstruments) {
   test::TestFolder folder("phonglab-hall-instruments");
   const std::string d = folder.path().string() + "/";
@@ -175,10 +184,7 @@ quit
 TEST(Hall, PresentingOnA1920x1080Screen) {
   test::TestFolder folder("phonglab-hall-presenter");
   const std::string d = folder.path().string() + "/";
-  test::ShellOptions options;
-  options.lesson = "shading";
-  options.screen_width = 1920;
-  options.screen_height = 1080;
+  const test::ShellOptions options = shading_on_the_halls_screen();
   const test::ShellRun run = test::run_shell(folder, "", R"(set render target_spp 1
 wait_frames 5
 key F11
@@ -229,16 +235,14 @@ double covered(State& s) {
 TEST(Hall, CaptionsBesideThePictureNotOverIt) {
   test::TestFolder folder("phonglab-hall-captions");
   const std::string d = folder.path().string() + "/";
-  test::ShellOptions options;
-  options.lesson = "shading";
-  options.screen_width = 1920;
-  options.screen_height = 1080;
+  const test::ShellOptions options = shading_on_the_halls_screen();
   const test::ShellRun run = test::run_shell(folder, "", R"(set render target_spp 1
 wait_frames 5
 lesson_goto 5
 wait_frames 3
 wait_idle 120
 dump_state $OUT/c05.txt
+set render resolution_scale 0.25
 set render target_spp 64
 lesson_goto 6
 wait_frames 3

@@ -15,9 +15,16 @@ namespace {
 
 using test::read_shot;
 
-bool orange(double r, double, double b) { return r > 0.9 && b < 0.2; }  // the difference view: yours brighter
-bool blue(double r, double, double b) { return b > 0.9 && r < 0.4; }    // yours darker
-const test::Region kView{0, 0, 880, 720};
+// The difference view's marks in the 880x720 view: orange where yours is brighter, blue where
+// darker, each on at least this share of the view.
+void expect_marks(const std::string& screenshot, double brighter, double darker) {
+  const test::Shot shot = read_shot(screenshot);
+  const test::Region view{0, 0, 880, 720};
+  EXPECT_GT(test::share(shot, view, [](double r, double, double b) { return r > 0.9 && b < 0.2; }), brighter)
+      << "orange where yours is brighter";
+  EXPECT_GT(test::share(shot, view, [](double r, double, double b) { return b > 0.9 && r < 0.4; }), darker)
+      << "blue where darker";
+}
 
 const char* const kWrongSign = "R = reflect(L, N); ks * pow(max(0, dot(R, V)), n)";
 
@@ -36,9 +43,7 @@ screenshot $OUT/f3_difference.png
 quit
 )");
   ASSERT_EQ(run.exit_status, 0);
-  const test::Shot shot = read_shot(d + "f3_difference.png");
-  EXPECT_GT(test::share(shot, kView, orange), 0.05) << "where the sign of R makes yours brighter";
-  EXPECT_GT(test::share(shot, kView, blue), 0.05) << "and darker";
+  expect_marks(d + "f3_difference.png", 0.05, 0.05);  // the sign of R wrong moves the highlights
 }
 
 TEST(ScreenTeaching, AStudentsImageDroppedIsCheckedAndItsDifferenceShown) {
@@ -71,17 +76,15 @@ quit
   auto i2 = test::read_state(d + "i2.txt");
   EXPECT_EQ(i2["image_check_verdict"] + "/" + i2["image_check_mistake"], "differs/reflect-sign or view-reversed")
       << i2["image_check_summary"];
-  const test::Shot shot = read_shot(d + "i2_difference.png");
-  EXPECT_GT(test::share(shot, kView, orange), 0.02) << "where the image is brighter";
-  EXPECT_GT(test::share(shot, kView, blue), 0.003) << "and darker";
+  expect_marks(d + "i2_difference.png", 0.02, 0.003);
 }
 
 TEST(ScreenTeaching, TheIndirectLightsFourViewsAndTheLessonsLastStep) {
   test::TestFolder folder("phonglab-screen-ambient");
   const std::string d = folder.path().string() + "/";
   const test::ShellRun run = test::run_shell(folder, "cornell", R"(key H
-set render target_spp 4
-set render resolution_scale 0.5
+set render target_spp 2
+set render resolution_scale 0.25
 wait_idle 120
 screenshot $OUT/a0_constant.png
 key I
@@ -124,7 +127,7 @@ lesson_next
 wait_idle 120
 screenshot $OUT/n06_answer.png
 set render target_spp 2
-set render resolution_scale 0.5
+set render resolution_scale 0.25
 lesson_goto 13
 wait_idle 120
 lesson_next
