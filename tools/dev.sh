@@ -75,11 +75,19 @@ run() {
 test_all() {
   deps
   local start=$SECONDS
-  echo "== the web page (Emscripten) and its test packages (puppeteer-core, npm)"
-  web
+  # The page's build beside the Release build: Emscripten's links and optimiser run on one core,
+  # and the other's compiles fill the gaps (its log is printed when it is done).
+  echo "== the web page (Emscripten) beside the release build; the page's test packages (puppeteer-core, npm)"
+  mkdir -p build-web && (web > build-web/build.log 2>&1) &
+  local web_pid=$!
   (cd tests/web && npm ci --no-audit --no-fund --silent)
-  echo "== release build and tests (the previewer's run under Xvfb in both builds; the web page in headless Chromium)"
-  build build -DPHONGLAB_WEB_PAGE="$PWD/build-web/phonglab.html"
+  # The shipped programs as shipped (a unity build: a few files a translation unit), their numbers'
+  # and the command line's unit tests, the previewer under Xvfb, the page in headless Chromium, the
+  # bench, the package. The other unit tests run once, in the sanitizer build below.
+  build build -DCMAKE_UNITY_BUILD=ON -DPHONGLAB_UNIT_TESTS=shipped -DPHONGLAB_WEB_PAGE="$PWD/build-web/phonglab.html"
+  if ! wait "$web_pid"; then cat build-web/build.log; echo "the web page's build failed" >&2; exit 1; fi
+  tail -n 3 build-web/build.log
+  echo "== release tests (at $((SECONDS - start)) s)"
   (cd build && ctest --output-on-failure --parallel "$(nproc)")
 
   echo "== aarch64: the core cross-compiled, its NEON packet kernels against its scalar renderer under qemu (at $((SECONDS - start)) s)"
@@ -87,9 +95,9 @@ test_all() {
   cmake --build build-aarch64 --parallel "$(nproc)"
   (cd build-aarch64 && ctest --output-on-failure)
 
-  # One clang build serves both the sanitizer run of the tests and the fuzzer (libFuzzer's
-  # coverage instrumentation costs the tests little and saves a second full build).
-  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang) and tests (at $((SECONDS - start)) s)"
+  # One clang build serves both the sanitizer run of every unit test and the fuzzers (libFuzzer's
+  # coverage instrumentation is the libraries' only, and saves a second full build).
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang) and every unit test, the soak test (at $((SECONDS - start)) s)"
   # What its tests and the fuzzers run: not the bench or the digest (their tests are the Release build's).
   # The sanitizer builds are the test's alone: their libraries and apps compile as unity builds
   # (a few files a translation unit; the test files stay one each), which halves the ThreadSanitizer
