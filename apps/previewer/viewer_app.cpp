@@ -198,12 +198,16 @@ int Viewer::run() {
     // A frame that would draw the same pixels as the one on screen is not drawn: software GL
     // spends the UI thread's time (and the machine's memory traffic) on every copy and swap.
     const std::string shot = client_ ? client_->screenshot_wanted() : "";
+    const auto plan = [&] {  // what lies under ImGui's draw data, for either way of drawing it
+      return plan_screen(s_, fb_width, fb_height, ImGui::GetIO().DisplayFramebufferScale,
+                         ImGui::GetStyle().Colors[ImGuiCol_WindowBg]);
+    };
     if (s_.platform.headless()) {
-      if (!shot.empty()) draw_software(fb_width, fb_height, shot);  // what the window would show, drawn on the CPU
+      if (!shot.empty()) draw_software(plan(), fb_width, fb_height, shot);  // what the window would show, drawn on the CPU
       take_images();
       s_.upload_pending = false;
     } else if (frame_changed(fb_width, fb_height) || !shot.empty()) {
-      draw_gl(fb_width, fb_height, shot);
+      draw_gl(plan(), fb_width, fb_height, shot);
       s_.platform.swap_buffers();
       ++s_.stats.frames_drawn;
     }
@@ -416,9 +420,7 @@ bool Viewer::frame_changed(int fb_width, int fb_height) {
   return changed;
 }
 
-void Viewer::draw_gl(int fb_width, int fb_height, const std::string& screenshot) {
-  const ScreenPlan plan = plan_screen(s_, fb_width, fb_height, ImGui::GetIO().DisplayFramebufferScale,
-                                      ImGui::GetStyle().Colors[ImGuiCol_WindowBg]);
+void Viewer::draw_gl(const ScreenPlan& plan, int fb_width, int fb_height, const std::string& screenshot) {
   upload_images(plan.view_blocks);
   glViewport(0, 0, fb_width, fb_height);
   if (plan.clear) {
@@ -447,9 +449,7 @@ void Viewer::draw_gl(int fb_width, int fb_height, const std::string& screenshot)
 }
 
 // The headless screen: what draw_gl would put in the window, drawn on the CPU (ui::SoftwareScreen).
-void Viewer::draw_software(int fb_width, int fb_height, const std::string& screenshot) {
-  const ScreenPlan plan = plan_screen(s_, fb_width, fb_height, ImGui::GetIO().DisplayFramebufferScale,
-                                      ImGui::GetStyle().Colors[ImGuiCol_WindowBg]);
+void Viewer::draw_software(const ScreenPlan& plan, int fb_width, int fb_height, const std::string& screenshot) {
   take_images();
   ui::SoftwareScreen screen(fb_width, fb_height);
   if (plan.clear) screen.fill({0, 0, fb_width, fb_height}, plan.clear_color);
@@ -457,7 +457,9 @@ void Viewer::draw_software(int fb_width, int fb_height, const std::string& scree
   std::vector<unsigned char> codes;
   for (const ScreenPlan::Image& image : plan.images) {
     const bool view = image.source < 0;
-    const std::vector<glm::vec3> pixels = view ? tools_.display_pixels() : s_.shown.terms[static_cast<std::size_t>(image.source)];
+    std::vector<glm::vec3> display;  // the view's pixels as shown (a term image is read where it is)
+    if (view) display = tools_.display_pixels();
+    const std::vector<glm::vec3>& pixels = view ? display : s_.shown.terms[static_cast<std::size_t>(image.source)];
     const DisplayBlocks blocks = view ? plan.view_blocks : DisplayBlocks{1, s_.shown.width, s_.shown.height};
     const float exposure_ev = view ? image_exposure_ev() : s_.display.exposure_ev;
     codes.resize(static_cast<std::size_t>(blocks.width) * static_cast<std::size_t>(blocks.height) * 4);

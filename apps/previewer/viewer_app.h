@@ -79,8 +79,8 @@ class Viewer {
   void take_images();
   // Encodes and uploads a new image (or the one on screen under new display settings).
   void upload_images(const DisplayBlocks& blocks);  // the view's image widened into `blocks`, the small multiples'
-  void draw_gl(int fb_width, int fb_height, const std::string& screenshot);  // upload, image, ImGui, the screenshot wanted
-  void draw_software(int fb_width, int fb_height, const std::string& screenshot);  // headless: the screenshot drawn on the CPU
+  void draw_gl(const ScreenPlan& plan, int fb_width, int fb_height, const std::string& screenshot);  // upload, image, ImGui, the screenshot wanted
+  void draw_software(const ScreenPlan& plan, int fb_width, int fb_height, const std::string& screenshot);  // headless: the screenshot drawn on the CPU
   // The exposure the image on screen is encoded with (none for the heat map's final colours).
   float image_exposure_ev() const;
   // Whether the image on screen (or a term image) must be encoded and uploaded again.

@@ -56,6 +56,7 @@ EMSCRIPTEN_BINDINGS(phonglab) {
       .constructor<>()
       .function("open", &Via<&WebView::scene, &WebScene::open>::call)
       .function("sceneJson", &Via<&WebView::scene, &WebScene::scene_json>::call)
+      .function("meshFilesJson", &Via<&WebView::scene, &WebScene::mesh_files_json>::call)
       .function("source", &Via<&WebView::scene, &WebScene::source>::call)
       .function("sceneLabel", &Via<&WebView::scene, &WebScene::scene_label>::call)
       .function("viewTerm", &Via<&WebView::instruments, &WebInstruments::view_term>::call)

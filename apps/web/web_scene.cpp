@@ -44,6 +44,12 @@ std::string WebScene::open(const std::string& scene_arg) {
 
 std::string WebScene::scene_json() const { return scene_to_json(s_.session.scene()); }
 
+std::string WebScene::mesh_files_json() const {
+  nlohmann::json files = nlohmann::json::array();
+  for (const SceneFileText& file : embedded_mesh_files(s_.session.scene())) files.push_back({{"path", file.path}, {"text", file.text}});
+  return files.dump();
+}
+
 std::string WebScene::scene_label() const {
   const SceneDocument& document = s_.session.document();
   if (!document.embedded_name().empty()) return document.embedded_name();

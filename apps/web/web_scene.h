@@ -21,6 +21,9 @@ class WebScene {
   // upload): "" or the positioned errors, the last good scene kept.
   std::string open(const std::string& scene_arg);
   std::string scene_json() const;
+  // The files the scene needs beside it when downloaded (an embedded scene's OBJ and MTL files,
+  // io's embedded_mesh_files): JSON [{"path": "cornell/...", "text": ...}], [] for none.
+  std::string mesh_files_json() const;
   std::string source() const { return s_.session.document().source(); }
   // What the scene list shows for the document: an embedded scene's name, a file's name, or the
   // scene a lesson's step showed (also after the lesson is left).

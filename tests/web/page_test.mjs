@@ -476,6 +476,45 @@ let one_thread_image;
   await page.close();
 }
 
+// 6h. Download scene of a Cornell box: a zip of the scene and the OBJ and MTL files it names,
+// read by Python's zipfile (its CRCs checked); unpacked anywhere, phonglab-cli renders it with the
+// bits of the embedded scene's image. A scene without meshes downloads as its JSON alone.
+{
+  const downloads = path.join(out, 'scene-downloads');
+  mkdirSync(downloads, { recursive: true });
+  for (const [scene, file] of [['cornell-sphere', 'cornell-sphere.zip'], ['lecture', 'lecture.json']]) {
+    const page = await open(`scene=${scene}&size=160x90&spp=1`);
+    const cdp = await page.target().createCDPSession();
+    await cdp.send('Page.setDownloadBehavior', { behavior: 'allow', downloadPath: downloads });
+    await (await page.$('#download')).click();
+    const saved = path.join(downloads, file);
+    for (let t = 0; t < 100 && !existsSync(saved); ++t) await new Promise((resolve) => setTimeout(resolve, 100));
+    await new Promise((resolve) => setTimeout(resolve, 200));  // the file complete
+    check(existsSync(saved), `Download scene of ${scene} gives ${file}`);
+    await page.close();
+  }
+  const zip = path.join(downloads, 'cornell-sphere.zip'), unpacked = path.join(downloads, 'unpacked');
+  let names = '';
+  try {
+    names = execFileSync('python3', ['-c', `import sys, zipfile
+z = zipfile.ZipFile(sys.argv[1])
+bad = z.testzip()
+if bad: sys.exit('bad CRC: ' + bad)
+z.extractall(sys.argv[2])
+print(' '.join(z.namelist()))`, zip, unpacked]).toString().trim();
+  } catch (e) { names = 'unreadable: ' + e.message; }
+  check(names === 'cornell-sphere.json cornell/CornellBox-Sphere.obj cornell/CornellBox-Sphere.mtl',
+        `the zip holds the scene and its mesh's files, CRCs right (${names})`);
+  let off = -1;
+  try {
+    const render = (scene, png) => execFileSync(cli, ['render', scene, '-o', png, '--width', '96', '--height', '96', '--spp', '1']);
+    render(path.join(unpacked, 'cornell-sphere.json'), path.join(downloads, 'unpacked.png'));
+    render('cornell-sphere', path.join(downloads, 'embedded.png'));
+    off = differing(png_rgb(path.join(downloads, 'unpacked.png')), png_rgb(path.join(downloads, 'embedded.png')), 0);
+  } catch (e) { console.log('  ' + e.message); }
+  check(off === 0, `the unpacked download renders as the embedded cornell-sphere, bit for bit (${off} pixels differ)`);
+}
+
 // 6g. A phone (390x844, touch): the page is no wider than the screen, the panel below the image;
 // one finger orbits, two pinch.
 {

@@ -71,6 +71,15 @@ std::string write_file_atomically(const std::string& path, const std::string& te
 // error says so, and the scene should be saved elsewhere). Empty on success, else the error.
 std::string write_embedded_meshes(const Scene& scene, const std::string& dir);
 
+// The same files as text: each embedded OBJ a mesh names without a file on disk and the MTL files
+// it names, by their paths relative to the scene's folder ("cornell/CornellBox-Sphere.mtl"), each
+// once, in the scene's order. The page puts them in one download beside the scene.
+struct SceneFileText {
+  std::string path;
+  std::string text;
+};
+std::vector<SceneFileText> embedded_mesh_files(const Scene& scene);
+
 // A number as scene files write it: the shortest decimal that reads back to the same double, in
 // plain or exponent notation, whichever is shorter (plain on a tie): 40, 0.04, 1e-05, as
 // std::to_chars writes it. Computed with printf alone, so WebAssembly (whose libc++ has no

@@ -414,19 +414,35 @@ std::string write_embedded(const std::string& target, const std::string& text) {
 
 }  // namespace
 
-std::string write_embedded_meshes(const Scene& scene, const std::string& dir) {
+std::vector<SceneFileText> embedded_mesh_files(const Scene& scene) {
   namespace fs = std::filesystem;
+  std::vector<SceneFileText> files;
+  const auto add = [&files](const std::string& path, std::string text) {
+    for (const SceneFileText& file : files) {
+      if (file.path == path) return;
+    }
+    files.push_back({path, std::move(text)});
+  };
   for (const Mesh& mesh : scene.meshes) {
     if (!mesh.resolved_path.empty()) continue;  // read from disk: named relative to the saved file
-    const std::optional<std::string> obj = embedded_file(mesh.file);
+    std::optional<std::string> obj = embedded_file(mesh.file);
     if (!obj) continue;  // not an embedded file either: the scene names it as it was written
-    const fs::path folder = fs::path(dir) / fs::path(mesh.file).parent_path();
-    if (std::string error = write_embedded((fs::path(dir) / mesh.file).string(), *obj); !error.empty()) return error;
+    const std::vector<std::string> mtls = mtl_names(*obj);
+    add(mesh.file, std::move(*obj));
     const std::string obj_folder = fs::path(mesh.file).parent_path().generic_string();
-    for (const std::string& mtl : mtl_names(*obj)) {
-      const std::optional<std::string> text = embedded_file(obj_folder.empty() ? mtl : obj_folder + "/" + mtl);
-      if (!text) continue;  // the loader warns about a missing MTL when the scene is read
-      if (std::string error = write_embedded((folder / mtl).string(), *text); !error.empty()) return error;
+    for (const std::string& mtl : mtls) {
+      const std::string path = obj_folder.empty() ? mtl : obj_folder + "/" + mtl;
+      if (std::optional<std::string> text = embedded_file(path)) add(path, std::move(*text));
+      // (one not embedded: the loader warns about a missing MTL when the scene is read)
+    }
+  }
+  return files;
+}
+
+std::string write_embedded_meshes(const Scene& scene, const std::string& dir) {
+  for (const SceneFileText& file : embedded_mesh_files(scene)) {
+    if (std::string error = write_embedded((std::filesystem::path(dir) / file.path).string(), file.text); !error.empty()) {
+      return error;
     }
   }
   return {};
