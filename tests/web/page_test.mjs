@@ -507,7 +507,8 @@ print(' '.join(z.namelist()))`, zip, unpacked]).toString().trim();
         `the zip holds the scene and its mesh's files, CRCs right (${names})`);
   let off = -1;
   try {
-    const render = (scene, png) => execFileSync(cli, ['render', scene, '-o', png, '--width', '96', '--height', '96', '--spp', '1']);
+    const render = (scene, png) => execFileSync(cli, ['render', scene, '-o', png, '--width', '96', '--height', '96', '--spp', '1'],
+                                                { stdio: 'pipe' });  // (the MTL's warnings are the CLI's, not the page's)
     render(path.join(unpacked, 'cornell-sphere.json'), path.join(downloads, 'unpacked.png'));
     render('cornell-sphere', path.join(downloads, 'embedded.png'));
     off = differing(png_rgb(path.join(downloads, 'unpacked.png')), png_rgb(path.join(downloads, 'embedded.png')), 0);
