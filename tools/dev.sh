@@ -98,7 +98,8 @@ test_all() {
   # One clang build serves both the sanitizer run of every unit test and the fuzzers (libFuzzer's
   # coverage instrumentation is the libraries' only, and saves a second full build).
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang) and every unit test, the soak test (at $((SECONDS - start)) s)"
-  # What its tests and the fuzzers run: not the bench or the digest (their tests are the Release build's).
+  # What its tests and the fuzzers run: not the digest (its tests are the Release build's); the bench
+  # only because phonglab-cli bench, which test_cli runs, starts it.
   # The sanitizer builds are the test's alone: their libraries and apps compile as unity builds
   # (a few files a translation unit; the test files stay one each), which halves the ThreadSanitizer
   # build (100 -> 54 s on this 2-core machine) and shortens this one.

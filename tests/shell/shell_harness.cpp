@@ -152,12 +152,12 @@ double share(const Shot& shot, const Region& r, const std::function<bool(double,
   return n == 0 ? -1 : static_cast<double>(hits) / static_cast<double>(n);
 }
 
-void keep_screenshot(const std::string& path, const std::string& name) {
-  const char* dir = std::getenv("PHONGLAB_SCREENSHOTS");
-  if (dir == nullptr || *dir == 0) return;
+void keep_screenshot(const std::string& dir, const std::string& name) {
+  const char* kept = std::getenv("PHONGLAB_SCREENSHOTS");
+  if (kept == nullptr || *kept == 0) return;
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  std::filesystem::copy_file(path, std::filesystem::path(dir) / name, std::filesystem::copy_options::overwrite_existing, ec);
+  std::filesystem::create_directories(kept, ec);
+  std::filesystem::copy_file(dir + name, std::filesystem::path(kept) / name, std::filesystem::copy_options::overwrite_existing, ec);
 }
 
 }  // namespace phonglab::test

@@ -60,8 +60,8 @@ double mean(const Shot& shot, const Region& r);            // of every channel
 double luma_stddev(const Shot& shot, const Region& r);     // of Rec. 709 luma: 0 when uniform
 // The share of the region's pixels whose channels (r, g, b in [0, 1]) pass `test`.
 double share(const Shot& shot, const Region& r, const std::function<bool(double, double, double)>& test);
-// Copies `path` into $PHONGLAB_SCREENSHOTS/NAME when that is set (tools/readme_images.sh takes the
-// README's pictures from there).
-void keep_screenshot(const std::string& path, const std::string& name);
+// Copies the screenshot DIR/NAME (DIR ending in '/') to $PHONGLAB_SCREENSHOTS/NAME when that is set
+// (tools/readme_images.sh takes the README's pictures from there).
+void keep_screenshot(const std::string& dir, const std::string& name);
 
 }  // namespace phonglab::test

@@ -105,8 +105,8 @@ quit
   EXPECT_GT(test::rmse(constant, indirect, view), 0.02) << "the indirect image differs from ka*Ia's";
   EXPECT_GT(test::rmse(indirect, beside, view), 0.02) << "the beside view differs from the indirect image";
   EXPECT_GT(test::rmse(beside, difference, view), 0.02) << "the difference view differs from the beside view";
-  test::keep_screenshot(d + "a2_beside.png", "a2_beside.png");
-  test::keep_screenshot(d + "a3_difference.png", "a3_difference.png");
+  test::keep_screenshot(d, "a2_beside.png");
+  test::keep_screenshot(d, "a3_difference.png");
 }
 
 TEST(ScreenTeaching, ALessonsStepsAsTheyLook) {
@@ -178,7 +178,7 @@ quit
   const test::Shot view = read_shot(d + "f4_view.png"), browser = read_shot(d + "f5_recent.png");
   EXPECT_GT(test::luma_stddev(browser, list), 0.01) << "the browser's list shows";
   EXPECT_GT(test::rmse(view, browser, list), 0.05) << "over the view";
-  test::keep_screenshot(d + "f5_recent.png", "f5_recent.png");
+  test::keep_screenshot(d, "f5_recent.png");
 }
 
 }  // namespace

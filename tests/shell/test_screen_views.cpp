@@ -84,9 +84,9 @@ quit
   const test::Shot multiples = read_shot(d + "i10_multiples.png");
   EXPECT_GT(test::rmse(multiples, {5, 30, 280, 300}, multiples, {298, 30, 280, 300}), 0.02)
       << "small multiples: the ambient and diffuse cells differ";
-  test::keep_screenshot(d + "i10_multiples.png", "i10_multiples.png");
-  test::keep_screenshot(d + "i09_wipe.png", "i09_wipe.png");
-  test::keep_screenshot(d + "figure.png", "figure.png");
+  test::keep_screenshot(d, "i10_multiples.png");
+  test::keep_screenshot(d, "i09_wipe.png");
+  test::keep_screenshot(d, "figure.png");
   // Move your head: the diffuse term does not depend on the eye, the specular term does.
   const test::Region below_horizon{0, 280, 880, 290};
   const double diffuse = test::mean(read_shot(d + "h01_head_diffuse_difference.png"), below_horizon);
@@ -94,8 +94,8 @@ quit
   EXPECT_GE(diffuse, 0);
   EXPECT_LT(diffuse, 0.002) << "the diffuse term cancels in the two-eye difference";
   EXPECT_GT(specular, 0.004) << "the specular term does not";
-  test::keep_screenshot(d + "h02_head_specular_difference.png", "h02_head_specular_difference.png");
-  test::keep_screenshot(d + "h03_head_full.png", "h03_head_full.png");
+  test::keep_screenshot(d, "h02_head_specular_difference.png");
+  test::keep_screenshot(d, "h03_head_full.png");
 }
 
 TEST(ScreenViews, AnAAskedForMidRenderIsTheFinishedImage) {
@@ -168,7 +168,7 @@ quit
   EXPECT_GT(test::rmse(cut0, cut1, kSceneRegion), 0.01) << "cut 0 and cut 1 look different";
   EXPECT_GT(test::rmse(cut1, cut2, kSceneRegion), 0.001) << "cut 1 and cut 2 look different";
   for (const char* name : {"r00_probe_panel.png", "r01_tree_glass.png", "r04_cut0.png", "r05_cut1.png", "r06_cut2.png", "r08_heat.png"}) {
-    test::keep_screenshot(d + name, name);
+    test::keep_screenshot(d, name);
   }
 }
 
